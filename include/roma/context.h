@@ -1,0 +1,115 @@
+/* libroma: the Vulkan context every GPU object hangs off.
+ *
+ * Two modes:
+ *  - own device (default): libroma creates a headless instance, device and
+ *    queue, preferring a discrete GPU, then integrated, virtual, and finally a
+ *    CPU implementation such as Mesa lavapipe;
+ *  - external device: desc.external holds the caller's instance, physical
+ *    device, device and a queue with graphics + compute. They must outlive the
+ *    context, and the device must have been created with Vulkan 1.3 and the
+ *    features listed under "Requirements" enabled.
+ *
+ * Requirements: Vulkan 1.3 with dynamicRendering, synchronization2 and
+ * timestamp queries on the chosen queue family.
+ *
+ * Environment (read once in roma_context_create, only where the desc is silent):
+ *   ROMA_DEVICE=<substring>   choose the physical device by name
+ *   ROMA_VALIDATION=1         enable VK_LAYER_KHRONOS_validation (own device only)
+ *
+ * No global state: several contexts may coexist. A context is not thread-safe;
+ * use one per thread or lock around it. */
+#ifndef ROMA_CONTEXT_H
+#define ROMA_CONTEXT_H
+
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#include "roma/result.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct roma_context roma_context;
+
+typedef enum roma_context_flags {
+    /* Enable the Khronos validation layer and route its messages to the logger;
+     * creation fails with ROMA_ERROR_MISSING_FEATURE if the layer is absent. */
+    ROMA_CONTEXT_VALIDATION = 1u << 0,
+    /* Never pick a CPU implementation (lavapipe). */
+    ROMA_CONTEXT_REQUIRE_GPU = 1u << 1
+} roma_context_flags;
+
+typedef struct roma_external_device {
+    VkInstance instance;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    uint32_t queue_family_index; /* must support graphics, compute and timestamps */
+    VkQueue queue;
+} roma_external_device;
+
+typedef struct roma_context_desc {
+    uint32_t flags;                       /* roma_context_flags */
+    const char *device_name;              /* substring of the device name; NULL = ROMA_DEVICE or auto */
+    const roma_external_device *external; /* NULL = libroma creates its own device */
+    roma_logger logger;
+} roma_context_desc;
+
+roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
+/* Waits for the device to be idle, then destroys what libroma created. Accepts NULL. */
+void roma_context_destroy(roma_context *context);
+
+typedef struct roma_context_info {
+    char device_name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
+    VkPhysicalDeviceType device_type;
+    uint32_t api_version;
+    uint32_t driver_version;
+    float timestamp_period_ns;  /* nanoseconds per timestamp tick */
+    int validation_enabled;
+    int owns_device;            /* 0 when running on the caller's device */
+} roma_context_info;
+
+roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);
+
+/* Errors reported by the validation layer since creation (0 when validation is off). */
+uint32_t roma_context_validation_error_count(const roma_context *context);
+
+VkInstance roma_context_instance(const roma_context *context);
+VkPhysicalDevice roma_context_physical_device(const roma_context *context);
+VkDevice roma_context_device(const roma_context *context);
+VkQueue roma_context_queue(const roma_context *context);
+uint32_t roma_context_queue_family(const roma_context *context);
+
+/* Runs a tiny compute shader end to end (upload-free fill, readback, timestamp)
+ * to prove the device, the embedded SPIR-V and the timers work. Optional. */
+roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
+
+/* --- GPU timers: timestamp queries around named passes ---
+ * Record begin/end into any command buffer of the context's queue family;
+ * read after the work completed. Names are copied. */
+
+typedef struct roma_gpu_timer roma_gpu_timer;
+
+typedef struct roma_gpu_timing {
+    char name[48];
+    double milliseconds;
+} roma_gpu_timing;
+
+roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_scopes,
+                                  roma_gpu_timer **out_timer);
+void roma_gpu_timer_destroy(roma_gpu_timer *timer);
+/* Records the query reset; call once per use, before the first begin. */
+void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
+/* Returns a scope index, or UINT32_MAX when max_scopes is exhausted (nothing recorded). */
+uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cmd, const char *name);
+void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uint32_t scope);
+/* Copies up to *count timings; *count becomes the number of scopes recorded.
+ * ROMA_ERROR_NOT_READY if the GPU has not finished them. */
+roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing *out_timings,
+                                uint32_t *count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_CONTEXT_H */

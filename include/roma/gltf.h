@@ -1,0 +1,40 @@
+/* libroma: glTF 2.0 scene loading (separate target roma_gltf, C API over tinygltf).
+ *
+ * All mesh primitives of mode TRIANGLES (also strips and fans, converted) are
+ * flattened into world space through the node hierarchy of the default scene
+ * (or of every root node when the file names none). Per primitive: base
+ * colour factor and emissive factor (times KHR_materials_emissive_strength).
+ * KHR_lights_punctual lights and the first camera met in the node walk are
+ * kept. Skins and animations are kept as roma_scene_animation_data; geometry
+ * is the rest pose. Morph targets are ignored (base mesh), with a warning.
+ *
+ * Errors never leave a partial scene: *out_scene is NULL on failure. */
+#ifndef ROMA_GLTF_H
+#define ROMA_GLTF_H
+
+#include <stddef.h>
+
+#include "roma/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct roma_gltf_desc {
+    roma_logger logger;
+} roma_gltf_desc;
+
+/* path ends in .gltf or .glb (detected from content, not the name). desc may be NULL. */
+roma_result roma_scene_load_gltf(const char *path, const roma_gltf_desc *desc,
+                                 roma_scene **out_scene);
+
+/* From memory. base_dir resolves external buffers (may be NULL: external URIs are
+ * then an error). The data is not kept. */
+roma_result roma_scene_load_gltf_memory(const void *data, size_t size, const char *base_dir,
+                                        const roma_gltf_desc *desc, roma_scene **out_scene);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_GLTF_H */

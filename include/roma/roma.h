@@ -1,0 +1,17 @@
+/* libroma: fast approximate ray tracing of dynamic triangle scenes with a
+ * Ray-aligned Occupancy Map Array. Umbrella header. */
+#ifndef ROMA_ROMA_H
+#define ROMA_ROMA_H
+
+#include "roma/camera.h"
+#include "roma/context.h"
+#include "roma/image.h"
+#include "roma/result.h"
+#include "roma/sampling.h"
+#include "roma/scene.h"
+
+#define ROMA_VERSION_MAJOR 0
+#define ROMA_VERSION_MINOR 1
+#define ROMA_VERSION_PATCH 0
+
+#endif /* ROMA_ROMA_H */

@@ -1,0 +1,185 @@
+/* libroma: triangle scenes.
+ *
+ * A roma_scene is an immutable, world-space triangle soup with per-triangle
+ * materials, punctual lights, area lights (emissive triangles) and an optional
+ * camera. It is built from caller arrays (roma_scene_create), from a glTF file
+ * (roma/gltf.h) or from a built-in generator (roma_scene_create_builtin).
+ * Every builder validates all of its input first and either returns a complete
+ * scene or nothing: on failure *out_scene is NULL.
+ *
+ * All surfaces are two-sided Lambertian reflectors. */
+#ifndef ROMA_SCENE_H
+#define ROMA_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "roma/camera.h"
+#include "roma/result.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct roma_scene roma_scene;
+
+typedef struct roma_material {
+    float base_color[3]; /* linear albedo in [0,1] */
+    float emission[3];   /* emitted radiance, linear; non-zero makes the triangles area lights */
+} roma_material;
+
+typedef enum roma_light_type {
+    ROMA_LIGHT_POINT = 1,
+    ROMA_LIGHT_SPOT,
+    ROMA_LIGHT_DIRECTIONAL
+} roma_light_type;
+
+/* Units follow KHR_lights_punctual: intensity is in candela (W/sr after
+ * multiplying by color) for point and spot lights, in lux (W/m^2) for
+ * directional lights. */
+typedef struct roma_light {
+    roma_light_type type;
+    float position[3];      /* world space; unused for directional lights */
+    float direction[3];     /* world space, unit: where the light points (spot, directional) */
+    float color[3];         /* linear RGB */
+    float intensity;
+    float range;            /* 0 = unlimited; otherwise the glTF-recommended window applies */
+    float inner_cone_angle; /* radians, spot lights only */
+    float outer_cone_angle; /* radians, spot lights only; 0 means pi/4 */
+} roma_light;
+
+typedef struct roma_scene_desc {
+    const float *positions;           /* 3 floats per vertex, world space */
+    const float *normals;             /* optional, 3 per vertex; computed from faces when NULL */
+    uint32_t vertex_count;
+    const uint32_t *indices;          /* 3 per triangle */
+    uint32_t triangle_count;
+    const uint32_t *triangle_materials; /* optional, one per triangle; NULL = material 0 */
+    const roma_material *materials;   /* optional; NULL = one grey material (albedo 0.8) */
+    uint32_t material_count;
+    const roma_light *lights;         /* optional punctual lights */
+    uint32_t light_count;
+    const roma_camera *camera;        /* optional */
+    const char *name;                 /* optional, copied; shown in logs and stats */
+    roma_logger logger;
+} roma_scene_desc;
+
+/* Validates and copies the arrays. Rejects: NULL/zero arrays, indices >= vertex_count,
+ * material indices >= material_count, NaN/Inf positions, normals or light data,
+ * negative colours, no triangle with non-zero area (ROMA_ERROR_EMPTY_SCENE).
+ * Zero-area triangles are kept in the arrays (they hit nothing) and counted in
+ * roma_scene_view.degenerate_triangle_count. */
+roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scene);
+
+/* Accepts NULL. */
+void roma_scene_destroy(roma_scene *scene);
+
+/* Names of the built-in scenes, NULL-terminated. The first is the default. */
+const char *const *roma_builtin_scene_names(void);
+
+/* name: one of roma_builtin_scene_names(), or NULL for the default ("cornell"). */
+roma_result roma_scene_create_builtin(const char *name, const roma_logger *logger,
+                                      roma_scene **out_scene);
+
+/* --- Data kept for animation (glTF skins and animations); rest pose is what
+ *     the triangle arrays hold. All arrays may be empty. --- */
+
+typedef struct roma_scene_node {
+    int32_t parent;          /* index into nodes, -1 for roots */
+    int32_t skin;            /* index into skins, -1 if none */
+    float translation[3];    /* local TRS at rest */
+    float rotation[4];       /* quaternion x, y, z, w */
+    float scale[3];
+    float world[16];         /* column-major world matrix at rest */
+} roma_scene_node;
+
+typedef struct roma_scene_skin {
+    uint32_t first_joint;    /* range into roma_scene_animation_data.joint_nodes and inverse_binds */
+    uint32_t joint_count;
+} roma_scene_skin;
+
+typedef enum roma_anim_path {
+    ROMA_ANIM_TRANSLATION = 1,
+    ROMA_ANIM_ROTATION,
+    ROMA_ANIM_SCALE,
+    ROMA_ANIM_WEIGHTS
+} roma_anim_path;
+
+typedef enum roma_anim_interp {
+    ROMA_ANIM_LINEAR = 0,
+    ROMA_ANIM_STEP,
+    ROMA_ANIM_CUBICSPLINE
+} roma_anim_interp;
+
+typedef struct roma_scene_anim_channel {
+    uint32_t animation;      /* index of the clip this channel belongs to */
+    uint32_t node;
+    roma_anim_path path;
+    roma_anim_interp interpolation;
+    uint32_t key_count;
+    uint32_t components;     /* floats per key value (3 or 4; x3 for cubic spline tangents) */
+    uint32_t first_time;     /* offset into roma_scene_animation_data.times */
+    uint32_t first_value;    /* offset into roma_scene_animation_data.values */
+} roma_scene_anim_channel;
+
+typedef struct roma_scene_animation_data {
+    const roma_scene_node *nodes;
+    uint32_t node_count;
+    const roma_scene_skin *skins;
+    uint32_t skin_count;
+    const uint32_t *joint_nodes;       /* per skin joint: node index */
+    const float *inverse_binds;        /* per skin joint: column-major 4x4 */
+    uint32_t joint_total;
+    /* Per vertex of the flattened scene (vertex_count entries each, or NULL when no vertex is skinned): */
+    const uint32_t *vertex_node;       /* node that instanced the vertex */
+    const int32_t *vertex_skin;        /* skin index or -1 */
+    const uint16_t *vertex_joints;     /* 4 per vertex, index within the skin */
+    const float *vertex_weights;       /* 4 per vertex */
+    const float *vertex_rest_local;    /* 3 per vertex: position in mesh space before any transform */
+    const roma_scene_anim_channel *channels;
+    uint32_t channel_count;
+    uint32_t animation_count;
+    const float *times;
+    const float *values;
+} roma_scene_animation_data;
+
+/* Read-only view of a scene; pointers stay valid until roma_scene_destroy. */
+typedef struct roma_scene_view {
+    const char *name;
+    const float *positions;           /* 3 per vertex */
+    const float *normals;             /* 3 per vertex, unit length (zero for unused vertices) */
+    uint32_t vertex_count;
+    const uint32_t *indices;          /* 3 per triangle */
+    uint32_t triangle_count;
+    uint32_t degenerate_triangle_count;
+    const uint32_t *triangle_materials; /* one per triangle */
+    const roma_material *materials;
+    uint32_t material_count;
+    const roma_light *lights;
+    uint32_t light_count;
+    const uint32_t *emissive_triangles; /* triangles whose material emits and whose area > 0 */
+    uint32_t emissive_triangle_count;
+    int has_camera;
+    roma_camera camera;
+    float bounds_min[3], bounds_max[3]; /* over vertices referenced by triangles */
+    roma_scene_animation_data animation;
+} roma_scene_view;
+
+/* Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments. */
+roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view);
+
+/* Animation data is attached by loaders after the geometry is validated; the
+ * scene copies the arrays. Rejects out-of-range node/skin/joint indices and
+ * non-finite floats. Intended for loaders; engines rarely need it. */
+roma_result roma_scene_set_animation_data(roma_scene *scene,
+                                          const roma_scene_animation_data *data,
+                                          const roma_logger *logger);
+
+/* Camera to use when none is given: the scene's own, or one framing the bounds. */
+void roma_scene_default_camera(const roma_scene *scene, float aspect, roma_camera *out_camera);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_SCENE_H */

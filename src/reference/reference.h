@@ -1,0 +1,129 @@
+/* libroma reference tracer: ground truth rendered on the CPU with Embree.
+ *
+ * Lives in its own target (roma_reference) so that engines linking libroma
+ * never pull in Embree. Used by roma-render --tracer embree, the tests and the
+ * benchmark. Deterministic: every estimate is a pure function of the scene,
+ * the inputs and the seed (roma/sampling.h), whatever the thread count.
+ *
+ * Shading model (shared with the ROMA passes): two-sided Lambertian surfaces;
+ * the shading normal is the interpolated vertex normal, flipped to the side of
+ * the geometric normal that faces the incoming ray; secondary rays start at
+ * the hit point offset by ROMA_REF_EPSILON * scene extent along the geometric
+ * normal (facing side). */
+#ifndef ROMA_REFERENCE_H
+#define ROMA_REFERENCE_H
+
+#include <stdint.h>
+
+#include "roma/camera.h"
+#include "roma/image.h"
+#include "roma/result.h"
+#include "roma/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Relative ray offset (times the scene's bounding-box diagonal). */
+#define ROMA_REF_EPSILON 1e-5f
+
+typedef struct roma_ref roma_ref;
+
+typedef struct roma_ref_desc {
+    uint32_t thread_count; /* 0 = number of online CPUs */
+    roma_logger logger;
+} roma_ref_desc;
+
+/* Builds the Embree scene. The roma_scene must outlive the roma_ref. */
+roma_result roma_ref_create(const roma_scene *scene, const roma_ref_desc *desc, roma_ref **out_ref);
+void roma_ref_destroy(roma_ref *ref);
+
+typedef struct roma_ref_hit {
+    float t;
+    uint32_t triangle;
+    float position[3];
+    float geometric_normal[3]; /* unit, facing the ray origin */
+    float shading_normal[3];   /* unit, same side as geometric_normal */
+} roma_ref_hit;
+
+/* Closest hit in (tmin, tmax); returns 1 and fills hit, or 0. dir need not be unit. */
+int roma_ref_intersect(const roma_ref *ref, const float org[3], const float dir[3], float tmin,
+                       float tmax, roma_ref_hit *out_hit);
+/* 1 when anything is hit in (tmin, tmax). */
+int roma_ref_occluded(const roma_ref *ref, const float org[3], const float dir[3], float tmin,
+                      float tmax);
+/* Batch versions over n rays (3 floats per origin/direction), multithreaded. */
+void roma_ref_occluded_batch(const roma_ref *ref, uint32_t n, const float *orgs, const float *dirs,
+                             const float *tmins, const float *tmaxs, uint8_t *out_hit);
+void roma_ref_intersect_batch(const roma_ref *ref, uint32_t n, const float *orgs, const float *dirs,
+                              const float *tmins, const float *tmaxs, float *out_t /* INFINITY = miss */);
+
+/* Offset origin for secondary rays leaving a surface point along geometric normal gn. */
+void roma_ref_offset_origin(const roma_ref *ref, const float p[3], const float gn[3], float out[3]);
+
+/* --- Point estimators (the building blocks of the images; tests call them directly) --- */
+
+/* AO visibility at p with normal n: cosine-weighted, spp samples, rays of length
+ * radius (<= 0 or INFINITY = unbounded). Samples use (seed, pixel, sample index). */
+float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                        float radius, uint32_t spp, uint32_t seed, uint32_t pixel);
+
+/* Direct radiance leaving p towards the viewer: albedo/pi * irradiance from all
+ * punctual lights (hard shadows) and area lights (spp light samples). RGB out. */
+void roma_ref_direct_point(const roma_ref *ref, const float p[3], const float gn[3],
+                           const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
+                           uint32_t pixel, float out_rgb[3]);
+
+/* One-bounce indirect radiance leaving p: cosine-sampled bounce rays, at the
+ * bounce hit the direct radiance (next-event estimation, 1 light sample per
+ * area-light set); emission seen directly along the bounce is excluded. */
+void roma_ref_indirect_point(const roma_ref *ref, const float p[3], const float gn[3],
+                             const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
+                             uint32_t pixel, float out_rgb[3]);
+
+/* Number of light positions (3 floats each) visible from p (offset origin, upper hemisphere of n only). */
+uint32_t roma_ref_count_visible_lights(const roma_ref *ref, const float p[3], const float gn[3],
+                                       const float n[3], const float *light_positions,
+                                       uint32_t light_count);
+
+/* --- Images --- */
+
+enum {
+    ROMA_EFFECT_AO = 1u << 0,
+    ROMA_EFFECT_DIRECT = 1u << 1,
+    ROMA_EFFECT_GI = 1u << 2,
+    ROMA_EFFECT_LIGHTS = 1u << 3
+};
+
+typedef void (*roma_progress_fn)(float fraction, void *user_data);
+
+typedef struct roma_ref_render_desc {
+    roma_camera camera;
+    uint32_t width, height;
+    uint32_t effects;         /* ROMA_EFFECT_* bits */
+    uint32_t spp;             /* samples per pixel for AO, area lights and GI; 0 = 64 */
+    float ao_radius;          /* <= 0 = unbounded */
+    uint32_t seed;
+    const float *many_light_positions; /* required for ROMA_EFFECT_LIGHTS */
+    uint32_t many_light_count;
+    roma_progress_fn progress;
+    void *progress_user_data;
+} roma_ref_render_desc;
+
+/* Output images; each requested effect is allocated by the call, the others stay zeroed.
+ * ao: 1 channel visibility (background 1); direct, gi: RGB radiance (background 0);
+ * lights: 1 channel count of visible lights (background 0);
+ * coverage: 1 channel, 1 where the primary ray hit geometry (always filled). */
+typedef struct roma_ref_images {
+    roma_image ao, direct, gi, lights, coverage;
+} roma_ref_images;
+
+roma_result roma_ref_render(const roma_ref *ref, const roma_ref_render_desc *desc,
+                            roma_ref_images *out_images);
+void roma_ref_images_free(roma_ref_images *images);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_REFERENCE_H */

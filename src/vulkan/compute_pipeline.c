@@ -1,0 +1,86 @@
+#include <string.h>
+
+#include "vulkan/shader_table.h"
+#include "vulkan/vk_internal.h"
+
+#define MAX_STORAGE_BUFFERS 16
+
+roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_name,
+                                         uint32_t storage_buffer_count, uint32_t push_size,
+                                         roma_compute_pipeline *out)
+{
+    memset(out, 0, sizeof *out);
+    const roma_spirv_module *module = roma_find_spirv(module_name);
+    if (!module)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "no embedded shader named %s", module_name);
+    if (storage_buffer_count > MAX_STORAGE_BUFFERS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many storage buffers for %s", module_name);
+
+    VkDescriptorSetLayoutBinding bindings[MAX_STORAGE_BUFFERS];
+    for (uint32_t i = 0; i < storage_buffer_count; ++i)
+        bindings[i] = (VkDescriptorSetLayoutBinding){
+            .binding = i,
+            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+            .descriptorCount = 1,
+            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+        };
+    VkDescriptorSetLayoutCreateInfo set_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .bindingCount = storage_buffer_count,
+        .pBindings = bindings,
+    };
+    roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &set_info, NULL, &out->set_layout),
+                                  "vkCreateDescriptorSetLayout");
+    VkPushConstantRange push = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = push_size};
+    if (r == ROMA_SUCCESS) {
+        VkPipelineLayoutCreateInfo layout_info = {
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+            .setLayoutCount = 1,
+            .pSetLayouts = &out->set_layout,
+            .pushConstantRangeCount = push_size ? 1u : 0u,
+            .pPushConstantRanges = &push,
+        };
+        r = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, NULL, &out->layout),
+                          "vkCreatePipelineLayout");
+    }
+    VkShaderModule shader = VK_NULL_HANDLE;
+    if (r == ROMA_SUCCESS) {
+        VkShaderModuleCreateInfo shader_info = {
+            .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+            .codeSize = module->size,
+            .pCode = module->code,
+        };
+        r = roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &shader_info, NULL, &shader),
+                          "vkCreateShaderModule");
+    }
+    if (r == ROMA_SUCCESS) {
+        VkComputePipelineCreateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                      .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                      .module = shader,
+                      .pName = "main"},
+            .layout = out->layout,
+        };
+        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &out->pipeline),
+                          "vkCreateComputePipelines");
+    }
+    if (shader)
+        vkDestroyShaderModule(ctx->device, shader, NULL);
+    if (r != ROMA_SUCCESS)
+        roma_compute_pipeline_destroy(ctx, out);
+    return r;
+}
+
+void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *p)
+{
+    if (!ctx || !p)
+        return;
+    if (p->pipeline)
+        vkDestroyPipeline(ctx->device, p->pipeline, NULL);
+    if (p->layout)
+        vkDestroyPipelineLayout(ctx->device, p->layout, NULL);
+    if (p->set_layout)
+        vkDestroyDescriptorSetLayout(ctx->device, p->set_layout, NULL);
+    memset(p, 0, sizeof *p);
+}

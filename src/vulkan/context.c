@@ -1,0 +1,305 @@
+#include <stdlib.h>
+#include <string.h>
+
+#include "vulkan/vk_internal.h"
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+    const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)types;
+    roma_context *ctx = user;
+    roma_log_level level = ROMA_LOG_DEBUG;
+    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+        level = ROMA_LOG_ERROR;
+        atomic_fetch_add(&ctx->validation_errors, 1u);
+    } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        level = ROMA_LOG_WARNING;
+    } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT) {
+        level = ROMA_LOG_INFO;
+    }
+    roma_logf(&ctx->logger, level, "vulkan validation: %s",
+              data && data->pMessage ? data->pMessage : "(no message)");
+    return VK_FALSE;
+}
+
+static int env_flag(const char *name)
+{
+    const char *v = getenv(name);
+    return v && *v && strcmp(v, "0") != 0;
+}
+
+static int has_instance_layer(const char *name)
+{
+    uint32_t count = 0;
+    if (vkEnumerateInstanceLayerProperties(&count, NULL) != VK_SUCCESS || count == 0)
+        return 0;
+    VkLayerProperties *layers = calloc(count, sizeof *layers);
+    if (!layers)
+        return 0;
+    int found = 0;
+    if (vkEnumerateInstanceLayerProperties(&count, layers) == VK_SUCCESS)
+        for (uint32_t i = 0; i < count && !found; ++i)
+            found = strcmp(layers[i].layerName, name) == 0;
+    free(layers);
+    return found;
+}
+
+static VkDebugUtilsMessengerCreateInfoEXT messenger_info(roma_context *ctx)
+{
+    VkDebugUtilsMessengerCreateInfoEXT info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = on_validation_message,
+        .pUserData = ctx,
+    };
+    return info;
+}
+
+static roma_result create_instance(roma_context *ctx)
+{
+    uint32_t loader_version = VK_API_VERSION_1_0;
+    PFN_vkEnumerateInstanceVersion enumerate_version =
+        (PFN_vkEnumerateInstanceVersion)vkGetInstanceProcAddr(NULL, "vkEnumerateInstanceVersion");
+    if (enumerate_version)
+        enumerate_version(&loader_version);
+    if (loader_version < VK_API_VERSION_1_3)
+        return roma_fail(&ctx->logger, ROMA_ERROR_NO_VULKAN,
+                         "the Vulkan loader offers version %u.%u; libroma needs 1.3",
+                         VK_API_VERSION_MAJOR(loader_version), VK_API_VERSION_MINOR(loader_version));
+
+    const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
+    const char *extensions[1] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    if (ctx->validation_enabled && !has_instance_layer(layers[0]))
+        return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
+                         "validation was requested but VK_LAYER_KHRONOS_validation is not "
+                         "installed (Debian package vulkan-validationlayers)");
+
+    VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "libroma",
+        .pEngineName = "libroma",
+        .engineVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
+        .apiVersion = VK_API_VERSION_1_3,
+    };
+    VkDebugUtilsMessengerCreateInfoEXT debug = messenger_info(ctx);
+    VkInstanceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = ctx->validation_enabled ? &debug : NULL, /* also covers create/destroy */
+        .pApplicationInfo = &app,
+        .enabledLayerCount = ctx->validation_enabled ? 1u : 0u,
+        .ppEnabledLayerNames = layers,
+        .enabledExtensionCount = ctx->validation_enabled ? 1u : 0u,
+        .ppEnabledExtensionNames = extensions,
+    };
+    VkResult vr = vkCreateInstance(&info, NULL, &ctx->instance);
+    if (vr == VK_ERROR_INCOMPATIBLE_DRIVER || vr == VK_ERROR_INITIALIZATION_FAILED)
+        return roma_fail(&ctx->logger, ROMA_ERROR_NO_VULKAN,
+                         "vkCreateInstance failed (%s): no usable Vulkan driver is installed "
+                         "(for a CPU fallback install mesa-vulkan-drivers)",
+                         roma_vk_result_string(vr));
+    roma_result r = roma_vk_check(ctx, vr, "vkCreateInstance");
+    if (r != ROMA_SUCCESS)
+        return r;
+    if (ctx->validation_enabled) {
+        PFN_vkCreateDebugUtilsMessengerEXT create_messenger =
+            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+                ctx->instance, "vkCreateDebugUtilsMessengerEXT");
+        if (!create_messenger)
+            return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
+                             "vkCreateDebugUtilsMessengerEXT is unavailable");
+        r = roma_vk_check(ctx, create_messenger(ctx->instance, &debug, NULL, &ctx->messenger),
+                          "vkCreateDebugUtilsMessengerEXT");
+    }
+    return r;
+}
+
+static roma_result create_device(roma_context *ctx)
+{
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = ctx->queue_family,
+        .queueCount = 1,
+        .pQueuePriorities = &priority,
+    };
+    VkPhysicalDeviceVulkan13Features f13 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .dynamicRendering = VK_TRUE,
+        .synchronization2 = VK_TRUE,
+    };
+    VkPhysicalDeviceVulkan12Features f12 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .pNext = &f13,
+        .hostQueryReset = VK_TRUE,
+    };
+    VkPhysicalDeviceFeatures2 features = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+        .pNext = &f12,
+        .features = {.fragmentStoresAndAtomics = VK_TRUE,
+                     .geometryShader = ctx->has_geometry_shader ? VK_TRUE : VK_FALSE},
+    };
+    VkDeviceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = &features,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &queue,
+    };
+    VkResult vr = vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device);
+    if (vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY, "vkCreateDevice: out of device memory");
+    roma_result r = roma_vk_check(ctx, vr, "vkCreateDevice");
+    if (r == ROMA_SUCCESS)
+        vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
+    return r;
+}
+
+static roma_result create_submit_objects(roma_context *ctx)
+{
+    VkCommandPoolCreateInfo pool = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+        .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
+        .queueFamilyIndex = ctx->queue_family,
+    };
+    roma_result r = roma_vk_check(ctx, vkCreateCommandPool(ctx->device, &pool, NULL, &ctx->command_pool),
+                                  "vkCreateCommandPool");
+    if (r != ROMA_SUCCESS)
+        return r;
+    VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    return roma_vk_check(ctx, vkCreateFence(ctx->device, &fence, NULL, &ctx->fence), "vkCreateFence");
+}
+
+static roma_result adopt_external(roma_context *ctx, const roma_external_device *ext)
+{
+    if (!ext->instance || !ext->physical_device || !ext->device || !ext->queue)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_context_desc.external: instance, physical_device, device and queue "
+                         "must all be set");
+    ctx->instance = ext->instance;
+    ctx->physical_device = ext->physical_device;
+    ctx->device = ext->device;
+    ctx->queue = ext->queue;
+    ctx->queue_family = ext->queue_family_index;
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(ext->physical_device, &family_count, NULL);
+    if (ext->queue_family_index >= family_count)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "external queue family %u does not exist (the device has %u)",
+                         ext->queue_family_index, family_count);
+    /* The caller created the device: libroma can only check what the hardware offers. */
+    return roma_check_device_support(ctx, ext->physical_device, &ctx->has_geometry_shader);
+}
+
+roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context)
+{
+    if (!out_context)
+        return roma_fail(desc ? &desc->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_context_create: out_context is NULL");
+    *out_context = NULL;
+    roma_context_desc defaults = {0};
+    if (!desc)
+        desc = &defaults;
+    roma_context *ctx = calloc(1, sizeof *ctx);
+    if (!ctx)
+        return roma_fail(&desc->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_context_create: out of memory");
+    ctx->logger = desc->logger;
+    ctx->flags = desc->flags;
+    atomic_init(&ctx->validation_errors, 0u);
+
+    roma_result r;
+    if (desc->external) {
+        r = adopt_external(ctx, desc->external);
+    } else {
+        ctx->owns_device = 1;
+        ctx->validation_enabled =
+            (desc->flags & ROMA_CONTEXT_VALIDATION) || env_flag("ROMA_VALIDATION");
+        const char *name = desc->device_name ? desc->device_name : getenv("ROMA_DEVICE");
+        roma_device_choice choice = {0};
+        r = create_instance(ctx);
+        if (r == ROMA_SUCCESS)
+            r = roma_select_device(ctx, name, (desc->flags & ROMA_CONTEXT_REQUIRE_GPU) != 0, &choice);
+        if (r == ROMA_SUCCESS) {
+            ctx->physical_device = choice.physical_device;
+            ctx->queue_family = choice.queue_family;
+            r = roma_check_device_support(ctx, ctx->physical_device, &ctx->has_geometry_shader);
+        }
+        if (r == ROMA_SUCCESS)
+            r = create_device(ctx);
+    }
+    if (r == ROMA_SUCCESS) {
+        vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
+        vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
+        r = create_submit_objects(ctx);
+    }
+    if (r != ROMA_SUCCESS) {
+        roma_context_destroy(ctx);
+        return r;
+    }
+    roma_logf(&ctx->logger, ROMA_LOG_INFO, "libroma: using %s (Vulkan %u.%u)%s",
+              ctx->properties.deviceName, VK_API_VERSION_MAJOR(ctx->properties.apiVersion),
+              VK_API_VERSION_MINOR(ctx->properties.apiVersion),
+              ctx->validation_enabled ? " with validation" : "");
+    *out_context = ctx;
+    return ROMA_SUCCESS;
+}
+
+void roma_context_destroy(roma_context *ctx)
+{
+    if (!ctx)
+        return;
+    if (ctx->device) {
+        /* On the caller's device only our own queue submissions need to finish. */
+        if (ctx->owns_device)
+            vkDeviceWaitIdle(ctx->device);
+        else if (ctx->queue)
+            vkQueueWaitIdle(ctx->queue);
+        if (ctx->fence)
+            vkDestroyFence(ctx->device, ctx->fence, NULL);
+        if (ctx->command_pool)
+            vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);
+    }
+    if (ctx->owns_device) {
+        if (ctx->device)
+            vkDestroyDevice(ctx->device, NULL);
+        if (ctx->messenger) {
+            PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger =
+                (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+                    ctx->instance, "vkDestroyDebugUtilsMessengerEXT");
+            if (destroy_messenger)
+                destroy_messenger(ctx->instance, ctx->messenger, NULL);
+        }
+        if (ctx->instance)
+            vkDestroyInstance(ctx->instance, NULL);
+    }
+    free(ctx);
+}
+
+roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *out)
+{
+    if (!ctx || !out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    memcpy(out->device_name, ctx->properties.deviceName, sizeof out->device_name);
+    out->device_type = ctx->properties.deviceType;
+    out->api_version = ctx->properties.apiVersion;
+    out->driver_version = ctx->properties.driverVersion;
+    out->timestamp_period_ns = ctx->properties.limits.timestampPeriod;
+    out->validation_enabled = ctx->validation_enabled;
+    out->owns_device = ctx->owns_device;
+    return ROMA_SUCCESS;
+}
+
+uint32_t roma_context_validation_error_count(const roma_context *ctx)
+{
+    return ctx ? atomic_load(&((roma_context *)ctx)->validation_errors) : 0u;
+}
+
+VkInstance roma_context_instance(const roma_context *ctx) { return ctx ? ctx->instance : VK_NULL_HANDLE; }
+VkPhysicalDevice roma_context_physical_device(const roma_context *ctx) { return ctx ? ctx->physical_device : VK_NULL_HANDLE; }
+VkDevice roma_context_device(const roma_context *ctx) { return ctx ? ctx->device : VK_NULL_HANDLE; }
+VkQueue roma_context_queue(const roma_context *ctx) { return ctx ? ctx->queue : VK_NULL_HANDLE; }
+uint32_t roma_context_queue_family(const roma_context *ctx) { return ctx ? ctx->queue_family : UINT32_MAX; }

@@ -1,0 +1,90 @@
+/* Internal Vulkan plumbing shared by every GPU pass: the context layout,
+ * result mapping, buffers, one-shot submissions and compute pipelines. */
+#ifndef ROMA_VULKAN_VK_INTERNAL_H
+#define ROMA_VULKAN_VK_INTERNAL_H
+
+#include <stdatomic.h>
+
+#include "roma/context.h"
+#include "util/log.h"
+
+struct roma_context {
+    roma_logger logger;
+    uint32_t flags;
+    int owns_device;
+    int validation_enabled;
+    atomic_uint validation_errors;
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    uint32_t queue_family;
+    VkQueue queue;
+    VkPhysicalDeviceProperties properties;
+    VkPhysicalDeviceMemoryProperties memory_properties;
+    int has_geometry_shader;
+    /* For the context's own blocking submissions (uploads, readbacks, self-test). */
+    VkCommandPool command_pool;
+    VkFence fence;
+};
+
+/* Maps a VkResult to a roma_result and logs `what` with the Vulkan code on failure. */
+roma_result roma_vk_check(const roma_context *ctx, VkResult vr, const char *what);
+const char *roma_vk_result_string(VkResult vr);
+
+/* --- device selection (device_select.c) --- */
+typedef struct roma_device_choice {
+    VkPhysicalDevice physical_device;
+    uint32_t queue_family;
+} roma_device_choice;
+
+/* Picks the best device: name filter (substring, case-insensitive) if given, Vulkan 1.3,
+ * a graphics+compute queue with timestamps, the required features; GPUs before CPUs. */
+roma_result roma_select_device(const roma_context *ctx, const char *name_filter, int require_gpu,
+                               roma_device_choice *out);
+/* Checks that a device offers what libroma needs; logs each missing piece. */
+roma_result roma_check_device_support(const roma_context *ctx, VkPhysicalDevice pd,
+                                      int *out_has_geometry_shader);
+
+/* --- buffers (vk_util.c) --- */
+typedef struct roma_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    VkDeviceSize size;
+    void *mapped; /* non-NULL for host-visible buffers */
+} roma_buffer;
+
+typedef enum roma_memory_kind {
+    ROMA_MEMORY_DEVICE = 0, /* device-local, not mapped */
+    ROMA_MEMORY_UPLOAD,     /* host-visible, coherent, mapped */
+    ROMA_MEMORY_READBACK    /* host-visible, cached if possible, mapped */
+} roma_memory_kind;
+
+roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                               roma_memory_kind kind, roma_buffer *out);
+void roma_buffer_destroy(roma_context *ctx, roma_buffer *buffer);
+/* Makes device writes visible to the host for non-coherent readback memory. */
+roma_result roma_buffer_invalidate(roma_context *ctx, const roma_buffer *buffer);
+
+/* --- one-shot submissions on the context's queue (blocking) --- */
+roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd);
+/* Ends, submits, waits and frees the command buffer (also on failure). */
+roma_result roma_submit_one_shot(roma_context *ctx, VkCommandBuffer cmd);
+
+/* --- compute pipelines from embedded SPIR-V (compute_pipeline.c) --- */
+typedef struct roma_compute_pipeline {
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+} roma_compute_pipeline;
+
+/* Storage buffers at bindings 0..storage_buffer_count-1, one push-constant range. */
+roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_name,
+                                         uint32_t storage_buffer_count, uint32_t push_size,
+                                         roma_compute_pipeline *out);
+void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);
+
+/* Looks an embedded module up by name ("fill_u32.comp"); NULL if absent. */
+const struct roma_spirv_module *roma_find_spirv(const char *name);
+
+#endif /* ROMA_VULKAN_VK_INTERNAL_H */

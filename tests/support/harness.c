@@ -1,0 +1,88 @@
+#include "harness.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "roma/context.h"
+
+int roma_test_failures = 0;
+
+static void record(roma_log_level level, const char *message, void *user)
+{
+    roma_test_log *log = user;
+    if (level == ROMA_LOG_ERROR)
+        ++log->errors;
+    if (level == ROMA_LOG_WARNING)
+        ++log->warnings;
+    snprintf(log->last, sizeof log->last, "%s", message);
+    fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);
+}
+
+roma_logger roma_test_logger(roma_test_log *log)
+{
+    memset(log, 0, sizeof *log);
+    roma_logger logger = {record, log};
+    return logger;
+}
+
+roma_context *roma_test_context(void)
+{
+    roma_context_desc desc = {0};
+    desc.flags = ROMA_CONTEXT_VALIDATION;
+    roma_context *ctx = NULL;
+    roma_result r = roma_context_create(&desc, &ctx);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma_context_create failed: %s\n", roma_result_string(r));
+        ++roma_test_failures;
+        return NULL;
+    }
+    return ctx;
+}
+
+void roma_test_context_finish(roma_context *ctx)
+{
+    if (!ctx)
+        return;
+    uint32_t errors = roma_context_validation_error_count(ctx);
+    if (errors) {
+        fprintf(stderr, "%u Vulkan validation error(s)\n", errors);
+        ++roma_test_failures;
+    }
+    roma_context_destroy(ctx);
+}
+
+int roma_test_shared_scene(const char *file, char *buf, size_t size)
+{
+    const char *dir = getenv("ROMA_SHARED_SCENES_DIR");
+    if (!dir || !*dir)
+        return 0;
+    snprintf(buf, size, "%s/%s", dir, file);
+    FILE *f = fopen(buf, "rb");
+    if (!f)
+        return 0;
+    fclose(f);
+    return 1;
+}
+
+const char *roma_test_tmp_path(const char *name, char *buf, size_t size)
+{
+    const char *dir = getenv("ROMA_TEST_TMPDIR");
+    snprintf(buf, size, "%s/%s", (dir && *dir) ? dir : "/tmp", name);
+    return buf;
+}
+
+int roma_test_finish(const char *test_name)
+{
+    if (roma_test_failures) {
+        fprintf(stderr, "%s: %d check(s) failed\n", test_name, roma_test_failures);
+        return 1;
+    }
+    printf("%s: all checks passed\n", test_name);
+    return 0;
+}
+
+int roma_test_skip(const char *why)
+{
+    printf("SKIPPED: %s\n", why);
+    return 77;
+}

@@ -1,0 +1,69 @@
+/* Minimal test harness: CHECK macros that count failures, a logger that counts
+ * errors, a validated Vulkan context, and the shared-scenes folder. */
+#ifndef ROMA_TEST_HARNESS_H
+#define ROMA_TEST_HARNESS_H
+
+#include <math.h>
+#include <stdio.h>
+
+#include "roma/result.h"
+
+typedef struct roma_context roma_context;
+
+extern int roma_test_failures;
+
+#define CHECK(cond)                                                                          \
+    do {                                                                                     \
+        if (!(cond)) {                                                                       \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);         \
+            ++roma_test_failures;                                                            \
+        }                                                                                    \
+    } while (0)
+
+#define CHECK_RESULT(expr, expected)                                                          \
+    do {                                                                                     \
+        roma_result r_ = (expr);                                                             \
+        if (r_ != (expected)) {                                                              \
+            fprintf(stderr, "%s:%d: %s returned '%s', expected '%s'\n", __FILE__, __LINE__,  \
+                    #expr, roma_result_string(r_), roma_result_string(expected));            \
+            ++roma_test_failures;                                                            \
+        }                                                                                    \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                                \
+    do {                                                                                     \
+        double a_ = (double)(a), b_ = (double)(b), t_ = (double)(tol);                       \
+        if (!(fabs(a_ - b_) <= t_)) {                                                        \
+            fprintf(stderr, "%s:%d: CHECK_NEAR failed: %s = %.9g, %s = %.9g, tol %.3g\n",   \
+                    __FILE__, __LINE__, #a, a_, #b, b_, t_);                                 \
+            ++roma_test_failures;                                                            \
+        }                                                                                    \
+    } while (0)
+
+/* Logger that records messages: errors/warnings counted, last message kept. */
+typedef struct roma_test_log {
+    int errors;
+    int warnings;
+    char last[1024];
+} roma_test_log;
+
+roma_logger roma_test_logger(roma_test_log *log);
+
+/* Context with validation on; on failure prints why and returns NULL. */
+roma_context *roma_test_context(void);
+/* Destroys ctx after checking it saw no validation error (counts a failure if it did). */
+void roma_test_context_finish(roma_context *ctx);
+
+/* Shared scene path (ROMA_SHARED_SCENES_DIR/<file>) into buf; returns 0 if absent. */
+int roma_test_shared_scene(const char *file, char *buf, size_t size);
+
+/* Writable scratch path: ROMA_TEST_TMPDIR (or /tmp) + "/" + name. */
+const char *roma_test_tmp_path(const char *name, char *buf, size_t size);
+
+/* Prints a summary and returns the process exit code (0 ok, 1 failures). */
+int roma_test_finish(const char *test_name);
+
+/* Exits with ctest's skip code 77 after printing why. */
+int roma_test_skip(const char *why);
+
+#endif /* ROMA_TEST_HARNESS_H */

@@ -1,1 +1,250 @@
-/* placeholder: being written */
+/* Point estimators of the reference tracer: AO, direct light, one-bounce
+ * indirect light and many-lights visibility at one surface point.
+ *
+ * Random dimensions per (seed, pixel, sample), see reference.h:
+ *   0, 1  AO direction                 5, 6  GI bounce direction
+ *   2-4   direct: area-light sample    7-9   GI: area-light sample at the bounce hit
+ * (area-light sample = triangle choice, then the two roma_triangle_sample uniforms). */
+#include <string.h>
+
+#include "reference_internal.h"
+#include "roma/sampling.h"
+
+enum {
+    DIM_AO = 0,
+    DIM_DIRECT_AREA = 2,
+    DIM_GI_BOUNCE = 5,
+    DIM_GI_AREA = 7
+};
+
+/* Shadow segments stop this fraction short of the target so that the light's
+ * own surface (area lights) never occludes it. */
+#define SEGMENT_SHORTEN 1e-4f
+
+/* 1 when the segment origin -> target is blocked. */
+static int segment_occluded(const roma_ref *ref, const float origin[3], const float target[3])
+{
+    float v[3];
+    roma_ref_sub(target, origin, v);
+    float d = roma_ref_normalize(v);
+    if (!(d > 0.0f))
+        return 0;
+    return roma_ref_occluded(ref, origin, v, 0.0f, d * (1.0f - SEGMENT_SHORTEN));
+}
+
+/* Index of the emitter for uniform u in [0, 1): first i with cdf[i] > u. */
+static uint32_t pick_emitter(const roma_ref *ref, float u)
+{
+    uint32_t lo = 0, hi = ref->emitter_count - 1;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (ref->emitter_cdf[mid] > u)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* Irradiance at p from one punctual light (0 when below the surface or shadowed). */
+static void punctual_irradiance(const roma_ref *ref, const roma_light *light, const float p[3],
+                                const float gn[3], const float n[3], const float origin[3],
+                                double E[3])
+{
+    float l[3];
+    float scale = light->intensity;
+    if (light->type == ROMA_LIGHT_DIRECTIONAL) {
+        l[0] = -light->direction[0];
+        l[1] = -light->direction[1];
+        l[2] = -light->direction[2];
+        if (!(roma_ref_normalize(l) > 0.0f))
+            return;
+    } else {
+        roma_ref_sub(light->position, p, l);
+        float d = roma_ref_normalize(l);
+        if (!(d > 0.0f))
+            return;
+        scale /= d * d;
+        if (light->range > 0.0f) {
+            /* glTF-recommended window: max(min(1 - (d/range)^4, 1), 0) / d^2. */
+            float q = d / light->range;
+            q *= q;
+            scale *= fmaxf(fminf(1.0f - q * q, 1.0f), 0.0f);
+        }
+        if (light->type == ROMA_LIGHT_SPOT) {
+            float sd[3] = {light->direction[0], light->direction[1], light->direction[2]};
+            if (!(roma_ref_normalize(sd) > 0.0f))
+                return;
+            float outer = light->outer_cone_angle > 0.0f ? light->outer_cone_angle : ROMA_PI / 4.0f;
+            float cos_outer = cosf(outer), cos_inner = cosf(light->inner_cone_angle);
+            /* glTF KHR_lights_punctual smooth cone falloff. */
+            float s = 1.0f / fmaxf(0.001f, cos_inner - cos_outer);
+            float o = -cos_outer * s;
+            float cd = -roma_ref_dot(l, sd);
+            float a = fminf(fmaxf(cd * s + o, 0.0f), 1.0f);
+            scale *= a * a;
+        }
+    }
+    float cos_n = roma_ref_dot(n, l);
+    if (!(scale > 0.0f) || cos_n <= 0.0f || roma_ref_dot(gn, l) <= 0.0f)
+        return;
+    int blocked = light->type == ROMA_LIGHT_DIRECTIONAL
+                      ? roma_ref_occluded(ref, origin, l, 0.0f, INFINITY)
+                      : segment_occluded(ref, origin, light->position);
+    if (blocked)
+        return;
+    for (int k = 0; k < 3; ++k)
+        E[k] += (double)(scale * cos_n * light->color[k]);
+}
+
+/* Irradiance at p (normal n, geometric gn): all punctual lights exactly, plus
+ * area_samples area-light samples using samples [sample_base, +area_samples) of
+ * dimensions dim .. dim + 2. Emission of p's own surface is not included. */
+static void irradiance(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                       uint32_t area_samples, uint32_t seed, uint32_t pixel, uint32_t sample_base,
+                       uint32_t dim, double E[3])
+{
+    E[0] = E[1] = E[2] = 0.0;
+    float origin[3];
+    roma_ref_offset_origin(ref, p, gn, origin);
+    for (uint32_t i = 0; i < ref->view.light_count; ++i)
+        punctual_irradiance(ref, &ref->view.lights[i], p, gn, n, origin, E);
+
+    if (ref->emitter_count == 0 || area_samples == 0)
+        return;
+    double acc[3] = {0.0, 0.0, 0.0};
+    for (uint32_t k = 0; k < area_samples; ++k) {
+        uint32_t s = sample_base + k;
+        const roma_ref_emitter *e =
+            &ref->emitters[pick_emitter(ref, roma_random(seed, pixel, s, dim))];
+        float b1, b2;
+        roma_triangle_sample(roma_random(seed, pixel, s, dim + 1),
+                             roma_random(seed, pixel, s, dim + 2), &b1, &b2);
+        float y[3], w[3];
+        for (int c = 0; c < 3; ++c)
+            y[c] = e->v0[c] + b1 * e->e1[c] + b2 * e->e2[c];
+        roma_ref_sub(y, p, w);
+        float d2 = roma_ref_dot(w, w);
+        if (!(d2 > 0.0f))
+            continue;
+        roma_ref_normalize(w);
+        float cos_x = roma_ref_dot(n, w);
+        float cos_y = fabsf(roma_ref_dot(e->normal, w)); /* two-sided emitters */
+        if (cos_x <= 0.0f || roma_ref_dot(gn, w) <= 0.0f || cos_y <= 0.0f)
+            continue;
+        if (segment_occluded(ref, origin, y))
+            continue;
+        float g = cos_x * cos_y / (d2 * e->pdf_area);
+        for (int c = 0; c < 3; ++c)
+            acc[c] += (double)(e->emission[c] * g);
+    }
+    for (int c = 0; c < 3; ++c)
+        E[c] += acc[c] / (double)area_samples;
+}
+
+/* Cosine-weighted direction around n for (seed, pixel, s, dim .. dim + 1). */
+static void cosine_direction(const float n[3], uint32_t seed, uint32_t pixel, uint32_t s,
+                             uint32_t dim, float out[3])
+{
+    float local[3];
+    roma_cosine_hemisphere(roma_random(seed, pixel, s, dim), roma_random(seed, pixel, s, dim + 1),
+                           local);
+    roma_local_to_world(n, local, out);
+}
+
+float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                        float radius, uint32_t spp, uint32_t seed, uint32_t pixel)
+{
+    if (!ref || !p || !gn || !n)
+        return 1.0f;
+    if (spp == 0)
+        spp = 1;
+    float tmax = (radius > 0.0f) ? radius : INFINITY; /* also maps NaN to unbounded */
+    float origin[3];
+    roma_ref_offset_origin(ref, p, gn, origin);
+    uint32_t open = 0;
+    for (uint32_t s = 0; s < spp; ++s) {
+        float w[3];
+        cosine_direction(n, seed, pixel, s, DIM_AO, w);
+        /* Directions below the geometric surface (possible when n != gn) are occluded. */
+        if (roma_ref_dot(w, gn) <= 0.0f)
+            continue;
+        if (!roma_ref_occluded(ref, origin, w, 0.0f, tmax))
+            ++open;
+    }
+    return (float)((double)open / (double)spp);
+}
+
+void roma_ref_direct_point(const roma_ref *ref, const float p[3], const float gn[3],
+                           const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
+                           uint32_t pixel, float out_rgb[3])
+{
+    if (!out_rgb)
+        return;
+    out_rgb[0] = out_rgb[1] = out_rgb[2] = 0.0f;
+    if (!ref || !p || !gn || !n || !albedo)
+        return;
+    double E[3];
+    irradiance(ref, p, gn, n, spp ? spp : 1, seed, pixel, 0, DIM_DIRECT_AREA, E);
+    for (int c = 0; c < 3; ++c)
+        out_rgb[c] = (float)(albedo[c] / ROMA_PI * E[c]);
+}
+
+void roma_ref_indirect_point(const roma_ref *ref, const float p[3], const float gn[3],
+                             const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
+                             uint32_t pixel, float out_rgb[3])
+{
+    if (!out_rgb)
+        return;
+    out_rgb[0] = out_rgb[1] = out_rgb[2] = 0.0f;
+    if (!ref || !p || !gn || !n || !albedo)
+        return;
+    if (spp == 0)
+        spp = 1;
+    float origin[3];
+    roma_ref_offset_origin(ref, p, gn, origin);
+    double acc[3] = {0.0, 0.0, 0.0};
+    for (uint32_t s = 0; s < spp; ++s) {
+        float w[3];
+        cosine_direction(n, seed, pixel, s, DIM_GI_BOUNCE, w);
+        if (roma_ref_dot(w, gn) <= 0.0f)
+            continue;
+        roma_ref_hit hit;
+        if (!roma_ref_intersect(ref, origin, w, 0.0f, INFINITY, &hit))
+            continue;
+        const float *albedo_y = roma_ref_albedo(ref, hit.triangle);
+        if (albedo_y[0] <= 0.0f && albedo_y[1] <= 0.0f && albedo_y[2] <= 0.0f)
+            continue;
+        double E[3];
+        irradiance(ref, hit.position, hit.geometric_normal, hit.shading_normal, 1, seed, pixel, s,
+                   DIM_GI_AREA, E);
+        /* Cosine sampling: L_x = albedo_x/pi * L_y * cos / (cos/pi) = albedo_x * L_y,
+         * with L_y = albedo_y/pi * E_y (reflected direct light only). */
+        for (int c = 0; c < 3; ++c)
+            acc[c] += (double)albedo_y[c] / ROMA_PI * E[c];
+    }
+    for (int c = 0; c < 3; ++c)
+        out_rgb[c] = (float)(albedo[c] * acc[c] / (double)spp);
+}
+
+uint32_t roma_ref_count_visible_lights(const roma_ref *ref, const float p[3], const float gn[3],
+                                       const float n[3], const float *light_positions,
+                                       uint32_t light_count)
+{
+    if (!ref || !p || !gn || !n || !light_positions)
+        return 0;
+    float origin[3];
+    roma_ref_offset_origin(ref, p, gn, origin);
+    uint32_t visible = 0;
+    for (uint32_t i = 0; i < light_count; ++i) {
+        const float *lp = &light_positions[3 * (size_t)i];
+        float l[3];
+        roma_ref_sub(lp, p, l);
+        /* Lights behind the shading hemisphere do not count. */
+        if (roma_ref_dot(n, l) <= 0.0f)
+            continue;
+        if (!segment_occluded(ref, origin, lp))
+            ++visible;
+    }
+    return visible;
+}

@@ -9,7 +9,21 @@
  * the shading normal is the interpolated vertex normal, flipped to the side of
  * the geometric normal that faces the incoming ray; secondary rays start at
  * the hit point offset by ROMA_REF_EPSILON * scene extent along the geometric
- * normal (facing side). */
+ * normal (facing side). Sampled directions that go below the geometric surface
+ * (dot(dir, gn) <= 0, possible when the shading normal is tilted) contribute
+ * nothing: an occluded AO sample, a zero GI sample, an unlit light sample.
+ * Shadow rays towards a point (point/spot light, area-light sample, many-lights
+ * position) are segments from the offset origin that stop 1e-4 of their length
+ * short of the point; directional shadow rays are unbounded.
+ *
+ * Random numbers: roma_random(seed, pixel, sample, dimension), pixel = y * width + x
+ * in images (the caller's value in the point estimators), dimensions:
+ *   0, 1  AO direction (roma_cosine_hemisphere around the shading normal)
+ *   2     direct: area-light triangle choice (CDF over area * luminance(emission))
+ *   3, 4  direct: point on it, roma_triangle_sample -> y = v0 + b1 (v1 - v0) + b2 (v2 - v0)
+ *   5, 6  GI: bounce direction (roma_cosine_hemisphere around the shading normal)
+ *   7-9   GI: area-light sample at the bounce hit (as 2-4)
+ * The point estimators treat spp = 0 as 1. */
 #ifndef ROMA_REFERENCE_H
 #define ROMA_REFERENCE_H
 
@@ -52,7 +66,8 @@ int roma_ref_intersect(const roma_ref *ref, const float org[3], const float dir[
 /* 1 when anything is hit in (tmin, tmax). */
 int roma_ref_occluded(const roma_ref *ref, const float org[3], const float dir[3], float tmin,
                       float tmax);
-/* Batch versions over n rays (3 floats per origin/direction), multithreaded. */
+/* Batch versions over n rays (3 floats per origin/direction), multithreaded.
+ * tmins/tmaxs may be NULL (0 and INFINITY for every ray). */
 void roma_ref_occluded_batch(const roma_ref *ref, uint32_t n, const float *orgs, const float *dirs,
                              const float *tmins, const float *tmaxs, uint8_t *out_hit);
 void roma_ref_intersect_batch(const roma_ref *ref, uint32_t n, const float *orgs, const float *dirs,
@@ -69,19 +84,24 @@ float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3]
                         float radius, uint32_t spp, uint32_t seed, uint32_t pixel);
 
 /* Direct radiance leaving p towards the viewer: albedo/pi * irradiance from all
- * punctual lights (hard shadows) and area lights (spp light samples). RGB out. */
+ * punctual lights (hard shadows, glTF spot cone and range windows) and area
+ * lights (spp light samples, emitters two-sided). RGB out. This is reflected
+ * light only: the emission of p's own surface is not included (an emitter shows
+ * its lit albedo; add emission when composing). */
 void roma_ref_direct_point(const roma_ref *ref, const float p[3], const float gn[3],
                            const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
                            uint32_t pixel, float out_rgb[3]);
 
 /* One-bounce indirect radiance leaving p: cosine-sampled bounce rays, at the
- * bounce hit the direct radiance (next-event estimation, 1 light sample per
- * area-light set); emission seen directly along the bounce is excluded. */
+ * bounce hit y the reflected direct radiance albedo_y/pi * E_y (next-event
+ * estimation: all punctual lights + 1 area-light sample); the emission of y is
+ * excluded (it is direct light at p). Estimator per sample: albedo * L(y). */
 void roma_ref_indirect_point(const roma_ref *ref, const float p[3], const float gn[3],
                              const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
                              uint32_t pixel, float out_rgb[3]);
 
-/* Number of light positions (3 floats each) visible from p (offset origin, upper hemisphere of n only). */
+/* Number of light positions (3 floats each) visible from p: segment from the
+ * offset origin; positions with dot(n, L - p) <= 0 count as not visible. */
 uint32_t roma_ref_count_visible_lights(const roma_ref *ref, const float p[3], const float gn[3],
                                        const float n[3], const float *light_positions,
                                        uint32_t light_count);

@@ -6,7 +6,13 @@
  * colour factor and emissive factor (times KHR_materials_emissive_strength).
  * KHR_lights_punctual lights and the first camera met in the node walk are
  * kept. Skins and animations are kept as roma_scene_animation_data; geometry
- * is the rest pose. Morph targets are ignored (base mesh), with a warning.
+ * is the rest pose (skinned meshes are skinned with the rest-pose joints).
+ * Morph targets are ignored (base mesh), with a warning. Textures are ignored.
+ * Not supported (ROMA_ERROR_UNSUPPORTED): sparse accessors, and any required
+ * extension other than KHR_lights_punctual, KHR_materials_emissive_strength
+ * and KHR_texture_transform (so no Draco, meshopt or KHR_mesh_quantization).
+ * NaN normals in a file (some exporters write them on zero-area faces) are
+ * replaced by face normals with a warning rather than rejected.
  *
  * Errors never leave a partial scene: *out_scene is NULL on failure. */
 #ifndef ROMA_GLTF_H

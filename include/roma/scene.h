@@ -66,9 +66,13 @@ typedef struct roma_scene_desc {
 
 /* Validates and copies the arrays. Rejects: NULL/zero arrays, indices >= vertex_count,
  * material indices >= material_count, NaN/Inf positions, normals or light data,
- * negative colours, no triangle with non-zero area (ROMA_ERROR_EMPTY_SCENE).
+ * negative colours, base colours above 1, spot cones outside 0 <= inner <= outer <= pi/2,
+ * zero light directions (spot, directional), no triangle with non-zero area
+ * (ROMA_ERROR_EMPTY_SCENE).
  * Zero-area triangles are kept in the arrays (they hit nothing) and counted in
- * roma_scene_view.degenerate_triangle_count. */
+ * roma_scene_view.degenerate_triangle_count; "zero area" includes slivers whose
+ * squared cross product is below 1e-14 |e1|^2 |e2|^2 (sine of the angle < 1e-7).
+ * Given normals of zero length fall back to the face normals, with a warning. */
 roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scene);
 
 /* Accepts NULL. */
@@ -117,7 +121,10 @@ typedef struct roma_scene_anim_channel {
     roma_anim_path path;
     roma_anim_interp interpolation;
     uint32_t key_count;
-    uint32_t components;     /* floats per key value (3 or 4; x3 for cubic spline tangents) */
+    uint32_t components;     /* floats per element: 3 (translation, scale), 4 (rotation), or
+                                the morph target count (weights);
+                                the channel's values are key_count elements, or 3 * key_count
+                                for CUBICSPLINE (in-tangent, value, out-tangent per key) */
     uint32_t first_time;     /* offset into roma_scene_animation_data.times */
     uint32_t first_value;    /* offset into roma_scene_animation_data.values */
 } roma_scene_anim_channel;
@@ -147,7 +154,9 @@ typedef struct roma_scene_animation_data {
 typedef struct roma_scene_view {
     const char *name;
     const float *positions;           /* 3 per vertex */
-    const float *normals;             /* 3 per vertex, unit length (zero for unused vertices) */
+    const float *normals;             /* 3 per vertex, unit length (zero for unused vertices and
+                                         for those with neither a usable given normal nor a
+                                         triangle of non-zero area) */
     uint32_t vertex_count;
     const uint32_t *indices;          /* 3 per triangle */
     uint32_t triangle_count;

@@ -1,0 +1,24 @@
+/* Helpers shared by the command-line tools and the viewer. */
+#ifndef ROMA_APP_COMMON_H
+#define ROMA_APP_COMMON_H
+
+#include "roma/image.h"
+#include "roma/scene.h"
+
+typedef enum roma_png_mode {
+    ROMA_PNG_SRGB = 0, /* linear values times exposure, clamped, sRGB-encoded */
+    ROMA_PNG_HEAT      /* values / scale through a black-red-yellow-white ramp */
+} roma_png_mode;
+
+/* Writes an 8-bit PNG of a 1- or 3-channel float image. scale: exposure for
+ * ROMA_PNG_SRGB, the value shown as white for ROMA_PNG_HEAT. */
+roma_result roma_app_write_png(const roma_image *image, const char *path, roma_png_mode mode,
+                               float scale);
+
+/* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path. */
+roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene);
+
+/* Creates the folder (and parents) if needed; 0 on failure. */
+int roma_app_make_dir(const char *path);
+
+#endif /* ROMA_APP_COMMON_H */

@@ -1,0 +1,370 @@
+/* roma-render: renders the effects of a scene to PFM (exact) and PNG (tone-mapped)
+ * and writes a stats JSON. The main job of libroma. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "app_common.h"
+#include "reference.h"
+#include "roma/roma.h"
+#include "stats_json.h"
+
+static const char *usage =
+    "usage: roma-render [options]\n"
+    "  --scene FILE|builtin:NAME   glTF 2.0 file (.gltf/.glb) or a built-in scene (default builtin:cornell)\n"
+    "  --camera ex,ey,ez,tx,ty,tz,fovy   eye, target and vertical field of view in degrees\n"
+    "                              (y up; default: the scene's camera, else one framing its bounds)\n"
+    "  --size WxH                  image size in pixels (default 640x480)\n"
+    "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
+    "  --tracer embree|roma        embree = CPU reference (ground truth). roma is not available yet:\n"
+    "                              the ROMA tracer lands with the ROMA core; only embree renders now\n"
+    "  --spp N                     samples per pixel for ao, area lights and gi (default 64)\n"
+    "  --frames N                  frames to accumulate (ROMA tracer; the reference renders one)\n"
+    "  --ao-radius R               AO ray length in scene units (default: unbounded)\n"
+    "  --lights N                  point lights for the many-lights effect (default 256)\n"
+    "  --seed N                    sample-sequence seed (default 1)\n"
+    "  --threads N                 CPU threads for the reference (default: all cores)\n"
+    "  --out DIR                   output folder (default out); writes DIR/<effect>.pfm and .png\n"
+    "  --stats FILE.json           write device, scene size, settings and timings\n"
+    "  --list-scenes               print the built-in scene names\n"
+    "  --quiet                     no progress line\n"
+    "  --help\n";
+
+typedef struct options {
+    const char *scene, *out, *stats, *tracer;
+    roma_camera camera;
+    int has_camera;
+    uint32_t width, height, effects, spp, frames, lights, seed, threads;
+    float ao_radius;
+    int quiet;
+} options;
+
+static int parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long v = strtoul(s, &end, 10);
+    if (errno || end == s || *end || s[0] == '-' || v < min || v > max)
+        return 0;
+    *out = (uint32_t)v;
+    return 1;
+}
+
+static int parse_effects(const char *s, uint32_t *out)
+{
+    *out = 0;
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", s);
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (strcmp(tok, "ao") == 0) *out |= ROMA_EFFECT_AO;
+        else if (strcmp(tok, "direct") == 0) *out |= ROMA_EFFECT_DIRECT;
+        else if (strcmp(tok, "gi") == 0) *out |= ROMA_EFFECT_GI;
+        else if (strcmp(tok, "lights") == 0) *out |= ROMA_EFFECT_LIGHTS;
+        else return 0;
+    }
+    return *out != 0;
+}
+
+static int parse_camera(const char *s, roma_camera *cam)
+{
+    float v[7];
+    char tail;
+    if (sscanf(s, "%f,%f,%f,%f,%f,%f,%f%c", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &tail) != 7)
+        return 0;
+    memset(cam, 0, sizeof *cam);
+    for (int i = 0; i < 3; ++i) {
+        cam->eye[i] = v[i];
+        cam->target[i] = v[3 + i];
+    }
+    cam->fovy_deg = v[6];
+    roma_camera_frame f;
+    return roma_camera_make_frame(cam, 1, 1, &f);
+}
+
+static int parse_args(int argc, char **argv, options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->scene = "builtin:cornell";
+    o->out = "out";
+    o->tracer = "embree";
+    o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1;
+    o->lights = 256, o->seed = 1;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1, used = 1;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            fputs(usage, stdout);
+            exit(0);
+        } else if (strcmp(a, "--list-scenes") == 0) {
+            for (const char *const *n = roma_builtin_scene_names(); *n; ++n)
+                printf("builtin:%s\n", *n);
+            exit(0);
+        } else if (strcmp(a, "--quiet") == 0) {
+            o->quiet = 1, used = 0;
+        } else if (!v) {
+            fprintf(stderr, "roma-render: %s needs a value (see --help)\n", a);
+            return 0;
+        } else if (strcmp(a, "--scene") == 0) o->scene = v;
+        else if (strcmp(a, "--out") == 0) o->out = v;
+        else if (strcmp(a, "--stats") == 0) o->stats = v;
+        else if (strcmp(a, "--tracer") == 0) o->tracer = v;
+        else if (strcmp(a, "--camera") == 0) ok = o->has_camera = parse_camera(v, &o->camera);
+        else if (strcmp(a, "--size") == 0) {
+            unsigned w = 0, h = 0;
+            char tail;
+            ok = sscanf(v, "%ux%u%c", &w, &h, &tail) == 2 && w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
+            o->width = w, o->height = h;
+        } else if (strcmp(a, "--effects") == 0) ok = parse_effects(v, &o->effects);
+        else if (strcmp(a, "--spp") == 0) ok = parse_u32(v, 1, 1u << 20, &o->spp);
+        else if (strcmp(a, "--frames") == 0) ok = parse_u32(v, 1, 1u << 20, &o->frames);
+        else if (strcmp(a, "--lights") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights);
+        else if (strcmp(a, "--seed") == 0) ok = parse_u32(v, 0, UINT32_MAX, &o->seed);
+        else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, 1, 1024, &o->threads);
+        else if (strcmp(a, "--ao-radius") == 0) {
+            char *end;
+            o->ao_radius = strtof(v, &end);
+            ok = end != v && !*end && o->ao_radius >= 0.0f && isfinite(o->ao_radius);
+        } else {
+            fprintf(stderr, "roma-render: unknown option %s (see --help)\n", a);
+            return 0;
+        }
+        if (!ok) {
+            fprintf(stderr, "roma-render: bad value for %s: '%s' (see --help)\n", a, v);
+            return 0;
+        }
+        i += used;
+    }
+    if (strcmp(o->tracer, "embree") != 0) {
+        fprintf(stderr, "roma-render: --tracer %s is not available yet: the ROMA tracer lands with the "
+                        "ROMA core; use --tracer embree\n", o->tracer);
+        return 0;
+    }
+    return 1;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+typedef struct progress_state {
+    const char *what;
+    int quiet;
+    int last_percent;
+} progress_state;
+
+/* One line per 10% in logs; an updating line on a terminal. */
+static void on_progress(float fraction, void *user)
+{
+    progress_state *p = user;
+    int percent = (int)(fraction * 100.0f + 0.5f);
+    int tty = isatty(fileno(stderr));
+    if (p->quiet || percent == p->last_percent || (!tty && percent / 10 == p->last_percent / 10))
+        return;
+    p->last_percent = percent;
+    if (tty)
+        fprintf(stderr, "\rroma-render: %s %3d%%%s", p->what, percent, percent >= 100 ? "\n" : "");
+    else
+        fprintf(stderr, "roma-render: %s %3d%%\n", p->what, percent);
+    fflush(stderr);
+}
+
+typedef struct effect_output {
+    const char *name;
+    uint32_t bit;
+    double cpu_ms;
+} effect_output;
+
+static int write_outputs(const options *o, const char *name, const roma_image *img, roma_png_mode mode,
+                         float scale)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s.pfm", o->out, name);
+    roma_result r = roma_image_write_pfm(img, path);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-render: cannot write %s: %s\n", path, roma_result_string(r));
+        return 0;
+    }
+    printf("wrote %s\n", path);
+    snprintf(path, sizeof path, "%s/%s.png", o->out, name);
+    r = roma_app_write_png(img, path, mode, scale);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-render: cannot write %s: %s\n", path, roma_result_string(r));
+        return 0;
+    }
+    printf("wrote %s\n", path);
+    return 1;
+}
+
+static void write_stats(const options *o, const roma_scene_view *sv, const roma_camera *cam,
+                        const effect_output *effects, int effect_count, double build_ms, uint32_t threads)
+{
+    FILE *f = fopen(o->stats, "w");
+    if (!f) {
+        fprintf(stderr, "roma-render: cannot write %s\n", o->stats);
+        return;
+    }
+    roma_json j = {.f = f};
+    roma_json_begin_object(&j, NULL);
+    roma_json_string(&j, "tool", "roma-render");
+    roma_json_begin_object(&j, "device");
+    roma_json_string(&j, "tracer", o->tracer);
+    roma_json_string(&j, "kind", "cpu");
+    roma_json_string(&j, "name", "Embree 3 reference (CPU)");
+    roma_json_int(&j, "threads", threads);
+    roma_json_end_object(&j);
+    roma_json_begin_object(&j, "scene");
+    roma_json_string(&j, "source", o->scene);
+    roma_json_string(&j, "name", sv->name ? sv->name : "");
+    roma_json_int(&j, "triangles", sv->triangle_count);
+    roma_json_int(&j, "degenerate_triangles", sv->degenerate_triangle_count);
+    roma_json_int(&j, "vertices", sv->vertex_count);
+    roma_json_int(&j, "materials", sv->material_count);
+    roma_json_int(&j, "punctual_lights", sv->light_count);
+    roma_json_int(&j, "emissive_triangles", sv->emissive_triangle_count);
+    roma_json_begin_array(&j, "bounds_min");
+    for (int i = 0; i < 3; ++i) roma_json_number(&j, NULL, sv->bounds_min[i]);
+    roma_json_end_array(&j);
+    roma_json_begin_array(&j, "bounds_max");
+    for (int i = 0; i < 3; ++i) roma_json_number(&j, NULL, sv->bounds_max[i]);
+    roma_json_end_array(&j);
+    roma_json_end_object(&j);
+    roma_json_begin_object(&j, "settings");
+    roma_json_int(&j, "width", o->width);
+    roma_json_int(&j, "height", o->height);
+    roma_json_int(&j, "spp", o->spp);
+    roma_json_int(&j, "frames", o->frames);
+    roma_json_number(&j, "ao_radius", o->ao_radius > 0.0f ? o->ao_radius : INFINITY);
+    roma_json_int(&j, "many_lights", o->lights);
+    roma_json_int(&j, "seed", o->seed);
+    roma_json_begin_object(&j, "camera");
+    roma_json_begin_array(&j, "eye");
+    for (int i = 0; i < 3; ++i) roma_json_number(&j, NULL, cam->eye[i]);
+    roma_json_end_array(&j);
+    roma_json_begin_array(&j, "target");
+    for (int i = 0; i < 3; ++i) roma_json_number(&j, NULL, cam->target[i]);
+    roma_json_end_array(&j);
+    roma_json_number(&j, "fovy_deg", cam->fovy_deg);
+    roma_json_end_object(&j);
+    roma_json_end_object(&j);
+    /* The reference runs on the CPU, so its passes carry wall-clock times;
+     * GPU passes (ROMA tracer) report timestamp-query times here. */
+    roma_json_begin_array(&j, "passes");
+    roma_json_begin_object(&j, NULL);
+    roma_json_string(&j, "name", "embree_scene_build");
+    roma_json_string(&j, "clock", "cpu_wall");
+    roma_json_number(&j, "ms", build_ms);
+    roma_json_end_object(&j);
+    for (int i = 0; i < effect_count; ++i) {
+        roma_json_begin_object(&j, NULL);
+        roma_json_string(&j, "name", effects[i].name);
+        roma_json_string(&j, "clock", "cpu_wall");
+        roma_json_number(&j, "ms", effects[i].cpu_ms);
+        roma_json_end_object(&j);
+    }
+    roma_json_end_array(&j);
+    roma_json_end_object(&j);
+    if (fclose(f) == 0)
+        printf("wrote %s\n", o->stats);
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    if (!parse_args(argc, argv, &o))
+        return 2;
+    roma_scene *scene = NULL;
+    roma_result r = roma_app_load_scene(o.scene, NULL, &scene);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-render: cannot load scene '%s': %s\n", o.scene, roma_result_string(r));
+        return 1;
+    }
+    roma_scene_view sv;
+    roma_scene_get_view(scene, &sv);
+    roma_camera cam = o.camera;
+    if (!o.has_camera)
+        roma_scene_default_camera(scene, (float)o.width / (float)o.height, &cam);
+    if (!roma_app_make_dir(o.out)) {
+        fprintf(stderr, "roma-render: cannot create output folder %s\n", o.out);
+        roma_scene_destroy(scene);
+        return 1;
+    }
+
+    double t0 = now_ms();
+    roma_ref *ref = NULL;
+    roma_ref_desc ref_desc = {.thread_count = o.threads};
+    r = roma_ref_create(scene, &ref_desc, &ref);
+    double build_ms = now_ms() - t0;
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-render: reference tracer: %s\n", roma_result_string(r));
+        roma_scene_destroy(scene);
+        return 1;
+    }
+    if (!o.quiet)
+        fprintf(stderr, "roma-render: %s, %u triangles, %ux%u, %u spp\n", sv.name ? sv.name : o.scene,
+                sv.triangle_count, o.width, o.height, o.spp);
+
+    float *light_positions = NULL;
+    if (o.effects & ROMA_EFFECT_LIGHTS) {
+        light_positions = malloc(sizeof(float) * 3 * o.lights);
+        if (!light_positions) {
+            roma_ref_destroy(ref);
+            roma_scene_destroy(scene);
+            return 1;
+        }
+        roma_many_lights_positions(sv.bounds_min, sv.bounds_max, o.lights, o.seed, light_positions);
+    }
+
+    effect_output effects[4] = {{"ao", ROMA_EFFECT_AO, 0}, {"direct", ROMA_EFFECT_DIRECT, 0},
+                                {"gi", ROMA_EFFECT_GI, 0}, {"lights", ROMA_EFFECT_LIGHTS, 0}};
+    effect_output done[4];
+    int done_count = 0, status = 0;
+    for (int e = 0; e < 4 && status == 0; ++e) {
+        if (!(o.effects & effects[e].bit))
+            continue;
+        /* One effect per call so that each gets its own time and progress line. */
+        progress_state progress = {effects[e].name, o.quiet, -1};
+        roma_ref_render_desc desc = {
+            .camera = cam, .width = o.width, .height = o.height, .effects = effects[e].bit,
+            .spp = o.spp, .ao_radius = o.ao_radius, .seed = o.seed,
+            .many_light_positions = light_positions, .many_light_count = o.lights,
+            .progress = on_progress, .progress_user_data = &progress,
+        };
+        roma_ref_images images;
+        double start = now_ms();
+        r = roma_ref_render(ref, &desc, &images);
+        effects[e].cpu_ms = now_ms() - start;
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: rendering %s failed: %s\n", effects[e].name, roma_result_string(r));
+            status = 1;
+            break;
+        }
+        int ok = 1;
+        switch (effects[e].bit) {
+        case ROMA_EFFECT_AO: ok = write_outputs(&o, "ao", &images.ao, ROMA_PNG_SRGB, 1.0f); break;
+        case ROMA_EFFECT_DIRECT: ok = write_outputs(&o, "direct", &images.direct, ROMA_PNG_SRGB, 1.0f); break;
+        case ROMA_EFFECT_GI: ok = write_outputs(&o, "gi", &images.gi, ROMA_PNG_SRGB, 1.0f); break;
+        case ROMA_EFFECT_LIGHTS:
+            ok = write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights);
+            break;
+        }
+        roma_ref_images_free(&images);
+        if (!ok)
+            status = 1;
+        done[done_count++] = effects[e];
+    }
+    if (status == 0 && o.stats)
+        write_stats(&o, &sv, &cam, done, done_count, build_ms,
+                    o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN));
+    free(light_positions);
+    roma_ref_destroy(ref);
+    roma_scene_destroy(scene);
+    return status;
+}

@@ -19,7 +19,7 @@ build: configure
 
 run: build
 	$(BUILD)/apps/roma-render --scene builtin:cornell --effects ao,direct,gi,lights \
-	    --tracer embree --size 480x360 --spp 64 --out $(OUT) --stats $(OUT)/stats.json
+	    --tracer embree --size 480x360 --spp 64 --ao-radius 0.5 --out $(OUT) --stats $(OUT)/stats.json
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "app_common.h"
+#include "roma_ao.h"
 #include "reference.h"
 #include "roma/roma.h"
 #include "stats_json.h"
@@ -20,10 +21,16 @@ static const char *usage =
     "                              (y up; default: the scene's camera, else one framing its bounds)\n"
     "  --size WxH                  image size in pixels (default 640x480)\n"
     "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
-    "  --tracer embree|roma        embree = CPU reference (ground truth). roma is not available yet:\n"
-    "                              the ROMA tracer lands with the ROMA core; only embree renders now\n"
+    "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU.\n"
+    "                              roma renders ao only for now (direct, gi and lights come with the\n"
+    "                              effect passes); its primary hits come from the reference, so both\n"
+    "                              tracers shade the same points\n"
+    "  --res N                     ROMA grid resolution: 32, 64, 128 or 256 (default 128)\n"
+    "  --angular A                 ROMA A x A candidate directions, 1..16 (default 4)\n"
     "  --spp N                     samples per pixel for ao, area lights and gi (default 64)\n"
-    "  --frames N                  frames to accumulate (ROMA tracer; the reference renders one)\n"
+    "  --frames N                  ROMA: frames accumulated, each with new jitter and new samples\n"
+    "                              (frame f uses samples f*spp .. f*spp+spp-1, so the reference with\n"
+    "                              --spp spp*frames traces the same directions)\n"
     "  --ao-radius R               AO ray length in scene units (default: unbounded)\n"
     "  --lights N                  point lights for the many-lights effect (default 256)\n"
     "  --seed N                    sample-sequence seed (default 1)\n"
@@ -38,7 +45,7 @@ typedef struct options {
     const char *scene, *out, *stats, *tracer;
     roma_camera camera;
     int has_camera;
-    uint32_t width, height, effects, spp, frames, lights, seed, threads;
+    uint32_t width, height, effects, spp, frames, lights, seed, threads, res, angular;
     float ao_radius;
     int quiet;
 } options;
@@ -92,7 +99,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->out = "out";
     o->tracer = "embree";
     o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1;
-    o->lights = 256, o->seed = 1;
+    o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -125,6 +132,9 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--lights") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights);
         else if (strcmp(a, "--seed") == 0) ok = parse_u32(v, 0, UINT32_MAX, &o->seed);
         else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, 1, 1024, &o->threads);
+        else if (strcmp(a, "--res") == 0)
+            ok = parse_u32(v, 32, 256, &o->res) && (o->res == 32 || o->res == 64 || o->res == 128 || o->res == 256);
+        else if (strcmp(a, "--angular") == 0) ok = parse_u32(v, 1, 16, &o->angular);
         else if (strcmp(a, "--ao-radius") == 0) {
             char *end;
             o->ao_radius = strtof(v, &end);
@@ -139,9 +149,13 @@ static int parse_args(int argc, char **argv, options *o)
         }
         i += used;
     }
-    if (strcmp(o->tracer, "embree") != 0) {
-        fprintf(stderr, "roma-render: --tracer %s is not available yet: the ROMA tracer lands with the "
-                        "ROMA core; use --tracer embree\n", o->tracer);
+    if (strcmp(o->tracer, "embree") != 0 && strcmp(o->tracer, "roma") != 0) {
+        fprintf(stderr, "roma-render: unknown tracer '%s' (embree or roma)\n", o->tracer);
+        return 0;
+    }
+    if (strcmp(o->tracer, "roma") == 0 && (o->effects & ~(uint32_t)ROMA_EFFECT_AO)) {
+        fprintf(stderr, "roma-render: --tracer roma renders ao only for now; direct, gi and lights "
+                        "come with the effect passes (use --tracer embree for them)\n");
         return 0;
     }
     return 1;
@@ -182,6 +196,28 @@ typedef struct effect_output {
     double cpu_ms;
 } effect_output;
 
+/* One timed pass in the stats file. */
+typedef struct pass_record {
+    const char *name;
+    const char *clock; /* "cpu_wall" or "gpu_timestamp" */
+    double ms;
+} pass_record;
+
+typedef struct run_record {
+    const char *device_kind, *device_name;
+    uint32_t threads;
+    pass_record passes[16];
+    int pass_count;
+    const roma_map_info *map; /* ROMA tracer only */
+    uint64_t rays;
+} run_record;
+
+static void add_pass(run_record *run, const char *name, const char *clock, double ms)
+{
+    if (run->pass_count < 16)
+        run->passes[run->pass_count++] = (pass_record){name, clock, ms};
+}
+
 static int write_outputs(const options *o, const char *name, const roma_image *img, roma_png_mode mode,
                          float scale)
 {
@@ -204,7 +240,7 @@ static int write_outputs(const options *o, const char *name, const roma_image *i
 }
 
 static void write_stats(const options *o, const roma_scene_view *sv, const roma_camera *cam,
-                        const effect_output *effects, int effect_count, double build_ms, uint32_t threads)
+                        const run_record *run)
 {
     FILE *f = fopen(o->stats, "w");
     if (!f) {
@@ -216,9 +252,9 @@ static void write_stats(const options *o, const roma_scene_view *sv, const roma_
     roma_json_string(&j, "tool", "roma-render");
     roma_json_begin_object(&j, "device");
     roma_json_string(&j, "tracer", o->tracer);
-    roma_json_string(&j, "kind", "cpu");
-    roma_json_string(&j, "name", "Embree 3 reference (CPU)");
-    roma_json_int(&j, "threads", threads);
+    roma_json_string(&j, "kind", run->device_kind);
+    roma_json_string(&j, "name", run->device_name);
+    roma_json_int(&j, "cpu_threads", run->threads);
     roma_json_end_object(&j);
     roma_json_begin_object(&j, "scene");
     roma_json_string(&j, "source", o->scene);
@@ -254,19 +290,25 @@ static void write_stats(const options *o, const roma_scene_view *sv, const roma_
     roma_json_number(&j, "fovy_deg", cam->fovy_deg);
     roma_json_end_object(&j);
     roma_json_end_object(&j);
-    /* The reference runs on the CPU, so its passes carry wall-clock times;
-     * GPU passes (ROMA tracer) report timestamp-query times here. */
+    if (run->map) {
+        roma_json_begin_object(&j, "roma");
+        roma_json_int(&j, "resolution", run->map->resolution);
+        roma_json_int(&j, "angular", run->map->angular);
+        roma_json_int(&j, "maps", run->map->map_count);
+        roma_json_int(&j, "bom_bytes", (long long)run->map->bom_bytes);
+        roma_json_int(&j, "maps_bytes", (long long)run->map->maps_bytes);
+        roma_json_int(&j, "params_bytes", (long long)run->map->params_bytes);
+        roma_json_int(&j, "geometry_bytes", (long long)run->map->geometry_bytes);
+        roma_json_int(&j, "rays_traced", (long long)run->rays);
+        roma_json_end_object(&j);
+    }
+    /* CPU passes carry wall-clock times, GPU passes timestamp-query times. */
     roma_json_begin_array(&j, "passes");
-    roma_json_begin_object(&j, NULL);
-    roma_json_string(&j, "name", "embree_scene_build");
-    roma_json_string(&j, "clock", "cpu_wall");
-    roma_json_number(&j, "ms", build_ms);
-    roma_json_end_object(&j);
-    for (int i = 0; i < effect_count; ++i) {
+    for (int i = 0; i < run->pass_count; ++i) {
         roma_json_begin_object(&j, NULL);
-        roma_json_string(&j, "name", effects[i].name);
-        roma_json_string(&j, "clock", "cpu_wall");
-        roma_json_number(&j, "ms", effects[i].cpu_ms);
+        roma_json_string(&j, "name", run->passes[i].name);
+        roma_json_string(&j, "clock", run->passes[i].clock);
+        roma_json_number(&j, "ms", run->passes[i].ms);
         roma_json_end_object(&j);
     }
     roma_json_end_array(&j);
@@ -322,11 +364,50 @@ int main(int argc, char **argv)
         roma_many_lights_positions(sv.bounds_min, sv.bounds_max, o.lights, o.seed, light_positions);
     }
 
+    run_record run = {.device_kind = "cpu", .device_name = "Embree 3 reference (CPU)",
+                      .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
+    add_pass(&run, "embree_scene_build", "cpu_wall", build_ms);
+    int status = 0;
+    roma_context *ctx = NULL;
+    roma_context_info ctx_info;
+    roma_ao_timings ao_timings;
+    if (strcmp(o.tracer, "roma") == 0) {
+        roma_context_desc ctx_desc = {0};
+        r = roma_context_create(&ctx_desc, &ctx);
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: no Vulkan context: %s\n", roma_result_string(r));
+            status = 1;
+        } else {
+            roma_context_get_info(ctx, &ctx_info);
+            run.device_kind = ctx_info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? "cpu_vulkan" : "gpu";
+            run.device_name = ctx_info.device_name;
+            roma_ao_settings settings = {
+                .camera = cam, .width = o.width, .height = o.height, .spp = o.spp, .frames = o.frames,
+                .seed = o.seed, .radius = o.ao_radius, .offset_cells = ROMA_DEFAULT_OFFSET_CELLS,
+                .map = {.resolution = o.res, .angular = o.angular},
+            };
+            roma_image ao;
+            double start = now_ms();
+            r = roma_render_ao_roma(ctx, scene, ref, &settings, &ao, &ao_timings);
+            add_pass(&run, "roma_ao_total", "cpu_wall", now_ms() - start);
+            if (r != ROMA_SUCCESS) {
+                fprintf(stderr, "roma-render: ROMA ambient occlusion failed: %s\n", roma_result_string(r));
+                status = 1;
+            } else {
+                add_pass(&run, "bom", "gpu_timestamp", ao_timings.bom_ms);
+                add_pass(&run, "rotate", "gpu_timestamp", ao_timings.rotate_ms);
+                add_pass(&run, "trace_ao", "gpu_timestamp", ao_timings.trace_ms);
+                run.map = &ao_timings.info;
+                run.rays = ao_timings.rays;
+                if (!write_outputs(&o, "ao", &ao, ROMA_PNG_SRGB, 1.0f))
+                    status = 1;
+                roma_image_free(&ao);
+            }
+        }
+    }
     effect_output effects[4] = {{"ao", ROMA_EFFECT_AO, 0}, {"direct", ROMA_EFFECT_DIRECT, 0},
                                 {"gi", ROMA_EFFECT_GI, 0}, {"lights", ROMA_EFFECT_LIGHTS, 0}};
-    effect_output done[4];
-    int done_count = 0, status = 0;
-    for (int e = 0; e < 4 && status == 0; ++e) {
+    for (int e = 0; e < 4 && status == 0 && !ctx; ++e) {
         if (!(o.effects & effects[e].bit))
             continue;
         /* One effect per call so that each gets its own time and progress line. */
@@ -358,11 +439,11 @@ int main(int argc, char **argv)
         roma_ref_images_free(&images);
         if (!ok)
             status = 1;
-        done[done_count++] = effects[e];
+        add_pass(&run, effects[e].name, "cpu_wall", effects[e].cpu_ms);
     }
     if (status == 0 && o.stats)
-        write_stats(&o, &sv, &cam, done, done_count, build_ms,
-                    o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN));
+        write_stats(&o, &sv, &cam, &run);
+    roma_context_destroy(ctx);
     free(light_positions);
     roma_ref_destroy(ref);
     roma_scene_destroy(scene);

@@ -9,8 +9,9 @@
  *    context, and the device must have been created with Vulkan 1.3 and the
  *    features listed under "Requirements" enabled.
  *
- * Requirements: Vulkan 1.3 with dynamicRendering, synchronization2 and
- * timestamp queries on the chosen queue family.
+ * Requirements: Vulkan 1.3 with dynamicRendering, synchronization2,
+ * hostQueryReset, bufferDeviceAddress, fragmentStoresAndAtomics, and timestamp
+ * queries on the chosen queue family.
  *
  * Environment (read once in roma_context_create, only where the desc is silent):
  *   ROMA_DEVICE=<substring>   choose the physical device by name
@@ -86,7 +87,10 @@ roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
 
 /* --- GPU timers: timestamp queries around named passes ---
  * Record begin/end into any command buffer of the context's queue family;
- * read after the work completed. Names are copied. */
+ * read after the work completed. Names are copied. begin and end each record a
+ * full execution barrier before their timestamp so that a scope measures its own
+ * work on every implementation (some CPU implementations write timestamps while
+ * earlier dispatches still run); timed passes therefore do not overlap. */
 
 typedef struct roma_gpu_timer roma_gpu_timer;
 

@@ -32,4 +32,87 @@ struct roma_fill_push {
 };
 #endif
 
+/* ---- ROMA core ---- */
+
+#if defined(__STDC__) || defined(__cplusplus)
+#define ROMA_VEC4(name) float name[4]
+#define ROMA_UVEC4(name) uint32_t name[4]
+#define ROMA_U64(name) uint64_t name
+#define ROMA_STRUCT_BEGIN(name) typedef struct name {
+#define ROMA_STRUCT_END(name) } name;
+#else
+#define ROMA_VEC4(name) vec4 name
+#define ROMA_UVEC4(name) uvec4 name
+/* Buffer device addresses as uvec2 (GL_EXT_buffer_reference_uvec2): same 8-byte
+ * size and alignment as the C uint64_t, and no shaderInt64 needed. */
+#define ROMA_U64(name) uvec2 name
+#define ROMA_STRUCT_BEGIN(name) struct name {
+#define ROMA_STRUCT_END(name) };
+#endif
+
+#define ROMA_MAX_RESOLUTION 256
+#define ROMA_MAX_WORDS (ROMA_MAX_RESOLUTION / 32)
+#define ROMA_MAX_ANGULAR 16
+
+/* Placement of the BOM grid this frame (world space). */
+ROMA_STRUCT_BEGIN(roma_grid_params)
+    ROMA_VEC4(origin);    /* xyz: corner of cell (0,0,0); w: cell size */
+    ROMA_VEC4(inv_cell);  /* x: 1 / cell size */
+    ROMA_UVEC4(dims);     /* x: RES, y: words per texel, z: A, w: map count */
+ROMA_STRUCT_END(roma_grid_params)
+
+/* One ray-aligned map. world -> map cell coordinates: m_i = dot(to_map_i.xyz, p) + to_map_i.w
+ * (evaluated as ((x*p.x + y*p.y) + z*p.z) + w, without contraction). map -> BOM cell
+ * coordinates: b = map_to_bom_0.xyz * m.x + map_to_bom_1.xyz * m.y + map_to_bom_2.xyz * m.z
+ * + map_to_bom_3.xyz (same evaluation order). */
+ROMA_STRUCT_BEGIN(roma_map_frame)
+    ROMA_VEC4(to_map_0);
+    ROMA_VEC4(to_map_1);
+    ROMA_VEC4(to_map_2);
+    ROMA_VEC4(map_to_bom_0);
+    ROMA_VEC4(map_to_bom_1);
+    ROMA_VEC4(map_to_bom_2);
+    ROMA_VEC4(map_to_bom_3);
+    ROMA_VEC4(dir);       /* xyz: candidate direction (unit, z >= 0); w: world size of a cell along it */
+    ROMA_VEC4(cell);      /* world cell size along map x, y, z */
+ROMA_STRUCT_END(roma_map_frame)
+
+/* BOM rasterization (graphics pipeline, vertex pulling through buffer addresses). */
+ROMA_STRUCT_BEGIN(roma_bom_push)
+    ROMA_U64(positions);  /* float4 per vertex */
+    ROMA_U64(indices);    /* uint x3 per triangle */
+    ROMA_U64(bom);        /* RES*RES*words uint */
+    ROMA_U64(params);     /* roma_grid_params */
+    ROMA_UVEC4(config);   /* x: projection axis 0/1/2, y: roma_bom_mode, z: triangle count,
+                             w: flags (bit 0: conservative rasterization, see src/roma/bom_raster.h) */
+ROMA_STRUCT_END(roma_bom_push)
+
+/* roma_bom_push.config.y: which draws a triangle takes part in. */
+#define ROMA_BOM_MODE_UNION3 0u    /* every axis where its projection is not edge-on */
+#define ROMA_BOM_MODE_DOMINANT 1u  /* only the axis of its largest normal component */
+/* roma_bom_push.config.w bit: conservative rasterization (triangles grown in the vertex
+ * stage, exact pixel/triangle overlap in the fragment stage). */
+#define ROMA_BOM_FLAG_CONSERVATIVE 1u
+
+/* Rotation: one invocation per output word. */
+#define ROMA_ROTATE_WORKGROUP_SIZE 64
+/* BOM samples per rotated cell, spread along the map's z axis. */
+#define ROMA_ROTATE_SAMPLES 2
+ROMA_STRUCT_BEGIN(roma_rotate_push)
+    ROMA_U64(bom);
+    ROMA_U64(maps);       /* map_count*RES*RES*words uint */
+    ROMA_U64(params);     /* roma_grid_params followed by map_count roma_map_frame */
+    ROMA_U64(pad_);
+ROMA_STRUCT_END(roma_rotate_push)
+
+/* Batch trace: one invocation per ray. */
+#define ROMA_TRACE_WORKGROUP_SIZE 64
+ROMA_STRUCT_BEGIN(roma_trace_push)
+    ROMA_U64(maps);
+    ROMA_U64(params);
+    ROMA_U64(rays);
+    ROMA_U64(hits);
+    ROMA_UVEC4(config);   /* x: roma_trace_mode, y: max steps, z: ray count */
+ROMA_STRUCT_END(roma_trace_push)
+
 #endif /* ROMA_SHARED_H */

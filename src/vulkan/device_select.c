@@ -52,6 +52,7 @@ roma_result roma_check_device_support(const roma_context *ctx, VkPhysicalDevice 
     const char *missing = !f13.dynamicRendering                       ? "dynamicRendering"
                           : !f13.synchronization2                     ? "synchronization2"
                           : !f12.hostQueryReset                       ? "hostQueryReset"
+                          : !f12.bufferDeviceAddress                  ? "bufferDeviceAddress"
                           : !features.features.fragmentStoresAndAtomics ? "fragmentStoresAndAtomics"
                           : !props.limits.timestampComputeAndGraphics ? "timestampComputeAndGraphics"
                                                                       : NULL;

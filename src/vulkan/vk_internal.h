@@ -52,6 +52,7 @@ typedef struct roma_buffer {
     VkDeviceMemory memory;
     VkDeviceSize size;
     void *mapped; /* non-NULL for host-visible buffers */
+    VkDeviceAddress address; /* non-zero when created with SHADER_DEVICE_ADDRESS usage */
 } roma_buffer;
 
 typedef enum roma_memory_kind {

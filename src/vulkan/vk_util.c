@@ -87,8 +87,13 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
         return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE, "no memory type for a buffer of %llu bytes",
                          (unsigned long long)size);
     }
+    VkMemoryAllocateFlagsInfo flags = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
+        .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT,
+    };
     VkMemoryAllocateInfo alloc = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .pNext = (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) ? &flags : NULL,
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
@@ -102,6 +107,13 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
         return roma_vk_check(ctx, vr, "allocating buffer memory");
     }
     out->size = size;
+    if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) {
+        VkBufferDeviceAddressInfo info_addr = {
+            .sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO,
+            .buffer = out->buffer,
+        };
+        out->address = vkGetBufferDeviceAddress(ctx->device, &info_addr);
+    }
     return ROMA_SUCCESS;
 }
 

@@ -1,0 +1,313 @@
+/* roma-bench: what ROMA costs and how fast it traces, against Embree on the same
+ * rays in the same process. GPU times come from timestamp queries, CPU times
+ * from the wall clock; every figure is the median of --runs runs. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "app_common.h"
+#include "reference.h"
+#include "roma/map.h"
+#include "roma/roma.h"
+#include "vulkan/vk_internal.h"
+
+static const char *usage =
+    "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
+    "                  [--csv FILE] [--small]\n"
+    "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
+    "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
+    "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
+    "  (RES 128, A 4: snapped any-hit, snapped closest-hit; A 8: un-snapped 8 steps) and by\n"
+    "  Embree (rtcOccluded, rtcIntersect) on the same rays. --small: a quick smoke run.\n";
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static double timer_ms(roma_gpu_timer *timer, const char *name)
+{
+    roma_gpu_timing t[8];
+    uint32_t count = 8;
+    if (roma_gpu_timer_read(timer, t, &count) != ROMA_SUCCESS)
+        return NAN;
+    for (uint32_t i = 0; i < count && i < 8; ++i)
+        if (strcmp(t[i].name, name) == 0)
+            return t[i].milliseconds;
+    return NAN;
+}
+
+static int parse_list(const char *s, uint32_t *out, int max)
+{
+    int n = 0;
+    char buf[128];
+    snprintf(buf, sizeof buf, "%s", s);
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok && n < max; tok = strtok_r(NULL, ",", &save))
+        out[n++] = (uint32_t)strtoul(tok, NULL, 10);
+    return n;
+}
+
+/* Host-observed time of one trace: a dedicated submission whose rays are already on
+ * the device, from submit to fence. On CPU Vulkan implementations (lavapipe) the
+ * timestamp queries do not cover compute dispatches, so this is the figure to use
+ * there; on GPUs it adds the submission latency to the timestamp figure. */
+static double host_trace_ms(roma_context *ctx, roma_map *map, roma_trace_mode mode, VkDeviceAddress rays,
+                            VkDeviceAddress hits, uint32_t n)
+{
+    VkCommandBuffer cmd;
+    if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
+        return NAN;
+    roma_trace_desc desc = {.mode = mode, .max_steps = 8, .rays = rays, .hits = hits, .ray_count = n};
+    roma_map_record_trace(map, cmd, &desc, NULL);
+    double t0 = now_ms();
+    roma_result r = roma_submit_one_shot(ctx, cmd);
+    double ms = now_ms() - t0;
+    return r == ROMA_SUCCESS ? ms : NAN;
+}
+
+/* AO rays from the surface points the camera sees, repeated until n rays. */
+static uint32_t make_ao_rays(const roma_ref *ref, const roma_scene *scene, float offset, uint32_t n, roma_ray *rays)
+{
+    const uint32_t w = 320, h = 240;
+    roma_camera cam;
+    roma_scene_default_camera(scene, (float)w / h, &cam);
+    roma_camera_frame cf;
+    roma_camera_make_frame(&cam, w, h, &cf);
+    uint32_t count = 0, pass = 0;
+    while (count < n && pass < 4096) {
+        uint32_t before = count;
+        for (uint32_t p = 0; p < w * h && count < n; ++p) {
+            float o[3], d[3];
+            roma_camera_ray(&cf, (p % w) + 0.5f, (p / w) + 0.5f, o, d);
+            roma_ref_hit hit;
+            if (!roma_ref_intersect(ref, o, d, 0.0f, INFINITY, &hit))
+                continue;
+            roma_ray *r = &rays[count++];
+            float local[3];
+            roma_cosine_hemisphere(roma_random(1, p, pass, 0), roma_random(1, p, pass, 1), local);
+            roma_local_to_world(hit.shading_normal, local, r->dir);
+            for (int a = 0; a < 3; ++a)
+                r->origin[a] = hit.position[a] + offset * hit.geometric_normal[a];
+            r->tmin = 0.0f;
+            r->tmax = INFINITY;
+        }
+        if (count == before)
+            break;
+        ++pass;
+    }
+    return count;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene_arg = "builtin:cornell", *csv_path = NULL;
+    uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
+    int res_n = 3, ang_n = 3;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0) {
+            fputs(usage, stdout);
+            return 0;
+        } else if (strcmp(a, "--small") == 0) {
+            rays_n = 100000, runs = 3, res_n = parse_list("64", res_list, 4), ang_n = parse_list("2,4", ang_list, 4);
+        } else if (v && strcmp(a, "--scene") == 0) scene_arg = v, ++i;
+        else if (v && strcmp(a, "--rays") == 0) rays_n = (uint32_t)strtoul(v, NULL, 10), ++i;
+        else if (v && strcmp(a, "--runs") == 0) runs = (uint32_t)strtoul(v, NULL, 10), ++i;
+        else if (v && strcmp(a, "--res") == 0) res_n = parse_list(v, res_list, 4), ++i;
+        else if (v && strcmp(a, "--angular") == 0) ang_n = parse_list(v, ang_list, 4), ++i;
+        else if (v && strcmp(a, "--csv") == 0) csv_path = v, ++i;
+        else {
+            fprintf(stderr, "roma-bench: bad argument %s\n%s", a, usage);
+            return 2;
+        }
+    }
+    if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
+        fputs(usage, stderr);
+        return 2;
+    }
+    roma_scene *scene = NULL;
+    roma_result r = roma_app_load_scene(scene_arg, NULL, &scene);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: cannot load %s: %s\n", scene_arg, roma_result_string(r));
+        return 1;
+    }
+    roma_context *ctx = NULL;
+    roma_context_desc cdesc = {0};
+    r = roma_context_create(&cdesc, &ctx);
+    roma_ref *ref = NULL;
+    if (r == ROMA_SUCCESS)
+        r = roma_ref_create(scene, NULL, &ref);
+    roma_gpu_timer *timer = NULL;
+    if (r == ROMA_SUCCESS)
+        r = roma_gpu_timer_create(ctx, 8, &timer);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: setup failed: %s\n", roma_result_string(r));
+        roma_scene_destroy(scene);
+        roma_context_destroy(ctx);
+        return 1;
+    }
+    roma_context_info info;
+    roma_context_get_info(ctx, &info);
+    roma_scene_view sv;
+    roma_scene_get_view(scene, &sv);
+    printf("device: %s | scene: %s (%u triangles) | runs: %u (medians)\n", info.device_name, scene_arg,
+           sv.triangle_count, runs);
+    FILE *csv = csv_path ? fopen(csv_path, "w") : NULL;
+    if (csv)
+        fprintf(csv, "kind,name,res,angular,value,unit\n");
+
+    /* Generation. */
+    int cpu_device = info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    if (cpu_device)
+        printf("note: CPU Vulkan device: its timestamp queries do not cover compute work, so the host-observed\n"
+               "      columns (submit to fence, inputs already on the device) are the ones to read\n");
+    printf("\n| RES | A | maps | BOM ms (timestamps) | rotate ms (timestamps) | build ms (host-observed) | maps MiB |\n"
+           "|---|---|---|---|---|---|---|\n");
+    double *samples = malloc(sizeof(double) * runs * 3);
+    for (int ri = 0; ri < res_n; ++ri)
+        for (int ai = 0; ai < ang_n; ++ai) {
+            roma_map_desc desc = {.resolution = res_list[ri], .angular = ang_list[ai]};
+            roma_map *map = NULL;
+            if (roma_map_create(ctx, &desc, scene, &map) != ROMA_SUCCESS)
+                continue;
+            for (uint32_t k = 0; k < runs; ++k) {
+                roma_map_frame_desc frame = {.frame = k, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
+                double t0 = now_ms();
+                roma_map_build(map, &frame, timer);
+                samples[2 * runs + k] = now_ms() - t0;
+                samples[k] = timer_ms(timer, "bom");
+                samples[runs + k] = timer_ms(timer, "rotate");
+            }
+            roma_map_info mi;
+            roma_map_get_info(map, &mi);
+            double bom = median(samples, (int)runs), rot = median(samples + runs, (int)runs),
+                   host = median(samples + 2 * runs, (int)runs);
+            printf("| %u | %u | %u | %.3f | %.3f | %.2f | %.2f |\n", res_list[ri], ang_list[ai], mi.map_count, bom,
+                   rot, host, mi.maps_bytes / 1048576.0);
+            if (csv) {
+                fprintf(csv, "generation,bom_timestamp,%u,%u,%.6f,ms\n", res_list[ri], ang_list[ai], bom);
+                fprintf(csv, "generation,rotate_timestamp,%u,%u,%.6f,ms\n", res_list[ri], ang_list[ai], rot);
+                fprintf(csv, "generation,build_host,%u,%u,%.6f,ms\n", res_list[ri], ang_list[ai], host);
+            }
+            roma_map_destroy(map);
+        }
+
+    /* Tracing: the same rays for everyone. */
+    roma_ray *rays = malloc(sizeof(roma_ray) * (size_t)rays_n);
+    roma_hit *hits = malloc(sizeof(roma_hit) * (size_t)rays_n);
+    float *orgs = malloc(sizeof(float) * 3 * (size_t)rays_n), *dirs = malloc(sizeof(float) * 3 * (size_t)rays_n);
+    float *t_out = malloc(sizeof(float) * (size_t)rays_n);
+    uint8_t *occ = malloc((size_t)rays_n);
+    roma_map *map = NULL, *map8 = NULL;
+    roma_map_desc d4 = {.resolution = 128, .angular = 4}, d8 = {.resolution = 128, .angular = 8};
+    int status = 0;
+    if (!rays || !hits || !orgs || !dirs || !t_out || !occ || roma_map_create(ctx, &d4, scene, &map) != ROMA_SUCCESS ||
+        roma_map_create(ctx, &d8, scene, &map8) != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: out of memory for %u rays\n", rays_n);
+        status = 1;
+        goto done;
+    }
+    roma_map_frame_desc frame = {.frame = 0, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
+    roma_map_build(map, &frame, NULL);
+    roma_map_build(map8, &frame, NULL);
+    roma_map_info mi;
+    roma_map_get_info(map, &mi);
+    uint32_t n = make_ao_rays(ref, scene, ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, rays_n, rays);
+    for (uint32_t i = 0; i < n; ++i) {
+        memcpy(orgs + 3 * (size_t)i, rays[i].origin, sizeof(float) * 3);
+        memcpy(dirs + 3 * (size_t)i, rays[i].dir, sizeof(float) * 3);
+    }
+    struct {
+        const char *name;
+        roma_map *m;
+        roma_trace_mode mode;
+    } gpu_cases[] = {{"roma snapped any-hit (A4)", map, ROMA_TRACE_SNAPPED_ANY},
+                     {"roma snapped closest-hit (A4)", map, ROMA_TRACE_SNAPPED_CLOSEST},
+                     {"roma un-snapped any-hit 8 steps (A8)", map8, ROMA_TRACE_UNSNAPPED_ANY}};
+    double embree_ms[2];
+    for (int e = 0; e < 2; ++e) {
+        for (uint32_t k = 0; k < runs; ++k) {
+            double t0 = now_ms();
+            if (e == 0)
+                roma_ref_occluded_batch(ref, n, orgs, dirs, NULL, NULL, occ);
+            else
+                roma_ref_intersect_batch(ref, n, orgs, dirs, NULL, NULL, t_out);
+            samples[k] = now_ms() - t0;
+        }
+        embree_ms[e] = median(samples, (int)runs);
+    }
+    /* Rays and hits stay on the device for the timed traces. */
+    roma_buffer ray_buf = {0}, hit_buf = {0};
+    if (roma_buffer_create(ctx, sizeof(roma_ray) * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, ROMA_MEMORY_UPLOAD, &ray_buf) != ROMA_SUCCESS ||
+        roma_buffer_create(ctx, sizeof(roma_hit) * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, ROMA_MEMORY_DEVICE, &hit_buf) != ROMA_SUCCESS) {
+        roma_buffer_destroy(ctx, &ray_buf);
+        status = 1;
+        goto done;
+    }
+    memcpy(ray_buf.mapped, rays, sizeof(roma_ray) * (size_t)n);
+    printf("\n%u AO rays (RES 128) from %s\n\n| tracer | ms (timestamps) | ms (host-observed) | Mrays/s | vs Embree |\n"
+           "|---|---|---|---|---|\n", n, scene_arg);
+    printf("| Embree rtcOccluded (CPU, all cores) | - | %.2f | %.2f | 1.00x |\n", embree_ms[0], n / embree_ms[0] / 1e3);
+    printf("| Embree rtcIntersect (CPU, all cores) | - | %.2f | %.2f | 1.00x |\n", embree_ms[1], n / embree_ms[1] / 1e3);
+    if (csv) {
+        fprintf(csv, "trace,embree_occluded,128,0,%.6f,ms\n", embree_ms[0]);
+        fprintf(csv, "trace,embree_intersect,128,0,%.6f,ms\n", embree_ms[1]);
+    }
+    for (int c = 0; c < 3; ++c) {
+        roma_map_trace(gpu_cases[c].m, gpu_cases[c].mode, 8, rays, n, hits, NULL); /* warm-up */
+        for (uint32_t k = 0; k < runs; ++k) {
+            if (roma_map_trace(gpu_cases[c].m, gpu_cases[c].mode, 8, rays, n, hits, timer) != ROMA_SUCCESS) {
+                status = 1;
+                break;
+            }
+            samples[k] = timer_ms(timer, "trace");
+            samples[runs + k] = host_trace_ms(ctx, gpu_cases[c].m, gpu_cases[c].mode, ray_buf.address, hit_buf.address, n);
+        }
+        double ts = median(samples, (int)runs), host = median(samples + runs, (int)runs);
+        double ms = cpu_device ? host : ts;
+        double base = c == 1 ? embree_ms[1] : embree_ms[0];
+        printf("| %s | %.3f | %.2f | %.2f | %.2fx (vs %s) |\n", gpu_cases[c].name, ts, host, n / ms / 1e3, base / ms,
+               c == 1 ? "rtcIntersect" : "rtcOccluded");
+        if (csv) {
+            fprintf(csv, "trace,%s timestamp,128,%u,%.6f,ms\n", gpu_cases[c].name, c == 2 ? 8u : 4u, ts);
+            fprintf(csv, "trace,%s host,128,%u,%.6f,ms\n", gpu_cases[c].name, c == 2 ? 8u : 4u, host);
+        }
+    }
+    roma_buffer_destroy(ctx, &ray_buf);
+    roma_buffer_destroy(ctx, &hit_buf);
+done:
+    if (csv)
+        fclose(csv);
+    free(samples);
+    free(rays);
+    free(hits);
+    free(orgs);
+    free(dirs);
+    free(t_out);
+    free(occ);
+    roma_map_destroy(map);
+    roma_map_destroy(map8);
+    roma_gpu_timer_destroy(timer);
+    roma_ref_destroy(ref);
+    roma_context_destroy(ctx);
+    roma_scene_destroy(scene);
+    return status;
+}

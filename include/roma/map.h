@@ -1,0 +1,169 @@
+/* libroma: the Ray-aligned Occupancy Map Array.
+ *
+ * A roma_map owns, on the GPU:
+ *  - the base occupancy map (BOM): a RES^3 binary grid over a cube fitted to the
+ *    scene, rasterized from the triangles every build. Texel (x, y) holds RES/32
+ *    words; bit b of word w is cell z = 32 w + b (least significant bit = lowest z);
+ *  - A x A ray-aligned occupancy maps, one per candidate direction, each the BOM
+ *    resampled ("rotated") into a box whose z axis is the candidate direction;
+ *  - the per-frame parameters (grid placement, candidate frames) in a buffer.
+ *
+ * Candidate directions are stratified over the hemisphere z >= 0 (world z) with
+ * the equal-area concentric mapping and jittered inside their strata from
+ * (seed, frame). A direction d with d.z < 0 uses the map of -d traced backwards,
+ * so one map serves d and -d. Map selection is O(1): the stratum of a direction
+ * is found by inverting the mapping.
+ *
+ * Each rotated map's box is the bounding box of the (jittered, margin-padded)
+ * grid cube in the candidate's frame, so every map contains all geometry for
+ * every direction. Its cells are not cubes: along each map axis the cell size is
+ * that box extent / RES, between 1 and sqrt(3) times the BOM cell size
+ * (1 for axis-aligned candidates, sqrt(3) at worst for cube diagonals).
+ *
+ * Tracing (see shaders/include/roma_trace.glsl, the same code engines include):
+ *  - snapped: the ray direction is replaced by its candidate; any-hit and
+ *    closest-hit are one texel fetch plus bit masks, O(1);
+ *  - un-snapped: the exact direction is walked through the selected map's texels
+ *    with a 2D DDA of at most max_steps texels (default 8); rays that need more
+ *    report a miss for the part not walked.
+ * Closest-hit distance is the distance to the entry face of the first occupied
+ * cell along the ray, clamped to tmin.
+ *
+ * Rays leaving a surface start offset along its normal by ROMA_DEFAULT_OFFSET_CELLS
+ * (1.5, the paper's value) trace cells: a trace cell is the longest edge a rotated
+ * cell can have (sqrt(3) BOM cells), so the origin clears the surface's own cells in
+ * every map. Rotation samples the BOM twice per rotated cell along the map's z axis
+ * (ROMA_ROTATE_SAMPLES) so that one-cell-thick walls cannot be stepped over. */
+#define ROMA_DEFAULT_OFFSET_CELLS 1.5f
+#ifndef ROMA_MAP_H
+#define ROMA_MAP_H
+
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#include "roma/context.h"
+#include "roma/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct roma_map roma_map;
+
+typedef enum roma_bom_mode {
+    ROMA_BOM_UNION3 = 0,  /* default: rasterize along x, y and z at pixel centres, union */
+    ROMA_BOM_DOMINANT,    /* each triangle only along its dominant normal axis, pixel centres */
+    /* Dominant axis rasterized conservatively (the projected triangle grown by half a
+     * pixel, pixels it does not touch discarded): close to an exact triangle/box
+     * voxelization. More cells are occupied, so rays meet their own surface more
+     * often; docs/accuracy.md compares the modes on rays against Embree. */
+    ROMA_BOM_CONSERVATIVE
+} roma_bom_mode;
+
+typedef struct roma_map_desc {
+    uint32_t resolution;      /* RES in {32, 64, 128, 256}; 0 = 128 */
+    uint32_t angular;         /* A in [1, 16]: A x A maps; 0 = 4 */
+    roma_bom_mode bom_mode;
+    float margin_cells;       /* padding of the grid cube around the scene, in cells; 0 = 1 */
+    roma_logger logger;       /* 0 = the context's */
+} roma_map_desc;
+
+/* Geometry is uploaded here (positions and indices); call again when it moves. */
+roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
+                            const roma_scene *scene, roma_map **out_map);
+void roma_map_destroy(roma_map *map);
+
+/* Replaces the vertex positions (same vertex count as the scene), for animation. */
+roma_result roma_map_update_positions(roma_map *map, const float *positions, uint32_t vertex_count);
+
+typedef struct roma_map_frame_desc {
+    uint32_t frame;        /* frame counter: drives the jitter */
+    uint32_t seed;
+    int jitter_grid;       /* sub-cell offset of the grid origin per frame */
+    int jitter_directions; /* candidates jittered inside their strata (else stratum centres) */
+} roma_map_frame_desc;
+
+/* Records BOM clear + rasterization + rotation into cmd (a command buffer of the
+ * context's queue family, outside a render pass). timer may be NULL; otherwise
+ * scopes "bom" and "rotate" are added. The parameters of the frame are written
+ * to a host-visible buffer at record time: do not record two builds of the same
+ * map into command buffers in flight at once. */
+roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
+                                  const roma_map_frame_desc *frame, roma_gpu_timer *timer);
+
+/* Convenience: records, submits and waits. */
+roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
+                           roma_gpu_timer *timer);
+
+typedef struct roma_map_info {
+    uint32_t resolution, angular, map_count, words_per_texel;
+    float grid_origin[3];      /* world position of BOM cell (0,0,0)'s corner, this frame */
+    float grid_cell;           /* world size of a BOM cell */
+    float trace_cell;          /* grid_cell * sqrt(3): the longest edge a rotated cell can have;
+                                  the unit of ray-origin offsets (see roma_offset_origin) */
+    uint64_t bom_bytes, maps_bytes, params_bytes, geometry_bytes;
+    /* For roma_trace.glsl in the caller's shaders (valid until the map is destroyed): */
+    VkDeviceAddress maps_address;   /* RomaWords */
+    VkDeviceAddress params_address; /* RomaParams */
+} roma_map_info;
+
+roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
+
+/* Candidate direction of map k this frame (unit, z >= 0). */
+roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
+
+/* --- Queries --- */
+
+/* Matches struct roma_ray in roma_trace.glsl (std430, 32 bytes). */
+typedef struct roma_ray {
+    float origin[3];
+    float tmin;
+    float dir[3];          /* need not be unit; t is a world-space distance along dir/|dir| */
+    float tmax;            /* INFINITY allowed */
+} roma_ray;
+
+/* Matches struct roma_hit in roma_trace.glsl (8 bytes). */
+typedef struct roma_hit {
+    float t;               /* closest-hit distance (world units), INFINITY on a miss or for any-hit */
+    uint32_t info;         /* bit 0: hit; bits 8..15: map index used; bit 16: ray was folded (d.z < 0) */
+} roma_hit;
+
+#define ROMA_HIT_FLAG 1u
+#define ROMA_HIT_MAP(info) (((info) >> 8) & 0xffu)
+
+typedef enum roma_trace_mode {
+    ROMA_TRACE_SNAPPED_ANY = 0,
+    ROMA_TRACE_SNAPPED_CLOSEST,
+    ROMA_TRACE_UNSNAPPED_ANY,
+    ROMA_TRACE_UNSNAPPED_CLOSEST
+} roma_trace_mode;
+
+typedef struct roma_trace_desc {
+    roma_trace_mode mode;
+    uint32_t max_steps;      /* un-snapped only; 0 = 8 */
+    VkDeviceAddress rays;    /* ray_count roma_ray (buffer with SHADER_DEVICE_ADDRESS usage) */
+    VkDeviceAddress hits;    /* ray_count roma_hit */
+    uint32_t ray_count;
+} roma_trace_desc;
+
+/* Records a trace of caller buffers after the build (same command buffer or a
+ * later one). The caller synchronises its own writes to rays and reads of hits;
+ * libroma adds the barrier between its build and the trace. */
+roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
+                                  roma_gpu_timer *timer);
+
+/* Convenience for CPU callers: uploads rays, traces, downloads hits (blocking).
+ * timer may be NULL; otherwise it is reset and gets the scope "trace". */
+roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,
+                           const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
+                           roma_gpu_timer *timer);
+
+/* Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words). */
+roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
+roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_MAP_H */

@@ -1,0 +1,253 @@
+// libroma: tracing a Ray-aligned Occupancy Map Array from GLSL.
+//
+// Include from your own shaders (GL_GOOGLE_include_directive, with libroma's
+// shaders/include on the include path). Everything is reached through buffer
+// device addresses that roma_map_get_info() reports:
+//     RomaParams params = RomaParams(info.params_address);
+//     RomaWords  maps   = RomaWords(info.maps_address);
+//     roma_hit h = roma_trace_snapped(params, maps, origin, dir, tmin, tmax, true);
+// Conventions are those of include/roma/map.h: t is a world-space distance
+// along normalize(dir); closest-hit t is the entry of the first occupied cell.
+// The C mirror in src/roma/cpu_mirror.c evaluates the same float expressions
+// (marked precise here) so that results match bit for bit.
+#ifndef ROMA_TRACE_GLSL
+#define ROMA_TRACE_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : enable
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : enable
+
+#include "roma_shared.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaWords { uint w[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaParams {
+    roma_grid_params grid;
+    roma_map_frame maps[];
+};
+
+struct roma_ray {
+    vec3 origin;
+    float tmin;
+    vec3 dir;
+    float tmax;
+};
+
+struct roma_hit {
+    float t;
+    uint info; // bit 0 hit, bits 8..15 map index, bit 16 folded
+};
+
+const float ROMA_PI = 3.14159265358979323846;
+const uint ROMA_HIT = 1u;
+
+// Equal-area concentric mapping, hemisphere (z >= 0) -> unit square.
+vec2 roma_hemisphere_to_square(vec3 d)
+{
+    float k = 1.0 / sqrt(1.0 + max(d.z, 0.0));
+    float x = d.x * k, y = d.y * k;
+    float r = sqrt(x * x + y * y);
+    float a = 0.0, b = 0.0;
+    if (r > 0.0) {
+        const float four_over_pi = 4.0 / ROMA_PI;
+        float theta = atan(y, x);
+        if (theta < -ROMA_PI / 4.0)
+            theta += 2.0 * ROMA_PI;
+        if (theta < ROMA_PI / 4.0) {
+            a = r;
+            b = r * theta * four_over_pi;
+        } else if (theta < 3.0 * ROMA_PI / 4.0) {
+            b = r;
+            a = r * (ROMA_PI / 2.0 - theta) * four_over_pi;
+        } else if (theta < 5.0 * ROMA_PI / 4.0) {
+            a = -r;
+            b = -r * (theta - ROMA_PI) * four_over_pi;
+        } else {
+            b = -r;
+            a = -r * (ROMA_PI / 2.0 - (theta - ROMA_PI)) * four_over_pi;
+        }
+    }
+    return clamp(0.5 * (vec2(a, b) + 1.0), 0.0, 1.0);
+}
+
+// O(1) map selection: the stratum of the direction (folded to z >= 0).
+uint roma_select_map(vec3 d, uint angular, out bool folded)
+{
+    float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    folded = d.z < 0.0;
+    if (!(len > 0.0) || isinf(len) || angular == 0u)
+        return 0u;
+    vec3 unit = d * ((folded ? -1.0 : 1.0) / len);
+    vec2 uv = roma_hemisphere_to_square(unit);
+    uint sx = uint(min(uv.x * float(angular), float(angular - 1u)));
+    uint sy = uint(min(uv.y * float(angular), float(angular - 1u)));
+    return sy * angular + sx;
+}
+
+vec3 roma_to_map(roma_map_frame f, vec3 p)
+{
+    precise float x = ((f.to_map_0.x * p.x + f.to_map_0.y * p.y) + f.to_map_0.z * p.z) + f.to_map_0.w;
+    precise float y = ((f.to_map_1.x * p.x + f.to_map_1.y * p.y) + f.to_map_1.z * p.z) + f.to_map_1.w;
+    precise float z = ((f.to_map_2.x * p.x + f.to_map_2.y * p.y) + f.to_map_2.z * p.z) + f.to_map_2.w;
+    return vec3(x, y, z);
+}
+
+// Cells [lo, hi] (continuous cell coordinates) clamped to the map; false if empty.
+bool roma_cell_range(float lo, float hi, uint res, out int c_lo, out int c_hi)
+{
+    c_lo = 0;
+    c_hi = -1;
+    if (!(lo <= hi) || hi < 0.0 || lo >= float(res))
+        return false;
+    c_lo = int(floor(max(lo, 0.0)));
+    c_hi = int(floor(min(hi, float(res) - 0.5)));
+    return true;
+}
+
+// Bits of word w covering cells [c_lo, c_hi]; shifts stay in [0, 31].
+uint roma_range_mask(int c_lo, int c_hi, uint w)
+{
+    int base = int(w) * 32;
+    int lo = max(c_lo - base, 0), hi = min(c_hi - base, 31);
+    if (lo > hi)
+        return 0u;
+    return (0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo));
+}
+
+uint roma_texel_base(uint k, uint x, uint y, uint res, uint words)
+{
+    return ((k * res + y) * res + x) * words;
+}
+
+// First occupied cell in [c_lo, c_hi] of a texel, scanning up (dir_sign > 0) or down; -1 if none.
+int roma_first_cell(RomaWords maps, uint base, int c_lo, int c_hi, bool upward)
+{
+    uint w_lo = uint(c_lo) >> 5, w_hi = uint(c_hi) >> 5;
+    if (upward) {
+        for (uint w = w_lo; w <= w_hi; ++w) {
+            uint bits = maps.w[base + w] & roma_range_mask(c_lo, c_hi, w);
+            if (bits != 0u)
+                return int(w) * 32 + findLSB(bits);
+        }
+    } else {
+        for (uint w = w_hi + 1u; w-- > w_lo;) {
+            uint bits = maps.w[base + w] & roma_range_mask(c_lo, c_hi, w);
+            if (bits != 0u)
+                return int(w) * 32 + findMSB(bits);
+        }
+    }
+    return -1;
+}
+
+// Snapped query: the ray follows the candidate of its stratum (or its opposite).
+roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3 dir, float tmin,
+                            float tmax, bool closest)
+{
+    uint res = params.grid.dims.x, words = params.grid.dims.y;
+    bool folded;
+    uint k = roma_select_map(dir, params.grid.dims.z, folded);
+    roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
+    roma_map_frame f = params.maps[k];
+    vec3 m = roma_to_map(f, origin);
+    if (!(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
+        return hit;
+    float inv_cz = f.cell.w, cz = f.dir.w;
+    precise float lo = folded ? m.z - tmax * inv_cz : m.z + tmin * inv_cz;
+    precise float hi = folded ? m.z - tmin * inv_cz : m.z + tmax * inv_cz;
+    int c_lo, c_hi;
+    if (!roma_cell_range(lo, hi, res, c_lo, c_hi))
+        return hit;
+    uint base = roma_texel_base(k, uint(m.x), uint(m.y), res, words);
+    int c = roma_first_cell(maps, base, c_lo, c_hi, !folded);
+    if (c < 0)
+        return hit;
+    hit.info |= ROMA_HIT;
+    if (closest) {
+        precise float t = folded ? (m.z - float(c + 1)) * cz : (float(c) - m.z) * cz;
+        hit.t = max(t, tmin);
+    }
+    return hit;
+}
+
+// Un-snapped query: the exact direction walked through the selected map's texels
+// (2D DDA in the map's xy plane), at most max_steps texels.
+roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, vec3 dir, float tmin,
+                              float tmax, bool closest, uint max_steps)
+{
+    uint res = params.grid.dims.x, words = params.grid.dims.y;
+    bool folded;
+    uint k = roma_select_map(dir, params.grid.dims.z, folded);
+    roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
+    float len = sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
+    if (!(len > 0.0) || isinf(len))
+        return hit;
+    roma_map_frame f = params.maps[k];
+    precise vec3 dn = dir * (1.0 / len);
+    precise vec3 dm = vec3(
+        (f.to_map_0.x * dn.x + f.to_map_0.y * dn.y) + f.to_map_0.z * dn.z,
+        (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
+        (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
+    vec3 m0 = roma_to_map(f, origin);
+    float fres = float(res);
+    // Clip to the map's xy slab.
+    float t_in = tmin, t_out = tmax;
+    for (int a = 0; a < 2; ++a) {
+        if (dm[a] == 0.0) {
+            if (!(m0[a] >= 0.0 && m0[a] < fres))
+                return hit;
+        } else {
+            precise float ta = (0.0 - m0[a]) / dm[a];
+            precise float tb = (fres - m0[a]) / dm[a];
+            t_in = max(t_in, min(ta, tb));
+            t_out = min(t_out, max(ta, tb));
+        }
+    }
+    if (!(t_in <= t_out))
+        return hit;
+    precise float px = m0.x + dm.x * t_in;
+    precise float py = m0.y + dm.y * t_in;
+    int ix = clamp(int(floor(px)), 0, int(res) - 1);
+    int iy = clamp(int(floor(py)), 0, int(res) - 1);
+    float t_cur = t_in;
+    for (uint step = 0u; step < max_steps; ++step) {
+        precise float tx = dm.x > 0.0 ? (float(ix + 1) - m0.x) / dm.x
+                         : dm.x < 0.0 ? (float(ix) - m0.x) / dm.x : 1.0 / 0.0;
+        precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) / dm.y
+                         : dm.y < 0.0 ? (float(iy) - m0.y) / dm.y : 1.0 / 0.0;
+        float t_next = min(min(tx, ty), t_out);
+        precise float za = m0.z + dm.z * t_cur;
+        precise float zb = m0.z + dm.z * t_next;
+        int c_lo, c_hi;
+        if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi)) {
+            uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
+            int c = roma_first_cell(maps, base, c_lo, c_hi, dm.z >= 0.0);
+            if (c >= 0) {
+                hit.info |= ROMA_HIT;
+                if (closest) {
+                    precise float tc = dm.z > 0.0 ? (float(c) - m0.z) / dm.z
+                                     : dm.z < 0.0 ? (float(c + 1) - m0.z) / dm.z : t_cur;
+                    hit.t = max(tc, t_cur);
+                }
+                return hit;
+            }
+        }
+        if (t_next >= t_out)
+            return hit;
+        if (tx <= ty)
+            ix += dm.x > 0.0 ? 1 : -1;
+        else
+            iy += dm.y > 0.0 ? 1 : -1;
+        if (ix < 0 || iy < 0 || ix >= int(res) || iy >= int(res))
+            return hit;
+        t_cur = t_next;
+    }
+    return hit;
+}
+
+// Origin offset along the surface normal by `cells` trace cells (sqrt(3) BOM cells
+// each, the longest edge of a rotated cell); the paper's default is 1.5.
+vec3 roma_offset_origin(RomaParams params, vec3 p, vec3 n, float cells)
+{
+    return p + n * (cells * 1.7320508 * params.grid.origin.w);
+}
+
+#endif // ROMA_TRACE_GLSL

@@ -1,0 +1,48 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Rotation (paper Algorithm 1, RES bits per column): one invocation writes one
+// 32-bit word of one ray-aligned map by sampling the BOM at its 32 cell centres.
+#include "roma_trace.glsl"
+
+layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
+
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaWordsOut { uint w[]; };
+
+layout(push_constant) uniform Push { roma_rotate_push pc; };
+
+void main()
+{
+    RomaParams params = RomaParams(pc.params);
+    RomaWords bom = RomaWords(pc.bom);
+    RomaWordsOut maps = RomaWordsOut(pc.maps);
+    uint res = params.grid.dims.x, words = params.grid.dims.y, map_count = params.grid.dims.w;
+    // 2D dispatch: more than 65535 groups are needed at RES 256 or A >= 8.
+    uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
+              + gl_LocalInvocationID.x;
+    uint per_map = res * res * words;
+    if (id >= per_map * map_count)
+        return;
+    uint k = id / per_map, r = id - k * per_map;
+    uint texel = r / words, w = r - texel * words;
+    uint x = texel % res, y = texel / res;
+    roma_map_frame f = params.maps[k];
+    float mx = float(x) + 0.5, my = float(y) + 0.5;
+    float fres = float(res);
+    uint out_word = 0u;
+    for (uint i = 0u; i < 32u; ++i) {
+        // Two samples per cell along the map's z, a quarter cell either side of the centre:
+        // rotated cells are up to sqrt(3) BOM cells long, and one sample per cell would step
+        // over one-cell-thick walls.
+        for (uint h = 0u; h < ROMA_ROTATE_SAMPLES; ++h) {
+            float mz = float(w * 32u + i) + (float(h) + 0.5) / float(ROMA_ROTATE_SAMPLES);
+            precise vec3 b = ((f.map_to_bom_0.xyz * mx + f.map_to_bom_1.xyz * my) + f.map_to_bom_2.xyz * mz)
+                             + f.map_to_bom_3.xyz;
+            if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0 && b.x < fres && b.y < fres && b.z < fres) {
+                uvec3 c = uvec3(floor(b));
+                uint word = bom.w[(c.y * res + c.x) * words + (c.z >> 5)];
+                out_word |= ((word >> (c.z & 31u)) & 1u) << i;
+            }
+        }
+    }
+    maps.w[id] = out_word;
+}

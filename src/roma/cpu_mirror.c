@@ -1,0 +1,204 @@
+#include "roma/cpu_mirror.h"
+
+#include <math.h>
+
+#include "roma/directions.h"
+
+void roma_cpu_rotate(const roma_grid_params *grid, const roma_map_frame *frames,
+                     const uint32_t *bom, uint32_t *maps)
+{
+    const uint32_t res = grid->dims[0], words = grid->dims[1], map_count = grid->dims[3];
+    const float fres = (float)res;
+    for (uint32_t k = 0; k < map_count; ++k) {
+        const roma_map_frame *f = &frames[k];
+        for (uint32_t y = 0; y < res; ++y)
+            for (uint32_t x = 0; x < res; ++x)
+                for (uint32_t w = 0; w < words; ++w) {
+                    float mx = (float)x + 0.5f, my = (float)y + 0.5f;
+                    uint32_t out = 0;
+                    for (uint32_t i = 0; i < 32; ++i)
+                        for (uint32_t h = 0; h < ROMA_ROTATE_SAMPLES; ++h) {
+                            float mz = (float)(w * 32 + i) + ((float)h + 0.5f) / (float)ROMA_ROTATE_SAMPLES;
+                            float b[3];
+                            for (int a = 0; a < 3; ++a)
+                                b[a] = ((f->map_to_bom_0[a] * mx + f->map_to_bom_1[a] * my) +
+                                        f->map_to_bom_2[a] * mz) + f->map_to_bom_3[a];
+                            if (b[0] >= 0.0f && b[1] >= 0.0f && b[2] >= 0.0f && b[0] < fres &&
+                                b[1] < fres && b[2] < fres) {
+                                uint32_t cx = (uint32_t)floorf(b[0]), cy = (uint32_t)floorf(b[1]),
+                                         cz = (uint32_t)floorf(b[2]);
+                                uint32_t word = bom[(cy * res + cx) * words + (cz >> 5)];
+                                out |= ((word >> (cz & 31u)) & 1u) << i;
+                            }
+                        }
+                    maps[((k * res + y) * res + x) * words + w] = out;
+                }
+    }
+}
+
+uint32_t roma_cpu_select_map(const float dir[3], uint32_t angular, int *folded)
+{
+    return roma_direction_to_map(dir, angular, folded);
+}
+
+static void to_map(const roma_map_frame *f, const float p[3], float m[3])
+{
+    const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
+    for (int a = 0; a < 3; ++a)
+        m[a] = ((rows[a][0] * p[0] + rows[a][1] * p[1]) + rows[a][2] * p[2]) + rows[a][3];
+}
+
+static int cell_range(float lo, float hi, uint32_t res, int *c_lo, int *c_hi)
+{
+    *c_lo = 0;
+    *c_hi = -1;
+    if (!(lo <= hi) || hi < 0.0f || lo >= (float)res)
+        return 0;
+    *c_lo = (int)floorf(fmaxf(lo, 0.0f));
+    *c_hi = (int)floorf(fminf(hi, (float)res - 0.5f));
+    return 1;
+}
+
+static uint32_t range_mask(int c_lo, int c_hi, uint32_t w)
+{
+    int base = (int)w * 32;
+    int lo = c_lo - base > 0 ? c_lo - base : 0;
+    int hi = c_hi - base < 31 ? c_hi - base : 31;
+    if (lo > hi)
+        return 0u;
+    return (0xffffffffu >> (uint32_t)(31 - hi)) & (0xffffffffu << (uint32_t)lo);
+}
+
+static int first_cell(const uint32_t *maps, uint32_t base, int c_lo, int c_hi, int upward)
+{
+    uint32_t w_lo = (uint32_t)c_lo >> 5, w_hi = (uint32_t)c_hi >> 5;
+    if (upward) {
+        for (uint32_t w = w_lo; w <= w_hi; ++w) {
+            uint32_t bits = maps[base + w] & range_mask(c_lo, c_hi, w);
+            if (bits)
+                return (int)w * 32 + __builtin_ctz(bits);
+        }
+    } else {
+        for (uint32_t w = w_hi + 1; w-- > w_lo;) {
+            uint32_t bits = maps[base + w] & range_mask(c_lo, c_hi, w);
+            if (bits)
+                return (int)w * 32 + 31 - __builtin_clz(bits);
+        }
+    }
+    return -1;
+}
+
+static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
+                              int folded, const uint32_t *maps, const roma_ray *ray, int closest,
+                              roma_hit hit)
+{
+    const uint32_t res = grid->dims[0], words = grid->dims[1];
+    float m[3];
+    to_map(f, ray->origin, m);
+    if (!(m[0] >= 0.0f && m[0] < (float)res && m[1] >= 0.0f && m[1] < (float)res))
+        return hit;
+    float inv_cz = f->cell[3], cz = f->dir[3];
+    float lo = folded ? m[2] - ray->tmax * inv_cz : m[2] + ray->tmin * inv_cz;
+    float hi = folded ? m[2] - ray->tmin * inv_cz : m[2] + ray->tmax * inv_cz;
+    int c_lo, c_hi;
+    if (!cell_range(lo, hi, res, &c_lo, &c_hi))
+        return hit;
+    uint32_t base = ((k * res + (uint32_t)m[1]) * res + (uint32_t)m[0]) * words;
+    int c = first_cell(maps, base, c_lo, c_hi, !folded);
+    if (c < 0)
+        return hit;
+    hit.info |= ROMA_HIT_FLAG;
+    if (closest) {
+        float t = folded ? (m[2] - (float)(c + 1)) * cz : ((float)c - m[2]) * cz;
+        hit.t = fmaxf(t, ray->tmin);
+    }
+    return hit;
+}
+
+static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
+                                const uint32_t *maps, const roma_ray *ray, int closest,
+                                uint32_t max_steps, roma_hit hit)
+{
+    const uint32_t res = grid->dims[0], words = grid->dims[1];
+    const float *d = ray->dir;
+    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0.0f) || isinf(len))
+        return hit;
+    float inv_len = 1.0f / len;
+    float dn[3] = {d[0] * inv_len, d[1] * inv_len, d[2] * inv_len};
+    const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
+    float dm[3], m0[3];
+    for (int a = 0; a < 3; ++a)
+        dm[a] = (rows[a][0] * dn[0] + rows[a][1] * dn[1]) + rows[a][2] * dn[2];
+    to_map(f, ray->origin, m0);
+    const float fres = (float)res;
+    float t_in = ray->tmin, t_out = ray->tmax;
+    for (int a = 0; a < 2; ++a) {
+        if (dm[a] == 0.0f) {
+            if (!(m0[a] >= 0.0f && m0[a] < fres))
+                return hit;
+        } else {
+            float ta = (0.0f - m0[a]) / dm[a];
+            float tb = (fres - m0[a]) / dm[a];
+            t_in = fmaxf(t_in, fminf(ta, tb));
+            t_out = fminf(t_out, fmaxf(ta, tb));
+        }
+    }
+    if (!(t_in <= t_out))
+        return hit;
+    float px = m0[0] + dm[0] * t_in, py = m0[1] + dm[1] * t_in;
+    int ix = (int)floorf(px), iy = (int)floorf(py);
+    ix = ix < 0 ? 0 : ix > (int)res - 1 ? (int)res - 1 : ix;
+    iy = iy < 0 ? 0 : iy > (int)res - 1 ? (int)res - 1 : iy;
+    float t_cur = t_in;
+    for (uint32_t step = 0; step < max_steps; ++step) {
+        float tx = dm[0] > 0.0f ? ((float)(ix + 1) - m0[0]) / dm[0]
+                 : dm[0] < 0.0f ? ((float)ix - m0[0]) / dm[0] : INFINITY;
+        float ty = dm[1] > 0.0f ? ((float)(iy + 1) - m0[1]) / dm[1]
+                 : dm[1] < 0.0f ? ((float)iy - m0[1]) / dm[1] : INFINITY;
+        float t_next = fminf(fminf(tx, ty), t_out);
+        float za = m0[2] + dm[2] * t_cur;
+        float zb = m0[2] + dm[2] * t_next;
+        int c_lo, c_hi;
+        if (cell_range(fminf(za, zb), fmaxf(za, zb), res, &c_lo, &c_hi)) {
+            uint32_t base = ((k * res + (uint32_t)iy) * res + (uint32_t)ix) * words;
+            int c = first_cell(maps, base, c_lo, c_hi, dm[2] >= 0.0f);
+            if (c >= 0) {
+                hit.info |= ROMA_HIT_FLAG;
+                if (closest) {
+                    float tc = dm[2] > 0.0f ? ((float)c - m0[2]) / dm[2]
+                             : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) / dm[2] : t_cur;
+                    hit.t = fmaxf(tc, t_cur);
+                }
+                return hit;
+            }
+        }
+        if (t_next >= t_out)
+            return hit;
+        if (tx <= ty)
+            ix += dm[0] > 0.0f ? 1 : -1;
+        else
+            iy += dm[1] > 0.0f ? 1 : -1;
+        if (ix < 0 || iy < 0 || ix >= (int)res || iy >= (int)res)
+            return hit;
+        t_cur = t_next;
+    }
+    return hit;
+}
+
+roma_hit roma_cpu_trace(const roma_grid_params *grid, const roma_map_frame *frames,
+                        const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
+                        uint32_t max_steps, int map_override, int folded_override)
+{
+    int folded;
+    uint32_t k = roma_cpu_select_map(ray->dir, grid->dims[2], &folded);
+    if (map_override >= 0) {
+        k = (uint32_t)map_override;
+        folded = folded_override;
+    }
+    roma_hit hit = {INFINITY, (k << 8) | (folded ? 0x10000u : 0u)};
+    int closest = (mode & 1) != 0;
+    if (mode == ROMA_TRACE_SNAPPED_ANY || mode == ROMA_TRACE_SNAPPED_CLOSEST)
+        return trace_snapped(grid, &frames[k], k, folded, maps, ray, closest, hit);
+    return trace_unsnapped(grid, &frames[k], k, maps, ray, closest, max_steps ? max_steps : 8, hit);
+}

@@ -1,0 +1,80 @@
+#include "roma/directions.h"
+
+#include <math.h>
+
+#include "roma/sampling.h"
+
+void roma_square_to_hemisphere(float u, float v, float out[3])
+{
+    float x, y;
+    roma_concentric_disk(u, v, &x, &y);
+    float r2 = x * x + y * y;
+    /* Equal-area lift of the disk to the hemisphere: z = 1 - r^2. */
+    float s = sqrtf(fmaxf(0.0f, 2.0f - r2));
+    out[0] = x * s;
+    out[1] = y * s;
+    out[2] = 1.0f - r2;
+}
+
+void roma_hemisphere_to_square(const float d[3], float *u, float *v)
+{
+    /* Back to the disk: (x, y) / sqrt(1 + z), stable near the pole. */
+    float k = 1.0f / sqrtf(1.0f + fmaxf(d[2], 0.0f));
+    float x = d[0] * k, y = d[1] * k;
+    float r = sqrtf(x * x + y * y);
+    float a = 0.0f, b = 0.0f;
+    if (r > 0.0f) {
+        const float four_over_pi = 4.0f / ROMA_PI;
+        float theta = atan2f(y, x);
+        if (theta < -ROMA_PI / 4.0f)
+            theta += 2.0f * ROMA_PI; /* now in [-pi/4, 7pi/4) */
+        if (theta < ROMA_PI / 4.0f) {
+            a = r;
+            b = r * theta * four_over_pi;
+        } else if (theta < 3.0f * ROMA_PI / 4.0f) {
+            b = r;
+            a = r * (ROMA_PI / 2.0f - theta) * four_over_pi;
+        } else if (theta < 5.0f * ROMA_PI / 4.0f) {
+            a = -r;
+            b = -r * (theta - ROMA_PI) * four_over_pi;
+        } else {
+            b = -r;
+            a = -r * (ROMA_PI / 2.0f - (theta - ROMA_PI)) * four_over_pi;
+        }
+    }
+    *u = fminf(fmaxf(0.5f * (a + 1.0f), 0.0f), 1.0f);
+    *v = fminf(fmaxf(0.5f * (b + 1.0f), 0.0f), 1.0f);
+}
+
+uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded)
+{
+    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    int fold = d[2] < 0.0f;
+    if (folded)
+        *folded = fold;
+    if (!(len > 0.0f) || !isfinite(len) || angular == 0)
+        return 0;
+    float s = (fold ? -1.0f : 1.0f) / len;
+    float unit[3] = {d[0] * s, d[1] * s, d[2] * s};
+    float u, v;
+    roma_hemisphere_to_square(unit, &u, &v);
+    uint32_t sx = (uint32_t)fminf(u * (float)angular, (float)(angular - 1));
+    uint32_t sy = (uint32_t)fminf(v * (float)angular, (float)(angular - 1));
+    return sy * angular + sx;
+}
+
+void roma_candidate_directions(uint32_t angular, uint32_t seed, uint32_t frame, int jitter,
+                               float *out)
+{
+    for (uint32_t sy = 0; sy < angular; ++sy)
+        for (uint32_t sx = 0; sx < angular; ++sx) {
+            uint32_t k = sy * angular + sx;
+            float ju = jitter ? roma_random(seed, k, frame, 0) : 0.5f;
+            float jv = jitter ? roma_random(seed, k, frame, 1) : 0.5f;
+            /* Keep the candidate strictly inside its stratum. */
+            ju = fminf(fmaxf(ju, 1e-4f), 1.0f - 1e-4f);
+            jv = fminf(fmaxf(jv, 1e-4f), 1.0f - 1e-4f);
+            roma_square_to_hemisphere(((float)sx + ju) / (float)angular,
+                                      ((float)sy + jv) / (float)angular, out + 3 * k);
+        }
+}

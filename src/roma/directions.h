@@ -1,0 +1,25 @@
+/* Candidate directions of the ray-aligned maps: equal-area concentric mapping
+ * between the unit square and the hemisphere z >= 0, stratified A x A.
+ * shaders/include/roma_trace.glsl mirrors roma_direction_to_map. */
+#ifndef ROMA_DIRECTIONS_H
+#define ROMA_DIRECTIONS_H
+
+#include <stdint.h>
+
+/* (u, v) in [0,1]^2 -> unit direction with z >= 0; strata keep equal solid angle. */
+void roma_square_to_hemisphere(float u, float v, float out_dir[3]);
+
+/* Inverse for unit d with d.z >= 0; (u, v) in [0,1]^2. */
+void roma_hemisphere_to_square(const float d[3], float *u, float *v);
+
+/* Map index (stratum sy * A + sx) for any direction (need not be unit); *folded
+ * is 1 when d.z < 0 and -d was used. Zero or non-finite directions map to 0. */
+uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded);
+
+/* A*A candidates (3 floats each), candidate k inside stratum k. jitter = 0 puts
+ * each at its stratum centre; otherwise the position in the stratum comes from
+ * roma_random(seed, k, frame, 0..1). */
+void roma_candidate_directions(uint32_t angular, uint32_t seed, uint32_t frame, int jitter,
+                               float *out_dirs);
+
+#endif /* ROMA_DIRECTIONS_H */

@@ -1,0 +1,433 @@
+/* roma_map: owns the GPU buffers of one ROMA and records its build (BOM
+ * rasterization + rotation) and batch traces. */
+#include "roma/map.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "roma/bom_raster.h"
+#include "roma/directions.h"
+#include "roma/map_internal.h"
+#include "roma/map_params.h"
+#include "roma/sampling.h"
+
+static int valid_resolution(uint32_t r)
+{
+    return r == 32 || r == 64 || r == 128 || r == 256;
+}
+
+static void scene_bounds(const float *positions, const uint32_t *indices, uint32_t triangle_count,
+                         float bmin[3], float bmax[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        bmin[i] = INFINITY;
+        bmax[i] = -INFINITY;
+    }
+    for (uint64_t i = 0; i < 3ull * triangle_count; ++i) {
+        const float *p = positions + 3ull * indices[i];
+        for (int a = 0; a < 3; ++a) {
+            bmin[a] = fminf(bmin[a], p[a]);
+            bmax[a] = fmaxf(bmax[a], p[a]);
+        }
+    }
+}
+
+static roma_result upload_positions(roma_map *map, const float *positions)
+{
+    float *dst = map->positions.mapped;
+    for (uint32_t v = 0; v < map->vertex_count; ++v) {
+        dst[4 * v + 0] = positions[3 * v + 0];
+        dst[4 * v + 1] = positions[3 * v + 1];
+        dst[4 * v + 2] = positions[3 * v + 2];
+        dst[4 * v + 3] = 1.0f;
+    }
+    scene_bounds(positions, map->indices_host, map->triangle_count, map->scene_min, map->scene_max);
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, const roma_scene *scene,
+                            roma_map **out)
+{
+    if (!out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    *out = NULL;
+    roma_map_desc desc = desc_in ? *desc_in : (roma_map_desc){0};
+    const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
+    if (!ctx || !scene)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: context and scene are required");
+    if (desc.resolution == 0)
+        desc.resolution = 128;
+    if (desc.angular == 0)
+        desc.angular = 4;
+    if (desc.margin_cells == 0.0f)
+        desc.margin_cells = 1.0f;
+    if (!valid_resolution(desc.resolution))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_create: resolution %u is not one of 32, 64, 128, 256", desc.resolution);
+    if (desc.angular > ROMA_MAX_ANGULAR)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_create: angular resolution %u is outside [1, %u]", desc.angular,
+                         ROMA_MAX_ANGULAR);
+    if ((unsigned)desc.bom_mode > ROMA_BOM_CONSERVATIVE)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: unknown bom_mode %d", (int)desc.bom_mode);
+    if (!(desc.margin_cells >= 0.5f) || desc.margin_cells > desc.resolution / 8.0f)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_create: margin_cells %g must be in [0.5, RES/8] (jitter needs half a cell)",
+                         (double)desc.margin_cells);
+    roma_scene_view sv;
+    roma_scene_get_view(scene, &sv);
+
+    roma_map *map = calloc(1, sizeof *map);
+    uint32_t *indices = malloc(sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
+    roma_map_frame *frames = calloc((size_t)desc.angular * desc.angular, sizeof *frames);
+    if (!map || !indices || !frames) {
+        free(map);
+        free(indices);
+        free(frames);
+        return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_map_create: out of memory");
+    }
+    memcpy(indices, sv.indices, sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
+    map->ctx = ctx;
+    map->logger = *log;
+    map->res = desc.resolution;
+    map->words = desc.resolution / 32;
+    map->angular = desc.angular;
+    map->map_count = desc.angular * desc.angular;
+    map->bom_mode = desc.bom_mode;
+    map->margin_cells = desc.margin_cells;
+    map->vertex_count = sv.vertex_count;
+    map->triangle_count = sv.triangle_count;
+    map->indices_host = indices;
+    map->frames = frames;
+
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                       VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    const uint64_t texel_words = (uint64_t)map->res * map->res * map->words;
+    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count, storage, ROMA_MEMORY_UPLOAD, &map->positions);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage, ROMA_MEMORY_UPLOAD, &map->indices);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, 4 * texel_words, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->bom);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, 4 * texel_words * map->map_count,
+                               storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->maps);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, sizeof(roma_grid_params) + sizeof(roma_map_frame) * map->map_count,
+                               storage, ROMA_MEMORY_UPLOAD, &map->params);
+    if (r == ROMA_SUCCESS)
+        r = roma_bom_raster_create(ctx, &map->raster);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "rotate.comp", 0, sizeof(roma_rotate_push), &map->rotate);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "trace.comp", 0, sizeof(roma_trace_push), &map->trace);
+    if (r == ROMA_SUCCESS) {
+        memcpy(map->indices.mapped, indices, 12ull * sv.triangle_count);
+        r = upload_positions(map, sv.positions);
+    }
+    if (r != ROMA_SUCCESS) {
+        roma_map_destroy(map);
+        return r;
+    }
+    *out = map;
+    return ROMA_SUCCESS;
+}
+
+void roma_map_destroy(roma_map *map)
+{
+    if (!map)
+        return;
+    roma_context *ctx = map->ctx;
+    vkDeviceWaitIdle(ctx->device);
+    roma_compute_pipeline_destroy(ctx, &map->trace);
+    roma_compute_pipeline_destroy(ctx, &map->rotate);
+    roma_bom_raster_destroy(map->raster);
+    roma_buffer_destroy(ctx, &map->params);
+    roma_buffer_destroy(ctx, &map->maps);
+    roma_buffer_destroy(ctx, &map->bom);
+    roma_buffer_destroy(ctx, &map->indices);
+    roma_buffer_destroy(ctx, &map->positions);
+    roma_buffer_destroy(ctx, &map->ray_staging);
+    roma_buffer_destroy(ctx, &map->hit_staging);
+    free(map->indices_host);
+    free(map->frames);
+    free(map);
+}
+
+roma_result roma_map_update_positions(roma_map *map, const float *positions, uint32_t vertex_count)
+{
+    if (!map || !positions)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (vertex_count != map->vertex_count)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_update_positions: %u vertices given, the map was made with %u",
+                         vertex_count, map->vertex_count);
+    for (uint64_t i = 0; i < 3ull * vertex_count; ++i)
+        if (!isfinite(positions[i]))
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE,
+                             "roma_map_update_positions: vertex %llu is not finite",
+                             (unsigned long long)(i / 3));
+    /* The previous build may still read the buffer. */
+    vkQueueWaitIdle(map->ctx->queue);
+    return upload_positions(map, positions);
+}
+
+/* Grid placement and candidate frames for this frame, into the params buffer. */
+static roma_result write_frame_params(roma_map *map, const roma_map_frame_desc *frame)
+{
+    float jitter[3] = {0.0f, 0.0f, 0.0f};
+    if (frame->jitter_grid)
+        for (int i = 0; i < 3; ++i)
+            jitter[i] = roma_random(frame->seed, 0x67726964u /* 'grid' */, frame->frame, (uint32_t)i) - 0.5f;
+    if (!roma_compute_grid(map->scene_min, map->scene_max, map->res, map->angular, map->margin_cells,
+                           jitter, &map->grid))
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE, "roma_map: the scene bounds are empty or not finite");
+    float *dirs = malloc(sizeof(float) * 3 * map->map_count);
+    if (!dirs)
+        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    roma_candidate_directions(map->angular, frame->seed, frame->frame, frame->jitter_directions, dirs);
+    for (uint32_t k = 0; k < map->map_count; ++k)
+        roma_compute_map_frame(&map->grid, dirs + 3 * k, &map->frames[k]);
+    free(dirs);
+    memcpy(map->params.mapped, &map->grid, sizeof map->grid);
+    memcpy((char *)map->params.mapped + sizeof map->grid, map->frames, sizeof(roma_map_frame) * map->map_count);
+    return ROMA_SUCCESS;
+}
+
+/* 1D work over a 2D grid of workgroups (each dimension is limited to 65535). */
+static void dispatch_linear(VkCommandBuffer cmd, uint64_t invocations, uint32_t group_size)
+{
+    uint64_t groups = (invocations + group_size - 1) / group_size;
+    uint32_t x = groups < 65535u ? (uint32_t)groups : 65535u;
+    uint32_t y = (uint32_t)((groups + x - 1) / x);
+    vkCmdDispatch(cmd, x, y, 1);
+}
+
+static void compute_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkMemoryBarrier2 barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+    };
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                            .pMemoryBarriers = &barrier};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
+                                  roma_gpu_timer *timer)
+{
+    if (!map || !cmd)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    roma_map_frame_desc frame = frame_in ? *frame_in : (roma_map_frame_desc){0};
+    roma_result r = write_frame_params(map, &frame);
+    if (r != ROMA_SUCCESS)
+        return r;
+
+    roma_bom_push bom_push = {
+        .positions = map->positions.address,
+        .indices = map->indices.address,
+        .bom = map->bom.address,
+        .params = map->params.address,
+        .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
+                   map->triangle_count,
+                   map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
+    };
+    uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
+    r = roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
+    roma_gpu_timer_end(timer, cmd, scope);
+    if (r != ROMA_SUCCESS)
+        return r;
+
+    roma_rotate_push push = {
+        .bom = map->bom.address,
+        .maps = map->maps.address,
+        .params = map->params.address,
+    };
+    uint64_t words = (uint64_t)map->res * map->res * map->words * map->map_count;
+    scope = roma_gpu_timer_begin(timer, cmd, "rotate");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate.pipeline);
+    vkCmdPushConstants(cmd, map->rotate.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    dispatch_linear(cmd, words, ROMA_ROTATE_WORKGROUP_SIZE);
+    roma_gpu_timer_end(timer, cmd, scope);
+    /* Maps feed traces (compute) and downloads (transfer). */
+    compute_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    map->built = 1;
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame, roma_gpu_timer *timer)
+{
+    if (!map)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    VkCommandBuffer cmd;
+    roma_result r = roma_begin_one_shot(map->ctx, &cmd);
+    if (r != ROMA_SUCCESS)
+        return r;
+    roma_gpu_timer_reset(timer, cmd);
+    r = roma_map_record_build(map, cmd, frame, timer);
+    roma_result s = roma_submit_one_shot(map->ctx, cmd);
+    return r != ROMA_SUCCESS ? r : s;
+}
+
+roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
+{
+    if (!map || !out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    out->resolution = map->res;
+    out->angular = map->angular;
+    out->map_count = map->map_count;
+    out->words_per_texel = map->words;
+    memcpy(out->grid_origin, map->grid.origin, sizeof out->grid_origin);
+    out->grid_cell = map->grid.origin[3];
+    out->trace_cell = map->grid.origin[3] * 1.7320508f;
+    out->bom_bytes = map->bom.size;
+    out->maps_bytes = map->maps.size;
+    out->params_bytes = map->params.size;
+    out->geometry_bytes = map->positions.size + map->indices.size;
+    out->maps_address = map->maps.address;
+    out->params_address = map->params.address;
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3])
+{
+    if (!map || !out_dir || k >= map->map_count)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (!map->built)
+        return roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "roma_map_candidate: the map has not been built yet");
+    memcpy(out_dir, map->frames[k].dir, 3 * sizeof(float));
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
+                                  roma_gpu_timer *timer)
+{
+    if (!map || !cmd || !desc)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (desc->ray_count == 0)
+        return ROMA_SUCCESS;
+    if (!desc->rays || !desc->hits)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_record_trace: rays and hits addresses are required");
+    if ((unsigned)desc->mode > ROMA_TRACE_UNSNAPPED_CLOSEST)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_record_trace: unknown mode %d", (int)desc->mode);
+    if (!map->built)
+        return roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "roma_map_record_trace: record a build first");
+    roma_trace_push push = {
+        .maps = map->maps.address,
+        .params = map->params.address,
+        .rays = desc->rays,
+        .hits = desc->hits,
+        .config = {(uint32_t)desc->mode, desc->max_steps ? desc->max_steps : 8u, desc->ray_count, 0},
+    };
+    uint32_t scope = roma_gpu_timer_begin(timer, cmd, "trace");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->trace.pipeline);
+    vkCmdPushConstants(cmd, map->trace.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    dispatch_linear(cmd, desc->ray_count, ROMA_TRACE_WORKGROUP_SIZE);
+    roma_gpu_timer_end(timer, cmd, scope);
+    return ROMA_SUCCESS;
+}
+
+/* Host-visible staging that grows to the largest batch seen. */
+static roma_result ensure_staging(roma_map *map, roma_buffer *b, VkDeviceSize size, roma_memory_kind kind)
+{
+    if (b->buffer && b->size >= size)
+        return ROMA_SUCCESS;
+    roma_buffer_destroy(map->ctx, b);
+    return roma_buffer_create(map->ctx, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                              VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, kind, b);
+}
+
+roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps, const roma_ray *rays,
+                           uint32_t ray_count, roma_hit *out_hits, roma_gpu_timer *timer)
+{
+    if (!map || (ray_count && (!rays || !out_hits)))
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (ray_count == 0)
+        return ROMA_SUCCESS;
+    roma_result r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
+    if (r == ROMA_SUCCESS)
+        r = ensure_staging(map, &map->hit_staging, sizeof(roma_hit) * (VkDeviceSize)ray_count, ROMA_MEMORY_READBACK);
+    if (r != ROMA_SUCCESS)
+        return r;
+    memcpy(map->ray_staging.mapped, rays, sizeof(roma_ray) * (size_t)ray_count);
+    VkCommandBuffer cmd;
+    r = roma_begin_one_shot(map->ctx, &cmd);
+    if (r != ROMA_SUCCESS)
+        return r;
+    roma_trace_desc desc = {.mode = mode, .max_steps = max_steps, .rays = map->ray_staging.address,
+                            .hits = map->hit_staging.address, .ray_count = ray_count};
+    roma_gpu_timer_reset(timer, cmd);
+    r = roma_map_record_trace(map, cmd, &desc, timer);
+    compute_barrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    roma_result s = roma_submit_one_shot(map->ctx, cmd);
+    if (r == ROMA_SUCCESS)
+        r = s;
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_invalidate(map->ctx, &map->hit_staging);
+    if (r == ROMA_SUCCESS)
+        memcpy(out_hits, map->hit_staging.mapped, sizeof(roma_hit) * (size_t)ray_count);
+    return r;
+}
+
+static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out, uint64_t word_count)
+{
+    if (!map || !out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (word_count * 4 != src->size)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map download: %llu words asked, the buffer holds %llu",
+                         (unsigned long long)word_count, (unsigned long long)(src->size / 4));
+    roma_buffer staging;
+    roma_result r = roma_buffer_create(map->ctx, src->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &staging);
+    if (r != ROMA_SUCCESS)
+        return r;
+    VkCommandBuffer cmd;
+    r = roma_begin_one_shot(map->ctx, &cmd);
+    if (r == ROMA_SUCCESS) {
+        VkBufferCopy copy = {0, 0, src->size};
+        vkCmdCopyBuffer(cmd, src->buffer, staging.buffer, 1, &copy);
+        VkMemoryBarrier2 barrier = {
+            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
+        };
+        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                                .pMemoryBarriers = &barrier};
+        vkCmdPipelineBarrier2(cmd, &dep);
+        r = roma_submit_one_shot(map->ctx, cmd);
+    }
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_invalidate(map->ctx, &staging);
+    if (r == ROMA_SUCCESS)
+        memcpy(out, staging.mapped, src->size);
+    roma_buffer_destroy(map->ctx, &staging);
+    return r;
+}
+
+roma_result roma_map_download_bom(roma_map *map, uint32_t *out, uint64_t word_count)
+{
+    return map ? download(map, &map->bom, out, word_count) : ROMA_ERROR_INVALID_ARGUMENT;
+}
+
+roma_result roma_map_download_maps(roma_map *map, uint32_t *out, uint64_t word_count)
+{
+    return map ? download(map, &map->maps, out, word_count) : ROMA_ERROR_INVALID_ARGUMENT;
+}
+
+roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid, const roma_map_frame **frames)
+{
+    if (!map || !grid || !frames)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    *grid = map->grid;
+    *frames = map->frames;
+    return ROMA_SUCCESS;
+}

@@ -1,0 +1,35 @@
+/* The roma_map struct, shared by map.c and the passes that read its buffers. */
+#ifndef ROMA_MAP_INTERNAL_H
+#define ROMA_MAP_INTERNAL_H
+
+#include "roma/map.h"
+#include "roma_shared.h"
+#include "vulkan/vk_internal.h"
+
+struct roma_bom_raster;
+
+struct roma_map {
+    roma_context *ctx;
+    roma_logger logger;
+    uint32_t res, words, angular, map_count;
+    roma_bom_mode bom_mode;
+    float margin_cells;
+    uint32_t vertex_count, triangle_count;
+    uint32_t *indices_host;
+    float scene_min[3], scene_max[3];
+    roma_buffer positions, indices; /* float4 per vertex, uint3 per triangle (host-visible) */
+    roma_buffer bom, maps;          /* device-local words */
+    roma_buffer params;             /* roma_grid_params + map_count roma_map_frame (host-visible) */
+    roma_buffer ray_staging, hit_staging; /* roma_map_trace only */
+    struct roma_bom_raster *raster;
+    roma_compute_pipeline rotate, trace;
+    roma_grid_params grid;          /* host copies of this frame's parameters */
+    roma_map_frame *frames;
+    int built;
+};
+
+/* This frame's parameters, for the C mirror in tests. */
+roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid,
+                                      const roma_map_frame **frames);
+
+#endif /* ROMA_MAP_INTERNAL_H */

@@ -1,0 +1,158 @@
+#!/usr/bin/env bash
+# End-to-end test of the command-line tools: roma-render on builtin:cornell
+# (outputs, "wrote" lines, stats JSON, AO with and without a radius), roma-compare
+# (identical images, mismatched channels) and the exit codes of bad input.
+# Usage: test_cli.sh ROMA_RENDER ROMA_COMPARE SCRATCH_DIR
+set -u
+
+if [ $# -ne 3 ]; then
+  echo "usage: $0 ROMA_RENDER ROMA_COMPARE SCRATCH_DIR" >&2
+  exit 2
+fi
+render=$1
+compare=$2
+dir=$3
+failures=0
+
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+
+# expect_status WANT GOT WHAT
+expect_status() {
+  if [ "$2" -ne "$1" ]; then
+    fail "$3: exit status $2, expected $1"
+    return 1
+  fi
+  return 0
+}
+
+# metric FILE NAME: value of a "name value" line printed by roma-compare.
+metric() {
+  awk -v k="$2" '$1 == k { print $2; found = 1 } END { exit !found }' "$1"
+}
+
+for tool in "$render" "$compare"; do
+  if [ ! -x "$tool" ]; then
+    echo "FAIL: $tool is not an executable" >&2
+    exit 1
+  fi
+done
+if ! command -v python3 >/dev/null 2>&1; then
+  echo "FAIL: python3 is needed to parse the stats JSON" >&2
+  exit 1
+fi
+
+rm -rf "$dir"
+mkdir -p "$dir" || exit 1
+out="$dir/cornell"
+common=(--scene builtin:cornell --size 32x24 --spp 2 --quiet)
+
+# --- A full render: four effects and stats ---
+"$render" "${common[@]}" --effects ao,direct,gi,lights --out "$out" --stats "$out/stats.json" \
+  >"$dir/render.out" 2>"$dir/render.err"
+expect_status 0 $? "roma-render (all effects)" || cat "$dir/render.err" >&2
+
+expected_files=()
+for e in ao direct gi lights; do
+  expected_files+=("$out/$e.pfm" "$out/$e.png")
+done
+for f in "${expected_files[@]}" "$out/stats.json"; do
+  [ -s "$f" ] || fail "missing or empty output $f"
+  grep -qxF "wrote $f" "$dir/render.out" || fail "no 'wrote $f' line in the output"
+done
+wrote_count=$(grep -c '^wrote ' "$dir/render.out")
+[ "$wrote_count" -eq 9 ] || fail "expected 9 'wrote' lines, got $wrote_count"
+
+if [ -f "$out/stats.json" ]; then
+  python3 - "$out/stats.json" <<'EOF' || fail "stats JSON does not parse or lacks the expected keys"
+import json, sys
+def strict(name):  # Infinity/NaN are not JSON
+    raise ValueError("non-JSON constant " + name)
+s = json.load(open(sys.argv[1]), parse_constant=strict)
+assert s["tool"] == "roma-render", s.get("tool")
+assert s["scene"]["triangles"] > 0, s["scene"]
+assert s["settings"]["width"] == 32 and s["settings"]["height"] == 24, s["settings"]
+assert s["settings"]["spp"] == 2, s["settings"]
+assert len(s["passes"]) > 0, s["passes"]
+for p in s["passes"]:
+    assert p["name"] and p["ms"] >= 0, p
+EOF
+fi
+
+# --- roma-compare ---
+"$compare" "$out/ao.pfm" "$out/ao.pfm" >"$dir/same.out" 2>"$dir/same.err"
+if expect_status 0 $? "roma-compare ao.pfm ao.pfm"; then
+  v=$(metric "$dir/same.out" mean_abs) || fail "roma-compare printed no mean_abs"
+  [ "${v:-x}" = "0" ] || fail "mean_abs of an image with itself is '${v:-}', expected 0"
+fi
+
+"$compare" "$out/ao.pfm" "$out/direct.pfm" >"$dir/mismatch.out" 2>"$dir/mismatch.err"
+expect_status 1 $? "roma-compare ao.pfm direct.pfm (channel mismatch)"
+[ -s "$dir/mismatch.err" ] || fail "roma-compare channel mismatch: no message on stderr"
+
+"$compare" "$out/ao.pfm" >/dev/null 2>"$dir/compare_usage.err"
+expect_status 2 $? "roma-compare with one image"
+
+# --- AO of the closed room: unbounded is exactly 0, a short radius is not ---
+# ao_mean LABEL ARGS...: renders AO into $dir/LABEL and prints its mean.
+ao_mean() {
+  local label=$1
+  shift
+  "$render" "${common[@]}" --effects ao --out "$dir/$label" "$@" >/dev/null 2>"$dir/$label.err"
+  expect_status 0 $? "roma-render --effects ao $*" || return 1
+  "$compare" "$dir/$label/ao.pfm" "$dir/$label/ao.pfm" >"$dir/$label.cmp" 2>&1 || return 1
+  metric "$dir/$label.cmp" mean_a
+}
+if m=$(ao_mean ao_unbounded); then
+  python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) == 0.0 else 1)' "$m" ||
+    fail "unbounded AO mean of the closed cornell room is $m, expected 0"
+else
+  fail "unbounded AO render/compare failed"
+fi
+if m=$(ao_mean ao_r03 --ao-radius 0.3); then
+  python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) > 0.0 else 1)' "$m" ||
+    fail "AO mean with --ao-radius 0.3 is $m, expected > 0"
+else
+  fail "AO render/compare with --ao-radius 0.3 failed"
+fi
+
+# --- Usage and bad input ---
+"$render" --help >"$dir/help.out" 2>&1
+expect_status 0 $? "roma-render --help"
+grep -q '^usage: roma-render' "$dir/help.out" || fail "roma-render --help prints no usage"
+
+# bad_args NAME ARGS...: roma-render must exit 2 with a message on stderr.
+bad_args() {
+  local what=$1
+  shift
+  "$render" "$@" --out "$dir/bad" >"$dir/bad.out" 2>"$dir/bad.err"
+  expect_status 2 $? "roma-render $what"
+  [ -s "$dir/bad.err" ] || fail "roma-render $what: no message on stderr"
+}
+bad_args "--size 0x0" --size 0x0
+bad_args "--effects bogus" --effects bogus
+bad_args "--tracer bogus" --tracer bogus
+# The ROMA tracer renders no direct/gi/lights (and before the ROMA core, nothing).
+bad_args "--tracer roma with all effects" --tracer roma --effects ao,direct,gi,lights
+bad_args "unknown option" --no-such-option
+bad_args "--camera with eye == target" --camera 1,2,3,1,2,3,45
+[ -e "$dir/bad" ] && fail "roma-render created its output folder despite bad arguments"
+
+missing="$dir/no_such_scene.glb"
+"$render" --scene "$missing" --size 8x8 --spp 1 --out "$dir/missing" >/dev/null 2>"$dir/missing.err"
+expect_status 1 $? "roma-render with a missing scene file"
+grep -qF "$missing" "$dir/missing.err" || fail "the error for a missing scene does not name $missing"
+
+# Sanitizer builds: a report fails the test even where the expected exit status
+# (1) is the one ASan exits with.
+if reports=$(grep -l -E 'ERROR: (Address|Leak)Sanitizer|runtime error:' "$dir"/*.err "$dir"/*.cmp); then
+  fail "sanitizer reports in: $(echo $reports)"
+fi
+
+if [ "$failures" -ne 0 ]; then
+  echo "test_cli: $failures check(s) failed (outputs in $dir)" >&2
+  exit 1
+fi
+echo "test_cli: all checks passed"

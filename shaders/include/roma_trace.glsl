@@ -83,12 +83,17 @@ uint roma_select_map(vec3 d, uint angular, out bool folded)
     return sy * angular + sx;
 }
 
+vec3 roma_to_map_rows(vec4 r0, vec4 r1, vec4 r2, vec3 p)
+{
+    precise float x = ((r0.x * p.x + r0.y * p.y) + r0.z * p.z) + r0.w;
+    precise float y = ((r1.x * p.x + r1.y * p.y) + r1.z * p.z) + r1.w;
+    precise float z = ((r2.x * p.x + r2.y * p.y) + r2.z * p.z) + r2.w;
+    return vec3(x, y, z);
+}
+
 vec3 roma_to_map(roma_map_frame f, vec3 p)
 {
-    precise float x = ((f.to_map_0.x * p.x + f.to_map_0.y * p.y) + f.to_map_0.z * p.z) + f.to_map_0.w;
-    precise float y = ((f.to_map_1.x * p.x + f.to_map_1.y * p.y) + f.to_map_1.z * p.z) + f.to_map_1.w;
-    precise float z = ((f.to_map_2.x * p.x + f.to_map_2.y * p.y) + f.to_map_2.z * p.z) + f.to_map_2.w;
-    return vec3(x, y, z);
+    return roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, p);
 }
 
 // Cells [lo, hi] (continuous cell coordinates) clamped to the map; false if empty.
@@ -146,11 +151,11 @@ roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3
     bool folded;
     uint k = roma_select_map(dir, params.grid.dims.z, folded);
     roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
-    roma_map_frame f = params.maps[k];
-    vec3 m = roma_to_map(f, origin);
+    // Only the fields a snapped query needs: a frame is 144 bytes.
+    vec3 m = roma_to_map_rows(params.maps[k].to_map_0, params.maps[k].to_map_1, params.maps[k].to_map_2, origin);
     if (!(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
         return hit;
-    float inv_cz = f.cell.w, cz = f.dir.w;
+    float inv_cz = params.maps[k].cell.w, cz = params.maps[k].dir.w;
     precise float lo = folded ? m.z - tmax * inv_cz : m.z + tmin * inv_cz;
     precise float hi = folded ? m.z - tmin * inv_cz : m.z + tmax * inv_cz;
     int c_lo, c_hi;

@@ -1,12 +1,14 @@
 # Convenience front end over CMake. The two set-up commands of the README:
 #   make run    install missing packages, build, render the default scene into out/
 #   make test   install missing packages, build, run the test suite (ctest, lavapipe, validation on)
+#   make test-sanitize   the same suite, Debug build with ASan + UBSan in build-asan (CI runs it too)
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 OUT ?= out
+ASAN_BUILD ?= build-asan
 
-.PHONY: deps configure build run test clean
+.PHONY: deps configure build run test test-sanitize clean
 
 deps:
 	./install-deps.sh
@@ -20,9 +22,19 @@ build: configure
 run: build
 	$(BUILD)/apps/roma-render --scene builtin:cornell --effects ao,direct,gi,lights \
 	    --tracer embree --size 480x360 --spp 64 --ao-radius 0.5 --out $(OUT) --stats $(OUT)/stats.json
+	$(BUILD)/apps/roma-render --scene builtin:cornell --effects ao --tracer roma --size 480x360 \
+	    --spp 16 --frames 4 --ao-radius 0.5 --out $(OUT)/roma --stats $(OUT)/roma/stats.json
+	$(BUILD)/apps/roma-compare $(OUT)/roma/ao.pfm $(OUT)/ao.pfm --heatmap $(OUT)/roma/ao_error.png
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# The suite in a Debug build with AddressSanitizer (leak checks included) and
+# UndefinedBehaviorSanitizer; sanitizer options for the tests: tests/CMakeLists.txt.
+test-sanitize: deps
+	cmake -S . -B $(ASAN_BUILD) -DROMA_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS)
+
 clean:
-	rm -rf $(BUILD) $(OUT)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(OUT)

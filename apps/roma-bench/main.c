@@ -307,6 +307,10 @@ done:
     roma_map_destroy(map8);
     roma_gpu_timer_destroy(timer);
     roma_ref_destroy(ref);
+    if (roma_context_validation_error_count(ctx)) {
+        fprintf(stderr, "roma-bench: %u Vulkan validation error(s)\n", roma_context_validation_error_count(ctx));
+        status = 1;
+    }
     roma_context_destroy(ctx);
     roma_scene_destroy(scene);
     return status;

@@ -183,16 +183,8 @@ static roma_result run_gpu(roma_context *ctx, roma_bom_raster *raster, const gpu
         roma_gpu_timer_end(timer, cmd, scope);
         VkBufferCopy copy = {0, 0, bom_bytes + GUARD_BYTES};
         vkCmdCopyBuffer(cmd, bom.buffer, readback.buffer, 1, &copy);
-        VkMemoryBarrier2 barrier = {
-            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-        };
-        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                                .pMemoryBarriers = &barrier};
-        vkCmdPipelineBarrier2(cmd, &dep);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         roma_result s = roma_submit_one_shot(ctx, cmd);
         if (r == ROMA_SUCCESS)
             r = s;

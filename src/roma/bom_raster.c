@@ -146,24 +146,6 @@ void roma_bom_raster_destroy(roma_bom_raster *r)
     free(r);
 }
 
-static void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
-{
-    VkMemoryBarrier2 barrier = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-        .srcStageMask = src_stage,
-        .srcAccessMask = src_access,
-        .dstStageMask = dst_stage,
-        .dstAccessMask = dst_access,
-    };
-    VkDependencyInfo dep = {
-        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-        .memoryBarrierCount = 1,
-        .pMemoryBarriers = &barrier,
-    };
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 roma_result roma_bom_raster_record(roma_bom_raster *r, VkCommandBuffer cmd, const roma_bom_push *push,
                                    VkBuffer bom_buffer, VkDeviceSize bom_bytes, uint32_t resolution)
 {
@@ -198,7 +180,7 @@ roma_result roma_bom_raster_record(roma_bom_raster *r, VkCommandBuffer cmd, cons
 
     /* WAR/WAW against the previous build's raster, rotation and downloads, and
      * geometry written by transfers or compute (uploads, skinning) made visible. */
-    memory_barrier(cmd,
+    roma_cmd_memory_barrier(cmd,
                    VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                    VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -207,7 +189,7 @@ roma_result roma_bom_raster_record(roma_bom_raster *r, VkCommandBuffer cmd, cons
                    VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     vkCmdFillBuffer(cmd, bom_buffer, 0, bom_bytes, 0);
     /* Atomics read and write. */
-    memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
@@ -235,7 +217,7 @@ roma_result roma_bom_raster_record(roma_bom_raster *r, VkCommandBuffer cmd, cons
         vkCmdEndRendering(cmd);
     }
 
-    memory_barrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |

@@ -204,18 +204,11 @@ static void dispatch_linear(VkCommandBuffer cmd, uint64_t invocations, uint32_t 
     vkCmdDispatch(cmd, x, y, 1);
 }
 
+/* Compute-shader writes of libroma's passes made visible to the next consumer. */
 static void compute_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
 {
-    VkMemoryBarrier2 barrier = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-        .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-        .dstStageMask = dst_stage,
-        .dstAccessMask = dst_access,
-    };
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                            .pMemoryBarriers = &barrier};
-    vkCmdPipelineBarrier2(cmd, &dep);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            dst_stage, dst_access);
 }
 
 roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
@@ -393,16 +386,8 @@ static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out
     if (r == ROMA_SUCCESS) {
         VkBufferCopy copy = {0, 0, src->size};
         vkCmdCopyBuffer(cmd, src->buffer, staging.buffer, 1, &copy);
-        VkMemoryBarrier2 barrier = {
-            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-        };
-        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                                .pMemoryBarriers = &barrier};
-        vkCmdPipelineBarrier2(cmd, &dep);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         r = roma_submit_one_shot(map->ctx, cmd);
     }
     if (r == ROMA_SUCCESS)

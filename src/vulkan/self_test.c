@@ -67,19 +67,8 @@ roma_result roma_context_self_test(roma_context *ctx, double *out_gpu_ms)
         vkCmdPushConstants(cmd, pipe.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
         vkCmdDispatch(cmd, (SELF_TEST_COUNT + ROMA_FILL_WORKGROUP_SIZE - 1) / ROMA_FILL_WORKGROUP_SIZE, 1, 1);
         roma_gpu_timer_end(timer, cmd, scope);
-        VkMemoryBarrier2 barrier = {
-            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-            .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-        };
-        VkDependencyInfo dep = {
-            .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-            .memoryBarrierCount = 1,
-            .pMemoryBarriers = &barrier,
-        };
-        vkCmdPipelineBarrier2(cmd, &dep);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         r = roma_submit_one_shot(ctx, cmd);
     }
     if (r == ROMA_SUCCESS)

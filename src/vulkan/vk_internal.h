@@ -67,6 +67,10 @@ void roma_buffer_destroy(roma_context *ctx, roma_buffer *buffer);
 /* Makes device writes visible to the host for non-coherent readback memory. */
 roma_result roma_buffer_invalidate(roma_context *ctx, const roma_buffer *buffer);
 
+/* One global memory barrier (synchronization2). */
+void roma_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                             VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+
 /* --- one-shot submissions on the context's queue (blocking) --- */
 roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd);
 /* Ends, submits, waits and frees the command buffer (also on failure). */

@@ -140,6 +140,24 @@ roma_result roma_buffer_invalidate(roma_context *ctx, const roma_buffer *b)
                          "vkInvalidateMappedMemoryRanges");
 }
 
+void roma_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                             VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkMemoryBarrier2 barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = src_stage,
+        .srcAccessMask = src_access,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+    };
+    VkDependencyInfo dep = {
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .memoryBarrierCount = 1,
+        .pMemoryBarriers = &barrier,
+    };
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd)
 {
     *out_cmd = VK_NULL_HANDLE;

@@ -145,6 +145,12 @@ missing="$dir/no_such_scene.glb"
 expect_status 1 $? "roma-render with a missing scene file"
 grep -qF "$missing" "$dir/missing.err" || fail "the error for a missing scene does not name $missing"
 
+# An unwritable stats file or a malformed number is an error, not a silent success.
+"$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"
+expect_status 1 $? "roma-render with an unwritable --stats path"
+"$compare" "$dir/nostats/ao.pfm" "$dir/nostats/ao.pfm" --tolerance abc >/dev/null 2>"$dir/tolerance.err"
+expect_status 2 $? "roma-compare --tolerance abc"
+
 # Sanitizer builds: a report fails the test even where the expected exit status
 # (1) is the one ASan exits with.
 if reports=$(grep -l -E 'ERROR: (Address|Leak)Sanitizer|runtime error:' "$dir"/*.err "$dir"/*.cmp); then

@@ -1,4 +1,5 @@
 /* roma-compare: error metrics between two PFM images (and an optional heat map). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +14,14 @@ static const char *usage =
     "  The heat map shows |A-B| (max over channels) with S as white (default: the max error).\n"
     "  Exit status: 0 ok, 1 unreadable or mismatched images, 2 usage.\n";
 
+/* A finite, non-negative number or -1. */
+static float parse_non_negative(const char *s)
+{
+    char *end;
+    float v = strtof(s, &end);
+    return (end != s && !*end && isfinite(v) && v >= 0.0f) ? v : -1.0f;
+}
+
 int main(int argc, char **argv)
 {
     const char *paths[2] = {NULL, NULL}, *mask_path = NULL, *heatmap = NULL;
@@ -24,17 +33,17 @@ int main(int argc, char **argv)
             fputs(usage, stdout);
             return 0;
         } else if (strcmp(a, "--mask") == 0 && v) mask_path = v, ++i;
-        else if (strcmp(a, "--tolerance") == 0 && v) tolerance = strtof(v, NULL), ++i;
+        else if (strcmp(a, "--tolerance") == 0 && v) tolerance = parse_non_negative(v), ++i;
         else if (strcmp(a, "--heatmap") == 0 && v) heatmap = v, ++i;
-        else if (strcmp(a, "--heat-scale") == 0 && v) heat_scale = strtof(v, NULL), ++i;
+        else if (strcmp(a, "--heat-scale") == 0 && v) heat_scale = parse_non_negative(v), ++i;
         else if (a[0] != '-' && n < 2) paths[n++] = a;
         else {
             fprintf(stderr, "roma-compare: unexpected argument %s\n%s", a, usage);
             return 2;
         }
     }
-    if (n != 2) {
-        fputs(usage, stderr);
+    if (n != 2 || tolerance < 0.0f || heat_scale < 0.0f) {
+        fprintf(stderr, "roma-compare: %s\n%s", n != 2 ? "need two images" : "--tolerance and --heat-scale take a number >= 0", usage);
         return 2;
     }
     roma_image img[2] = {{0}}, mask = {0};

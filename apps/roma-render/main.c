@@ -239,13 +239,13 @@ static int write_outputs(const options *o, const char *name, const roma_image *i
     return 1;
 }
 
-static void write_stats(const options *o, const roma_scene_view *sv, const roma_camera *cam,
-                        const run_record *run)
+static int write_stats(const options *o, const roma_scene_view *sv, const roma_camera *cam,
+                       const run_record *run)
 {
     FILE *f = fopen(o->stats, "w");
     if (!f) {
         fprintf(stderr, "roma-render: cannot write %s\n", o->stats);
-        return;
+        return 0;
     }
     roma_json j = {.f = f};
     roma_json_begin_object(&j, NULL);
@@ -313,8 +313,12 @@ static void write_stats(const options *o, const roma_scene_view *sv, const roma_
     }
     roma_json_end_array(&j);
     roma_json_end_object(&j);
-    if (fclose(f) == 0)
-        printf("wrote %s\n", o->stats);
+    if (ferror(f) | fclose(f)) {
+        fprintf(stderr, "roma-render: error while writing %s\n", o->stats);
+        return 0;
+    }
+    printf("wrote %s\n", o->stats);
+    return 1;
 }
 
 int main(int argc, char **argv)
@@ -441,8 +445,8 @@ int main(int argc, char **argv)
             status = 1;
         add_pass(&run, effects[e].name, "cpu_wall", effects[e].cpu_ms);
     }
-    if (status == 0 && o.stats)
-        write_stats(&o, &sv, &cam, &run);
+    if (status == 0 && o.stats && !write_stats(&o, &sv, &cam, &run))
+        status = 1;
     roma_context_destroy(ctx);
     free(light_positions);
     roma_ref_destroy(ref);

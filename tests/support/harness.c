@@ -25,10 +25,24 @@ roma_logger roma_test_logger(roma_test_log *log)
     return logger;
 }
 
+/* Validation errors of the harness's contexts, counted in the logger so that
+ * errors raised while a context is destroyed (objects left alive) count too. */
+static unsigned validation_errors;
+
+static void count_validation(roma_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level == ROMA_LOG_ERROR && strncmp(message, "vulkan validation:", 18) == 0)
+        ++validation_errors;
+    if (level >= ROMA_LOG_WARNING)
+        fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);
+}
+
 roma_context *roma_test_context(void)
 {
     roma_context_desc desc = {0};
     desc.flags = ROMA_CONTEXT_VALIDATION;
+    desc.logger.fn = count_validation;
     roma_context *ctx = NULL;
     roma_result r = roma_context_create(&desc, &ctx);
     if (r != ROMA_SUCCESS) {
@@ -43,12 +57,14 @@ void roma_test_context_finish(roma_context *ctx)
 {
     if (!ctx)
         return;
-    uint32_t errors = roma_context_validation_error_count(ctx);
-    if (errors) {
-        fprintf(stderr, "%u Vulkan validation error(s)\n", errors);
+    unsigned before = validation_errors;
+    uint32_t counted = roma_context_validation_error_count(ctx);
+    roma_context_destroy(ctx);
+    if (counted || validation_errors) {
+        fprintf(stderr, "%u Vulkan validation error(s), %u of them while destroying the context\n",
+                validation_errors, validation_errors - before);
         ++roma_test_failures;
     }
-    roma_context_destroy(ctx);
 }
 
 int roma_test_shared_scene(const char *file, char *buf, size_t size)

@@ -71,9 +71,13 @@ typedef struct roma_map_desc {
 /* Geometry is uploaded here (positions and indices); call again when it moves. */
 roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                             const roma_scene *scene, roma_map **out_map);
+/* Accepts NULL. The caller makes sure no submitted work still uses the map (the
+ * blocking convenience calls below always finish theirs). */
 void roma_map_destroy(roma_map *map);
 
-/* Replaces the vertex positions (same vertex count as the scene), for animation. */
+/* Replaces the vertex positions (same vertex count as the scene), for animation.
+ * Positions live in host-visible memory that the next build reads: the call waits
+ * for the context's queue to go idle before writing them. */
 roma_result roma_map_update_positions(roma_map *map, const float *positions, uint32_t vertex_count);
 
 typedef struct roma_map_frame_desc {

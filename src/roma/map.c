@@ -139,7 +139,6 @@ void roma_map_destroy(roma_map *map)
     if (!map)
         return;
     roma_context *ctx = map->ctx;
-    vkDeviceWaitIdle(ctx->device);
     roma_compute_pipeline_destroy(ctx, &map->trace);
     roma_compute_pipeline_destroy(ctx, &map->rotate);
     roma_bom_raster_destroy(map->raster);
@@ -183,13 +182,10 @@ static roma_result write_frame_params(roma_map *map, const roma_map_frame_desc *
     if (!roma_compute_grid(map->scene_min, map->scene_max, map->res, map->angular, map->margin_cells,
                            jitter, &map->grid))
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE, "roma_map: the scene bounds are empty or not finite");
-    float *dirs = malloc(sizeof(float) * 3 * map->map_count);
-    if (!dirs)
-        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    float dirs[3 * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
     roma_candidate_directions(map->angular, frame->seed, frame->frame, frame->jitter_directions, dirs);
     for (uint32_t k = 0; k < map->map_count; ++k)
         roma_compute_map_frame(&map->grid, dirs + 3 * k, &map->frames[k]);
-    free(dirs);
     memcpy(map->params.mapped, &map->grid, sizeof map->grid);
     memcpy((char *)map->params.mapped + sizeof map->grid, map->frames, sizeof(roma_map_frame) * map->map_count);
     return ROMA_SUCCESS;

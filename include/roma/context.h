@@ -87,10 +87,10 @@ roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
 
 /* --- GPU timers: timestamp queries around named passes ---
  * Record begin/end into any command buffer of the context's queue family;
- * read after the work completed. Names are copied. begin and end each record a
- * full execution barrier before their timestamp so that a scope measures its own
- * work on every implementation (some CPU implementations write timestamps while
- * earlier dispatches still run); timed passes therefore do not overlap. */
+ * read after the work completed. Names are copied. Caveat measured on Mesa
+ * lavapipe 22.3: its timestamps cover rasterization but not compute dispatches
+ * (they are written before the dispatch runs), so on that device compute passes
+ * read as near zero; roma-bench reports host-observed times beside them. */
 
 typedef struct roma_gpu_timer roma_gpu_timer;
 

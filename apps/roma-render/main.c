@@ -255,6 +255,9 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_string(&j, "kind", run->device_kind);
     roma_json_string(&j, "name", run->device_name);
     roma_json_int(&j, "cpu_threads", run->threads);
+    if (strcmp(run->device_kind, "cpu_vulkan") == 0)
+        roma_json_string(&j, "note", "on Mesa lavapipe, timestamp queries do not cover compute dispatches: "
+                                     "gpu_timestamp times of compute passes read near zero (docs/benchmark.md)");
     roma_json_end_object(&j);
     roma_json_begin_object(&j, "scene");
     roma_json_string(&j, "source", o->scene);

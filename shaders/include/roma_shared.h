@@ -115,4 +115,45 @@ ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_UVEC4(config);   /* x: roma_trace_mode, y: max steps, z: ray count */
 ROMA_STRUCT_END(roma_trace_push)
 
+/* ---- G-buffer pass (src/passes/gbuffer.c, shaders/passes/gbuffer.*) ---- */
+
+/* One camera as the shaders project with it: view-space x = dot(p - eye, right) etc.
+ * Clip = (x * right.w, -y * up.w, near, z): row 0 at the top, reversed-Z with an
+ * infinite far plane (depth = near / z). */
+ROMA_STRUCT_BEGIN(roma_gbuffer_camera)
+    ROMA_VEC4(eye);       /* xyz: eye; w: near plane distance */
+    ROMA_VEC4(right);     /* xyz: unit right; w: 1 / (tan(fovy/2) * aspect) */
+    ROMA_VEC4(up);        /* xyz: unit up; w: 1 / tan(fovy/2) */
+    ROMA_VEC4(forward);   /* xyz: unit forward */
+ROMA_STRUCT_END(roma_gbuffer_camera)
+
+ROMA_STRUCT_BEGIN(roma_gbuffer_params)
+    roma_gbuffer_camera camera;
+    roma_gbuffer_camera previous;
+    ROMA_UVEC4(dims);     /* x: width, y: height */
+ROMA_STRUCT_END(roma_gbuffer_params)
+
+ROMA_STRUCT_BEGIN(roma_gbuffer_push)
+    ROMA_U64(positions);  /* float4 per vertex */
+    ROMA_U64(normals);    /* float4 per vertex */
+    ROMA_U64(indices);    /* uint x3 per triangle */
+    ROMA_U64(albedo);     /* float4 per triangle */
+    ROMA_U64(params);     /* roma_gbuffer_params */
+    ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
+    ROMA_UVEC4(config);   /* x: triangle count */
+ROMA_STRUCT_END(roma_gbuffer_push)
+
+/* Triangle id of pixels without geometry. */
+#define ROMA_GBUFFER_NO_TRIANGLE 0xffffffffu
+
+/* One pixel, 64 bytes. Pixels without geometry: t = +INF, normals and albedo
+ * zero, triangle ROMA_GBUFFER_NO_TRIANGLE, motion zero. The shaders write it
+ * as 16 uints (no float canonicalisation of the id bits). */
+ROMA_STRUCT_BEGIN(roma_gbuffer_pixel)
+    ROMA_VEC4(position_t);       /* xyz: world position; w: distance from the eye (+INF: none) */
+    ROMA_VEC4(shading_normal);   /* xyz: unit, facing the eye; w: motion x (pixels) */
+    ROMA_VEC4(geometric_normal); /* xyz: unit, facing the eye; w: motion y (pixels) */
+    ROMA_VEC4(albedo);           /* rgb: base colour; w: triangle id as uint bits */
+ROMA_STRUCT_END(roma_gbuffer_pixel)
+
 #endif /* ROMA_SHARED_H */

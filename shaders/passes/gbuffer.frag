@@ -1,0 +1,72 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// G-buffer, shading pass: the depth pre-pass left the nearest depth per pixel;
+// with the EQUAL test done before the shader (early_fragment_tests) only the
+// nearest surface's fragment (or the background triangle) runs, and writes
+// the whole pixel record into the storage buffer.
+#include "roma_gbuffer.glsl"
+
+layout(early_fragment_tests) in;
+
+layout(buffer_reference, std430, buffer_reference_align = 16) writeonly buffer RomaGbufferWords {
+    uvec4 w[];
+};
+
+layout(location = 0) in vec3 v_position;
+layout(location = 1) in vec3 v_normal;
+layout(location = 2) flat in uint v_triangle;
+
+void main()
+{
+    roma_gbuffer_params prm = RomaGbufferParams(pc.params).params;
+    uvec2 pix = uvec2(gl_FragCoord.xy);
+    if (pix.x >= prm.dims.x || pix.y >= prm.dims.y)
+        return;
+    RomaGbufferWords out_px = RomaGbufferWords(pc.pixels);
+    uint base = 4u * (pix.y * prm.dims.x + pix.x);
+    const float inf = uintBitsToFloat(0x7f800000u);
+    if (v_triangle == ROMA_GBUFFER_NO_TRIANGLE) {
+        out_px.w[base + 0u] = uvec4(0u, 0u, 0u, floatBitsToUint(inf));
+        out_px.w[base + 1u] = uvec4(0u);
+        out_px.w[base + 2u] = uvec4(0u);
+        out_px.w[base + 3u] = uvec4(0u, 0u, 0u, ROMA_GBUFFER_NO_TRIANGLE);
+        return;
+    }
+    uint tri = v_triangle;
+    RomaGbufferIndices indices = RomaGbufferIndices(pc.indices);
+    RomaGbufferVec4s positions = RomaGbufferVec4s(pc.positions);
+    vec3 p0 = positions.v[indices.i[3u * tri + 0u]].xyz;
+    vec3 p1 = positions.v[indices.i[3u * tri + 1u]].xyz;
+    vec3 p2 = positions.v[indices.i[3u * tri + 2u]].xyz;
+
+    vec3 p = v_position;
+    vec3 to_eye = prm.camera.eye.xyz - p;
+    float t = length(to_eye);
+    // Same rules as the reference tracer: geometric normal facing the eye (the
+    // view direction for a sliver), shading normal on its side.
+    vec3 gn = cross(p1 - p0, p2 - p0);
+    float gl2 = dot(gn, gn);
+    gn = gl2 > 0.0 ? gn * inversesqrt(gl2) : to_eye / max(t, 1e-30);
+    if (dot(gn, to_eye) < 0.0)
+        gn = -gn;
+    vec3 sn = gn;
+    float sl2 = dot(v_normal, v_normal);
+    if (sl2 > 1e-24)
+        sn = v_normal * inversesqrt(sl2);
+    if (dot(sn, gn) < 0.0)
+        sn = -sn;
+
+    // Motion: where the same world point lands in the previous frame, minus
+    // where it lands now (both projected, so equal cameras give exactly 0).
+    // +INF when the point is not in front of the previous camera.
+    vec2 size = vec2(prm.dims.xy);
+    vec3 cur = roma_gbuffer_pixel_of(prm.camera, p, size);
+    vec3 prev = roma_gbuffer_pixel_of(prm.previous, p, size);
+    vec2 motion = prev.z > 0.0 ? prev.xy - cur.xy : vec2(inf);
+
+    vec3 albedo = RomaGbufferVec4s(pc.albedo).v[tri].rgb;
+    out_px.w[base + 0u] = floatBitsToUint(vec4(p, t));
+    out_px.w[base + 1u] = floatBitsToUint(vec4(sn, motion.x));
+    out_px.w[base + 2u] = floatBitsToUint(vec4(gn, motion.y));
+    out_px.w[base + 3u] = uvec4(floatBitsToUint(albedo), tri);
+}

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "passes/scene_buffers.h"
 #include "passes/gbuffer.h"
 #include "reference.h"
 #include "roma/context.h"
@@ -33,48 +34,8 @@ typedef struct scene_bounds {
     double min_same_tri_frac; /* same triangle id, same set */
 } scene_bounds;
 
-typedef struct gpu_scene {
-    roma_buffer positions, normals, indices, albedo;
-    uint32_t triangle_count;
-} gpu_scene;
 
-static roma_result upload(roma_context *ctx, const roma_scene_view *v, gpu_scene *g)
-{
-    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-    memset(g, 0, sizeof *g);
-    g->triangle_count = v->triangle_count;
-    roma_result r = roma_buffer_create(ctx, (VkDeviceSize)v->vertex_count * 16, usage, ROMA_MEMORY_UPLOAD,
-                                       &g->positions);
-    if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, (VkDeviceSize)v->vertex_count * 16, usage, ROMA_MEMORY_UPLOAD, &g->normals);
-    if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, (VkDeviceSize)v->triangle_count * 12, usage, ROMA_MEMORY_UPLOAD, &g->indices);
-    if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, (VkDeviceSize)v->triangle_count * 16, usage, ROMA_MEMORY_UPLOAD, &g->albedo);
-    if (r != ROMA_SUCCESS)
-        return r;
-    float *p = g->positions.mapped, *n = g->normals.mapped, *a = g->albedo.mapped;
-    for (uint32_t i = 0; i < v->vertex_count; ++i)
-        for (int k = 0; k < 4; ++k) {
-            p[4 * i + k] = k < 3 ? v->positions[3 * i + k] : 1.0f;
-            n[4 * i + k] = k < 3 ? v->normals[3 * i + k] : 0.0f;
-        }
-    memcpy(g->indices.mapped, v->indices, (size_t)v->triangle_count * 12);
-    for (uint32_t t = 0; t < v->triangle_count; ++t)
-        for (int k = 0; k < 4; ++k)
-            a[4 * t + k] = k < 3 ? v->materials[v->triangle_materials[t]].base_color[k] : 1.0f;
-    return ROMA_SUCCESS;
-}
-
-static void free_gpu_scene(roma_context *ctx, gpu_scene *g)
-{
-    roma_buffer_destroy(ctx, &g->positions);
-    roma_buffer_destroy(ctx, &g->normals);
-    roma_buffer_destroy(ctx, &g->indices);
-    roma_buffer_destroy(ctx, &g->albedo);
-}
-
-static roma_result render(roma_context *ctx, roma_gbuffer *gb, const gpu_scene *g, const roma_camera *cam,
+static roma_result render(roma_context *ctx, roma_gbuffer *gb, const roma_scene_buffers *g, const roma_camera *cam,
                           const roma_camera *prev, float near_plane, roma_gbuffer_pixel *out)
 {
     roma_gbuffer_inputs in = {
@@ -143,7 +104,7 @@ static void run_scene(roma_context *ctx, roma_gbuffer *gb, const roma_scene *sce
     const float near_plane = 1e-4f * diag;
 
     roma_ref *ref = NULL;
-    gpu_scene g = {0};
+    roma_scene_buffers g = {0};
     roma_gbuffer_pixel *px = calloc(W * H, sizeof *px);
     roma_ref_hit *hits = calloc(W * H, sizeof *hits);
     int *hit = calloc(W * H, sizeof *hit);
@@ -153,7 +114,7 @@ static void run_scene(roma_context *ctx, roma_gbuffer *gb, const roma_scene *sce
         goto done;
     }
     CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
-    CHECK_RESULT(upload(ctx, &v, &g), ROMA_SUCCESS);
+    CHECK_RESULT(roma_scene_buffers_create(ctx, scene, &g), ROMA_SUCCESS);
     CHECK_RESULT(render(ctx, gb, &g, &cam, &cam, near_plane, px), ROMA_SUCCESS);
     if (!ref)
         goto done;
@@ -284,7 +245,7 @@ static void run_scene(roma_context *ctx, roma_gbuffer *gb, const roma_scene *sce
     CHECK(n_motion > W * H / 16);
 
 done:
-    free_gpu_scene(ctx, &g);
+    roma_scene_buffers_destroy(ctx, &g);
     roma_ref_destroy(ref);
     free(px);
     free(hits);

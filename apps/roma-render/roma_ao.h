@@ -1,7 +1,7 @@
-/* roma-render's ROMA tracer for ambient occlusion. Primary visibility (the
- * surface point and normal of each pixel) comes from the reference tracer
- * until the G-buffer pass lands, so both tracers shade exactly the same points;
- * every AO ray is traced by ROMA on the GPU. */
+/* roma-render's ROMA tracer for ambient occlusion, all on the GPU: the G-buffer
+ * pass (passes/gbuffer.h) gives each pixel's surface point and normals, and the
+ * AO pass (passes/ao.h) traces its rays through the ROMA maps, rebuilt with new
+ * jitter every frame. */
 #ifndef ROMA_RENDER_ROMA_AO_H
 #define ROMA_RENDER_ROMA_AO_H
 
@@ -17,13 +17,15 @@ typedef struct roma_ao_settings {
 } roma_ao_settings;
 
 typedef struct roma_ao_timings {
-    double bom_ms, rotate_ms, trace_ms; /* GPU time summed over frames */
-    uint64_t rays;
+    /* GPU timestamps summed over frames; trace_ms is the AO pass, gbuffer_ms the
+     * G-buffer pass (frame 0 only). */
+    double bom_ms, rotate_ms, trace_ms, gbuffer_ms;
+    uint64_t rays;        /* covered pixels * spp * frames (below-surface ones included, not traced) */
     roma_map_info info;
 } roma_ao_timings;
 
 /* out_ao: 1-channel visibility (background 1), allocated by the call. */
-roma_result roma_render_ao_roma(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
-                                const roma_ao_settings *s, roma_image *out_ao, roma_ao_timings *timings);
+roma_result roma_render_ao_roma(roma_context *ctx, const roma_scene *scene, const roma_ao_settings *s,
+                                roma_image *out_ao, roma_ao_timings *timings);
 
 #endif /* ROMA_RENDER_ROMA_AO_H */

@@ -156,4 +156,19 @@ ROMA_STRUCT_BEGIN(roma_gbuffer_pixel)
     ROMA_VEC4(albedo);           /* rgb: base colour; w: triangle id as uint bits */
 ROMA_STRUCT_END(roma_gbuffer_pixel)
 
+/* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
+
+#define ROMA_AO_WORKGROUP_X 8
+#define ROMA_AO_WORKGROUP_Y 8
+
+ROMA_STRUCT_BEGIN(roma_ao_push)
+    ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
+    ROMA_U64(maps);       /* RomaWords */
+    ROMA_U64(params);     /* RomaParams */
+    ROMA_U64(accum);      /* width*height uint: unoccluded samples, added to */
+    ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
+    ROMA_UVEC4(config2);  /* x: seed */
+    ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded) */
+ROMA_STRUCT_END(roma_ao_push)
+
 #endif /* ROMA_SHARED_H */

@@ -1,0 +1,40 @@
+/* Ambient-occlusion pass (internal for now).
+ *
+ * Reads the G-buffer (passes/gbuffer.h) and, per covered pixel, traces spp
+ * cosine-weighted directions around the shading normal (include/roma/sampling.h,
+ * sample index frame * spp + k, dimensions 0 and 1) as snapped any-hit queries
+ * through a built ROMA map. Directions below the geometric surface count as
+ * occluded; origins are offset along the geometric normal. The number of
+ * unoccluded samples is added to a uint per pixel, so frames accumulate:
+ * AO = accum / (spp * frames). Background pixels (t = +INF) add nothing. */
+#ifndef ROMA_PASSES_AO_H
+#define ROMA_PASSES_AO_H
+
+#include <vulkan/vulkan.h>
+
+#include "roma/context.h"
+
+typedef struct roma_ao_pass roma_ao_pass;
+
+typedef struct roma_ao_pass_inputs {
+    VkDeviceAddress gbuffer_pixels; /* width * height roma_gbuffer_pixel */
+    uint32_t width, height;
+    VkDeviceAddress maps_address;   /* roma_map_info of a built map */
+    VkDeviceAddress params_address;
+    float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
+    float radius;                   /* <= 0: unbounded */
+    uint32_t spp, frame, seed;
+    /* width * height uint32_t, added to; clear it (vkCmdFillBuffer) before frame 0. */
+    VkDeviceAddress accum;
+} roma_ao_pass_inputs;
+
+roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out);
+/* Accepts NULL. */
+void roma_ao_pass_destroy(roma_ao_pass *pass);
+
+/* Records the pass into cmd (outside any rendering). Makes earlier compute and
+ * fragment writes (G-buffer) and transfer writes (the clear) visible first; the
+ * accumulation buffer is then visible to compute and transfer reads. */
+roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const roma_ao_pass_inputs *in);
+
+#endif /* ROMA_PASSES_AO_H */

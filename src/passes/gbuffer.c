@@ -88,7 +88,7 @@ static roma_result create_pipelines(roma_gbuffer *g)
             .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT,
         };
         /* Reversed Z (near = 1, far = 0): the nearest surface has the greatest depth.
-         * Pass 2 re-runs the same vertex shader (invariant gl_Position), so the
+         * Pass 2 re-runs the same vertex shader (clip position computed `precise`), so the
          * surviving fragment's depth is bit-identical and EQUAL selects it. */
         VkPipelineDepthStencilStateCreateInfo depth = {
             .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,

@@ -4,7 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vulkan/shader_table.h"
 #include "vulkan/vk_internal.h"
 
 #define ROMA_GBUFFER_MAX_SIZE 16384u
@@ -23,113 +22,34 @@ struct roma_gbuffer {
     roma_buffer pixels;          /* width * height roma_gbuffer_pixel */
 };
 
-static roma_result create_module(roma_context *ctx, const char *name, VkShaderModule *out)
-{
-    *out = VK_NULL_HANDLE;
-    const roma_spirv_module *m = roma_find_spirv(name);
-    if (!m)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "no embedded shader named %s", name);
-    VkShaderModuleCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = m->size,
-        .pCode = m->code,
-    };
-    return roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &info, NULL, out), "vkCreateShaderModule");
-}
-
 static roma_result create_pipelines(roma_gbuffer *g)
 {
     roma_context *ctx = g->ctx;
-    VkPushConstantRange push = {
-        .stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-        .size = sizeof(roma_gbuffer_push),
-    };
-    VkPipelineLayoutCreateInfo layout_info = {
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
-        .pushConstantRangeCount = 1,
-        .pPushConstantRanges = &push,
-    };
-    roma_result res = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, NULL, &g->layout),
-                                    "vkCreatePipelineLayout");
     VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+    roma_result res = roma_push_layout_create(ctx, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                              sizeof(roma_gbuffer_push), &g->layout);
     if (res == ROMA_SUCCESS)
-        res = create_module(ctx, "gbuffer.vert", &vert);
+        res = roma_shader_module_create(ctx, "gbuffer.vert", &vert);
     if (res == ROMA_SUCCESS)
-        res = create_module(ctx, "gbuffer.frag", &frag);
-    for (int pass = 0; pass < 2 && res == ROMA_SUCCESS; ++pass) {
-        VkPipelineShaderStageCreateInfo stages[2] = {
-            {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-             .stage = VK_SHADER_STAGE_VERTEX_BIT, .module = vert, .pName = "main"},
-            {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-             .stage = VK_SHADER_STAGE_FRAGMENT_BIT, .module = frag, .pName = "main"},
-        };
-        /* Vertex pulling: no vertex buffers. */
-        VkPipelineVertexInputStateCreateInfo vertex_input = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        VkPipelineInputAssemblyStateCreateInfo assembly = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
-            .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
-        };
-        VkPipelineViewportStateCreateInfo viewport = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
-            .viewportCount = 1,
-            .scissorCount = 1,
-        };
-        /* Two-sided surfaces: no culling. */
-        VkPipelineRasterizationStateCreateInfo raster = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
-            .polygonMode = VK_POLYGON_MODE_FILL,
-            .cullMode = VK_CULL_MODE_NONE,
-            .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
-            .lineWidth = 1.0f,
-        };
-        VkPipelineMultisampleStateCreateInfo multisample = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-            .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT,
-        };
-        /* Reversed Z (near = 1, far = 0): the nearest surface has the greatest depth.
-         * Pass 2 re-runs the same vertex shader (clip position computed `precise`), so the
-         * surviving fragment's depth is bit-identical and EQUAL selects it. */
-        VkPipelineDepthStencilStateCreateInfo depth = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
-            .depthTestEnable = VK_TRUE,
-            .depthWriteEnable = pass == 0 ? VK_TRUE : VK_FALSE,
-            .depthCompareOp = pass == 0 ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_EQUAL,
-        };
-        VkPipelineColorBlendStateCreateInfo blend = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
-        };
-        VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dynamic = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
-            .dynamicStateCount = 2,
-            .pDynamicStates = dynamic_states,
-        };
-        /* Depth only: the G-buffer goes to a storage buffer (no colour formats to pick). */
-        VkPipelineRenderingCreateInfo rendering = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
-            .depthAttachmentFormat = ROMA_GBUFFER_DEPTH_FORMAT,
-        };
-        VkGraphicsPipelineCreateInfo info = {
-            .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-            .pNext = &rendering,
-            .stageCount = pass == 0 ? 1 : 2, /* the depth pass needs no fragment shader */
-            .pStages = stages,
-            .pVertexInputState = &vertex_input,
-            .pInputAssemblyState = &assembly,
-            .pViewportState = &viewport,
-            .pRasterizationState = &raster,
-            .pMultisampleState = &multisample,
-            .pDepthStencilState = &depth,
-            .pColorBlendState = &blend,
-            .pDynamicState = &dynamic,
-            .layout = g->layout,
-        };
-        res = roma_vk_check(ctx,
-                            vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL,
-                                                      pass == 0 ? &g->depth_pipeline : &g->shade_pipeline),
-                            "vkCreateGraphicsPipelines (G-buffer)");
-    }
+        res = roma_shader_module_create(ctx, "gbuffer.frag", &frag);
+    /* Reversed Z (near = 1, far = 0): the nearest surface has the greatest depth.
+     * Pass 2 re-runs the same vertex shader (clip position computed `precise`), so the
+     * surviving fragment's depth is bit-identical and EQUAL selects it. The depth pass
+     * needs no fragment shader; the G-buffer goes to a storage buffer. */
+    roma_graphics_pipeline_desc depth_pass = {
+        .vert = vert, .layout = g->layout, .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
+        .depth_write = 1, .depth_compare = VK_COMPARE_OP_GREATER,
+        .label = "vkCreateGraphicsPipelines (G-buffer depth)",
+    };
+    roma_graphics_pipeline_desc shade_pass = {
+        .vert = vert, .frag = frag, .layout = g->layout, .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
+        .depth_write = 0, .depth_compare = VK_COMPARE_OP_EQUAL,
+        .label = "vkCreateGraphicsPipelines (G-buffer shading)",
+    };
+    if (res == ROMA_SUCCESS)
+        res = roma_graphics_pipeline_create(ctx, &depth_pass, &g->depth_pipeline);
+    if (res == ROMA_SUCCESS)
+        res = roma_graphics_pipeline_create(ctx, &shade_pass, &g->shade_pipeline);
     if (vert)
         vkDestroyShaderModule(ctx->device, vert, NULL);
     if (frag)

@@ -4,7 +4,6 @@
 #include <string.h>
 
 #include "roma/map.h"
-#include "vulkan/shader_table.h"
 #include "vulkan/vk_internal.h"
 
 struct roma_bom_raster {
@@ -13,101 +12,24 @@ struct roma_bom_raster {
     VkPipeline pipeline;
 };
 
-static roma_result create_module(roma_context *ctx, const char *name, VkShaderModule *out)
-{
-    *out = VK_NULL_HANDLE;
-    const roma_spirv_module *m = roma_find_spirv(name);
-    if (!m)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "no embedded shader named %s", name);
-    VkShaderModuleCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = m->size,
-        .pCode = m->code,
-    };
-    return roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &info, NULL, out), "vkCreateShaderModule");
-}
-
 static roma_result create_pipeline(roma_bom_raster *r)
 {
     roma_context *ctx = r->ctx;
-    VkPushConstantRange push = {
-        .stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-        .size = sizeof(roma_bom_push),
-    };
-    VkPipelineLayoutCreateInfo layout_info = {
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
-        .pushConstantRangeCount = 1,
-        .pPushConstantRanges = &push,
-    };
-    roma_result res = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, NULL, &r->layout),
-                                    "vkCreatePipelineLayout");
     VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+    roma_result res = roma_push_layout_create(ctx, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                              sizeof(roma_bom_push), &r->layout);
     if (res == ROMA_SUCCESS)
-        res = create_module(ctx, "bom.vert", &vert);
+        res = roma_shader_module_create(ctx, "bom.vert", &vert);
     if (res == ROMA_SUCCESS)
-        res = create_module(ctx, "bom.frag", &frag);
-    if (res == ROMA_SUCCESS) {
-        VkPipelineShaderStageCreateInfo stages[2] = {
-            {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-             .stage = VK_SHADER_STAGE_VERTEX_BIT, .module = vert, .pName = "main"},
-            {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-             .stage = VK_SHADER_STAGE_FRAGMENT_BIT, .module = frag, .pName = "main"},
-        };
-        /* Vertex pulling: no vertex buffers. */
-        VkPipelineVertexInputStateCreateInfo vertex_input = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        VkPipelineInputAssemblyStateCreateInfo assembly = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
-            .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
-        };
-        /* Viewport and scissor are dynamic: one pipeline serves every resolution. */
-        VkPipelineViewportStateCreateInfo viewport = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
-            .viewportCount = 1,
-            .scissorCount = 1,
-        };
-        /* Both windings, and depth never clipped (the VS writes z = 0.5). */
-        VkPipelineRasterizationStateCreateInfo raster = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
-            .polygonMode = VK_POLYGON_MODE_FILL,
-            .cullMode = VK_CULL_MODE_NONE,
-            .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
-            .lineWidth = 1.0f,
-        };
-        VkPipelineMultisampleStateCreateInfo multisample = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-            .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT,
-        };
-        VkPipelineColorBlendStateCreateInfo blend = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
-        };
-        VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dynamic = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
-            .dynamicStateCount = 2,
-            .pDynamicStates = dynamic_states,
-        };
-        /* No attachments at all: the only output is the atomics into the BOM. */
-        VkPipelineRenderingCreateInfo rendering = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
-        };
-        VkGraphicsPipelineCreateInfo info = {
-            .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-            .pNext = &rendering,
-            .stageCount = 2,
-            .pStages = stages,
-            .pVertexInputState = &vertex_input,
-            .pInputAssemblyState = &assembly,
-            .pViewportState = &viewport,
-            .pRasterizationState = &raster,
-            .pMultisampleState = &multisample,
-            .pColorBlendState = &blend,
-            .pDynamicState = &dynamic,
-            .layout = r->layout,
-        };
-        res = roma_vk_check(ctx, vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &r->pipeline),
-                            "vkCreateGraphicsPipelines (BOM)");
-    }
+        res = roma_shader_module_create(ctx, "bom.frag", &frag);
+    /* No attachments at all: the only output is the atomics into the BOM; the vertex
+     * shader writes z = 0.5, so nothing is depth-clipped. */
+    roma_graphics_pipeline_desc desc = {
+        .vert = vert, .frag = frag, .layout = r->layout, .depth_format = VK_FORMAT_UNDEFINED,
+        .label = "vkCreateGraphicsPipelines (BOM)",
+    };
+    if (res == ROMA_SUCCESS)
+        res = roma_graphics_pipeline_create(ctx, &desc, &r->pipeline);
     if (vert)
         vkDestroyShaderModule(ctx->device, vert, NULL);
     if (frag)

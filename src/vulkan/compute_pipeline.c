@@ -1,6 +1,5 @@
 #include <string.h>
 
-#include "vulkan/shader_table.h"
 #include "vulkan/vk_internal.h"
 
 #define MAX_STORAGE_BUFFERS 16
@@ -10,9 +9,6 @@ roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_n
                                          roma_compute_pipeline *out)
 {
     memset(out, 0, sizeof *out);
-    const roma_spirv_module *module = roma_find_spirv(module_name);
-    if (!module)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "no embedded shader named %s", module_name);
     if (storage_buffer_count > MAX_STORAGE_BUFFERS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many storage buffers for %s", module_name);
 
@@ -44,15 +40,8 @@ roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_n
                           "vkCreatePipelineLayout");
     }
     VkShaderModule shader = VK_NULL_HANDLE;
-    if (r == ROMA_SUCCESS) {
-        VkShaderModuleCreateInfo shader_info = {
-            .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-            .codeSize = module->size,
-            .pCode = module->code,
-        };
-        r = roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &shader_info, NULL, &shader),
-                          "vkCreateShaderModule");
-    }
+    if (r == ROMA_SUCCESS)
+        r = roma_shader_module_create(ctx, module_name, &shader);
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo info = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,

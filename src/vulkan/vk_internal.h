@@ -89,6 +89,27 @@ roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_n
                                          roma_compute_pipeline *out);
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);
 
+/* --- shader modules and graphics pipelines (graphics_pipeline.c) --- */
+roma_result roma_shader_module_create(roma_context *ctx, const char *module_name, VkShaderModule *out);
+/* A layout with one push-constant range for `stages` (none when push_size is 0) and no sets. */
+roma_result roma_push_layout_create(roma_context *ctx, VkShaderStageFlags stages, uint32_t push_size,
+                                    VkPipelineLayout *out);
+
+typedef struct roma_graphics_pipeline_desc {
+    VkShaderModule vert;
+    VkShaderModule frag;        /* VK_NULL_HANDLE: depth-only pipeline */
+    VkPipelineLayout layout;
+    VkFormat depth_format;      /* VK_FORMAT_UNDEFINED: no depth attachment, no depth test */
+    int depth_write;
+    VkCompareOp depth_compare;
+    const char *label;          /* named in the error message */
+} roma_graphics_pipeline_desc;
+
+/* Vertex pulling (no vertex input), triangle lists, no culling, dynamic viewport and
+ * scissor, one sample, no colour attachments. */
+roma_result roma_graphics_pipeline_create(roma_context *ctx, const roma_graphics_pipeline_desc *desc,
+                                          VkPipeline *out);
+
 /* Looks an embedded module up by name ("fill_u32.comp"); NULL if absent. */
 const struct roma_spirv_module *roma_find_spirv(const char *name);
 

@@ -34,7 +34,7 @@
 /* Bounds: measured figures plus a margin (see the printed values). */
 #define MAX_MEAN_ABS_DIFF_CPU 2e-3  /* measured: 0 (exact 1.0000) */
 #define MIN_EXACT_FRACTION 0.99
-#define MAX_MAE_EMBREE 0.085        /* measured: 0.0744 (snapping + offset at radius 0.5) */
+#define MAX_MAE_EMBREE 0.080        /* measured: 0.0744 (snapping + offset at radius 0.5), + 0.005 margin as in test_roma_vs_embree */
 
 
 /* CPU side of frame f: the pass's rays in C, traced by roma_map_trace; adds to open. */

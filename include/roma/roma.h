@@ -5,6 +5,7 @@
 
 #include "roma/camera.h"
 #include "roma/context.h"
+#include "roma/effects.h"
 #include "roma/image.h"
 #include "roma/result.h"
 #include "roma/sampling.h"

@@ -30,6 +30,7 @@
 #include <stdint.h>
 
 #include "roma/camera.h"
+#include "roma/effects.h"
 #include "roma/image.h"
 #include "roma/result.h"
 #include "roma/scene.h"
@@ -106,14 +107,7 @@ uint32_t roma_ref_count_visible_lights(const roma_ref *ref, const float p[3], co
                                        const float n[3], const float *light_positions,
                                        uint32_t light_count);
 
-/* --- Images --- */
-
-enum {
-    ROMA_EFFECT_AO = 1u << 0,
-    ROMA_EFFECT_DIRECT = 1u << 1,
-    ROMA_EFFECT_GI = 1u << 2,
-    ROMA_EFFECT_LIGHTS = 1u << 3
-};
+/* --- Images (effects: ROMA_EFFECT_* of roma/effects.h) --- */
 
 typedef void (*roma_progress_fn)(float fraction, void *user_data);
 

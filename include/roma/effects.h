@@ -1,0 +1,91 @@
+/* libroma: effects and the plan of passes a frame runs.
+ *
+ * The effect plan is derived from the scene and the caller's options before any
+ * GPU work, so that a frame runs only the passes its scene calls for:
+ *  - ambient occlusion: the AO pass, when asked for;
+ *  - direct light: one pass for point/spot/directional lights (shadow rays to
+ *    each light) when the scene has any, one soft-shadow pass for area lights
+ *    (emissive triangles) when it has any; a scene with neither runs no direct pass;
+ *  - one-bounce diffuse GI: reflective shadow maps and the GI gather, only when the
+ *    scene has point or spot lights (the lights an RSM can be rendered for);
+ *  - many lights: visibility of many synthetic point lights, when asked for.
+ * The G-buffer runs when any pass runs. ROMA arrays are built once per frame per
+ * distinct (RES, A) that some pass traces, and not at all when nothing traces. */
+#ifndef ROMA_EFFECTS_H
+#define ROMA_EFFECTS_H
+
+#include <stdint.h>
+
+#include "roma/result.h"
+#include "roma/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Effects an image can be asked for (bit flags). */
+enum {
+    ROMA_EFFECT_AO = 1u << 0,
+    ROMA_EFFECT_DIRECT = 1u << 1,
+    ROMA_EFFECT_GI = 1u << 2,
+    ROMA_EFFECT_LIGHTS = 1u << 3,
+    ROMA_EFFECT_ALL_ = (1u << 4) - 1u
+};
+
+typedef enum roma_pass_kind {
+    ROMA_PASS_GBUFFER = 0,
+    ROMA_PASS_AO,              /* snapped any-hit, hemisphere rays */
+    ROMA_PASS_PUNCTUAL_LIGHTS, /* point/spot/directional light with un-snapped shadow rays */
+    ROMA_PASS_SOFT_SHADOWS,    /* area-light samples, un-snapped shadow rays */
+    ROMA_PASS_MANY_LIGHTS,     /* visibility of many point lights, un-snapped */
+    ROMA_PASS_RSM,             /* reflective shadow maps of point/spot lights */
+    ROMA_PASS_GI,              /* snapped closest-hit bounce rays, radiance from the RSMs */
+    ROMA_PASS_COUNT
+} roma_pass_kind;
+
+/* "gbuffer", "ao", "punctual_lights", "soft_shadows", "many_lights", "rsm", "gi";
+ * "unknown" outside the enum. */
+const char *roma_pass_name(roma_pass_kind pass);
+
+/* Zero value: the paper's settings (RES 128; A = 4 for hemisphere rays, A = 8 for
+ * rays towards lights) and 256 many lights. */
+typedef struct roma_effect_options {
+    uint32_t effects;          /* ROMA_EFFECT_* bits asked for */
+    uint32_t resolution;       /* RES of every array: 32, 64, 128 or 256; 0 = 128 */
+    uint32_t ao_angular;       /* A of the AO array, 1..16; 0 = 4 */
+    uint32_t gi_angular;       /* A of the GI array; 0 = 4 */
+    uint32_t shadow_angular;   /* A of the array for shadow rays (punctual and area lights); 0 = 8 */
+    uint32_t lights_angular;   /* A of the many-lights array; 0 = 8 */
+    uint32_t many_light_count; /* 1..65536; 0 = 256 */
+} roma_effect_options;
+
+typedef struct roma_map_config {
+    uint32_t resolution, angular;
+} roma_map_config;
+
+typedef struct roma_effect_plan {
+    uint32_t effects;                   /* as asked (an effect the scene cannot show renders black) */
+    uint32_t passes;                    /* bit (1u << roma_pass_kind) per pass that runs */
+    uint32_t map_count;                 /* distinct ROMA arrays built per frame */
+    roma_map_config maps[ROMA_PASS_COUNT];
+    int32_t pass_map[ROMA_PASS_COUNT];  /* index into maps of the array a pass traces; -1: none */
+    uint32_t many_light_count;          /* resolved count (0 when the pass does not run) */
+} roma_effect_plan;
+
+/* Resolves defaults and derives the plan from the scene. Rejects unknown effect
+ * bits, resolutions other than 32/64/128/256, A outside 1..16 and many-light
+ * counts above 65536 (ROMA_ERROR_INVALID_ARGUMENT, message through logger, which
+ * may be NULL); *out_plan is zeroed on failure. */
+roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_options *options,
+                                    const roma_logger *logger, roma_effect_plan *out_plan);
+
+static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_kind pass)
+{
+    return (plan->passes >> (uint32_t)pass) & 1u;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_EFFECTS_H */

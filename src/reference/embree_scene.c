@@ -59,64 +59,6 @@ static roma_result check_device(const roma_ref *ref, const char *what)
                      rtc_error_name(code));
 }
 
-static roma_result build_emitters(roma_ref *ref)
-{
-    const roma_scene_view *v = &ref->view;
-    if (v->emissive_triangle_count == 0 || !v->emissive_triangles)
-        return ROMA_SUCCESS;
-    uint32_t count = v->emissive_triangle_count;
-    ref->emitters = calloc(count, sizeof *ref->emitters);
-    ref->emitter_cdf = calloc(count, sizeof *ref->emitter_cdf);
-    double *lums = calloc(2 * (size_t)count, sizeof *lums); /* luminance, then weight */
-    if (!ref->emitters || !ref->emitter_cdf || !lums) {
-        free(lums);
-        return roma_fail(&ref->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY,
-                         "roma_ref_create: out of memory for %u area-light triangles", count);
-    }
-    double *weights = lums + count;
-    double total = 0.0;
-    for (uint32_t i = 0; i < count; ++i) {
-        uint32_t tri = v->emissive_triangles[i];
-        const uint32_t *idx = &v->indices[3 * (size_t)tri];
-        const float *p0 = &v->positions[3 * (size_t)idx[0]];
-        const float *p1 = &v->positions[3 * (size_t)idx[1]];
-        const float *p2 = &v->positions[3 * (size_t)idx[2]];
-        roma_ref_emitter *e = &ref->emitters[i];
-        memcpy(e->v0, p0, sizeof e->v0);
-        roma_ref_sub(p1, p0, e->e1);
-        roma_ref_sub(p2, p0, e->e2);
-        roma_ref_cross(e->e1, e->e2, e->normal);
-        double area = 0.5 * (double)roma_ref_normalize(e->normal);
-        uint32_t m = v->triangle_materials ? v->triangle_materials[tri] : 0;
-        if (v->materials && m < v->material_count)
-            memcpy(e->emission, v->materials[m].emission, sizeof e->emission);
-        /* Rec. 709 luminance: bright emitters get proportionally more samples. */
-        lums[i] = 0.2126 * e->emission[0] + 0.7152 * e->emission[1] + 0.0722 * e->emission[2];
-        weights[i] = (area > 0.0 && lums[i] > 0.0 && isfinite(area * lums[i])) ? area * lums[i] : 0.0;
-        total += weights[i];
-    }
-    if (!(total > 0.0) || !isfinite(total)) {
-        /* Nothing samplable (zero luminance everywhere): behave as no area lights. */
-        free(lums);
-        free(ref->emitters);
-        free(ref->emitter_cdf);
-        ref->emitters = NULL;
-        ref->emitter_cdf = NULL;
-        return ROMA_SUCCESS;
-    }
-    double acc = 0.0;
-    for (uint32_t i = 0; i < count; ++i) {
-        acc += weights[i];
-        ref->emitter_cdf[i] = (float)(acc / total);
-        /* pdf_area = (w_i / total) / area_i = lum_i / total; zero-weight triangles are never chosen. */
-        ref->emitters[i].pdf_area = weights[i] > 0.0 ? (float)(lums[i] / total) : 0.0f;
-    }
-    ref->emitter_cdf[count - 1] = 1.0f;
-    ref->emitter_count = count;
-    free(lums);
-    return ROMA_SUCCESS;
-}
-
 static roma_result build_scene(roma_ref *ref)
 {
     const roma_scene_view *v = &ref->view;
@@ -213,14 +155,14 @@ roma_result roma_ref_create(const roma_scene *scene, const roma_ref_desc *desc, 
 
     r = build_scene(ref);
     if (r == ROMA_SUCCESS)
-        r = build_emitters(ref);
+        r = roma_emitter_table_build(&ref->view, &ref->logger, &ref->emitters);
     if (r != ROMA_SUCCESS) {
         roma_ref_destroy(ref);
         return r;
     }
     roma_logf(&ref->logger, ROMA_LOG_DEBUG,
               "reference: %u triangles, %u area-light triangles, %u punctual lights, %u threads",
-              ref->view.triangle_count, ref->emitter_count, ref->view.light_count,
+              ref->view.triangle_count, ref->emitters.count, ref->view.light_count,
               ref->thread_count);
     *out_ref = ref;
     return ROMA_SUCCESS;
@@ -234,8 +176,7 @@ void roma_ref_destroy(roma_ref *ref)
         rtcReleaseScene(ref->scene);
     if (ref->device)
         rtcReleaseDevice(ref->device);
-    free(ref->emitters);
-    free(ref->emitter_cdf);
+    roma_emitter_table_free(&ref->emitters);
     free(ref);
 }
 

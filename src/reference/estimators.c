@@ -32,20 +32,6 @@ static int segment_occluded(const roma_ref *ref, const float origin[3], const fl
     return roma_ref_occluded(ref, origin, v, 0.0f, d * (1.0f - SEGMENT_SHORTEN));
 }
 
-/* Index of the emitter for uniform u in [0, 1): first i with cdf[i] > u. */
-static uint32_t pick_emitter(const roma_ref *ref, float u)
-{
-    uint32_t lo = 0, hi = ref->emitter_count - 1;
-    while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        if (ref->emitter_cdf[mid] > u)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    return lo;
-}
-
 /* Irradiance at p from one punctual light (0 when below the surface or shadowed). */
 static void punctual_irradiance(const roma_ref *ref, const roma_light *light, const float p[3],
                                 const float gn[3], const float n[3], const float origin[3],
@@ -110,13 +96,13 @@ static void irradiance(const roma_ref *ref, const float p[3], const float gn[3],
     for (uint32_t i = 0; i < ref->view.light_count; ++i)
         punctual_irradiance(ref, &ref->view.lights[i], p, gn, n, origin, E);
 
-    if (ref->emitter_count == 0 || area_samples == 0)
+    if (ref->emitters.count == 0 || area_samples == 0)
         return;
     double acc[3] = {0.0, 0.0, 0.0};
     for (uint32_t k = 0; k < area_samples; ++k) {
         uint32_t s = sample_base + k;
-        const roma_ref_emitter *e =
-            &ref->emitters[pick_emitter(ref, roma_random(seed, pixel, s, dim))];
+        const roma_emitter *e =
+            &ref->emitters.emitters[roma_emitter_pick(&ref->emitters, roma_random(seed, pixel, s, dim))];
         float b1, b2;
         roma_triangle_sample(roma_random(seed, pixel, s, dim + 1),
                              roma_random(seed, pixel, s, dim + 2), &b1, &b2);

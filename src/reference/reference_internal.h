@@ -6,15 +6,7 @@
 #include <math.h>
 
 #include "reference.h"
-
-/* One emissive triangle, prepared for uniform area sampling:
- * y = v0 + b1 * e1 + b2 * e2 with (b1, b2) from roma_triangle_sample. */
-typedef struct roma_ref_emitter {
-    float v0[3], e1[3], e2[3];
-    float normal[3];   /* unit geometric normal (emitters are two-sided) */
-    float emission[3]; /* radiance */
-    float pdf_area;    /* p(choose triangle) / area = luminance(emission) / sum(area * luminance) */
-} roma_ref_emitter;
+#include "scene/emitters.h"
 
 struct roma_ref {
     roma_logger logger;
@@ -23,9 +15,7 @@ struct roma_ref {
     RTCScene scene;
     uint32_t thread_count; /* resolved, >= 1 */
     float offset_scale;    /* ROMA_REF_EPSILON * |bbox diagonal| */
-    roma_ref_emitter *emitters;
-    float *emitter_cdf; /* cdf[i] = P(index <= i); last entry is exactly 1 */
-    uint32_t emitter_count;
+    roma_emitter_table emitters; /* area lights */
 };
 
 /* Runs fn(ctx, item) for item in [0, count) on up to ref->thread_count threads

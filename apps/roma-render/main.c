@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "app_common.h"
-#include "roma_ao.h"
+#include "passes/effect_render.h"
 #include "reference.h"
 #include "roma/roma.h"
 #include "stats_json.h"
@@ -21,11 +21,15 @@ static const char *usage =
     "                              (y up; default: the scene's camera, else one framing its bounds)\n"
     "  --size WxH                  image size in pixels (default 640x480)\n"
     "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
-    "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU.\n"
-    "                              roma renders ao only for now (direct, gi and lights come with the\n"
-    "                              effect passes); its primary hits come from the G-buffer pass\n"
+    "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU\n"
+    "                              (ao, direct and lights; gi is not on ROMA yet). ROMA runs only the\n"
+    "                              passes the scene calls for (see the stats file)\n"
     "  --res N                     ROMA grid resolution: 32, 64, 128 or 256 (default 128)\n"
-    "  --angular A                 ROMA A x A candidate directions, 1..16 (default 4)\n"
+    "  --angular A                 ROMA A x A candidate directions for ao, 1..16 (default 4)\n"
+    "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
+    "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
+    "  --lights-per-frame K        ROMA lights: test K random lights per pixel and frame\n"
+    "                              (stochastic, accumulated) instead of all (default: all)\n"
     "  --spp N                     samples per pixel for ao, area lights and gi (default 64)\n"
     "  --frames N                  ROMA: frames accumulated, each with new jitter and new samples\n"
     "                              (frame f uses samples f*spp .. f*spp+spp-1, so the reference with\n"
@@ -45,6 +49,7 @@ typedef struct options {
     roma_camera camera;
     int has_camera;
     uint32_t width, height, effects, spp, frames, lights, seed, threads, res, angular;
+    uint32_t shadow_angular, max_steps, lights_per_frame;
     float ao_radius;
     int quiet;
 } options;
@@ -98,7 +103,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->out = "out";
     o->tracer = "embree";
     o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1;
-    o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4;
+    o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8, o->max_steps = 8;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -134,6 +139,9 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--res") == 0)
             ok = parse_u32(v, 32, 256, &o->res) && (o->res == 32 || o->res == 64 || o->res == 128 || o->res == 256);
         else if (strcmp(a, "--angular") == 0) ok = parse_u32(v, 1, 16, &o->angular);
+        else if (strcmp(a, "--shadow-angular") == 0) ok = parse_u32(v, 1, 16, &o->shadow_angular);
+        else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps);
+        else if (strcmp(a, "--lights-per-frame") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame);
         else if (strcmp(a, "--ao-radius") == 0) {
             char *end;
             o->ao_radius = strtof(v, &end);
@@ -152,9 +160,9 @@ static int parse_args(int argc, char **argv, options *o)
         fprintf(stderr, "roma-render: unknown tracer '%s' (embree or roma)\n", o->tracer);
         return 0;
     }
-    if (strcmp(o->tracer, "roma") == 0 && (o->effects & ~(uint32_t)ROMA_EFFECT_AO)) {
-        fprintf(stderr, "roma-render: --tracer roma renders ao only for now; direct, gi and lights "
-                        "come with the effect passes (use --tracer embree for them)\n");
+    if (strcmp(o->tracer, "roma") == 0 && (o->effects & ROMA_EFFECT_GI)) {
+        fprintf(stderr, "roma-render: --tracer roma renders ao, direct and lights; one-bounce gi is not on "
+                        "ROMA yet (use --tracer embree for it)\n");
         return 0;
     }
     return 1;
@@ -200,6 +208,7 @@ typedef struct pass_record {
     const char *name;
     const char *clock; /* "cpu_wall" or "gpu_timestamp" */
     double ms;
+    uint64_t bytes;    /* GPU memory of the pass's own buffers (0 for CPU passes) */
 } pass_record;
 
 typedef struct run_record {
@@ -207,14 +216,13 @@ typedef struct run_record {
     uint32_t threads;
     pass_record passes[16];
     int pass_count;
-    const roma_map_info *map; /* ROMA tracer only */
-    uint64_t rays;
+    const roma_effect_stats *roma; /* ROMA tracer only */
 } run_record;
 
 static void add_pass(run_record *run, const char *name, const char *clock, double ms)
 {
     if (run->pass_count < 16)
-        run->passes[run->pass_count++] = (pass_record){name, clock, ms};
+        run->passes[run->pass_count++] = (pass_record){name, clock, ms, 0};
 }
 
 static int write_outputs(const options *o, const char *name, const roma_image *img, roma_png_mode mode,
@@ -292,17 +300,25 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_number(&j, "fovy_deg", cam->fovy_deg);
     roma_json_end_object(&j);
     roma_json_end_object(&j);
-    if (run->map) {
-        roma_json_begin_object(&j, "roma");
-        roma_json_int(&j, "resolution", run->map->resolution);
-        roma_json_int(&j, "angular", run->map->angular);
-        roma_json_int(&j, "maps", run->map->map_count);
-        roma_json_int(&j, "bom_bytes", (long long)run->map->bom_bytes);
-        roma_json_int(&j, "maps_bytes", (long long)run->map->maps_bytes);
-        roma_json_int(&j, "params_bytes", (long long)run->map->params_bytes);
-        roma_json_int(&j, "geometry_bytes", (long long)run->map->geometry_bytes);
-        roma_json_int(&j, "rays_traced", (long long)run->rays);
-        roma_json_end_object(&j);
+    if (run->roma) {
+        /* The ROMA arrays the plan built every frame (one per distinct RES, A). */
+        const roma_effect_stats *st = run->roma;
+        roma_json_begin_array(&j, "roma_arrays");
+        for (uint32_t i = 0; i < st->plan.map_count; ++i) {
+            const roma_map_info *m = &st->map_info[i];
+            roma_json_begin_object(&j, NULL);
+            roma_json_int(&j, "resolution", m->resolution);
+            roma_json_int(&j, "angular", m->angular);
+            roma_json_int(&j, "maps", m->map_count);
+            roma_json_int(&j, "bom_bytes", (long long)m->bom_bytes);
+            roma_json_int(&j, "maps_bytes", (long long)m->maps_bytes);
+            roma_json_int(&j, "params_bytes", (long long)m->params_bytes);
+            roma_json_int(&j, "geometry_bytes", (long long)m->geometry_bytes);
+            roma_json_string(&j, "clock", "gpu_timestamp");
+            roma_json_number(&j, "build_ms", st->build_ms[i]);
+            roma_json_end_object(&j);
+        }
+        roma_json_end_array(&j);
     }
     /* CPU passes carry wall-clock times, GPU passes timestamp-query times. */
     roma_json_begin_array(&j, "passes");
@@ -311,6 +327,8 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         roma_json_string(&j, "name", run->passes[i].name);
         roma_json_string(&j, "clock", run->passes[i].clock);
         roma_json_number(&j, "ms", run->passes[i].ms);
+        if (strcmp(run->passes[i].clock, "gpu_timestamp") == 0)
+            roma_json_int(&j, "bytes", (long long)run->passes[i].bytes);
         roma_json_end_object(&j);
     }
     roma_json_end_array(&j);
@@ -376,7 +394,7 @@ int main(int argc, char **argv)
     int status = 0;
     roma_context *ctx = NULL;
     roma_context_info ctx_info;
-    roma_ao_timings ao_timings;
+    roma_effect_stats roma_stats;
     if (strcmp(o.tracer, "roma") == 0) {
         roma_context_desc ctx_desc = {0};
         r = roma_context_create(&ctx_desc, &ctx);
@@ -387,28 +405,39 @@ int main(int argc, char **argv)
             roma_context_get_info(ctx, &ctx_info);
             run.device_kind = ctx_info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? "cpu_vulkan" : "gpu";
             run.device_name = ctx_info.device_name;
-            roma_ao_settings settings = {
-                .camera = cam, .width = o.width, .height = o.height, .spp = o.spp, .frames = o.frames,
-                .seed = o.seed, .radius = o.ao_radius, .offset_cells = ROMA_DEFAULT_OFFSET_CELLS,
-                .map = {.resolution = o.res, .angular = o.angular},
+            roma_effect_render_desc desc = {
+                .camera = cam, .width = o.width, .height = o.height,
+                .options = {.effects = o.effects, .resolution = o.res, .ao_angular = o.angular,
+                            .gi_angular = o.angular, .shadow_angular = o.shadow_angular,
+                            .lights_angular = o.shadow_angular, .many_light_count = o.lights},
+                .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
+                .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame,
+                .many_light_positions = light_positions,
             };
-            roma_image ao;
+            roma_effect_images images;
             double start = now_ms();
-            r = roma_render_ao_roma(ctx, scene, &settings, &ao, &ao_timings);
-            add_pass(&run, "roma_ao_total", "cpu_wall", now_ms() - start);
+            r = roma_effect_render(ctx, scene, &desc, &images, &roma_stats);
+            add_pass(&run, "roma_total", "cpu_wall", now_ms() - start);
             if (r != ROMA_SUCCESS) {
-                fprintf(stderr, "roma-render: ROMA ambient occlusion failed: %s\n", roma_result_string(r));
+                fprintf(stderr, "roma-render: ROMA rendering failed: %s\n", roma_result_string(r));
                 status = 1;
             } else {
-                add_pass(&run, "gbuffer", "gpu_timestamp", ao_timings.gbuffer_ms);
-                add_pass(&run, "bom", "gpu_timestamp", ao_timings.bom_ms);
-                add_pass(&run, "rotate", "gpu_timestamp", ao_timings.rotate_ms);
-                add_pass(&run, "trace_ao", "gpu_timestamp", ao_timings.trace_ms);
-                run.map = &ao_timings.info;
-                run.rays = ao_timings.rays;
-                if (!write_outputs(&o, "ao", &ao, ROMA_PNG_SRGB, 1.0f))
+                for (int p = 0; p < ROMA_PASS_COUNT; ++p) {
+                    if (!roma_effect_plan_runs(&roma_stats.plan, (roma_pass_kind)p))
+                        continue;
+                    add_pass(&run, roma_pass_name((roma_pass_kind)p), "gpu_timestamp", roma_stats.pass_ms[p]);
+                    run.passes[run.pass_count - 1].bytes = roma_stats.pass_bytes[p];
+                }
+                run.roma = &roma_stats;
+                if ((o.effects & ROMA_EFFECT_AO) && !write_outputs(&o, "ao", &images.ao, ROMA_PNG_SRGB, 1.0f))
                     status = 1;
-                roma_image_free(&ao);
+                if ((o.effects & ROMA_EFFECT_DIRECT) &&
+                    !write_outputs(&o, "direct", &images.direct, ROMA_PNG_SRGB, 1.0f))
+                    status = 1;
+                if ((o.effects & ROMA_EFFECT_LIGHTS) &&
+                    !write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights))
+                    status = 1;
+                roma_effect_images_free(&images);
             }
         }
     }

@@ -156,10 +156,11 @@ ROMA_STRUCT_BEGIN(roma_gbuffer_pixel)
     ROMA_VEC4(albedo);           /* rgb: base colour; w: triangle id as uint bits */
 ROMA_STRUCT_END(roma_gbuffer_pixel)
 
-/* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
+/* Every per-pixel pass (AO, lights; src/passes/pixel_pass.h) runs 8 x 8 invocations per workgroup. */
+#define ROMA_PIXEL_WORKGROUP_X 8
+#define ROMA_PIXEL_WORKGROUP_Y 8
 
-#define ROMA_AO_WORKGROUP_X 8
-#define ROMA_AO_WORKGROUP_Y 8
+/* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
@@ -170,5 +171,63 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_UVEC4(config2);  /* x: seed */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded) */
 ROMA_STRUCT_END(roma_ao_push)
+
+/* ---- Light passes (src/passes/effect_render.c, shaders/passes/{punctual_lights,soft_shadows,many_lights}.comp) ---- */
+
+#define ROMA_GPU_LIGHT_POINT 1u
+#define ROMA_GPU_LIGHT_SPOT 2u
+#define ROMA_GPU_LIGHT_DIRECTIONAL 3u
+
+/* A punctual light as the shaders evaluate it (KHR_lights_punctual, as the reference). */
+ROMA_STRUCT_BEGIN(roma_gpu_light)
+    ROMA_VEC4(position_type);   /* xyz: position; w: ROMA_GPU_LIGHT_* as a float */
+    ROMA_VEC4(direction_range); /* xyz: unit direction the light points; w: range (0: unlimited) */
+    ROMA_VEC4(color_intensity); /* rgb: colour; w: intensity (cd or lux) */
+    ROMA_VEC4(cone);            /* spot: x scale 1/max(1e-3, cos_inner - cos_outer), y offset -cos_outer * x */
+ROMA_STRUCT_END(roma_gpu_light)
+
+/* An area-light triangle (src/scene/emitters.h). */
+ROMA_STRUCT_BEGIN(roma_gpu_emitter)
+    ROMA_VEC4(v0_pdf);          /* xyz: vertex 0; w: pdf_area */
+    ROMA_VEC4(e1);
+    ROMA_VEC4(e2);
+    ROMA_VEC4(normal);
+    ROMA_VEC4(emission);
+ROMA_STRUCT_END(roma_gpu_emitter)
+
+ROMA_STRUCT_BEGIN(roma_punctual_push)
+    ROMA_U64(pixels);     /* roma_gbuffer_pixel */
+    ROMA_U64(maps);
+    ROMA_U64(params);
+    ROMA_U64(lights);     /* roma_gpu_light */
+    ROMA_U64(accum);      /* vec4 per pixel: irradiance summed over frames, added to */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
+    ROMA_VEC4(ray);       /* x: origin offset (world) */
+ROMA_STRUCT_END(roma_punctual_push)
+
+ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
+    ROMA_U64(pixels);
+    ROMA_U64(maps);
+    ROMA_U64(params);
+    ROMA_U64(emitters);   /* roma_gpu_emitter */
+    ROMA_U64(cdf);        /* float per emitter */
+    ROMA_U64(accum);      /* vec4 per pixel: irradiance estimates summed over samples, added to */
+    ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
+    ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
+    ROMA_VEC4(ray);       /* x: origin offset (world) */
+ROMA_STRUCT_END(roma_soft_shadows_push)
+
+ROMA_STRUCT_BEGIN(roma_many_lights_push)
+    ROMA_U64(pixels);
+    ROMA_U64(maps);
+    ROMA_U64(params);
+    ROMA_U64(positions);  /* vec4 per light */
+    ROMA_U64(accum);      /* uvec2 per pixel: visible, tested (summed over frames, added to) */
+    ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
+    ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
+    ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
+    ROMA_VEC4(ray);       /* x: origin offset (world) */
+ROMA_STRUCT_END(roma_many_lights_push)
 
 #endif /* ROMA_SHARED_H */

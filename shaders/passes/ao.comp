@@ -6,7 +6,7 @@
 #include "roma_trace.glsl"
 #include "roma_sampling.glsl"
 
-layout(local_size_x = ROMA_AO_WORKGROUP_X, local_size_y = ROMA_AO_WORKGROUP_Y) in;
+layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaAoPixels {
     roma_gbuffer_pixel p[];

@@ -4,11 +4,11 @@
 #include <stdlib.h>
 
 #include "roma_shared.h"
-#include "vulkan/vk_internal.h"
+#include "passes/pixel_pass.h"
 
 struct roma_ao_pass {
     roma_context *ctx;
-    roma_compute_pipeline pipeline;
+    roma_pixel_pass pass;
 };
 
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
@@ -22,7 +22,7 @@ roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
     if (!pass)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_pass_create: out of memory");
     pass->ctx = ctx;
-    roma_result r = roma_compute_pipeline_create(ctx, "ao.comp", 0, sizeof(roma_ao_push), &pass->pipeline);
+    roma_result r = roma_pixel_pass_create(ctx, "ao.comp", sizeof(roma_ao_push), &pass->pass);
     if (r != ROMA_SUCCESS) {
         roma_ao_pass_destroy(pass);
         return r;
@@ -35,7 +35,7 @@ void roma_ao_pass_destroy(roma_ao_pass *pass)
 {
     if (!pass)
         return;
-    roma_compute_pipeline_destroy(pass->ctx, &pass->pipeline);
+    roma_pixel_pass_destroy(&pass->pass);
     free(pass);
 }
 
@@ -46,15 +46,8 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
     if (!in->gbuffer_pixels || !in->maps_address || !in->params_address || !in->accum)
         return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_pass_record: G-buffer, map and accumulation addresses are required");
-    if (in->width == 0 || in->height == 0 || !(in->offset >= 0.0f) || !isfinite(in->offset))
-        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_ao_pass_record: empty image or invalid offset");
-    /* One pass per pixel: each dimension's workgroup count must stay within 65535. */
-    uint32_t gx = (in->width + ROMA_AO_WORKGROUP_X - 1) / ROMA_AO_WORKGROUP_X;
-    uint32_t gy = (in->height + ROMA_AO_WORKGROUP_Y - 1) / ROMA_AO_WORKGROUP_Y;
-    if (gx > 65535u || gy > 65535u)
-        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_ao_pass_record: image %ux%u too large", in->width, in->height);
+    if (!(in->offset >= 0.0f) || !isfinite(in->offset))
+        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_pass_record: invalid offset");
     if (in->spp == 0)
         return ROMA_SUCCESS;
     roma_ao_push push = {
@@ -66,20 +59,5 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         .config2 = {in->seed, 0, 0, 0},
         .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, 0.0f, 0.0f},
     };
-    /* G-buffer (fragment/compute), map build (compute) and the accum clear (transfer). */
-    roma_cmd_memory_barrier(cmd,
-                            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
-                                VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
-    vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    vkCmdDispatch(cmd, gx, gy, 1);
-    /* Accumulated counts feed the next frame's pass and downloads. */
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                VK_ACCESS_2_TRANSFER_READ_BIT);
-    return ROMA_SUCCESS;
+    return roma_pixel_pass_record(&pass->pass, cmd, in->width, in->height, &push);
 }

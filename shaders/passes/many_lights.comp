@@ -1,0 +1,60 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Visibility of many point lights (the constant-time intersection paper's use):
+// per pixel, lights tested per frame are all of them (exact count) or k of
+// them starting at a random light (stochastic, accumulated over frames). A
+// light counts when it is in front of the shading normal and its segment is
+// free in the ROMA maps (un-snapped, bounded steps). Adds (visible, tested) to
+// accum; with a mask address, also writes the bit of every visible light.
+#include "roma_lights.glsl"
+#include "roma_sampling.glsl"
+
+layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaPositions { vec4 p[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer RomaUvec2Accum { uvec2 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaMask { uint w[]; };
+
+layout(push_constant) uniform Push { roma_many_lights_push pc; };
+
+const uint DIM_MANY_LIGHTS = 10u;
+
+void main()
+{
+    uvec2 xy = gl_GlobalInvocationID.xy;
+    uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
+    uint seed = pc.config2.x, frame = pc.config2.y, tested = min(pc.config2.z, light_count);
+    uint mask_words = pc.config2.w;
+    if (xy.x >= width || xy.y >= height || light_count == 0u)
+        return;
+    uint pixel = xy.y * width + xy.x;
+    roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
+    if (isinf(g.position_t.w))
+        return;
+    RomaParams params = RomaParams(pc.params);
+    RomaWords maps = RomaWords(pc.maps);
+    vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
+    float offset = pc.ray.x;
+    vec3 origin = p + ng * offset;
+    // The mask is for evaluation (exact mode): every light tested, in order.
+    bool write_mask = (pc.mask.x | pc.mask.y) != 0u && tested == light_count;
+    uint first = tested == light_count ? 0u
+                                       : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(light_count)),
+                                             light_count - 1u);
+    uint visible = 0u, bits = 0u;
+    for (uint j = 0u; j < tested; ++j) {
+        uint i = first + j;
+        i = i >= light_count ? i - light_count : i;
+        vec3 lp = RomaPositions(pc.positions).p[i].xyz;
+        bool lit = dot(n, lp - p) > 0.0 && roma_segment_visible(params, maps, origin, lp, offset, max_steps);
+        visible += lit ? 1u : 0u;
+        if (write_mask) {
+            bits |= lit ? 1u << (i & 31u) : 0u;
+            if ((i & 31u) == 31u || j + 1u == tested) {
+                RomaMask(pc.mask).w[pixel * mask_words + (i >> 5)] = bits;
+                bits = 0u;
+            }
+        }
+    }
+    RomaUvec2Accum(pc.accum).v[pixel] += uvec2(visible, tested);
+}

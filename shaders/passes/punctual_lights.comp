@@ -1,0 +1,48 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Direct light from point, spot and directional lights: per pixel and light,
+// one un-snapped shadow ray through the ROMA maps; the irradiance is added to
+// accum so that frames (new jitter each) average out the voxelization.
+#include "roma_lights.glsl"
+
+layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaLights { roma_gpu_light l[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer RomaVec4Accum { vec4 v[]; };
+
+layout(push_constant) uniform Push { roma_punctual_push pc; };
+
+void main()
+{
+    uvec2 xy = gl_GlobalInvocationID.xy;
+    uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
+    if (xy.x >= width || xy.y >= height)
+        return;
+    uint pixel = xy.y * width + xy.x;
+    roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
+    if (isinf(g.position_t.w))
+        return;
+    RomaParams params = RomaParams(pc.params);
+    RomaWords maps = RomaWords(pc.maps);
+    vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
+    float offset = pc.ray.x;
+    vec3 origin = p + ng * offset;
+    vec3 E = vec3(0.0);
+    for (uint i = 0u; i < light_count; ++i) {
+        roma_gpu_light light = RomaLights(pc.lights).l[i];
+        vec3 l;
+        float f = roma_punctual_factor(light, p, ng, n, l);
+        if (f == 0.0)
+            continue;
+        bool visible;
+        if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
+            roma_hit h = roma_trace_unsnapped(params, maps, origin, l, 0.0, 1.0 / 0.0, false, max_steps);
+            visible = (h.info & ROMA_HIT) == 0u;
+        } else {
+            visible = roma_segment_visible(params, maps, origin, light.position_type.xyz, offset, max_steps);
+        }
+        if (visible)
+            E += f * light.color_intensity.rgb;
+    }
+    RomaVec4Accum(pc.accum).v[pixel] += vec4(E, 0.0);
+}

@@ -1,0 +1,351 @@
+#include "passes/effect_render.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "passes/ao.h"
+#include "passes/gbuffer.h"
+#include "passes/light_data.h"
+#include "passes/pixel_pass.h"
+#include "passes/scene_buffers.h"
+
+#define PI_F 3.14159265358979323846f
+
+typedef struct renderer {
+    roma_context *ctx;
+    const roma_effect_render_desc *desc;
+    roma_effect_plan plan;
+    roma_scene_buffers geometry;
+    roma_gbuffer *gbuffer;
+    roma_map *maps[ROMA_PASS_COUNT];
+    roma_light_data lights;
+    roma_ao_pass *ao;
+    roma_pixel_pass punctual, soft, many;
+    roma_buffer accum[ROMA_PASS_COUNT];
+    roma_buffer mask;
+    roma_gpu_timer *timer;
+    uint32_t mask_words;
+    float near_plane;
+} renderer;
+
+static const VkBufferUsageFlags ACCUM_USAGE = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                              VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+/* Accumulator element size of each pass (0: none). */
+static size_t accum_element(roma_pass_kind pass)
+{
+    switch (pass) {
+    case ROMA_PASS_AO: return sizeof(uint32_t);
+    case ROMA_PASS_PUNCTUAL_LIGHTS:
+    case ROMA_PASS_SOFT_SHADOWS: return 4 * sizeof(float);
+    case ROMA_PASS_MANY_LIGHTS: return 2 * sizeof(uint32_t);
+    default: return 0;
+    }
+}
+
+static roma_result create_resources(renderer *R, const roma_scene *scene)
+{
+    roma_context *ctx = R->ctx;
+    const roma_effect_render_desc *d = R->desc;
+    const size_t pixels = (size_t)d->width * d->height;
+    roma_result r = roma_scene_buffers_create(ctx, scene, &R->geometry);
+    if (r == ROMA_SUCCESS)
+        r = roma_gbuffer_create(ctx, d->width, d->height, &R->gbuffer);
+    if (r == ROMA_SUCCESS)
+        r = roma_gpu_timer_create(ctx, 2 * ROMA_PASS_COUNT, &R->timer);
+    for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
+        roma_map_desc md = {.resolution = R->plan.maps[i].resolution, .angular = R->plan.maps[i].angular};
+        r = roma_map_create(ctx, &md, scene, &R->maps[i]);
+    }
+    const int lit = roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
+                    roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS) ||
+                    roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS);
+    if (r == ROMA_SUCCESS && lit)
+        r = roma_light_data_create(ctx, scene, d->many_light_positions, R->plan.many_light_count, &R->lights);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO))
+        r = roma_ao_pass_create(ctx, &R->ao);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS))
+        r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), &R->punctual);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS))
+        r = roma_pixel_pass_create(ctx, "soft_shadows.comp", sizeof(roma_soft_shadows_push), &R->soft);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS))
+        r = roma_pixel_pass_create(ctx, "many_lights.comp", sizeof(roma_many_lights_push), &R->many);
+    for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
+        if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p) && accum_element((roma_pass_kind)p))
+            r = roma_buffer_create(ctx, pixels * accum_element((roma_pass_kind)p), ACCUM_USAGE,
+                                   ROMA_MEMORY_READBACK, &R->accum[p]);
+    if (r == ROMA_SUCCESS && d->out_light_mask && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS)) {
+        R->mask_words = (R->plan.many_light_count + 31u) / 32u;
+        r = roma_buffer_create(ctx, pixels * R->mask_words * sizeof(uint32_t), ACCUM_USAGE, ROMA_MEMORY_READBACK,
+                               &R->mask);
+    }
+    return r;
+}
+
+static void destroy_resources(renderer *R)
+{
+    roma_context *ctx = R->ctx;
+    for (int p = 0; p < ROMA_PASS_COUNT; ++p) {
+        roma_buffer_destroy(ctx, &R->accum[p]);
+        roma_map_destroy(R->maps[p]);
+    }
+    roma_buffer_destroy(ctx, &R->mask);
+    roma_pixel_pass_destroy(&R->punctual);
+    roma_pixel_pass_destroy(&R->soft);
+    roma_pixel_pass_destroy(&R->many);
+    roma_ao_pass_destroy(R->ao);
+    roma_light_data_destroy(ctx, &R->lights);
+    roma_gpu_timer_destroy(R->timer);
+    roma_gbuffer_destroy(R->gbuffer);
+    roma_scene_buffers_destroy(ctx, &R->geometry);
+}
+
+static double scope_ms(roma_gpu_timer *timer, const char *name)
+{
+    roma_gpu_timing t[2 * ROMA_PASS_COUNT];
+    uint32_t count = 2 * ROMA_PASS_COUNT;
+    double ms = 0.0;
+    if (roma_gpu_timer_read(timer, t, &count) == ROMA_SUCCESS)
+        for (uint32_t i = 0; i < count && i < 2 * ROMA_PASS_COUNT; ++i)
+            if (strcmp(t[i].name, name) == 0)
+                ms += t[i].milliseconds;
+    return ms;
+}
+
+/* Records the planned tracing passes of frame f. */
+static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, const roma_map_info *info,
+                                 uint32_t scopes[ROMA_PASS_COUNT])
+{
+    const roma_effect_render_desc *d = R->desc;
+    const roma_effect_plan *plan = &R->plan;
+    const VkDeviceAddress pixels = roma_gbuffer_pixels_address(R->gbuffer);
+    const float offset_cells = d->offset_cells > 0.0f ? d->offset_cells : ROMA_DEFAULT_OFFSET_CELLS;
+    const uint32_t spp = d->spp ? d->spp : 1, steps = d->max_steps ? d->max_steps : 8;
+    roma_result r = ROMA_SUCCESS;
+    for (int p = ROMA_PASS_AO; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p) {
+        if (!roma_effect_plan_runs(plan, (roma_pass_kind)p) || plan->pass_map[p] < 0)
+            continue;
+        const roma_map_info *m = &info[plan->pass_map[p]];
+        const float offset = offset_cells * m->trace_cell;
+        scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
+        switch ((roma_pass_kind)p) {
+        case ROMA_PASS_AO: {
+            roma_ao_pass_inputs in = {
+                .gbuffer_pixels = pixels, .width = d->width, .height = d->height,
+                .maps_address = m->maps_address, .params_address = m->params_address, .offset = offset,
+                .radius = d->ao_radius, .spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].address,
+            };
+            r = roma_ao_pass_record(R->ao, cmd, &in);
+            break;
+        }
+        case ROMA_PASS_PUNCTUAL_LIGHTS: {
+            roma_punctual_push push = {
+                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .lights = R->lights.lights.address, .accum = R->accum[p].address,
+                .config = {d->width, d->height, R->lights.light_count, steps}, .ray = {offset, 0, 0, 0},
+            };
+            r = roma_pixel_pass_record(&R->punctual, cmd, d->width, d->height, &push);
+            break;
+        }
+        case ROMA_PASS_SOFT_SHADOWS: {
+            roma_soft_shadows_push push = {
+                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
+                .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
+                .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, 0, 0, 0},
+            };
+            r = roma_pixel_pass_record(&R->soft, cmd, d->width, d->height, &push);
+            break;
+        }
+        case ROMA_PASS_MANY_LIGHTS: {
+            uint32_t n = R->lights.position_count;
+            uint32_t tested = d->lights_per_frame && d->lights_per_frame < n ? d->lights_per_frame : n;
+            int last = f + 1 == (d->frames ? d->frames : 1);
+            roma_many_lights_push push = {
+                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .positions = R->lights.positions.address, .accum = R->accum[p].address,
+                .mask = last ? R->mask.address : 0, .config = {d->width, d->height, n, steps},
+                .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, 0, 0, 0},
+            };
+            r = roma_pixel_pass_record(&R->many, cmd, d->width, d->height, &push);
+            break;
+        }
+        default:
+            break;
+        }
+        roma_gpu_timer_end(R->timer, cmd, scopes[p]);
+    }
+    return r;
+}
+
+static roma_result run_frames(renderer *R, roma_effect_stats *stats)
+{
+    roma_context *ctx = R->ctx;
+    const roma_effect_render_desc *d = R->desc;
+    const uint32_t frames = d->frames ? d->frames : 1;
+    roma_gbuffer_inputs gin = {
+        .positions = R->geometry.positions.address, .normals = R->geometry.normals.address,
+        .indices = R->geometry.indices.address, .albedo = R->geometry.albedo.address,
+        .triangle_count = R->geometry.triangle_count, .camera = d->camera, .previous_camera = d->camera,
+        .near_plane = R->near_plane,
+    };
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t f = 0; f < frames && r == ROMA_SUCCESS; ++f) {
+        /* Every array the plan needs, once per frame, each with new jitter. */
+        roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1};
+        for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
+            r = roma_map_build(R->maps[i], &frame, R->timer);
+            if (r == ROMA_SUCCESS)
+                r = roma_map_get_info(R->maps[i], &stats->map_info[i]);
+            stats->build_ms[i] += scope_ms(R->timer, "bom") + scope_ms(R->timer, "rotate");
+        }
+        VkCommandBuffer cmd;
+        if (r == ROMA_SUCCESS)
+            r = roma_begin_one_shot(ctx, &cmd);
+        if (r != ROMA_SUCCESS)
+            break;
+        roma_gpu_timer_reset(R->timer, cmd);
+        uint32_t scopes[ROMA_PASS_COUNT];
+        if (f == 0) {
+            /* The camera stands still: primary visibility once. */
+            scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
+            r = roma_gbuffer_record(R->gbuffer, cmd, &gin);
+            roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
+            for (int p = 0; p < ROMA_PASS_COUNT; ++p)
+                if (R->accum[p].buffer)
+                    vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
+        }
+        if (r == ROMA_SUCCESS)
+            r = record_passes(R, cmd, f, stats->map_info, scopes);
+        roma_result sr = roma_submit_one_shot(ctx, cmd);
+        if (r == ROMA_SUCCESS)
+            r = sr;
+        for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
+            if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p))
+                stats->pass_ms[p] += scope_ms(R->timer, roma_pass_name((roma_pass_kind)p));
+    }
+    return r;
+}
+
+/* Host resolve of the accumulated sums into images. */
+static roma_result resolve(renderer *R, const roma_gbuffer_pixel *px, roma_effect_images *out)
+{
+    const roma_effect_render_desc *d = R->desc;
+    const size_t n = (size_t)d->width * d->height;
+    const double frames = d->frames ? d->frames : 1, spp = d->spp ? d->spp : 1;
+    const uint32_t effects = R->plan.effects;
+    roma_result r = roma_image_alloc(&out->coverage, d->width, d->height, 1);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_AO))
+        r = roma_image_alloc(&out->ao, d->width, d->height, 1);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_DIRECT))
+        r = roma_image_alloc(&out->direct, d->width, d->height, 3);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_GI))
+        r = roma_image_alloc(&out->gi, d->width, d->height, 3);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_LIGHTS))
+        r = roma_image_alloc(&out->lights, d->width, d->height, 1);
+    for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
+        if (R->accum[p].buffer)
+            r = roma_buffer_invalidate(R->ctx, &R->accum[p]);
+    if (r == ROMA_SUCCESS && R->mask.buffer)
+        r = roma_buffer_invalidate(R->ctx, &R->mask);
+    if (r != ROMA_SUCCESS)
+        return r;
+    const uint32_t *ao = R->accum[ROMA_PASS_AO].mapped;
+    const float *punctual = R->accum[ROMA_PASS_PUNCTUAL_LIGHTS].mapped;
+    const float *soft = R->accum[ROMA_PASS_SOFT_SHADOWS].mapped;
+    const uint32_t *many = R->accum[ROMA_PASS_MANY_LIGHTS].mapped;
+    for (size_t i = 0; i < n; ++i) {
+        const int covered = px && isfinite(px[i].position_t[3]);
+        out->coverage.pixels[i] = covered ? 1.0f : 0.0f;
+        if (out->ao.pixels)
+            out->ao.pixels[i] = covered && ao ? (float)(ao[i] / (spp * frames)) : 1.0f;
+        if (!covered)
+            continue;
+        if (out->direct.pixels)
+            for (int c = 0; c < 3; ++c) {
+                double E = (punctual ? punctual[4 * i + c] / frames : 0.0) +
+                           (soft ? soft[4 * i + c] / (spp * frames) : 0.0);
+                out->direct.pixels[3 * i + c] = (float)(px[i].albedo[c] / PI_F * E);
+            }
+        if (out->lights.pixels && many && many[2 * i + 1])
+            out->lights.pixels[i] = (float)((double)many[2 * i] / many[2 * i + 1] * R->plan.many_light_count);
+    }
+    if (d->out_light_mask && R->mask.mapped)
+        memcpy(d->out_light_mask, R->mask.mapped, n * R->mask_words * sizeof(uint32_t));
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const roma_effect_render_desc *desc,
+                               roma_effect_images *out_images, roma_effect_stats *out_stats)
+{
+    if (out_images)
+        memset(out_images, 0, sizeof *out_images);
+    if (out_stats)
+        memset(out_stats, 0, sizeof *out_stats);
+    if (!ctx || !scene || !desc || !out_images || !out_stats)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    const roma_logger *log = &ctx->logger;
+    roma_camera_frame cf;
+    if (desc->width == 0 || desc->height == 0 || desc->width > 16384 || desc->height > 16384 ||
+        !roma_camera_make_frame(&desc->camera, desc->width, desc->height, &cf))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad image size %ux%u or camera",
+                         desc->width, desc->height);
+    if (!(desc->offset_cells >= 0.0f) || !isfinite(desc->offset_cells) || isnan(desc->ao_radius))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset or AO radius");
+    roma_effect_stats *stats = out_stats;
+    roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);
+    if (r != ROMA_SUCCESS)
+        return r;
+    if (roma_effect_plan_runs(&stats->plan, ROMA_PASS_GI))
+        return roma_fail(log, ROMA_ERROR_UNSUPPORTED,
+                         "roma_effect_render: one-bounce GI (reflective shadow maps) is not implemented on ROMA yet");
+    if (roma_effect_plan_runs(&stats->plan, ROMA_PASS_MANY_LIGHTS) && !desc->many_light_positions)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: many-light positions missing");
+
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    renderer R = {.ctx = ctx, .desc = desc, .plan = stats->plan};
+    float diag = 0.0f;
+    for (int k = 0; k < 3; ++k)
+        diag += (v.bounds_max[k] - v.bounds_min[k]) * (v.bounds_max[k] - v.bounds_min[k]);
+    R.near_plane = 1e-4f * sqrtf(diag);
+    roma_gbuffer_pixel *px = NULL;
+    const size_t n = (size_t)desc->width * desc->height;
+    if (stats->plan.passes) {
+        px = desc->out_gbuffer ? desc->out_gbuffer : malloc(n * sizeof *px);
+        if (!px)
+            return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_effect_render: out of memory");
+        r = create_resources(&R, scene);
+        if (r == ROMA_SUCCESS)
+            r = run_frames(&R, stats);
+        if (r == ROMA_SUCCESS)
+            r = roma_gbuffer_download(R.gbuffer, px);
+    }
+    if (r == ROMA_SUCCESS)
+        r = resolve(&R, px, out_images);
+    for (int p = 0; p < ROMA_PASS_COUNT; ++p)
+        stats->pass_bytes[p] = R.accum[p].size;
+    if (R.mask.buffer)
+        stats->pass_bytes[ROMA_PASS_MANY_LIGHTS] += R.mask.size;
+    if (R.gbuffer)
+        stats->pass_bytes[ROMA_PASS_GBUFFER] = n * sizeof(roma_gbuffer_pixel);
+    destroy_resources(&R);
+    if (px != desc->out_gbuffer)
+        free(px);
+    if (r != ROMA_SUCCESS)
+        roma_effect_images_free(out_images);
+    return r;
+}
+
+void roma_effect_images_free(roma_effect_images *images)
+{
+    if (!images)
+        return;
+    roma_image_free(&images->ao);
+    roma_image_free(&images->direct);
+    roma_image_free(&images->gi);
+    roma_image_free(&images->lights);
+    roma_image_free(&images->coverage);
+}

@@ -1,0 +1,62 @@
+/* Renders the effects of a scene with ROMA over a number of frames from a
+ * still camera and returns converged images (internal; used by roma-render,
+ * the tests and the benchmark). Runs only the passes of the effect plan
+ * (roma/effects.h): G-buffer once, then per frame every ROMA array the plan
+ * needs is rebuilt with new grid and direction jitter and every planned pass
+ * adds its estimates to its accumulation buffer; images are resolved on the
+ * host at the end.
+ *
+ * Samples: frame f uses sample indices f * spp .. f * spp + spp - 1 with the
+ * reference's random dimensions (src/reference/reference.h), so the Embree
+ * reference at spp * frames samples draws the same directions and light points.
+ * Shadow rays start offset_cells trace cells along the geometric normal and
+ * stop the same distance short of their target. */
+#ifndef ROMA_PASSES_EFFECT_RENDER_H
+#define ROMA_PASSES_EFFECT_RENDER_H
+
+#include "roma/camera.h"
+#include "roma/context.h"
+#include "roma/effects.h"
+#include "roma/image.h"
+#include "roma/map.h"
+#include "roma_shared.h"
+
+typedef struct roma_effect_render_desc {
+    roma_camera camera;
+    uint32_t width, height;
+    roma_effect_options options;       /* effects, RES, A per pass, many-light count */
+    uint32_t spp;                      /* per frame, AO and area lights; 0 = 1 */
+    uint32_t frames;                   /* 0 = 1 */
+    uint32_t seed;
+    float ao_radius;                   /* <= 0: unbounded */
+    float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
+    uint32_t max_steps;                /* un-snapped shadow rays; 0 = 8 */
+    uint32_t lights_per_frame;         /* many lights tested per pixel and frame; 0 = all (exact) */
+    const float *many_light_positions; /* 3 floats per light; required for ROMA_EFFECT_LIGHTS */
+    /* Optional outputs for evaluation (caller-allocated, width * height entries):
+     * the G-buffer, and per pixel ceil(count / 32) words of many-light visibility
+     * of the last frame (exact mode only). */
+    roma_gbuffer_pixel *out_gbuffer;
+    uint32_t *out_light_mask;
+} roma_effect_render_desc;
+
+/* Same layout as the reference's images: ao 1 channel (background 1), direct and
+ * gi RGB (background 0), lights 1 channel visible-light count (background 0),
+ * coverage 1 where the G-buffer saw geometry. Effects not asked for stay zeroed. */
+typedef struct roma_effect_images {
+    roma_image ao, direct, gi, lights, coverage;
+} roma_effect_images;
+
+typedef struct roma_effect_stats {
+    roma_effect_plan plan;
+    double pass_ms[ROMA_PASS_COUNT];   /* GPU timestamps summed over frames (gbuffer: once) */
+    double build_ms[ROMA_PASS_COUNT];  /* per array in plan.maps: BOM + rotation, summed over frames */
+    roma_map_info map_info[ROMA_PASS_COUNT];
+    uint64_t pass_bytes[ROMA_PASS_COUNT]; /* GPU memory of each pass's own buffers */
+} roma_effect_stats;
+
+roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const roma_effect_render_desc *desc,
+                               roma_effect_images *out_images, roma_effect_stats *out_stats);
+void roma_effect_images_free(roma_effect_images *images);
+
+#endif /* ROMA_PASSES_EFFECT_RENDER_H */

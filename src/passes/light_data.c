@@ -1,0 +1,128 @@
+#include "passes/light_data.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "roma_shared.h"
+#include "scene/emitters.h"
+
+#define PI_F 3.14159265358979323846f
+
+static roma_result upload(roma_context *ctx, const void *data, size_t size, roma_buffer *out)
+{
+    roma_result r = roma_buffer_create(ctx, size,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                       ROMA_MEMORY_UPLOAD, out);
+    if (r == ROMA_SUCCESS)
+        memcpy(out->mapped, data, size);
+    return r;
+}
+
+/* The reference's expressions (src/reference/estimators.c), evaluated once here. */
+static int pack_light(const roma_light *l, roma_gpu_light *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!(l->intensity > 0.0f) || !(l->color[0] > 0.0f || l->color[1] > 0.0f || l->color[2] > 0.0f))
+        return 0;
+    float d[3] = {l->direction[0], l->direction[1], l->direction[2]};
+    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (l->type != ROMA_LIGHT_POINT) {
+        if (!(len > 0.0f) || !isfinite(len))
+            return 0;
+        for (int k = 0; k < 3; ++k)
+            d[k] *= 1.0f / len;
+    }
+    uint32_t type = l->type == ROMA_LIGHT_SPOT ? ROMA_GPU_LIGHT_SPOT
+                    : l->type == ROMA_LIGHT_DIRECTIONAL ? ROMA_GPU_LIGHT_DIRECTIONAL
+                                                         : ROMA_GPU_LIGHT_POINT;
+    for (int k = 0; k < 3; ++k) {
+        out->position_type[k] = l->position[k];
+        out->direction_range[k] = d[k];
+        out->color_intensity[k] = l->color[k];
+    }
+    out->position_type[3] = (float)type;
+    out->direction_range[3] = l->range;
+    out->color_intensity[3] = l->intensity;
+    if (type == ROMA_GPU_LIGHT_SPOT) {
+        float outer = l->outer_cone_angle > 0.0f ? l->outer_cone_angle : PI_F / 4.0f;
+        float cos_outer = cosf(outer), cos_inner = cosf(l->inner_cone_angle);
+        float s = 1.0f / fmaxf(0.001f, cos_inner - cos_outer);
+        out->cone[0] = s;
+        out->cone[1] = -cos_outer * s;
+    }
+    return 1;
+}
+
+roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const float *many_positions,
+                                   uint32_t many_count, roma_light_data *out)
+{
+    memset(out, 0, sizeof *out);
+    roma_scene_view v;
+    roma_result r = roma_scene_get_view(scene, &v);
+    if (r != ROMA_SUCCESS)
+        return r;
+    if (many_count && !many_positions)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "light data: many-light positions missing");
+    roma_emitter_table table;
+    r = roma_emitter_table_build(&v, &ctx->logger, &table);
+    if (r != ROMA_SUCCESS)
+        return r;
+    roma_gpu_light *lights = calloc(v.light_count ? v.light_count : 1, sizeof *lights);
+    roma_gpu_emitter *emitters = calloc(table.count ? table.count : 1, sizeof *emitters);
+    float *positions = calloc(many_count ? 4 * (size_t)many_count : 1, sizeof *positions);
+    if (!lights || !emitters || !positions) {
+        r = roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "light data: out of memory");
+        goto done;
+    }
+    for (uint32_t i = 0; i < v.light_count; ++i)
+        out->light_count += (uint32_t)pack_light(&v.lights[i], &lights[out->light_count]);
+    for (uint32_t i = 0; i < table.count; ++i) {
+        const roma_emitter *e = &table.emitters[i];
+        roma_gpu_emitter *g = &emitters[i];
+        for (int k = 0; k < 3; ++k) {
+            g->v0_pdf[k] = e->v0[k];
+            g->e1[k] = e->e1[k];
+            g->e2[k] = e->e2[k];
+            g->normal[k] = e->normal[k];
+            g->emission[k] = e->emission[k];
+        }
+        g->v0_pdf[3] = e->pdf_area;
+    }
+    for (uint32_t i = 0; i < many_count; ++i)
+        memcpy(&positions[4 * (size_t)i], &many_positions[3 * (size_t)i], 3 * sizeof(float));
+    if (out->light_count)
+        r = upload(ctx, lights, sizeof *lights * out->light_count, &out->lights);
+    if (r == ROMA_SUCCESS && table.count) {
+        r = upload(ctx, emitters, sizeof *emitters * table.count, &out->emitters);
+        if (r == ROMA_SUCCESS)
+            r = upload(ctx, table.cdf, sizeof(float) * table.count, &out->cdf);
+        out->emitter_count = table.count;
+    }
+    if (r == ROMA_SUCCESS && many_count) {
+        r = upload(ctx, positions, 4 * sizeof(float) * many_count, &out->positions);
+        out->position_count = many_count;
+    }
+done:
+    if (r != ROMA_SUCCESS)
+        roma_light_data_destroy(ctx, out);
+    free(lights);
+    free(emitters);
+    free(positions);
+    roma_emitter_table_free(&table);
+    return r;
+}
+
+void roma_light_data_destroy(roma_context *ctx, roma_light_data *data)
+{
+    roma_buffer_destroy(ctx, &data->lights);
+    roma_buffer_destroy(ctx, &data->emitters);
+    roma_buffer_destroy(ctx, &data->cdf);
+    roma_buffer_destroy(ctx, &data->positions);
+    memset(data, 0, sizeof *data);
+}
+
+uint64_t roma_light_data_bytes(const roma_light_data *data)
+{
+    return data->lights.size + data->emitters.size + data->cdf.size + data->positions.size;
+}

@@ -1,0 +1,25 @@
+/* The lights of a scene on the GPU, in the layouts of roma_shared.h: punctual
+ * lights (roma_gpu_light), area-light triangles with their sampling CDF
+ * (roma_gpu_emitter, scene/emitters.h) and the positions of the many-lights
+ * effect. Lights that cast nothing (zero intensity or colour) are left out. */
+#ifndef ROMA_PASSES_LIGHT_DATA_H
+#define ROMA_PASSES_LIGHT_DATA_H
+
+#include "roma/scene.h"
+#include "vulkan/vk_internal.h"
+
+typedef struct roma_light_data {
+    roma_buffer lights, emitters, cdf, positions; /* absent (zeroed) when their count is 0 */
+    uint32_t light_count, emitter_count, position_count;
+} roma_light_data;
+
+/* many_positions: 3 floats per light, may be NULL when many_count is 0.
+ * On failure nothing stays allocated and *out is zeroed. */
+roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const float *many_positions,
+                                   uint32_t many_count, roma_light_data *out);
+void roma_light_data_destroy(roma_context *ctx, roma_light_data *data);
+
+/* Bytes of GPU memory held. */
+uint64_t roma_light_data_bytes(const roma_light_data *data);
+
+#endif /* ROMA_PASSES_LIGHT_DATA_H */

@@ -1,0 +1,51 @@
+#include "passes/pixel_pass.h"
+
+#include <string.h>
+
+#include "roma_shared.h"
+
+roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, roma_pixel_pass *out)
+{
+    memset(out, 0, sizeof *out);
+    roma_result r = roma_compute_pipeline_create(ctx, module, 0, push_size, &out->pipeline);
+    if (r != ROMA_SUCCESS)
+        return r;
+    out->ctx = ctx;
+    out->name = module;
+    out->push_size = push_size;
+    return ROMA_SUCCESS;
+}
+
+void roma_pixel_pass_destroy(roma_pixel_pass *pass)
+{
+    if (pass->ctx)
+        roma_compute_pipeline_destroy(pass->ctx, &pass->pipeline);
+    memset(pass, 0, sizeof *pass);
+}
+
+roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
+                                   const void *push)
+{
+    if (!pass->ctx || !cmd || !push)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    uint32_t gx = (width + ROMA_PIXEL_WORKGROUP_X - 1) / ROMA_PIXEL_WORKGROUP_X;
+    uint32_t gy = (height + ROMA_PIXEL_WORKGROUP_Y - 1) / ROMA_PIXEL_WORKGROUP_Y;
+    if (width == 0 || height == 0 || gx > 65535u || gy > 65535u)
+        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: image %ux%u is empty or too large",
+                         pass->name, width, height);
+    roma_cmd_memory_barrier(cmd,
+                            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                                VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
+    vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, push);
+    vkCmdDispatch(cmd, gx, gy, 1);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT |
+                                VK_PIPELINE_STAGE_2_HOST_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+    return ROMA_SUCCESS;
+}

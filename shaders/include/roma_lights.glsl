@@ -11,18 +11,18 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ro
     roma_gbuffer_pixel p[];
 };
 
-// 1 when the segment origin -> target is free. The segment stops `shorten`
-// (world units, the origin offset) before the target: a target on a surface,
-// such as an area-light sample, must not be hidden by its own cells.
+// 1 when the segment origin -> target is free between tmin and `shorten`
+// (world units) before the target: a point light next to a surface must not be
+// hidden by that surface's cells. tmin skips the cells right at the origin.
 bool roma_segment_visible(RomaParams params, RomaWords maps, vec3 origin, vec3 target, float shorten,
-                          uint max_steps)
+                          float tmin, uint max_steps)
 {
     vec3 v = target - origin;
     float d = length(v);
     float tmax = d - shorten;
-    if (!(tmax > 0.0))
+    if (!(tmax > tmin))
         return true;
-    roma_hit h = roma_trace_unsnapped(params, maps, origin, v, 0.0, tmax, false, max_steps);
+    roma_hit h = roma_trace_unsnapped(params, maps, origin, v, tmin, tmax, false, max_steps);
     return (h.info & ROMA_HIT) == 0u;
 }
 

@@ -203,7 +203,7 @@ ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_U64(accum);      /* vec4 per pixel: irradiance summed over frames, added to */
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
-    ROMA_VEC4(ray);       /* x: origin offset (world) */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_punctual_push)
 
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
@@ -215,7 +215,7 @@ ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(accum);      /* vec4 per pixel: irradiance estimates summed over samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
-    ROMA_VEC4(ray);       /* x: origin offset (world) */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_soft_shadows_push)
 
 ROMA_STRUCT_BEGIN(roma_many_lights_push)
@@ -227,7 +227,7 @@ ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
-    ROMA_VEC4(ray);       /* x: origin offset (world) */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_many_lights_push)
 
 #endif /* ROMA_SHARED_H */

@@ -36,10 +36,10 @@ void main()
             continue;
         bool visible;
         if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-            roma_hit h = roma_trace_unsnapped(params, maps, origin, l, 0.0, 1.0 / 0.0, false, max_steps);
+            roma_hit h = roma_trace_unsnapped(params, maps, origin, l, pc.ray.y, 1.0 / 0.0, false, max_steps);
             visible = (h.info & ROMA_HIT) == 0u;
         } else {
-            visible = roma_segment_visible(params, maps, origin, light.position_type.xyz, offset, max_steps);
+            visible = roma_segment_visible(params, maps, origin, light.position_type.xyz, offset, pc.ray.y, max_steps);
         }
         if (visible)
             E += f * light.color_intensity.rgb;

@@ -63,7 +63,11 @@ void main()
         float cos_x = dot(n, w), cos_y = abs(dot(e.normal.xyz, w));
         if (cos_x <= 0.0 || dot(ng, w) <= 0.0 || cos_y <= 0.0)
             continue;
-        if (!roma_segment_visible(params, maps, origin, y, offset, max_steps))
+        // The light's end is offset off the emitter like the origin is off the
+        // surface, so that segments arriving at a grazing angle do not run
+        // through the cells of the emitter or of a surface just behind it.
+        vec3 toward_p = dot(e.normal.xyz, w) < 0.0 ? e.normal.xyz : -e.normal.xyz;
+        if (!roma_segment_visible(params, maps, origin, y + toward_p * offset, 0.0, pc.ray.y, max_steps))
             continue;
         acc += e.emission.rgb * (cos_x * cos_y / (d2 * e.v0_pdf.w));
     }

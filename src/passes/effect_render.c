@@ -123,6 +123,8 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     const VkDeviceAddress pixels = roma_gbuffer_pixels_address(R->gbuffer);
     const float offset_cells = d->offset_cells > 0.0f ? d->offset_cells : ROMA_DEFAULT_OFFSET_CELLS;
     const uint32_t spp = d->spp ? d->spp : 1, steps = d->max_steps ? d->max_steps : 8;
+    const uint32_t lights_steps = d->lights_max_steps ? d->lights_max_steps : 16;
+    const float skip_cells = d->skip_cells < 0.0f ? 0.0f : d->skip_cells > 0.0f ? d->skip_cells : 1.0f;
     roma_result r = ROMA_SUCCESS;
     for (int p = ROMA_PASS_AO; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p) {
         if (!roma_effect_plan_runs(plan, (roma_pass_kind)p) || plan->pass_map[p] < 0)
@@ -144,7 +146,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_punctual_push push = {
                 .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
                 .lights = R->lights.lights.address, .accum = R->accum[p].address,
-                .config = {d->width, d->height, R->lights.light_count, steps}, .ray = {offset, 0, 0, 0},
+                .config = {d->width, d->height, R->lights.light_count, steps}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
             r = roma_pixel_pass_record(&R->punctual, cmd, d->width, d->height, &push);
             break;
@@ -154,7 +156,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
                 .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, 0, 0, 0},
+                .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
             r = roma_pixel_pass_record(&R->soft, cmd, d->width, d->height, &push);
             break;
@@ -166,8 +168,8 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_many_lights_push push = {
                 .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
                 .positions = R->lights.positions.address, .accum = R->accum[p].address,
-                .mask = last ? R->mask.address : 0, .config = {d->width, d->height, n, steps},
-                .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, 0, 0, 0},
+                .mask = last ? R->mask.address : 0, .config = {d->width, d->height, n, lights_steps},
+                .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
             r = roma_pixel_pass_record(&R->many, cmd, d->width, d->height, &push);
             break;
@@ -292,8 +294,9 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         !roma_camera_make_frame(&desc->camera, desc->width, desc->height, &cf))
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad image size %ux%u or camera",
                          desc->width, desc->height);
-    if (!(desc->offset_cells >= 0.0f) || !isfinite(desc->offset_cells) || isnan(desc->ao_radius))
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset or AO radius");
+    if (!(desc->offset_cells >= 0.0f) || !isfinite(desc->offset_cells) || isnan(desc->ao_radius) ||
+        !isfinite(desc->skip_cells))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip or AO radius");
     roma_effect_stats *stats = out_stats;
     roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);
     if (r != ROMA_SUCCESS)

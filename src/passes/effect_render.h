@@ -9,8 +9,13 @@
  * Samples: frame f uses sample indices f * spp .. f * spp + spp - 1 with the
  * reference's random dimensions (src/reference/reference.h), so the Embree
  * reference at spp * frames samples draws the same directions and light points.
- * Shadow rays start offset_cells trace cells along the geometric normal and
- * stop the same distance short of their target. */
+ * Shadow rays start offset_cells trace cells along the geometric normal, skip
+ * their first skip_cells trace cells (tmin), and end the origin offset short of
+ * a point light or the same offset off an area light's surface. Without the
+ * skip, rays leaving a point near a wall meet that wall's cells (contact
+ * over-darkening); without the offset at the light's end, rays reaching an area
+ * light at a grazing angle meet the cells of the surface it is mounted on
+ * (docs/accuracy.md has the measurements behind both). */
 #ifndef ROMA_PASSES_EFFECT_RENDER_H
 #define ROMA_PASSES_EFFECT_RENDER_H
 
@@ -30,7 +35,9 @@ typedef struct roma_effect_render_desc {
     uint32_t seed;
     float ao_radius;                   /* <= 0: unbounded */
     float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
-    uint32_t max_steps;                /* un-snapped shadow rays; 0 = 8 */
+    float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = 1, negative = none */
+    uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
+    uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t lights_per_frame;         /* many lights tested per pixel and frame; 0 = all (exact) */
     const float *many_light_positions; /* 3 floats per light; required for ROMA_EFFECT_LIGHTS */
     /* Optional outputs for evaluation (caller-allocated, width * height entries):

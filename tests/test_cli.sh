@@ -118,6 +118,33 @@ else
   fail "AO render/compare with --ao-radius 0.3 failed"
 fi
 
+# --- ROMA: every effect, and only the passes the scene calls for (stats "passes") ---
+# roma_passes SCENE: the names of the passes in the stats file, sorted, one line.
+roma_passes() {
+  local scene=$1 label=$2
+  "$render" --scene "$scene" --tracer roma --effects ao,direct,gi,lights --size 16x12 --spp 1 --frames 2 \
+    --lights 16 --quiet --out "$dir/$label" --stats "$dir/$label/stats.json" >/dev/null 2>"$dir/$label.err"
+  expect_status 0 $? "roma-render --tracer roma --scene $scene (all effects)" || { cat "$dir/$label.err" >&2; return 1; }
+  for e in ao direct gi lights; do
+    [ -s "$dir/$label/$e.pfm" ] || fail "roma-render --tracer roma --scene $scene: no $e.pfm"
+  done
+  python3 - "$dir/$label/stats.json" <<'EOF2'
+import json, sys
+s = json.load(open(sys.argv[1]))
+names = sorted(p["name"] for p in s["passes"] if p["clock"] == "gpu_timestamp")
+arrays = sorted((a["resolution"], a["angular"]) for a in s["roma_arrays"])
+print(" ".join(names), "|", " ".join("%dx%d" % a for a in arrays))
+EOF2
+}
+# cornell: area light + spot light: every pass, arrays for A = 4 and A = 8.
+got=$(roma_passes builtin:cornell roma_cornell) || fail "ROMA render of cornell failed"
+want="ao gbuffer gi many_lights punctual_lights rsm soft_shadows | 128x4 128x8"
+[ "$got" = "$want" ] || fail "cornell passes: got '$got', want '$want'"
+# plates: one area light, no punctual light: no punctual-light pass, no RSM, no GI.
+got=$(roma_passes builtin:plates roma_plates) || fail "ROMA render of plates failed"
+want="ao gbuffer many_lights soft_shadows | 128x4 128x8"
+[ "$got" = "$want" ] || fail "plates passes: got '$got', want '$want'"
+
 # --- Usage and bad input ---
 "$render" --help >"$dir/help.out" 2>&1
 expect_status 0 $? "roma-render --help"
@@ -134,8 +161,8 @@ bad_args() {
 bad_args "--size 0x0" --size 0x0
 bad_args "--effects bogus" --effects bogus
 bad_args "--tracer bogus" --tracer bogus
-# The ROMA tracer renders no direct/gi/lights (and before the ROMA core, nothing).
-bad_args "--tracer roma with all effects" --tracer roma --effects ao,direct,gi,lights
+bad_args "--shadow-angular 17" --tracer roma --shadow-angular 17
+bad_args "--max-steps 0" --tracer roma --max-steps 0
 bad_args "unknown option" --no-such-option
 bad_args "--camera with eye == target" --camera 1,2,3,1,2,3,45
 [ -e "$dir/bad" ] && fail "roma-render created its output folder despite bad arguments"

@@ -22,8 +22,8 @@ static const char *usage =
     "  --size WxH                  image size in pixels (default 640x480)\n"
     "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
     "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU\n"
-    "                              (ao, direct and lights; gi is not on ROMA yet). ROMA runs only the\n"
-    "                              passes the scene calls for (see the stats file)\n"
+    "                              (gi on ROMA: light of point and spot lights, through their RSMs).\n"
+    "                              ROMA runs only the passes the scene calls for (see the stats file)\n"
     "  --res N                     ROMA grid resolution: 32, 64, 128 or 256 (default 128)\n"
     "  --angular A                 ROMA A x A candidate directions for ao, 1..16 (default 4)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
@@ -158,11 +158,6 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (strcmp(o->tracer, "embree") != 0 && strcmp(o->tracer, "roma") != 0) {
         fprintf(stderr, "roma-render: unknown tracer '%s' (embree or roma)\n", o->tracer);
-        return 0;
-    }
-    if (strcmp(o->tracer, "roma") == 0 && (o->effects & ROMA_EFFECT_GI)) {
-        fprintf(stderr, "roma-render: --tracer roma renders ao, direct and lights; one-bounce gi is not on "
-                        "ROMA yet (use --tracer embree for it)\n");
         return 0;
     }
     return 1;
@@ -433,6 +428,8 @@ int main(int argc, char **argv)
                     status = 1;
                 if ((o.effects & ROMA_EFFECT_DIRECT) &&
                     !write_outputs(&o, "direct", &images.direct, ROMA_PNG_SRGB, 1.0f))
+                    status = 1;
+                if ((o.effects & ROMA_EFFECT_GI) && !write_outputs(&o, "gi", &images.gi, ROMA_PNG_SRGB, 1.0f))
                     status = 1;
                 if ((o.effects & ROMA_EFFECT_LIGHTS) &&
                     !write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights))

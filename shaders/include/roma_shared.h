@@ -230,4 +230,26 @@ ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_many_lights_push)
 
+/* ---- One-bounce GI (shaders/passes/gi.comp) ---- */
+
+/* One view of a reflective shadow map: a G-buffer rendered from a spot light
+ * (one view) or a point light (six cube faces). The radiance leaving a texel is
+ * derived from its position, normals and albedo and the light, so no flux is stored. */
+ROMA_STRUCT_BEGIN(roma_rsm_view)
+    roma_gbuffer_camera camera;
+    ROMA_UVEC4(info);     /* x: light index (roma_gpu_light), y: size in pixels (square), zw: pixel address */
+ROMA_STRUCT_END(roma_rsm_view)
+
+ROMA_STRUCT_BEGIN(roma_gi_push)
+    ROMA_U64(pixels);
+    ROMA_U64(maps);
+    ROMA_U64(params);
+    ROMA_U64(lights);     /* roma_gpu_light */
+    ROMA_U64(views);      /* roma_rsm_view */
+    ROMA_U64(accum);      /* vec4 per pixel: bounce radiance L(y) summed over samples, added to */
+    ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
+    ROMA_UVEC4(config2);  /* x: seed, y: view count */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units) */
+ROMA_STRUCT_END(roma_gi_push)
+
 #endif /* ROMA_SHARED_H */

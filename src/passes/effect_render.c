@@ -11,6 +11,8 @@
 #include "passes/scene_buffers.h"
 
 #define PI_F 3.14159265358979323846f
+/* Reflective shadow map views: one per spot light, six per point light. */
+#define MAX_RSM_VIEWS 48u
 
 typedef struct renderer {
     roma_context *ctx;
@@ -21,7 +23,12 @@ typedef struct renderer {
     roma_map *maps[ROMA_PASS_COUNT];
     roma_light_data lights;
     roma_ao_pass *ao;
-    roma_pixel_pass punctual, soft, many;
+    roma_pixel_pass punctual, soft, many, gi;
+    roma_gbuffer *rsm[MAX_RSM_VIEWS];
+    roma_rsm_view views[MAX_RSM_VIEWS];
+    roma_camera view_cameras[MAX_RSM_VIEWS];
+    uint32_t view_count, rsm_size;
+    roma_buffer views_buffer;
     roma_buffer accum[ROMA_PASS_COUNT];
     roma_buffer mask;
     roma_gpu_timer *timer;
@@ -39,10 +46,55 @@ static size_t accum_element(roma_pass_kind pass)
     switch (pass) {
     case ROMA_PASS_AO: return sizeof(uint32_t);
     case ROMA_PASS_PUNCTUAL_LIGHTS:
-    case ROMA_PASS_SOFT_SHADOWS: return 4 * sizeof(float);
+    case ROMA_PASS_SOFT_SHADOWS:
+    case ROMA_PASS_GI: return 4 * sizeof(float);
     case ROMA_PASS_MANY_LIGHTS: return 2 * sizeof(uint32_t);
     default: return 0;
     }
+}
+
+/* The RSM views of the packed punctual lights (light_data.h): a spot light looks
+ * along its axis with a field of view of twice its outer cone, a point light
+ * along the six axes. */
+static roma_result plan_rsm_views(renderer *R)
+{
+    static const float axes[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const roma_gpu_light *lights = R->lights.lights.mapped;
+    for (uint32_t i = 0; i < R->lights.light_count; ++i) {
+        const roma_gpu_light *l = &lights[i];
+        uint32_t type = (uint32_t)l->position_type[3];
+        if (type == ROMA_GPU_LIGHT_DIRECTIONAL)
+            continue;
+        uint32_t faces = type == ROMA_GPU_LIGHT_SPOT ? 1 : 6;
+        if (R->view_count + faces > MAX_RSM_VIEWS)
+            return roma_fail(&R->ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                             "roma_effect_render: GI supports at most %u RSM views (a spot light takes one, a point "
+                             "light six)", MAX_RSM_VIEWS);
+        for (uint32_t f = 0; f < faces; ++f) {
+            const float *d = type == ROMA_GPU_LIGHT_SPOT ? l->direction_range : axes[f];
+            float fovy = 90.0f;
+            if (type == ROMA_GPU_LIGHT_SPOT) {
+                float cos_outer = -l->cone[1] / l->cone[0];
+                fovy = fminf(fmaxf(2.0f * acosf(fminf(fmaxf(cos_outer, -1.0f), 1.0f)) * 180.0f / PI_F, 1.0f), 170.0f);
+            }
+            roma_camera *c = &R->view_cameras[R->view_count];
+            memset(c, 0, sizeof *c);
+            for (int k = 0; k < 3; ++k) {
+                c->eye[k] = l->position_type[k];
+                c->target[k] = l->position_type[k] + d[k];
+            }
+            c->up[fabsf(d[1]) > 0.99f ? 2 : 1] = 1.0f;
+            c->fovy_deg = fovy;
+            roma_rsm_view *v = &R->views[R->view_count];
+            if (!roma_gbuffer_camera_make(c, R->rsm_size, R->rsm_size, R->near_plane, &v->camera))
+                return roma_fail(&R->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: light %u has no "
+                                 "usable RSM view", i);
+            v->info[0] = i;
+            v->info[1] = R->rsm_size;
+            ++R->view_count;
+        }
+    }
+    return ROMA_SUCCESS;
 }
 
 static roma_result create_resources(renderer *R, const roma_scene *scene)
@@ -60,6 +112,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         r = roma_map_create(ctx, &md, scene, &R->maps[i]);
     }
     const int lit = roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
+                    roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM) ||
                     roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS) ||
                     roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS);
     if (r == ROMA_SUCCESS && lit)
@@ -72,6 +125,26 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         r = roma_pixel_pass_create(ctx, "soft_shadows.comp", sizeof(roma_soft_shadows_push), &R->soft);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS))
         r = roma_pixel_pass_create(ctx, "many_lights.comp", sizeof(roma_many_lights_push), &R->many);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_GI))
+        r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), &R->gi);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM)) {
+        r = plan_rsm_views(R);
+        for (uint32_t v = 0; v < R->view_count && r == ROMA_SUCCESS; ++v) {
+            r = roma_gbuffer_create(ctx, R->rsm_size, R->rsm_size, &R->rsm[v]);
+            if (r == ROMA_SUCCESS) {
+                VkDeviceAddress a = roma_gbuffer_pixels_address(R->rsm[v]);
+                R->views[v].info[2] = (uint32_t)a;
+                R->views[v].info[3] = (uint32_t)(a >> 32);
+            }
+        }
+        if (r == ROMA_SUCCESS && R->view_count) {
+            r = roma_buffer_create(ctx, sizeof(roma_rsm_view) * R->view_count,
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                   ROMA_MEMORY_UPLOAD, &R->views_buffer);
+            if (r == ROMA_SUCCESS)
+                memcpy(R->views_buffer.mapped, R->views, sizeof(roma_rsm_view) * R->view_count);
+        }
+    }
     for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
         if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p) && accum_element((roma_pass_kind)p))
             r = roma_buffer_create(ctx, pixels * accum_element((roma_pass_kind)p), ACCUM_USAGE,
@@ -95,6 +168,10 @@ static void destroy_resources(renderer *R)
     roma_pixel_pass_destroy(&R->punctual);
     roma_pixel_pass_destroy(&R->soft);
     roma_pixel_pass_destroy(&R->many);
+    roma_pixel_pass_destroy(&R->gi);
+    for (uint32_t v = 0; v < MAX_RSM_VIEWS; ++v)
+        roma_gbuffer_destroy(R->rsm[v]);
+    roma_buffer_destroy(ctx, &R->views_buffer);
     roma_ao_pass_destroy(R->ao);
     roma_light_data_destroy(ctx, &R->lights);
     roma_gpu_timer_destroy(R->timer);
@@ -174,6 +251,16 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             r = roma_pixel_pass_record(&R->many, cmd, d->width, d->height, &push);
             break;
         }
+        case ROMA_PASS_GI: {
+            roma_gi_push push = {
+                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .lights = R->lights.lights.address, .views = R->views_buffer.address,
+                .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
+                .config2 = {d->seed, R->view_count, 0, 0}, .ray = {offset, 0.0f, 2.0f * m->trace_cell, 0},
+            };
+            r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, &push);
+            break;
+        }
         default:
             break;
         }
@@ -215,6 +302,16 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
             r = roma_gbuffer_record(R->gbuffer, cmd, &gin);
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
+            /* The lights stand still too: their RSMs once. */
+            if (R->view_count)
+                scopes[ROMA_PASS_RSM] = roma_gpu_timer_begin(R->timer, cmd, "rsm");
+            for (uint32_t v = 0; v < R->view_count && r == ROMA_SUCCESS; ++v) {
+                roma_gbuffer_inputs rin = gin;
+                rin.camera = rin.previous_camera = R->view_cameras[v];
+                r = roma_gbuffer_record(R->rsm[v], cmd, &rin);
+            }
+            if (R->view_count)
+                roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_RSM]);
             for (int p = 0; p < ROMA_PASS_COUNT; ++p)
                 if (R->accum[p].buffer)
                     vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
@@ -257,6 +354,7 @@ static roma_result resolve(renderer *R, const roma_gbuffer_pixel *px, roma_effec
     const uint32_t *ao = R->accum[ROMA_PASS_AO].mapped;
     const float *punctual = R->accum[ROMA_PASS_PUNCTUAL_LIGHTS].mapped;
     const float *soft = R->accum[ROMA_PASS_SOFT_SHADOWS].mapped;
+    const float *gi = R->accum[ROMA_PASS_GI].mapped;
     const uint32_t *many = R->accum[ROMA_PASS_MANY_LIGHTS].mapped;
     for (size_t i = 0; i < n; ++i) {
         const int covered = px && isfinite(px[i].position_t[3]);
@@ -271,6 +369,9 @@ static roma_result resolve(renderer *R, const roma_gbuffer_pixel *px, roma_effec
                            (soft ? soft[4 * i + c] / (spp * frames) : 0.0);
                 out->direct.pixels[3 * i + c] = (float)(px[i].albedo[c] / PI_F * E);
             }
+        if (out->gi.pixels && gi)
+            for (int c = 0; c < 3; ++c)
+                out->gi.pixels[3 * i + c] = (float)(px[i].albedo[c] * (gi[4 * i + c] / (spp * frames)));
         if (out->lights.pixels && many && many[2 * i + 1])
             out->lights.pixels[i] = (float)((double)many[2 * i] / many[2 * i + 1] * R->plan.many_light_count);
     }
@@ -301,9 +402,6 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);
     if (r != ROMA_SUCCESS)
         return r;
-    if (roma_effect_plan_runs(&stats->plan, ROMA_PASS_GI))
-        return roma_fail(log, ROMA_ERROR_UNSUPPORTED,
-                         "roma_effect_render: one-bounce GI (reflective shadow maps) is not implemented on ROMA yet");
     if (roma_effect_plan_runs(&stats->plan, ROMA_PASS_MANY_LIGHTS) && !desc->many_light_positions)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: many-light positions missing");
 
@@ -314,6 +412,7 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     for (int k = 0; k < 3; ++k)
         diag += (v.bounds_max[k] - v.bounds_min[k]) * (v.bounds_max[k] - v.bounds_min[k]);
     R.near_plane = 1e-4f * sqrtf(diag);
+    R.rsm_size = desc->rsm_size ? desc->rsm_size : 256;
     roma_gbuffer_pixel *px = NULL;
     const size_t n = (size_t)desc->width * desc->height;
     if (stats->plan.passes) {
@@ -334,6 +433,8 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         stats->pass_bytes[ROMA_PASS_MANY_LIGHTS] += R.mask.size;
     if (R.gbuffer)
         stats->pass_bytes[ROMA_PASS_GBUFFER] = n * sizeof(roma_gbuffer_pixel);
+    stats->pass_bytes[ROMA_PASS_RSM] =
+        (uint64_t)R.view_count * R.rsm_size * R.rsm_size * sizeof(roma_gbuffer_pixel) + R.views_buffer.size;
     destroy_resources(&R);
     if (px != desc->out_gbuffer)
         free(px);

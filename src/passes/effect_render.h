@@ -38,6 +38,7 @@ typedef struct roma_effect_render_desc {
     float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = 1, negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
+    uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */
     uint32_t lights_per_frame;         /* many lights tested per pixel and frame; 0 = all (exact) */
     const float *many_light_positions; /* 3 floats per light; required for ROMA_EFFECT_LIGHTS */
     /* Optional outputs for evaluation (caller-allocated, width * height entries):

@@ -171,9 +171,8 @@ void roma_gbuffer_destroy(roma_gbuffer *g)
     free(g);
 }
 
-/* 0 for a degenerate camera. */
-static int make_camera(const roma_camera *cam, uint32_t w, uint32_t h, float near_plane,
-                       roma_gbuffer_camera *out)
+int roma_gbuffer_camera_make(const roma_camera *cam, uint32_t w, uint32_t h, float near_plane,
+                             roma_gbuffer_camera *out)
 {
     roma_camera_frame f;
     if (!roma_camera_make_frame(cam, w, h, &f))
@@ -207,8 +206,8 @@ roma_result roma_gbuffer_record(roma_gbuffer *g, VkCommandBuffer cmd, const roma
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_gbuffer_record: near_plane must be finite and > 0");
     roma_gbuffer_params params = {.dims = {g->width, g->height, in->triangle_count, 0}};
-    if (!make_camera(&in->camera, g->width, g->height, in->near_plane, &params.camera) ||
-        !make_camera(&in->previous_camera, g->width, g->height, in->near_plane, &params.previous))
+    if (!roma_gbuffer_camera_make(&in->camera, g->width, g->height, in->near_plane, &params.camera) ||
+        !roma_gbuffer_camera_make(&in->previous_camera, g->width, g->height, in->near_plane, &params.previous))
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_gbuffer_record: degenerate camera");
 
     /* Inputs written by transfers or compute made visible; WAR/WAW against the

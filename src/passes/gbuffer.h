@@ -32,6 +32,10 @@ typedef struct roma_gbuffer_inputs {
     float near_plane;
 } roma_gbuffer_inputs;
 
+/* The camera as the shaders project with it (roma_shared.h); 0 for a degenerate camera. */
+int roma_gbuffer_camera_make(const roma_camera *cam, uint32_t width, uint32_t height, float near_plane,
+                             roma_gbuffer_camera *out);
+
 /* width, height in 1..16384. */
 roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out);
 /* Accepts NULL. */

@@ -198,27 +198,12 @@ static void test_planned_passes_only(roma_context *ctx)
 }
 
 /* One-bounce GI through the spot light's RSM against the reference's indirect
- * light, on cornell without its area light: ROMA's GI carries the light of
- * point and spot lights only (the lights an RSM is rendered for). */
+ * light, on builtin cornell_spot (cornell without its area light): ROMA's GI
+ * carries the light of point and spot lights only (the lights an RSM is rendered for). */
 static void test_gi(roma_context *ctx)
 {
-    roma_scene *cornell = NULL, *scene = NULL;
-    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &cornell), ROMA_SUCCESS);
-    if (!cornell)
-        return;
-    roma_scene_view v;
-    roma_scene_get_view(cornell, &v);
-    roma_material mats[8];
-    CHECK(v.material_count <= 8);
-    memcpy(mats, v.materials, sizeof(roma_material) * v.material_count);
-    for (uint32_t m = 0; m < v.material_count; ++m)
-        mats[m].emission[0] = mats[m].emission[1] = mats[m].emission[2] = 0.0f;
-    roma_scene_desc sd = {.positions = v.positions, .vertex_count = v.vertex_count, .indices = v.indices,
-                          .triangle_count = v.triangle_count, .triangle_materials = v.triangle_materials,
-                          .materials = mats, .material_count = v.material_count, .lights = v.lights,
-                          .light_count = v.light_count, .camera = &v.camera, .name = "cornell-spot"};
-    CHECK_RESULT(roma_scene_create(&sd, &scene), ROMA_SUCCESS);
-    roma_scene_destroy(cornell);
+    roma_scene *scene = NULL;
+    CHECK_RESULT(roma_scene_create_builtin("cornell_spot", NULL, &scene), ROMA_SUCCESS);
     if (!scene)
         return;
     roma_camera cam;

@@ -159,16 +159,21 @@ static roma_result finish(builder *b, const char *name, const roma_material *mat
 
 /* Closed room, 2 wide and high (x in [-1, 1], y in [0, 2]) and 3 deep
  * (z in [-1, 2]) so that a camera inside, by the front wall, sees the back
- * wall and both blocks; ambient occlusion finds walls in every direction. */
-static roma_result cornell(const roma_logger *logger, roma_scene **out)
+ * wall and both blocks; ambient occlusion finds walls in every direction.
+ * "cornell_spot" is the same room with the ceiling quad dark, lit by the spot
+ * alone: the scene where ROMA's one-bounce GI (RSMs of point and spot lights)
+ * and the reference's carry the same light. */
+static roma_result cornell(const char *name, int area_light_on, const roma_logger *logger, roma_scene **out)
 {
     enum { WHITE, RED, GREEN, LIGHT };
-    static const roma_material materials[] = {
+    roma_material materials[] = {
         {{0.73f, 0.73f, 0.73f}, {0, 0, 0}},
         {{0.63f, 0.065f, 0.05f}, {0, 0, 0}},
         {{0.14f, 0.45f, 0.091f}, {0, 0, 0}},
         {{0.78f, 0.78f, 0.78f}, {12.0f, 10.0f, 8.0f}},
     };
+    if (!area_light_on)
+        materials[LIGHT].emission[0] = materials[LIGHT].emission[1] = materials[LIGHT].emission[2] = 0.0f;
     builder b = {0};
     rect(&b, 1, 0.0f, -1, -1, 2, 1, 0, WHITE);  /* floor */
     rect(&b, 1, 2.0f, -1, -1, 2, 1, 1, WHITE);  /* ceiling */
@@ -196,7 +201,7 @@ static roma_result cornell(const roma_logger *logger, roma_scene **out)
     spot.outer_cone_angle = 0.35f;
 
     const roma_camera camera = {{0.0f, 1.0f, 1.9f}, {0.0f, 0.8f, -1.0f}, {0.0f, 1.0f, 0.0f}, 50.0f};
-    return finish(&b, "cornell", materials, 4, &spot, 1, &camera, logger, out);
+    return finish(&b, name, materials, 4, &spot, 1, &camera, logger, out);
 }
 
 /* Hard case for voxel methods: horizontal blind slats 1 cm thick (the
@@ -255,7 +260,7 @@ static roma_result plates(const roma_logger *logger, roma_scene **out)
     return finish(&b, "plates", materials, 2, NULL, 0, &camera, logger, out);
 }
 
-static const char *const builtin_names[] = {"cornell", "blinds", "plates", NULL};
+static const char *const builtin_names[] = {"cornell", "blinds", "plates", "cornell_spot", NULL};
 
 const char *const *roma_builtin_scene_names(void)
 {
@@ -270,11 +275,13 @@ roma_result roma_scene_create_builtin(const char *name, const roma_logger *logge
         return roma_fail(logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_scene_create_builtin: out_scene must not be NULL");
     if (!name || !strcmp(name, "cornell"))
-        return cornell(logger, out_scene);
+        return cornell("cornell", 1, logger, out_scene);
+    if (!strcmp(name, "cornell_spot"))
+        return cornell("cornell_spot", 0, logger, out_scene);
     if (!strcmp(name, "blinds"))
         return blinds(logger, out_scene);
     if (!strcmp(name, "plates"))
         return plates(logger, out_scene);
     return roma_fail(logger, ROMA_ERROR_INVALID_ARGUMENT,
-                     "unknown built-in scene '%s' (have: cornell, blinds, plates)", name);
+                     "unknown built-in scene '%s' (have: cornell, blinds, plates, cornell_spot)", name);
 }

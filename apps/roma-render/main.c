@@ -241,6 +241,25 @@ static int write_outputs(const options *o, const char *name, const roma_image *i
     return 1;
 }
 
+/* coverage.pfm (1 where the primary ray hit geometry: the mask for error
+ * figures) and, when both are there, composed.pfm = direct + gi. */
+static int write_extras(const options *o, const roma_image *coverage, const roma_image *direct,
+                        const roma_image *gi)
+{
+    if (coverage->pixels && !write_outputs(o, "coverage", coverage, ROMA_PNG_SRGB, 1.0f))
+        return 0;
+    if (!direct->pixels || !gi->pixels)
+        return 1;
+    roma_image composed = {0};
+    if (roma_image_alloc(&composed, direct->width, direct->height, 3) != ROMA_SUCCESS)
+        return 0;
+    for (size_t i = 0; i < (size_t)direct->width * direct->height * 3; ++i)
+        composed.pixels[i] = direct->pixels[i] + gi->pixels[i];
+    int ok = write_outputs(o, "composed", &composed, ROMA_PNG_SRGB, 1.0f);
+    roma_image_free(&composed);
+    return ok;
+}
+
 static int write_stats(const options *o, const roma_scene_view *sv, const roma_camera *cam,
                        const run_record *run)
 {
@@ -434,10 +453,13 @@ int main(int argc, char **argv)
                 if ((o.effects & ROMA_EFFECT_LIGHTS) &&
                     !write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights))
                     status = 1;
+                if (status == 0 && !write_extras(&o, &images.coverage, &images.direct, &images.gi))
+                    status = 1;
                 roma_effect_images_free(&images);
             }
         }
     }
+    roma_image kept_coverage = {0}, kept_direct = {0}, kept_gi = {0};
     effect_output effects[4] = {{"ao", ROMA_EFFECT_AO, 0}, {"direct", ROMA_EFFECT_DIRECT, 0},
                                 {"gi", ROMA_EFFECT_GI, 0}, {"lights", ROMA_EFFECT_LIGHTS, 0}};
     for (int e = 0; e < 4 && status == 0 && !ctx; ++e) {
@@ -469,11 +491,29 @@ int main(int argc, char **argv)
             ok = write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights);
             break;
         }
+        /* Kept for the coverage mask and the composed image. */
+        if (!kept_coverage.pixels) {
+            kept_coverage = images.coverage;
+            images.coverage = (roma_image){0};
+        }
+        if (effects[e].bit == ROMA_EFFECT_DIRECT) {
+            kept_direct = images.direct;
+            images.direct = (roma_image){0};
+        }
+        if (effects[e].bit == ROMA_EFFECT_GI) {
+            kept_gi = images.gi;
+            images.gi = (roma_image){0};
+        }
         roma_ref_images_free(&images);
         if (!ok)
             status = 1;
         add_pass(&run, effects[e].name, "cpu_wall", effects[e].cpu_ms);
     }
+    if (status == 0 && !ctx && !write_extras(&o, &kept_coverage, &kept_direct, &kept_gi))
+        status = 1;
+    roma_image_free(&kept_coverage);
+    roma_image_free(&kept_direct);
+    roma_image_free(&kept_gi);
     if (status == 0 && o.stats && !write_stats(&o, &sv, &cam, &run))
         status = 1;
     roma_context_destroy(ctx);

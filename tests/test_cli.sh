@@ -55,7 +55,7 @@ common=(--scene builtin:cornell --size 32x24 --spp 2 --quiet)
 expect_status 0 $? "roma-render (all effects)" || cat "$dir/render.err" >&2
 
 expected_files=()
-for e in ao direct gi lights; do
+for e in ao direct gi lights coverage composed; do
   expected_files+=("$out/$e.pfm" "$out/$e.png")
 done
 for f in "${expected_files[@]}" "$out/stats.json"; do
@@ -63,7 +63,7 @@ for f in "${expected_files[@]}" "$out/stats.json"; do
   grep -qxF "wrote $f" "$dir/render.out" || fail "no 'wrote $f' line in the output"
 done
 wrote_count=$(grep -c '^wrote ' "$dir/render.out")
-[ "$wrote_count" -eq 9 ] || fail "expected 9 'wrote' lines, got $wrote_count"
+[ "$wrote_count" -eq 13 ] || fail "expected 13 'wrote' lines, got $wrote_count"
 
 if [ -f "$out/stats.json" ]; then
   python3 - "$out/stats.json" <<'EOF' || fail "stats JSON does not parse or lacks the expected keys"

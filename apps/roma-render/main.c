@@ -28,6 +28,8 @@ static const char *usage =
     "  --angular A                 ROMA A x A candidate directions for ao, 1..16 (default 4)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
+    "  --skip C                    ROMA shadow rays skip their first C trace cells (default 1)\n"
+    "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.5)\n"
     "  --lights-per-frame K        ROMA lights: test K random lights per pixel and frame\n"
     "                              (stochastic, accumulated) instead of all (default: all)\n"
     "  --spp N                     samples per pixel for ao, area lights and gi (default 64)\n"
@@ -50,6 +52,7 @@ typedef struct options {
     int has_camera;
     uint32_t width, height, effects, spp, frames, lights, seed, threads, res, angular;
     uint32_t shadow_angular, max_steps, lights_per_frame;
+    float skip, ao_skip; /* < 0: unset (library default) */
     float ao_radius;
     int quiet;
 } options;
@@ -104,6 +107,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->tracer = "embree";
     o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1;
     o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8, o->max_steps = 8;
+    o->skip = o->ao_skip = -1.0f;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -142,7 +146,12 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--shadow-angular") == 0) ok = parse_u32(v, 1, 16, &o->shadow_angular);
         else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps);
         else if (strcmp(a, "--lights-per-frame") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame);
-        else if (strcmp(a, "--ao-radius") == 0) {
+        else if (strcmp(a, "--skip") == 0 || strcmp(a, "--ao-skip") == 0) {
+            char *end;
+            float c = strtof(v, &end);
+            ok = end != v && !*end && c >= 0.0f && c <= 64.0f;
+            *(strcmp(a, "--skip") == 0 ? &o->skip : &o->ao_skip) = c;
+        } else if (strcmp(a, "--ao-radius") == 0) {
             char *end;
             o->ao_radius = strtof(v, &end);
             ok = end != v && !*end && o->ao_radius >= 0.0f && isfinite(o->ao_radius);
@@ -304,6 +313,15 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_number(&j, "ao_radius", o->ao_radius > 0.0f ? o->ao_radius : INFINITY);
     roma_json_int(&j, "many_lights", o->lights);
     roma_json_int(&j, "seed", o->seed);
+    if (strcmp(o->tracer, "roma") == 0) {
+        roma_json_int(&j, "resolution", o->res);
+        roma_json_int(&j, "angular", o->angular);
+        roma_json_int(&j, "shadow_angular", o->shadow_angular);
+        roma_json_int(&j, "max_steps", o->max_steps);
+        roma_json_number(&j, "skip_cells", o->skip < 0.0f ? 1.0f : o->skip);
+        roma_json_number(&j, "ao_skip_cells", o->ao_skip < 0.0f ? 1.5f : o->ao_skip);
+        roma_json_int(&j, "lights_per_frame", o->lights_per_frame ? o->lights_per_frame : o->lights);
+    }
     roma_json_begin_object(&j, "camera");
     roma_json_begin_array(&j, "eye");
     for (int i = 0; i < 3; ++i) roma_json_number(&j, NULL, cam->eye[i]);
@@ -426,6 +444,9 @@ int main(int argc, char **argv)
                             .lights_angular = o.shadow_angular, .many_light_count = o.lights},
                 .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
                 .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame,
+                /* The library takes 0 as its default and a negative value as none. */
+                .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
+                .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,
                 .many_light_positions = light_positions,
             };
             roma_effect_images images;

@@ -169,7 +169,7 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(accum);      /* width*height uint: unoccluded samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */
-    ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded) */
+    ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world) */
 ROMA_STRUCT_END(roma_ao_push)
 
 /* ---- Light passes (src/passes/effect_render.c, shaders/passes/{punctual_lights,soft_shadows,many_lights}.comp) ---- */

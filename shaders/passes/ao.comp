@@ -39,7 +39,7 @@ void main()
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
             continue;
-        roma_hit h = roma_trace_snapped(params, maps, origin, dir, 0.0, pc.ray.y, false);
+        roma_hit h = roma_trace_snapped(params, maps, origin, dir, pc.ray.z, pc.ray.y, false);
         open += (h.info & ROMA_HIT) == 0u ? 1u : 0u;
     }
     if (open != 0u)

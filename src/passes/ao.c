@@ -46,8 +46,8 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
     if (!in->gbuffer_pixels || !in->maps_address || !in->params_address || !in->accum)
         return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_pass_record: G-buffer, map and accumulation addresses are required");
-    if (!(in->offset >= 0.0f) || !isfinite(in->offset))
-        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_pass_record: invalid offset");
+    if (!(in->offset >= 0.0f) || !isfinite(in->offset) || !(in->tmin >= 0.0f) || !isfinite(in->tmin))
+        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_pass_record: invalid offset or tmin");
     if (in->spp == 0)
         return ROMA_SUCCESS;
     roma_ao_push push = {
@@ -57,7 +57,7 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         .accum = in->accum,
         .config = {in->width, in->height, in->spp, in->frame},
         .config2 = {in->seed, 0, 0, 0},
-        .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, 0.0f, 0.0f},
+        .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, 0.0f},
     };
     return roma_pixel_pass_record(&pass->pass, cmd, in->width, in->height, &push);
 }

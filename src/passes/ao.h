@@ -23,6 +23,7 @@ typedef struct roma_ao_pass_inputs {
     VkDeviceAddress params_address;
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
+    float tmin;                     /* world units skipped at the start of each ray (>= 0) */
     uint32_t spp, frame, seed;
     /* width * height uint32_t, added to; clear it (vkCmdFillBuffer) before frame 0. */
     VkDeviceAddress accum;

@@ -202,6 +202,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     const uint32_t spp = d->spp ? d->spp : 1, steps = d->max_steps ? d->max_steps : 8;
     const uint32_t lights_steps = d->lights_max_steps ? d->lights_max_steps : 16;
     const float skip_cells = d->skip_cells < 0.0f ? 0.0f : d->skip_cells > 0.0f ? d->skip_cells : 1.0f;
+    const float ao_skip = d->ao_skip_cells < 0.0f ? 0.0f : d->ao_skip_cells > 0.0f ? d->ao_skip_cells : 1.5f;
     roma_result r = ROMA_SUCCESS;
     for (int p = ROMA_PASS_AO; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p) {
         if (!roma_effect_plan_runs(plan, (roma_pass_kind)p) || plan->pass_map[p] < 0)
@@ -214,7 +215,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels, .width = d->width, .height = d->height,
                 .maps_address = m->maps_address, .params_address = m->params_address, .offset = offset,
-                .radius = d->ao_radius, .spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].address,
+                .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell,.spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].address,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
@@ -256,7 +257,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
                 .lights = R->lights.lights.address, .views = R->views_buffer.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->view_count, 0, 0}, .ray = {offset, 0.0f, 2.0f * m->trace_cell, 0},
+                .config2 = {d->seed, R->view_count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, 2.0f * m->trace_cell, 0},
             };
             r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, &push);
             break;
@@ -396,8 +397,8 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad image size %ux%u or camera",
                          desc->width, desc->height);
     if (!(desc->offset_cells >= 0.0f) || !isfinite(desc->offset_cells) || isnan(desc->ao_radius) ||
-        !isfinite(desc->skip_cells))
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip or AO radius");
+        !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) || desc->rsm_size > 4096)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
     roma_effect_stats *stats = out_stats;
     roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);
     if (r != ROMA_SUCCESS)

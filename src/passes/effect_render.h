@@ -10,7 +10,7 @@
  * reference's random dimensions (src/reference/reference.h), so the Embree
  * reference at spp * frames samples draws the same directions and light points.
  * Shadow rays start offset_cells trace cells along the geometric normal, skip
- * their first skip_cells trace cells (tmin), and end the origin offset short of
+ * their first skip_cells trace cells (tmin; AO and GI rays ao_skip_cells), and end the origin offset short of
  * a point light or the same offset off an area light's surface. Without the
  * skip, rays leaving a point near a wall meet that wall's cells (contact
  * over-darkening); without the offset at the light's end, rays reaching an area
@@ -36,6 +36,7 @@ typedef struct roma_effect_render_desc {
     float ao_radius;                   /* <= 0: unbounded */
     float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
     float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = 1, negative = none */
+    float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = 1.5, negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */

@@ -4,8 +4,8 @@
 // reference's dimensions 5 and 6, sample frame * spp + k) traced as snapped
 // closest-hit ROMA queries. The hit point is looked up in the reflective shadow
 // map of every point/spot light: when the RSM texel it projects to is the
-// surface it hit (not farther from the light than that texel by more than the
-// tolerance), that texel is lit and reflects albedo/pi * E towards the pixel.
+// surface it hit (not farther from the light than that texel, plus a tolerance),
+// that texel is lit and reflects albedo/pi * E towards the pixel.
 // Adds L(y) to accum (the resolve multiplies by the pixel's albedo and divides
 // by spp * frames: cosine sampling cancels cos/pi).
 #include "roma_camera.glsl"

@@ -257,7 +257,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
                 .lights = R->lights.lights.address, .views = R->views_buffer.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->view_count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, 2.0f * m->trace_cell, 0},
+                .config2 = {d->seed, R->view_count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
             };
             r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, &push);
             break;
@@ -397,7 +397,8 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad image size %ux%u or camera",
                          desc->width, desc->height);
     if (!(desc->offset_cells >= 0.0f) || !isfinite(desc->offset_cells) || isnan(desc->ao_radius) ||
-        !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) || desc->rsm_size > 4096)
+        !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) ||
+        !(desc->rsm_tolerance_cells >= 0.0f) || !isfinite(desc->rsm_tolerance_cells) || desc->rsm_size > 4096)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
     roma_effect_stats *stats = out_stats;
     roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);

@@ -40,6 +40,10 @@ typedef struct roma_effect_render_desc {
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */
+    /* A GI hit counts as lit when it is no farther from the light than the surface
+     * its RSM texel holds plus this many trace cells. 0 (the default) measured best:
+     * a closest hit lies on the entry face of its cell, in front of the surface. */
+    float rsm_tolerance_cells;
     uint32_t lights_per_frame;         /* many lights tested per pixel and frame; 0 = all (exact) */
     const float *many_light_positions; /* 3 floats per light; required for ROMA_EFFECT_LIGHTS */
     /* Optional outputs for evaluation (caller-allocated, width * height entries):

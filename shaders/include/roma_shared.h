@@ -252,4 +252,46 @@ ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units) */
 ROMA_STRUCT_END(roma_gi_push)
 
+/* ---- Interactive frames: resolve, temporal accumulation, a-trous filter
+ *      (shaders/passes/{resolve,temporal,atrous}.comp, src/passes/denoise.c) ---- */
+
+#define ROMA_RESOLVE_AO 0u
+#define ROMA_RESOLVE_DIRECT 1u
+#define ROMA_RESOLVE_GI 2u
+#define ROMA_RESOLVE_LIGHTS 3u
+
+/* One frame's accumulators -> a vec4 image (rgb; AO and light counts in all three). */
+ROMA_STRUCT_BEGIN(roma_resolve_push)
+    ROMA_U64(pixels);     /* roma_gbuffer_pixel */
+    ROMA_U64(a);          /* ao: uint; direct: punctual vec4 (or 0); gi: vec4; lights: uvec2 */
+    ROMA_U64(b);          /* direct: soft-shadow vec4 (or 0) */
+    ROMA_U64(dst);        /* vec4 per pixel */
+    ROMA_UVEC4(config);   /* x: width, y: height, z: ROMA_RESOLVE_*, w: many-light count */
+    ROMA_VEC4(scale);     /* x: 1 / samples per pixel of this frame */
+ROMA_STRUCT_END(roma_resolve_push)
+
+/* Exponential moving average with reprojection through the motion vectors and
+ * rejection of disoccluded history (position and normal tests). */
+ROMA_STRUCT_BEGIN(roma_temporal_push)
+    ROMA_U64(current);    /* vec4 */
+    ROMA_U64(history);    /* vec4 of the previous frame: rgb, w = frames accumulated */
+    ROMA_U64(dst);        /* vec4: the new history */
+    ROMA_U64(pixels);     /* this frame's G-buffer */
+    ROMA_U64(previous);   /* the previous frame's G-buffer */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: width, y: height, z: max frames in the history, w: 1 = history valid */
+    ROMA_VEC4(test);      /* x: position tolerance per unit of view distance, y: min cos between normals */
+ROMA_STRUCT_END(roma_temporal_push)
+
+/* One a-trous iteration (5 x 5 B3-spline taps, step apart), stopped at depth and normal edges. */
+ROMA_STRUCT_BEGIN(roma_atrous_push)
+    ROMA_U64(src);        /* vec4 */
+    ROMA_U64(dst);        /* vec4 */
+    ROMA_U64(pixels);     /* G-buffer */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: width, y: height, z: step in pixels */
+    ROMA_VEC4(edge);      /* x: position sigma per unit of view distance and pixel of step, y: normal exponent,
+                             z: value sigma in units of the expected noise (0.5 / sqrt(frames) of a [0, 1] value) */
+ROMA_STRUCT_END(roma_atrous_push)
+
 #endif /* ROMA_SHARED_H */

@@ -20,6 +20,13 @@ typedef struct renderer {
     roma_effect_plan plan;
     roma_scene_buffers geometry;
     roma_gbuffer *gbuffer;
+    /* Interactive mode (a camera path): the previous frame's G-buffer, per effect
+     * this frame's value, the history (ping-pong) and the filter's buffers. */
+    roma_gbuffer *gbuffer_previous;
+    roma_pixel_pass resolve, temporal, atrous;
+    roma_buffer current[4], history[4][2], filtered[4][2];
+    int interactive;
+    int final_filtered; /* index into filtered[e] of the last frame's result */
     roma_map *maps[ROMA_PASS_COUNT];
     roma_light_data lights;
     roma_ao_pass *ao;
@@ -97,6 +104,61 @@ static roma_result plan_rsm_views(renderer *R)
     return ROMA_SUCCESS;
 }
 
+/* Interactive mode: whether the passes of effect e (0 ao, 1 direct, 2 gi, 3
+ * lights: the order of roma_effect_images) run. */
+static int effect_traced(const renderer *R, int e)
+{
+    const roma_effect_plan *p = &R->plan;
+    switch (e) {
+    case 0: return roma_effect_plan_runs(p, ROMA_PASS_AO);
+    case 1: return roma_effect_plan_runs(p, ROMA_PASS_PUNCTUAL_LIGHTS) || roma_effect_plan_runs(p, ROMA_PASS_SOFT_SHADOWS);
+    case 2: return roma_effect_plan_runs(p, ROMA_PASS_GI);
+    default: return roma_effect_plan_runs(p, ROMA_PASS_MANY_LIGHTS);
+    }
+}
+
+static roma_result create_interactive(renderer *R)
+{
+    roma_context *ctx = R->ctx;
+    const size_t bytes = (size_t)R->desc->width * R->desc->height * 4 * sizeof(float);
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    roma_result r = roma_gbuffer_create(ctx, R->desc->width, R->desc->height, &R->gbuffer_previous);
+    if (r == ROMA_SUCCESS)
+        r = roma_pixel_pass_create(ctx, "resolve.comp", sizeof(roma_resolve_push), &R->resolve);
+    if (r == ROMA_SUCCESS)
+        r = roma_pixel_pass_create(ctx, "temporal.comp", sizeof(roma_temporal_push), &R->temporal);
+    if (r == ROMA_SUCCESS)
+        r = roma_pixel_pass_create(ctx, "atrous.comp", sizeof(roma_atrous_push), &R->atrous);
+    for (int e = 0; e < 4 && r == ROMA_SUCCESS; ++e) {
+        if (!effect_traced(R, e))
+            continue;
+        r = roma_buffer_create(ctx, bytes, usage, ROMA_MEMORY_DEVICE, &R->current[e]);
+        for (int k = 0; k < 2 && r == ROMA_SUCCESS; ++k) {
+            r = roma_buffer_create(ctx, bytes, usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE,
+                                   &R->history[e][k]);
+            if (r == ROMA_SUCCESS)
+                r = roma_buffer_create(ctx, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK,
+                                       &R->filtered[e][k]);
+        }
+    }
+    return r;
+}
+
+static void destroy_interactive(renderer *R)
+{
+    for (int e = 0; e < 4; ++e) {
+        roma_buffer_destroy(R->ctx, &R->current[e]);
+        for (int k = 0; k < 2; ++k) {
+            roma_buffer_destroy(R->ctx, &R->history[e][k]);
+            roma_buffer_destroy(R->ctx, &R->filtered[e][k]);
+        }
+    }
+    roma_pixel_pass_destroy(&R->resolve);
+    roma_pixel_pass_destroy(&R->temporal);
+    roma_pixel_pass_destroy(&R->atrous);
+    roma_gbuffer_destroy(R->gbuffer_previous);
+}
+
 static roma_result create_resources(renderer *R, const roma_scene *scene)
 {
     roma_context *ctx = R->ctx;
@@ -154,12 +216,15 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         r = roma_buffer_create(ctx, pixels * R->mask_words * sizeof(uint32_t), ACCUM_USAGE, ROMA_MEMORY_READBACK,
                                &R->mask);
     }
+    if (r == ROMA_SUCCESS && R->interactive)
+        r = create_interactive(R);
     return r;
 }
 
 static void destroy_resources(renderer *R)
 {
     roma_context *ctx = R->ctx;
+    destroy_interactive(R);
     for (int p = 0; p < ROMA_PASS_COUNT; ++p) {
         roma_buffer_destroy(ctx, &R->accum[p]);
         roma_map_destroy(R->maps[p]);
@@ -193,11 +258,10 @@ static double scope_ms(roma_gpu_timer *timer, const char *name)
 
 /* Records the planned tracing passes of frame f. */
 static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, const roma_map_info *info,
-                                 uint32_t scopes[ROMA_PASS_COUNT])
+                                 VkDeviceAddress pixels, uint32_t scopes[ROMA_PASS_COUNT])
 {
     const roma_effect_render_desc *d = R->desc;
     const roma_effect_plan *plan = &R->plan;
-    const VkDeviceAddress pixels = roma_gbuffer_pixels_address(R->gbuffer);
     const float offset_cells = d->offset_cells > 0.0f ? d->offset_cells : ROMA_DEFAULT_OFFSET_CELLS;
     const uint32_t spp = d->spp ? d->spp : 1, steps = d->max_steps ? d->max_steps : 8;
     const uint32_t lights_steps = d->lights_max_steps ? d->lights_max_steps : 16;
@@ -270,6 +334,69 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     return r;
 }
 
+/* Interactive mode, after the passes of frame f: each effect's value, the
+ * temporal accumulation into history[f % 2], and on the last frame the a-trous
+ * iterations into filtered[]. Returns the index of the final filtered buffer. */
+static roma_result record_denoise(renderer *R, VkCommandBuffer cmd, uint32_t f, int last, int *out_final)
+{
+    const roma_effect_render_desc *d = R->desc;
+    const uint32_t spp = d->spp ? d->spp : 1;
+    const roma_gbuffer *now = f % 2 ? R->gbuffer_previous : R->gbuffer;
+    const roma_gbuffer *before = f % 2 ? R->gbuffer : R->gbuffer_previous;
+    const VkDeviceAddress pixels = roma_gbuffer_pixels_address(now);
+    const uint32_t iterations = d->no_spatial_filter ? 0 : d->filter_iterations ? d->filter_iterations : 3;
+    /* Pixel footprint per unit of view distance: 2 tan(fovy / 2) / height. */
+    roma_camera_frame cf;
+    roma_camera_make_frame(&d->camera_path[f], d->width, d->height, &cf);
+    const float footprint = 2.0f * cf.tan_half_fovy / (float)d->height;
+    roma_result r = ROMA_SUCCESS;
+    *out_final = -1;
+    for (int e = 0; e < 4 && r == ROMA_SUCCESS; ++e) {
+        if (!R->current[e].buffer)
+            continue;
+        roma_resolve_push rp = {.pixels = pixels, .dst = R->current[e].address,
+                                .config = {d->width, d->height, (uint32_t)e, R->plan.many_light_count},
+                                .scale = {1.0f / (float)spp, 0, 0, 0}};
+        switch (e) {
+        case 0: rp.a = R->accum[ROMA_PASS_AO].address; break;
+        case 1: rp.a = R->accum[ROMA_PASS_PUNCTUAL_LIGHTS].address, rp.b = R->accum[ROMA_PASS_SOFT_SHADOWS].address; break;
+        case 2: rp.a = R->accum[ROMA_PASS_GI].address; break;
+        default: rp.a = R->accum[ROMA_PASS_MANY_LIGHTS].address; break;
+        }
+        r = roma_pixel_pass_record(&R->resolve, cmd, d->width, d->height, &rp);
+        roma_temporal_push tp = {
+            .current = R->current[e].address, .history = R->history[e][(f + 1) % 2].address,
+            .dst = R->history[e][f % 2].address, .pixels = pixels, .previous = roma_gbuffer_pixels_address(before),
+            .config = {d->width, d->height, d->max_history ? d->max_history : 32, f > 0 ? 1u : 0u},
+            /* A surface moved by up to 4 pixel footprints (reprojection to the nearest
+             * pixel) is the same surface; normals within about 25 degrees. */
+            .test = {4.0f * footprint, 0.9f, 0, 0},
+        };
+        if (r == ROMA_SUCCESS)
+            r = roma_pixel_pass_record(&R->temporal, cmd, d->width, d->height, &tp);
+        if (!last)
+            continue;
+        VkDeviceAddress src = R->history[e][f % 2].address;
+        int k = 0;
+        for (uint32_t it = 0; it < iterations && r == ROMA_SUCCESS; ++it, k ^= 1) {
+            roma_atrous_push ap = {.src = src, .dst = R->filtered[e][k].address, .pixels = pixels,
+                                   .config = {d->width, d->height, 1u << it, 0},
+                                   .edge = {footprint, 32.0f, d->filter_luminance_sigma > 0.0f ? d->filter_luminance_sigma : 1.0f, 0}};
+            r = roma_pixel_pass_record(&R->atrous, cmd, d->width, d->height, &ap);
+            src = R->filtered[e][k].address;
+        }
+        if (iterations == 0 && r == ROMA_SUCCESS) {
+            VkBufferCopy copy = {.size = R->history[e][f % 2].size};
+            vkCmdCopyBuffer(cmd, R->history[e][f % 2].buffer, R->filtered[e][0].buffer, 1, &copy);
+            roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+            k = 1;
+        }
+        *out_final = k ^ 1;
+    }
+    return r;
+}
+
 static roma_result run_frames(renderer *R, roma_effect_stats *stats)
 {
     roma_context *ctx = R->ctx;
@@ -298,11 +425,26 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             break;
         roma_gpu_timer_reset(R->timer, cmd);
         uint32_t scopes[ROMA_PASS_COUNT];
-        if (f == 0) {
-            /* The camera stands still: primary visibility once. */
+        roma_gbuffer *gbuffer = R->interactive && f % 2 ? R->gbuffer_previous : R->gbuffer;
+        if (R->interactive) {
+            /* A moving camera: primary visibility every frame, with the previous
+             * camera for the motion vectors, and this frame's samples only. */
+            gin.camera = d->camera_path[f];
+            gin.previous_camera = d->camera_path[f ? f - 1 : 0];
             scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
-            r = roma_gbuffer_record(R->gbuffer, cmd, &gin);
+            r = roma_gbuffer_record(gbuffer, cmd, &gin);
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
+            for (int p = 0; p < ROMA_PASS_COUNT && f > 0; ++p)
+                if (R->accum[p].buffer)
+                    vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
+        }
+        if (f == 0) {
+            if (!R->interactive) {
+                /* The camera stands still: primary visibility once. */
+                scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
+                r = roma_gbuffer_record(R->gbuffer, cmd, &gin);
+                roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
+            }
             /* The lights stand still too: their RSMs once. */
             if (R->view_count)
                 scopes[ROMA_PASS_RSM] = roma_gpu_timer_begin(R->timer, cmd, "rsm");
@@ -318,7 +460,9 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
                     vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
         }
         if (r == ROMA_SUCCESS)
-            r = record_passes(R, cmd, f, stats->map_info, scopes);
+            r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_address(gbuffer), scopes);
+        if (r == ROMA_SUCCESS && R->interactive)
+            r = record_denoise(R, cmd, f, f + 1 == frames, &R->final_filtered);
         roma_result sr = roma_submit_one_shot(ctx, cmd);
         if (r == ROMA_SUCCESS)
             r = sr;
@@ -330,6 +474,35 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
 }
 
 /* Host resolve of the accumulated sums into images. */
+/* Interactive mode: the last frame's filtered values (coverage from its G-buffer). */
+static roma_result resolve_interactive(renderer *R, const roma_gbuffer_pixel *px, roma_effect_images *out)
+{
+    const size_t n = (size_t)R->desc->width * R->desc->height;
+    roma_image *images[4] = {&out->ao, &out->direct, &out->gi, &out->lights};
+    for (size_t i = 0; i < n; ++i)
+        out->coverage.pixels[i] = px && isfinite(px[i].position_t[3]) ? 1.0f : 0.0f;
+    for (int e = 0; e < 4; ++e) {
+        if (!images[e]->pixels)
+            continue;
+        if (!R->current[e].buffer || R->final_filtered < 0) {
+            if (e == 0)
+                for (size_t i = 0; i < n; ++i)
+                    images[e]->pixels[i] = 1.0f;
+            continue; /* nothing traced: black (AO: open) */
+        }
+        const roma_buffer *b = &R->filtered[e][R->final_filtered];
+        roma_result r = roma_buffer_invalidate(R->ctx, b);
+        if (r != ROMA_SUCCESS)
+            return r;
+        const float *v = b->mapped;
+        const uint32_t c = images[e]->channels;
+        for (size_t i = 0; i < n; ++i)
+            for (uint32_t k = 0; k < c; ++k)
+                images[e]->pixels[c * i + k] = v[4 * i + k];
+    }
+    return ROMA_SUCCESS;
+}
+
 static roma_result resolve(renderer *R, const roma_gbuffer_pixel *px, roma_effect_images *out)
 {
     const roma_effect_render_desc *d = R->desc;
@@ -352,6 +525,8 @@ static roma_result resolve(renderer *R, const roma_gbuffer_pixel *px, roma_effec
         r = roma_buffer_invalidate(R->ctx, &R->mask);
     if (r != ROMA_SUCCESS)
         return r;
+    if (R->interactive)
+        return resolve_interactive(R, px, out);
     const uint32_t *ao = R->accum[ROMA_PASS_AO].mapped;
     const float *punctual = R->accum[ROMA_PASS_PUNCTUAL_LIGHTS].mapped;
     const float *soft = R->accum[ROMA_PASS_SOFT_SHADOWS].mapped;
@@ -393,13 +568,17 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     const roma_logger *log = &ctx->logger;
     roma_camera_frame cf;
     if (desc->width == 0 || desc->height == 0 || desc->width > 16384 || desc->height > 16384 ||
-        !roma_camera_make_frame(&desc->camera, desc->width, desc->height, &cf))
+        !roma_camera_make_frame(desc->camera_path ? &desc->camera_path[0] : &desc->camera, desc->width,
+                                desc->height, &cf))
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad image size %ux%u or camera",
                          desc->width, desc->height);
     if (!(desc->offset_cells >= 0.0f) || !isfinite(desc->offset_cells) || isnan(desc->ao_radius) ||
         !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) ||
         !(desc->rsm_tolerance_cells >= 0.0f) || !isfinite(desc->rsm_tolerance_cells) || desc->rsm_size > 4096)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
+    for (uint32_t f = 0; desc->camera_path && f < (desc->frames ? desc->frames : 1); ++f)
+        if (!roma_camera_make_frame(&desc->camera_path[f], desc->width, desc->height, &cf))
+            return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: camera %u of the path is degenerate", f);
     roma_effect_stats *stats = out_stats;
     roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);
     if (r != ROMA_SUCCESS)
@@ -409,7 +588,8 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
 
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    renderer R = {.ctx = ctx, .desc = desc, .plan = stats->plan};
+    renderer R = {.ctx = ctx, .desc = desc, .plan = stats->plan, .interactive = desc->camera_path != NULL,
+                  .final_filtered = -1};
     float diag = 0.0f;
     for (int k = 0; k < 3; ++k)
         diag += (v.bounds_max[k] - v.bounds_min[k]) * (v.bounds_max[k] - v.bounds_min[k]);
@@ -424,8 +604,9 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         r = create_resources(&R, scene);
         if (r == ROMA_SUCCESS)
             r = run_frames(&R, stats);
+        const uint32_t frames = desc->frames ? desc->frames : 1;
         if (r == ROMA_SUCCESS)
-            r = roma_gbuffer_download(R.gbuffer, px);
+            r = roma_gbuffer_download(R.interactive && (frames - 1) % 2 ? R.gbuffer_previous : R.gbuffer, px);
     }
     if (r == ROMA_SUCCESS)
         r = resolve(&R, px, out_images);

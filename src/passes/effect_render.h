@@ -46,6 +46,16 @@ typedef struct roma_effect_render_desc {
     float rsm_tolerance_cells;
     uint32_t lights_per_frame;         /* many lights tested per pixel and frame; 0 = all (exact) */
     const float *many_light_positions; /* 3 floats per light; required for ROMA_EFFECT_LIGHTS */
+    /* Interactive mode: one camera per frame (`camera` is then unused). The
+     * G-buffer is rendered every frame with motion vectors, each frame's samples
+     * are resolved on the GPU, accumulated over frames with reprojection and
+     * disocclusion rejection, and the last frame's history goes through an
+     * edge-aware a-trous filter; the images are that last frame. */
+    const roma_camera *camera_path;
+    uint32_t max_history;              /* frames averaged at most; 0 = 32 */
+    uint32_t filter_iterations;        /* a-trous iterations (steps 1, 2, 4, ...); 0 = 3 */
+    int no_spatial_filter;             /* 1: the accumulated history as it is */
+    float filter_luminance_sigma;      /* value edge-stopping, in noise units (see atrous.comp); 0 = 1 */
     /* Optional outputs for evaluation (caller-allocated, width * height entries):
      * the G-buffer, and per pixel ceil(count / 32) words of many-light visibility
      * of the last frame (exact mode only). */

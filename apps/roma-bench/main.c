@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "accuracy.h"
 #include "app_common.h"
 #include "reference.h"
 #include "roma/map.h"
@@ -15,12 +16,15 @@
 
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
-    "                  [--csv FILE] [--small]\n"
+    "                  [--csv FILE] [--small] [--accuracy [--ao-radius R]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
     "  (RES 128, A 4: snapped any-hit, snapped closest-hit; A 8: un-snapped 8 steps) and by\n"
-    "  Embree (rtcOccluded, rtcIntersect) on the same rays. --small: a quick smoke run.\n";
+    "  Embree (rtcOccluded, rtcIntersect) on the same rays. --small: a quick smoke run.\n"
+    "  --accuracy: instead, what accuracy costs in time: AO rendered by ROMA for every RES x A\n"
+    "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
+    "  frame and error against Embree on the same samples.\n";
 
 static double now_ms(void)
 {
@@ -114,11 +118,26 @@ static uint32_t make_ao_rays(const roma_ref *ref, const roma_scene *scene, float
     return count;
 }
 
+/* Releases everything; a validation error fails the run. */
+static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_timer *timer, int status)
+{
+    roma_gpu_timer_destroy(timer);
+    roma_ref_destroy(ref);
+    if (roma_context_validation_error_count(ctx)) {
+        fprintf(stderr, "roma-bench: %u Vulkan validation error(s)\n", roma_context_validation_error_count(ctx));
+        status = 1;
+    }
+    roma_context_destroy(ctx);
+    roma_scene_destroy(scene);
+    return status;
+}
+
 int main(int argc, char **argv)
 {
     const char *scene_arg = "builtin:cornell", *csv_path = NULL;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
-    int res_n = 3, ang_n = 3;
+    int res_n = 3, ang_n = 3, accuracy = 0, small = 0;
+    float ao_radius = 0.0f;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0) {
@@ -126,6 +145,11 @@ int main(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--small") == 0) {
             rays_n = 100000, runs = 3, res_n = parse_list("64", res_list, 4), ang_n = parse_list("2,4", ang_list, 4);
+            small = 1;
+        } else if (strcmp(a, "--accuracy") == 0) {
+            accuracy = 1;
+        } else if (v && strcmp(a, "--ao-radius") == 0) {
+            ao_radius = strtof(v, NULL), ++i;
         } else if (v && strcmp(a, "--scene") == 0) scene_arg = v, ++i;
         else if (v && strcmp(a, "--rays") == 0) rays_n = (uint32_t)strtoul(v, NULL, 10), ++i;
         else if (v && strcmp(a, "--runs") == 0) runs = (uint32_t)strtoul(v, NULL, 10), ++i;
@@ -171,6 +195,17 @@ int main(int argc, char **argv)
     FILE *csv = csv_path ? fopen(csv_path, "w") : NULL;
     if (csv)
         fprintf(csv, "kind,name,res,angular,value,unit\n");
+    if (accuracy) {
+        roma_bench_accuracy_desc ad = {
+            .width = small ? 32 : 160, .height = small ? 24 : 120, .spp = small ? 32 : 64,
+            .frames = small ? 2 : 16, .runs = small ? 1 : runs, .radius = ao_radius,
+            .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
+        };
+        int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
+        if (csv)
+            fclose(csv);
+        return finish(ctx, scene, ref, timer, status);
+    }
 
     /* Generation. */
     int cpu_device = info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
@@ -305,13 +340,5 @@ done:
     free(occ);
     roma_map_destroy(map);
     roma_map_destroy(map8);
-    roma_gpu_timer_destroy(timer);
-    roma_ref_destroy(ref);
-    if (roma_context_validation_error_count(ctx)) {
-        fprintf(stderr, "roma-bench: %u Vulkan validation error(s)\n", roma_context_validation_error_count(ctx));
-        status = 1;
-    }
-    roma_context_destroy(ctx);
-    roma_scene_destroy(scene);
-    return status;
+    return finish(ctx, scene, ref, timer, status);
 }

@@ -1,0 +1,20 @@
+#ifndef ROMA_BENCH_ACCURACY_H
+#define ROMA_BENCH_ACCURACY_H
+
+#include <stdio.h>
+
+#include "reference.h"
+#include "roma/context.h"
+
+typedef struct roma_bench_accuracy_desc {
+    uint32_t width, height, spp, frames, runs;
+    float radius;
+    const uint32_t *res, *angular;
+    int res_count, angular_count;
+} roma_bench_accuracy_desc;
+
+/* Prints the table (and CSV rows); returns 0 on success. */
+int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+                        const roma_bench_accuracy_desc *desc, FILE *csv);
+
+#endif /* ROMA_BENCH_ACCURACY_H */

@@ -5,14 +5,14 @@
 #include <string.h>
 
 #include "passes/ao.h"
+#include "passes/denoiser.h"
 #include "passes/gbuffer.h"
 #include "passes/light_data.h"
 #include "passes/pixel_pass.h"
+#include "passes/rsm_views.h"
 #include "passes/scene_buffers.h"
 
 #define PI_F 3.14159265358979323846f
-/* Reflective shadow map views: one per spot light, six per point light. */
-#define MAX_RSM_VIEWS 48u
 
 typedef struct renderer {
     roma_context *ctx;
@@ -20,21 +20,18 @@ typedef struct renderer {
     roma_effect_plan plan;
     roma_scene_buffers geometry;
     roma_gbuffer *gbuffer;
-    /* Interactive mode (a camera path): the previous frame's G-buffer, per effect
-     * this frame's value, the history (ping-pong) and the filter's buffers. */
+    /* Interactive mode (a camera path): the previous frame's G-buffer and the
+     * resolve / temporal / a-trous chain. */
     roma_gbuffer *gbuffer_previous;
-    roma_pixel_pass resolve, temporal, atrous;
-    roma_buffer current[4], history[4][2], filtered[4][2];
+    roma_denoiser denoiser;
     int interactive;
-    int final_filtered; /* index into filtered[e] of the last frame's result */
     roma_map *maps[ROMA_PASS_COUNT];
     roma_light_data lights;
     roma_ao_pass *ao;
     roma_pixel_pass punctual, soft, many, gi;
-    roma_gbuffer *rsm[MAX_RSM_VIEWS];
-    roma_rsm_view views[MAX_RSM_VIEWS];
-    roma_camera view_cameras[MAX_RSM_VIEWS];
-    uint32_t view_count, rsm_size;
+    roma_gbuffer *rsm[ROMA_MAX_RSM_VIEWS];
+    roma_rsm_views rsm_views;
+    uint32_t rsm_size;
     roma_buffer views_buffer;
     roma_buffer accum[ROMA_PASS_COUNT];
     roma_buffer mask;
@@ -60,50 +57,6 @@ static size_t accum_element(roma_pass_kind pass)
     }
 }
 
-/* The RSM views of the packed punctual lights (light_data.h): a spot light looks
- * along its axis with a field of view of twice its outer cone, a point light
- * along the six axes. */
-static roma_result plan_rsm_views(renderer *R)
-{
-    static const float axes[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    const roma_gpu_light *lights = R->lights.lights.mapped;
-    for (uint32_t i = 0; i < R->lights.light_count; ++i) {
-        const roma_gpu_light *l = &lights[i];
-        uint32_t type = (uint32_t)l->position_type[3];
-        if (type == ROMA_GPU_LIGHT_DIRECTIONAL)
-            continue;
-        uint32_t faces = type == ROMA_GPU_LIGHT_SPOT ? 1 : 6;
-        if (R->view_count + faces > MAX_RSM_VIEWS)
-            return roma_fail(&R->ctx->logger, ROMA_ERROR_UNSUPPORTED,
-                             "roma_effect_render: GI supports at most %u RSM views (a spot light takes one, a point "
-                             "light six)", MAX_RSM_VIEWS);
-        for (uint32_t f = 0; f < faces; ++f) {
-            const float *d = type == ROMA_GPU_LIGHT_SPOT ? l->direction_range : axes[f];
-            float fovy = 90.0f;
-            if (type == ROMA_GPU_LIGHT_SPOT) {
-                float cos_outer = -l->cone[1] / l->cone[0];
-                fovy = fminf(fmaxf(2.0f * acosf(fminf(fmaxf(cos_outer, -1.0f), 1.0f)) * 180.0f / PI_F, 1.0f), 170.0f);
-            }
-            roma_camera *c = &R->view_cameras[R->view_count];
-            memset(c, 0, sizeof *c);
-            for (int k = 0; k < 3; ++k) {
-                c->eye[k] = l->position_type[k];
-                c->target[k] = l->position_type[k] + d[k];
-            }
-            c->up[fabsf(d[1]) > 0.99f ? 2 : 1] = 1.0f;
-            c->fovy_deg = fovy;
-            roma_rsm_view *v = &R->views[R->view_count];
-            if (!roma_gbuffer_camera_make(c, R->rsm_size, R->rsm_size, R->near_plane, &v->camera))
-                return roma_fail(&R->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: light %u has no "
-                                 "usable RSM view", i);
-            v->info[0] = i;
-            v->info[1] = R->rsm_size;
-            ++R->view_count;
-        }
-    }
-    return ROMA_SUCCESS;
-}
-
 /* Interactive mode: whether the passes of effect e (0 ao, 1 direct, 2 gi, 3
  * lights: the order of roma_effect_images) run. */
 static int effect_traced(const renderer *R, int e)
@@ -115,48 +68,6 @@ static int effect_traced(const renderer *R, int e)
     case 2: return roma_effect_plan_runs(p, ROMA_PASS_GI);
     default: return roma_effect_plan_runs(p, ROMA_PASS_MANY_LIGHTS);
     }
-}
-
-static roma_result create_interactive(renderer *R)
-{
-    roma_context *ctx = R->ctx;
-    const size_t bytes = (size_t)R->desc->width * R->desc->height * 4 * sizeof(float);
-    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-    roma_result r = roma_gbuffer_create(ctx, R->desc->width, R->desc->height, &R->gbuffer_previous);
-    if (r == ROMA_SUCCESS)
-        r = roma_pixel_pass_create(ctx, "resolve.comp", sizeof(roma_resolve_push), &R->resolve);
-    if (r == ROMA_SUCCESS)
-        r = roma_pixel_pass_create(ctx, "temporal.comp", sizeof(roma_temporal_push), &R->temporal);
-    if (r == ROMA_SUCCESS)
-        r = roma_pixel_pass_create(ctx, "atrous.comp", sizeof(roma_atrous_push), &R->atrous);
-    for (int e = 0; e < 4 && r == ROMA_SUCCESS; ++e) {
-        if (!effect_traced(R, e))
-            continue;
-        r = roma_buffer_create(ctx, bytes, usage, ROMA_MEMORY_DEVICE, &R->current[e]);
-        for (int k = 0; k < 2 && r == ROMA_SUCCESS; ++k) {
-            r = roma_buffer_create(ctx, bytes, usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE,
-                                   &R->history[e][k]);
-            if (r == ROMA_SUCCESS)
-                r = roma_buffer_create(ctx, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK,
-                                       &R->filtered[e][k]);
-        }
-    }
-    return r;
-}
-
-static void destroy_interactive(renderer *R)
-{
-    for (int e = 0; e < 4; ++e) {
-        roma_buffer_destroy(R->ctx, &R->current[e]);
-        for (int k = 0; k < 2; ++k) {
-            roma_buffer_destroy(R->ctx, &R->history[e][k]);
-            roma_buffer_destroy(R->ctx, &R->filtered[e][k]);
-        }
-    }
-    roma_pixel_pass_destroy(&R->resolve);
-    roma_pixel_pass_destroy(&R->temporal);
-    roma_pixel_pass_destroy(&R->atrous);
-    roma_gbuffer_destroy(R->gbuffer_previous);
 }
 
 static roma_result create_resources(renderer *R, const roma_scene *scene)
@@ -190,21 +101,22 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_GI))
         r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), &R->gi);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM)) {
-        r = plan_rsm_views(R);
-        for (uint32_t v = 0; v < R->view_count && r == ROMA_SUCCESS; ++v) {
+        r = roma_rsm_views_plan(R->lights.lights.mapped, R->lights.light_count, R->rsm_size, R->near_plane,
+                                &ctx->logger, &R->rsm_views);
+        for (uint32_t v = 0; v < R->rsm_views.count && r == ROMA_SUCCESS; ++v) {
             r = roma_gbuffer_create(ctx, R->rsm_size, R->rsm_size, &R->rsm[v]);
             if (r == ROMA_SUCCESS) {
                 VkDeviceAddress a = roma_gbuffer_pixels_address(R->rsm[v]);
-                R->views[v].info[2] = (uint32_t)a;
-                R->views[v].info[3] = (uint32_t)(a >> 32);
+                R->rsm_views.views[v].info[2] = (uint32_t)a;
+                R->rsm_views.views[v].info[3] = (uint32_t)(a >> 32);
             }
         }
-        if (r == ROMA_SUCCESS && R->view_count) {
-            r = roma_buffer_create(ctx, sizeof(roma_rsm_view) * R->view_count,
+        if (r == ROMA_SUCCESS && R->rsm_views.count) {
+            r = roma_buffer_create(ctx, sizeof(roma_rsm_view) * R->rsm_views.count,
                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                                    ROMA_MEMORY_UPLOAD, &R->views_buffer);
             if (r == ROMA_SUCCESS)
-                memcpy(R->views_buffer.mapped, R->views, sizeof(roma_rsm_view) * R->view_count);
+                memcpy(R->views_buffer.mapped, R->rsm_views.views, sizeof(roma_rsm_view) * R->rsm_views.count);
         }
     }
     for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
@@ -217,14 +129,21 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
                                &R->mask);
     }
     if (r == ROMA_SUCCESS && R->interactive)
-        r = create_interactive(R);
+        r = roma_gbuffer_create(ctx, R->desc->width, R->desc->height, &R->gbuffer_previous);
+    if (r == ROMA_SUCCESS && R->interactive) {
+        uint32_t mask = 0;
+        for (int e = 0; e < 4; ++e)
+            mask |= effect_traced(R, e) ? 1u << e : 0u;
+        r = roma_denoiser_create(ctx, R->desc->width, R->desc->height, mask, &R->denoiser);
+    }
     return r;
 }
 
 static void destroy_resources(renderer *R)
 {
     roma_context *ctx = R->ctx;
-    destroy_interactive(R);
+    roma_denoiser_destroy(&R->denoiser);
+    roma_gbuffer_destroy(R->gbuffer_previous);
     for (int p = 0; p < ROMA_PASS_COUNT; ++p) {
         roma_buffer_destroy(ctx, &R->accum[p]);
         roma_map_destroy(R->maps[p]);
@@ -234,7 +153,7 @@ static void destroy_resources(renderer *R)
     roma_pixel_pass_destroy(&R->soft);
     roma_pixel_pass_destroy(&R->many);
     roma_pixel_pass_destroy(&R->gi);
-    for (uint32_t v = 0; v < MAX_RSM_VIEWS; ++v)
+    for (uint32_t v = 0; v < ROMA_MAX_RSM_VIEWS; ++v)
         roma_gbuffer_destroy(R->rsm[v]);
     roma_buffer_destroy(ctx, &R->views_buffer);
     roma_ao_pass_destroy(R->ao);
@@ -321,7 +240,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
                 .lights = R->lights.lights.address, .views = R->views_buffer.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->view_count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
+                .config2 = {d->seed, R->rsm_views.count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
             };
             r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, &push);
             break;
@@ -334,67 +253,28 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     return r;
 }
 
-/* Interactive mode, after the passes of frame f: each effect's value, the
- * temporal accumulation into history[f % 2], and on the last frame the a-trous
- * iterations into filtered[]. Returns the index of the final filtered buffer. */
-static roma_result record_denoise(renderer *R, VkCommandBuffer cmd, uint32_t f, int last, int *out_final)
+/* Interactive mode, after the passes of frame f: resolve, temporal accumulation
+ * and, on the last frame, the a-trous filter. */
+static roma_result record_denoise(renderer *R, VkCommandBuffer cmd, uint32_t f, int last)
 {
     const roma_effect_render_desc *d = R->desc;
-    const uint32_t spp = d->spp ? d->spp : 1;
     const roma_gbuffer *now = f % 2 ? R->gbuffer_previous : R->gbuffer;
     const roma_gbuffer *before = f % 2 ? R->gbuffer : R->gbuffer_previous;
-    const VkDeviceAddress pixels = roma_gbuffer_pixels_address(now);
-    const uint32_t iterations = d->no_spatial_filter ? 0 : d->filter_iterations ? d->filter_iterations : 3;
-    /* Pixel footprint per unit of view distance: 2 tan(fovy / 2) / height. */
     roma_camera_frame cf;
     roma_camera_make_frame(&d->camera_path[f], d->width, d->height, &cf);
-    const float footprint = 2.0f * cf.tan_half_fovy / (float)d->height;
-    roma_result r = ROMA_SUCCESS;
-    *out_final = -1;
-    for (int e = 0; e < 4 && r == ROMA_SUCCESS; ++e) {
-        if (!R->current[e].buffer)
-            continue;
-        roma_resolve_push rp = {.pixels = pixels, .dst = R->current[e].address,
-                                .config = {d->width, d->height, (uint32_t)e, R->plan.many_light_count},
-                                .scale = {1.0f / (float)spp, 0, 0, 0}};
-        switch (e) {
-        case 0: rp.a = R->accum[ROMA_PASS_AO].address; break;
-        case 1: rp.a = R->accum[ROMA_PASS_PUNCTUAL_LIGHTS].address, rp.b = R->accum[ROMA_PASS_SOFT_SHADOWS].address; break;
-        case 2: rp.a = R->accum[ROMA_PASS_GI].address; break;
-        default: rp.a = R->accum[ROMA_PASS_MANY_LIGHTS].address; break;
-        }
-        r = roma_pixel_pass_record(&R->resolve, cmd, d->width, d->height, &rp);
-        roma_temporal_push tp = {
-            .current = R->current[e].address, .history = R->history[e][(f + 1) % 2].address,
-            .dst = R->history[e][f % 2].address, .pixels = pixels, .previous = roma_gbuffer_pixels_address(before),
-            .config = {d->width, d->height, d->max_history ? d->max_history : 32, f > 0 ? 1u : 0u},
-            /* A surface moved by up to 4 pixel footprints (reprojection to the nearest
-             * pixel) is the same surface; normals within about 25 degrees. */
-            .test = {4.0f * footprint, 0.9f, 0, 0},
-        };
-        if (r == ROMA_SUCCESS)
-            r = roma_pixel_pass_record(&R->temporal, cmd, d->width, d->height, &tp);
-        if (!last)
-            continue;
-        VkDeviceAddress src = R->history[e][f % 2].address;
-        int k = 0;
-        for (uint32_t it = 0; it < iterations && r == ROMA_SUCCESS; ++it, k ^= 1) {
-            roma_atrous_push ap = {.src = src, .dst = R->filtered[e][k].address, .pixels = pixels,
-                                   .config = {d->width, d->height, 1u << it, 0},
-                                   .edge = {footprint, 32.0f, d->filter_luminance_sigma > 0.0f ? d->filter_luminance_sigma : 1.0f, 0}};
-            r = roma_pixel_pass_record(&R->atrous, cmd, d->width, d->height, &ap);
-            src = R->filtered[e][k].address;
-        }
-        if (iterations == 0 && r == ROMA_SUCCESS) {
-            VkBufferCopy copy = {.size = R->history[e][f % 2].size};
-            vkCmdCopyBuffer(cmd, R->history[e][f % 2].buffer, R->filtered[e][0].buffer, 1, &copy);
-            roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-            k = 1;
-        }
-        *out_final = k ^ 1;
-    }
-    return r;
+    roma_denoise_inputs in = {
+        .pixels = roma_gbuffer_pixels_address(now), .previous_pixels = roma_gbuffer_pixels_address(before),
+        .accum = {{R->accum[ROMA_PASS_AO].address, 0},
+                  {R->accum[ROMA_PASS_PUNCTUAL_LIGHTS].address, R->accum[ROMA_PASS_SOFT_SHADOWS].address},
+                  {R->accum[ROMA_PASS_GI].address, 0},
+                  {R->accum[ROMA_PASS_MANY_LIGHTS].address, 0}},
+        .frame = f, .filter = last, .spp = d->spp ? d->spp : 1, .many_light_count = R->plan.many_light_count,
+        .max_history = d->max_history ? d->max_history : 32,
+        .filter_iterations = d->no_spatial_filter ? 0 : d->filter_iterations ? d->filter_iterations : 3,
+        .footprint = 2.0f * cf.tan_half_fovy / (float)d->height, /* pixel size per unit of view distance */
+        .value_sigma = d->filter_luminance_sigma > 0.0f ? d->filter_luminance_sigma : 1.0f,
+    };
+    return roma_denoiser_record(&R->denoiser, cmd, &in);
 }
 
 static roma_result run_frames(renderer *R, roma_effect_stats *stats)
@@ -446,14 +326,14 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
                 roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
             }
             /* The lights stand still too: their RSMs once. */
-            if (R->view_count)
+            if (R->rsm_views.count)
                 scopes[ROMA_PASS_RSM] = roma_gpu_timer_begin(R->timer, cmd, "rsm");
-            for (uint32_t v = 0; v < R->view_count && r == ROMA_SUCCESS; ++v) {
+            for (uint32_t v = 0; v < R->rsm_views.count && r == ROMA_SUCCESS; ++v) {
                 roma_gbuffer_inputs rin = gin;
-                rin.camera = rin.previous_camera = R->view_cameras[v];
+                rin.camera = rin.previous_camera = R->rsm_views.cameras[v];
                 r = roma_gbuffer_record(R->rsm[v], cmd, &rin);
             }
-            if (R->view_count)
+            if (R->rsm_views.count)
                 roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_RSM]);
             for (int p = 0; p < ROMA_PASS_COUNT; ++p)
                 if (R->accum[p].buffer)
@@ -462,7 +342,7 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
         if (r == ROMA_SUCCESS)
             r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_address(gbuffer), scopes);
         if (r == ROMA_SUCCESS && R->interactive)
-            r = record_denoise(R, cmd, f, f + 1 == frames, &R->final_filtered);
+            r = record_denoise(R, cmd, f, f + 1 == frames);
         roma_result sr = roma_submit_one_shot(ctx, cmd);
         if (r == ROMA_SUCCESS)
             r = sr;
@@ -484,21 +364,14 @@ static roma_result resolve_interactive(renderer *R, const roma_gbuffer_pixel *px
     for (int e = 0; e < 4; ++e) {
         if (!images[e]->pixels)
             continue;
-        if (!R->current[e].buffer || R->final_filtered < 0) {
-            if (e == 0)
-                for (size_t i = 0; i < n; ++i)
-                    images[e]->pixels[i] = 1.0f;
-            continue; /* nothing traced: black (AO: open) */
+        if (!effect_traced(R, e)) {
+            for (size_t i = 0; e == 0 && i < n; ++i)
+                images[e]->pixels[i] = 1.0f; /* nothing traced: AO open, the others black */
+            continue;
         }
-        const roma_buffer *b = &R->filtered[e][R->final_filtered];
-        roma_result r = roma_buffer_invalidate(R->ctx, b);
+        roma_result r = roma_denoiser_read(&R->denoiser, e, images[e]);
         if (r != ROMA_SUCCESS)
             return r;
-        const float *v = b->mapped;
-        const uint32_t c = images[e]->channels;
-        for (size_t i = 0; i < n; ++i)
-            for (uint32_t k = 0; k < c; ++k)
-                images[e]->pixels[c * i + k] = v[4 * i + k];
     }
     return ROMA_SUCCESS;
 }
@@ -588,8 +461,7 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
 
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    renderer R = {.ctx = ctx, .desc = desc, .plan = stats->plan, .interactive = desc->camera_path != NULL,
-                  .final_filtered = -1};
+    renderer R = {.ctx = ctx, .desc = desc, .plan = stats->plan, .interactive = desc->camera_path != NULL};
     float diag = 0.0f;
     for (int k = 0; k < 3; ++k)
         diag += (v.bounds_max[k] - v.bounds_min[k]) * (v.bounds_max[k] - v.bounds_min[k]);
@@ -617,7 +489,7 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     if (R.gbuffer)
         stats->pass_bytes[ROMA_PASS_GBUFFER] = n * sizeof(roma_gbuffer_pixel);
     stats->pass_bytes[ROMA_PASS_RSM] =
-        (uint64_t)R.view_count * R.rsm_size * R.rsm_size * sizeof(roma_gbuffer_pixel) + R.views_buffer.size;
+        (uint64_t)R.rsm_views.count * R.rsm_size * R.rsm_size * sizeof(roma_gbuffer_pixel) + R.views_buffer.size;
     destroy_resources(&R);
     if (px != desc->out_gbuffer)
         free(px);

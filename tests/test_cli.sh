@@ -46,6 +46,13 @@ fi
 
 rm -rf "$dir"
 mkdir -p "$dir" || exit 1
+# Sanitizer builds: the Vulkan tools get the preload the test programs get
+# (tests/CMakeLists.txt), through a wrapper so that bash and python3 do not.
+if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then
+  printf '#!/bin/sh\nLD_PRELOAD="%s" exec "%s" "$@"\n' "$ROMA_TOOL_PRELOAD" "$render" >"$dir/roma-render-preloaded"
+  chmod +x "$dir/roma-render-preloaded"
+  render=$dir/roma-render-preloaded
+fi
 out="$dir/cornell"
 common=(--scene builtin:cornell --size 32x24 --spp 2 --quiet)
 

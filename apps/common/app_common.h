@@ -18,6 +18,11 @@ roma_result roma_app_write_png(const roma_image *image, const char *path, roma_p
 /* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path. */
 roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene);
 
+/* Monotonic wall clock in milliseconds. */
+double roma_app_now_ms(void);
+/* Median of count values (sorts them in place); 0 for none. */
+double roma_app_median(double *values, int count);
+
 /* Creates the folder (and parents) if needed; 0 on failure. */
 int roma_app_make_dir(const char *path);
 

@@ -9,22 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "app_common.h"
 #include "passes/effect_render.h"
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                         const roma_bench_accuracy_desc *d, FILE *csv)
@@ -59,9 +46,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             double sum = 0.0, bias = 0.0;
             uint32_t covered = 0;
             for (uint32_t k = 0; k < d->runs && r == ROMA_SUCCESS; ++k) {
-                double t0 = now_ms();
+                double t0 = roma_app_now_ms();
                 r = roma_effect_render(ctx, scene, &rd, &img, &st);
-                times[k] = (now_ms() - t0) / d->frames;
+                times[k] = (roma_app_now_ms() - t0) / d->frames;
                 if (r != ROMA_SUCCESS)
                     break;
                 if (!have_ref) {
@@ -89,8 +76,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                 status = 1;
                 continue;
             }
-            qsort(times, d->runs, sizeof *times, cmp_double);
-            double ms = d->runs % 2 ? times[d->runs / 2] : 0.5 * (times[d->runs / 2 - 1] + times[d->runs / 2]);
+            double ms = roma_app_median(times, (int)d->runs);
             double mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
             printf("| %u | %u | %.1f | %.4f | %+.4f |\n", d->res[ri], d->angular[ai], ms, mae, b);
             if (csv) {

@@ -26,25 +26,6 @@ static const char *usage =
     "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
     "  frame and error against Embree on the same samples.\n";
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 static double timer_ms(roma_gpu_timer *timer, const char *name)
 {
     roma_gpu_timing t[8];
@@ -79,9 +60,9 @@ static double host_trace_ms(roma_context *ctx, roma_map *map, roma_trace_mode mo
         return NAN;
     roma_trace_desc desc = {.mode = mode, .max_steps = 8, .rays = rays, .hits = hits, .ray_count = n};
     roma_map_record_trace(map, cmd, &desc, NULL);
-    double t0 = now_ms();
+    double t0 = roma_app_now_ms();
     roma_result r = roma_submit_one_shot(ctx, cmd);
-    double ms = now_ms() - t0;
+    double ms = roma_app_now_ms() - t0;
     return r == ROMA_SUCCESS ? ms : NAN;
 }
 
@@ -223,16 +204,16 @@ int main(int argc, char **argv)
                 continue;
             for (uint32_t k = 0; k < runs; ++k) {
                 roma_map_frame_desc frame = {.frame = k, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
-                double t0 = now_ms();
+                double t0 = roma_app_now_ms();
                 roma_map_build(map, &frame, timer);
-                samples[2 * runs + k] = now_ms() - t0;
+                samples[2 * runs + k] = roma_app_now_ms() - t0;
                 samples[k] = timer_ms(timer, "bom");
                 samples[runs + k] = timer_ms(timer, "rotate");
             }
             roma_map_info mi;
             roma_map_get_info(map, &mi);
-            double bom = median(samples, (int)runs), rot = median(samples + runs, (int)runs),
-                   host = median(samples + 2 * runs, (int)runs);
+            double bom = roma_app_median(samples, (int)runs), rot = roma_app_median(samples + runs, (int)runs),
+                   host = roma_app_median(samples + 2 * runs, (int)runs);
             printf("| %u | %u | %u | %.3f | %.3f | %.2f | %.2f |\n", res_list[ri], ang_list[ai], mi.map_count, bom,
                    rot, host, mi.maps_bytes / 1048576.0);
             if (csv) {
@@ -278,14 +259,14 @@ int main(int argc, char **argv)
     double embree_ms[2];
     for (int e = 0; e < 2; ++e) {
         for (uint32_t k = 0; k < runs; ++k) {
-            double t0 = now_ms();
+            double t0 = roma_app_now_ms();
             if (e == 0)
                 roma_ref_occluded_batch(ref, n, orgs, dirs, NULL, NULL, occ);
             else
                 roma_ref_intersect_batch(ref, n, orgs, dirs, NULL, NULL, t_out);
-            samples[k] = now_ms() - t0;
+            samples[k] = roma_app_now_ms() - t0;
         }
-        embree_ms[e] = median(samples, (int)runs);
+        embree_ms[e] = roma_app_median(samples, (int)runs);
     }
     /* Rays and hits stay on the device for the timed traces. */
     roma_buffer ray_buf = {0}, hit_buf = {0};
@@ -316,7 +297,7 @@ int main(int argc, char **argv)
             samples[k] = timer_ms(timer, "trace");
             samples[runs + k] = host_trace_ms(ctx, gpu_cases[c].m, gpu_cases[c].mode, ray_buf.address, hit_buf.address, n);
         }
-        double ts = median(samples, (int)runs), host = median(samples + runs, (int)runs);
+        double ts = roma_app_median(samples, (int)runs), host = roma_app_median(samples + runs, (int)runs);
         double ms = cpu_device ? host : ts;
         double base = c == 1 ? embree_ms[1] : embree_ms[0];
         printf("| %s | %.3f | %.2f | %.2f | %.2fx (vs %s) |\n", gpu_cases[c].name, ts, host, n / ms / 1e3, base / ms,

@@ -172,13 +172,6 @@ static int parse_args(int argc, char **argv, options *o)
     return 1;
 }
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 typedef struct progress_state {
     const char *what;
     int quiet;
@@ -395,11 +388,11 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    double t0 = now_ms();
+    double t0 = roma_app_now_ms();
     roma_ref *ref = NULL;
     roma_ref_desc ref_desc = {.thread_count = o.threads};
     r = roma_ref_create(scene, &ref_desc, &ref);
-    double build_ms = now_ms() - t0;
+    double build_ms = roma_app_now_ms() - t0;
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-render: reference tracer: %s\n", roma_result_string(r));
         roma_scene_destroy(scene);
@@ -450,9 +443,9 @@ int main(int argc, char **argv)
                 .many_light_positions = light_positions,
             };
             roma_effect_images images;
-            double start = now_ms();
+            double start = roma_app_now_ms();
             r = roma_effect_render(ctx, scene, &desc, &images, &roma_stats);
-            add_pass(&run, "roma_total", "cpu_wall", now_ms() - start);
+            add_pass(&run, "roma_total", "cpu_wall", roma_app_now_ms() - start);
             if (r != ROMA_SUCCESS) {
                 fprintf(stderr, "roma-render: ROMA rendering failed: %s\n", roma_result_string(r));
                 status = 1;
@@ -495,9 +488,9 @@ int main(int argc, char **argv)
             .progress = on_progress, .progress_user_data = &progress,
         };
         roma_ref_images images;
-        double start = now_ms();
+        double start = roma_app_now_ms();
         r = roma_ref_render(ref, &desc, &images);
-        effects[e].cpu_ms = now_ms() - start;
+        effects[e].cpu_ms = roma_app_now_ms() - start;
         if (r != ROMA_SUCCESS) {
             fprintf(stderr, "roma-render: rendering %s failed: %s\n", effects[e].name, roma_result_string(r));
             status = 1;

@@ -123,7 +123,8 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p) && accum_element((roma_pass_kind)p))
             r = roma_buffer_create(ctx, pixels * accum_element((roma_pass_kind)p), ACCUM_USAGE,
                                    ROMA_MEMORY_READBACK, &R->accum[p]);
-    if (r == ROMA_SUCCESS && d->out_light_mask && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS)) {
+    const int exact_lights = !d->lights_per_frame || d->lights_per_frame >= R->plan.many_light_count;
+    if (r == ROMA_SUCCESS && d->out_light_mask && exact_lights && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS)) {
         R->mask_words = (R->plan.many_light_count + 31u) / 32u;
         r = roma_buffer_create(ctx, pixels * R->mask_words * sizeof(uint32_t), ACCUM_USAGE, ROMA_MEMORY_READBACK,
                                &R->mask);

@@ -58,7 +58,8 @@ typedef struct roma_effect_render_desc {
     float filter_luminance_sigma;      /* value edge-stopping, in noise units (see atrous.comp); 0 = 1 */
     /* Optional outputs for evaluation (caller-allocated, width * height entries):
      * the G-buffer, and per pixel ceil(count / 32) words of many-light visibility
-     * of the last frame (exact mode only). */
+     * of the last frame (exact mode only: left untouched when lights_per_frame
+     * tests fewer than all lights). */
     roma_gbuffer_pixel *out_gbuffer;
     uint32_t *out_light_mask;
 } roma_effect_render_desc;

@@ -307,38 +307,30 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
         roma_gpu_timer_reset(R->timer, cmd);
         uint32_t scopes[ROMA_PASS_COUNT];
         roma_gbuffer *gbuffer = R->interactive && f % 2 ? R->gbuffer_previous : R->gbuffer;
-        if (R->interactive) {
-            /* A moving camera: primary visibility every frame, with the previous
-             * camera for the motion vectors, and this frame's samples only. */
-            gin.camera = d->camera_path[f];
-            gin.previous_camera = d->camera_path[f ? f - 1 : 0];
+        if (R->interactive || f == 0) {
+            /* A still camera needs primary visibility once; a moving one every frame,
+             * with the previous camera for the motion vectors. */
+            if (R->interactive) {
+                gin.camera = d->camera_path[f];
+                gin.previous_camera = d->camera_path[f ? f - 1 : 0];
+            }
             scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
             r = roma_gbuffer_record(gbuffer, cmd, &gin);
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
-            for (int p = 0; p < ROMA_PASS_COUNT && f > 0; ++p)
+            /* Accumulators start at zero; the interactive mode resolves each frame alone. */
+            for (int p = 0; p < ROMA_PASS_COUNT; ++p)
                 if (R->accum[p].buffer)
                     vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
         }
-        if (f == 0) {
-            if (!R->interactive) {
-                /* The camera stands still: primary visibility once. */
-                scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
-                r = roma_gbuffer_record(R->gbuffer, cmd, &gin);
-                roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
-            }
-            /* The lights stand still too: their RSMs once. */
-            if (R->rsm_views.count)
-                scopes[ROMA_PASS_RSM] = roma_gpu_timer_begin(R->timer, cmd, "rsm");
+        if (f == 0 && R->rsm_views.count) {
+            /* The lights stand still: their RSMs once. */
+            scopes[ROMA_PASS_RSM] = roma_gpu_timer_begin(R->timer, cmd, "rsm");
             for (uint32_t v = 0; v < R->rsm_views.count && r == ROMA_SUCCESS; ++v) {
                 roma_gbuffer_inputs rin = gin;
                 rin.camera = rin.previous_camera = R->rsm_views.cameras[v];
                 r = roma_gbuffer_record(R->rsm[v], cmd, &rin);
             }
-            if (R->rsm_views.count)
-                roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_RSM]);
-            for (int p = 0; p < ROMA_PASS_COUNT; ++p)
-                if (R->accum[p].buffer)
-                    vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
+            roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_RSM]);
         }
         if (r == ROMA_SUCCESS)
             r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_address(gbuffer), scopes);

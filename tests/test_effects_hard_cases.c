@@ -19,8 +19,8 @@
 #define H 24u
 #define LIGHTS 16u
 
-/* A floor (y = 0, 4 x 4), a closed unit box standing on it and, with `glow`, an
- * emissive quad overhead plus one degenerate emissive triangle. */
+/* A floor (y = 0, 4 x 4), a closed unit box standing on it, an emissive quad
+ * overhead and one degenerate emissive triangle, with the given lights. */
 static roma_scene *make_scene(const roma_light *lights, uint32_t light_count, int flip_normals)
 {
     static const float pos[] = {

@@ -127,12 +127,17 @@ int main(void)
     const roma_light dark = {.type = ROMA_LIGHT_POINT, .position = {0.0f, 1.5f, 0.0f}, .color = {1, 1, 1}};
     const roma_light huge = {.type = ROMA_LIGHT_POINT, .position = {0.0f, 1.5f, 1.0f}, .color = {1, 1, 1},
                              .intensity = 1e30f};
+    /* Finite, but intensity / d^2 and the sums over frames overflow float unless
+     * each light's irradiance is bounded (ROMA_MAX_IRRADIANCE). */
+    const roma_light near_max = {.type = ROMA_LIGHT_POINT, .position = {1.0f, 0.001f, 0.0f},
+                                 .color = {1, 1, 1}, .intensity = 3e38f};
     run_case(ctx, "point light on the floor", &on_floor, 1, 0);
     run_case(ctx, "point light inside the box", &in_box, 1, 0);
     run_case(ctx, "grazing sun", &grazing, 1, 0);
     run_case(ctx, "spot with a zero-width cone", &thin_spot, 1, 0);
     run_case(ctx, "zero-intensity light", &dark, 1, 0);
     run_case(ctx, "light of intensity 1e30", &huge, 1, 0);
+    run_case(ctx, "3e38 cd, 1 mm above the floor", &near_max, 1, 0);
     run_case(ctx, "normals flipped, no punctual light", NULL, 0, 1);
     roma_test_context_finish(ctx);
     return roma_test_finish("test_effects_hard_cases");

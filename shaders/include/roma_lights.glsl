@@ -61,7 +61,13 @@ float roma_punctual_factor(roma_gpu_light light, vec3 p, vec3 gn, vec3 n, out ve
     float cos_n = dot(n, l);
     if (!(scale > 0.0) || cos_n <= 0.0 || dot(gn, l) <= 0.0)
         return 0.0;
-    return scale * cos_n;
+    return min(scale * cos_n, ROMA_MAX_IRRADIANCE);
+}
+
+// Irradiance of one light: factor * colour, bounded (the colour may be large too).
+vec3 roma_bounded_irradiance(float factor, vec3 color)
+{
+    return min(factor * color, vec3(ROMA_MAX_IRRADIANCE));
 }
 
 #endif // ROMA_LIGHTS_GLSL

@@ -174,6 +174,13 @@ ROMA_STRUCT_END(roma_ao_push)
 
 /* ---- Light passes (src/passes/effect_render.c, shaders/passes/{punctual_lights,soft_shadows,many_lights}.comp) ---- */
 
+/* Irradiance one light (or one area-light sample) may contribute, in W/m^2: a
+ * light of finite but enormous intensity next to a surface would otherwise
+ * overflow float to Inf. Far above anything physical, far enough below FLT_MAX
+ * that sums over 65536 lights and 2^20 frames stay finite. The reference tracer
+ * applies the same bound. */
+#define ROMA_MAX_IRRADIANCE 1e25
+
 #define ROMA_GPU_LIGHT_POINT 1u
 #define ROMA_GPU_LIGHT_SPOT 2u
 #define ROMA_GPU_LIGHT_DIRECTIONAL 3u

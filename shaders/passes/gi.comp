@@ -46,7 +46,7 @@ vec3 rsm_radiance(vec3 h)
             continue;
         vec3 l;
         float f = roma_punctual_factor(light, y.position_t.xyz, y.geometric_normal.xyz, y.shading_normal.xyz, l);
-        L += y.albedo.rgb * INV_PI * f * light.color_intensity.rgb;
+        L += y.albedo.rgb * INV_PI * roma_bounded_irradiance(f, light.color_intensity.rgb);
     }
     return L;
 }

@@ -42,7 +42,7 @@ void main()
             visible = roma_segment_visible(params, maps, origin, light.position_type.xyz, offset, pc.ray.y, max_steps);
         }
         if (visible)
-            E += f * light.color_intensity.rgb;
+            E += roma_bounded_irradiance(f, light.color_intensity.rgb);
     }
     RomaVec4Accum(pc.accum).v[pixel] += vec4(E, 0.0);
 }

@@ -69,7 +69,8 @@ void main()
         vec3 toward_p = dot(e.normal.xyz, w) < 0.0 ? e.normal.xyz : -e.normal.xyz;
         if (!roma_segment_visible(params, maps, origin, y + toward_p * offset, 0.0, pc.ray.y, max_steps))
             continue;
-        acc += e.emission.rgb * (cos_x * cos_y / (d2 * e.v0_pdf.w));
+        float g = min(cos_x * cos_y / (d2 * e.v0_pdf.w), ROMA_MAX_IRRADIANCE);
+        acc += roma_bounded_irradiance(g, e.emission.rgb);
     }
     RomaVec4Accum(pc.accum).v[pixel] += vec4(acc, 0.0);
 }

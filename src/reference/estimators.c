@@ -9,6 +9,7 @@
 
 #include "reference_internal.h"
 #include "roma/sampling.h"
+#include "roma_shared.h"
 
 enum {
     DIM_AO = 0,
@@ -79,8 +80,9 @@ static void punctual_irradiance(const roma_ref *ref, const roma_light *light, co
                       : segment_occluded(ref, origin, light->position);
     if (blocked)
         return;
+    float factor = fminf(scale * cos_n, (float)ROMA_MAX_IRRADIANCE);
     for (int k = 0; k < 3; ++k)
-        E[k] += (double)(scale * cos_n * light->color[k]);
+        E[k] += (double)fminf(factor * light->color[k], (float)ROMA_MAX_IRRADIANCE);
 }
 
 /* Irradiance at p (normal n, geometric gn): all punctual lights exactly, plus
@@ -120,9 +122,9 @@ static void irradiance(const roma_ref *ref, const float p[3], const float gn[3],
             continue;
         if (segment_occluded(ref, origin, y))
             continue;
-        float g = cos_x * cos_y / (d2 * e->pdf_area);
+        float g = fminf(cos_x * cos_y / (d2 * e->pdf_area), (float)ROMA_MAX_IRRADIANCE);
         for (int c = 0; c < 3; ++c)
-            acc[c] += (double)(e->emission[c] * g);
+            acc[c] += (double)fminf(e->emission[c] * g, (float)ROMA_MAX_IRRADIANCE);
     }
     for (int c = 0; c < 3; ++c)
         E[c] += acc[c] / (double)area_samples;

@@ -69,18 +69,44 @@ vec2 roma_hemisphere_to_square(vec3 d)
     return clamp(0.5 * (vec2(a, b) + 1.0), 0.0, 1.0);
 }
 
-// O(1) map selection: the stratum of the direction (folded to z >= 0).
-uint roma_select_map(vec3 d, uint angular, out bool folded)
+// Unit direction of any finite d, or false (zero, NaN or infinite: the ray misses).
+// Components below FLT_MIN count as zero, as GPUs may flush them; d is divided by
+// its largest component first, so the squares neither overflow nor underflow and
+// d * 2^k gives exactly the unit vector of d.
+bool roma_unit_direction(vec3 d, out vec3 unit)
 {
-    float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-    folded = d.z < 0.0;
-    if (!(len > 0.0) || isinf(len) || angular == 0u)
+    unit = vec3(0.0);
+    if (any(isnan(d)) || any(isinf(d)))
+        return false;
+    vec3 f = mix(d, vec3(0.0), lessThan(abs(d), vec3(1.17549435e-38)));
+    float m = max(max(abs(f.x), abs(f.y)), abs(f.z));
+    if (!(m > 0.0))
+        return false;
+    precise vec3 s = vec3(f.x / m, f.y / m, f.z / m);
+    precise float len = sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
+    precise float inv_len = 1.0 / len;
+    unit = s * inv_len;
+    return true;
+}
+
+// O(1) map selection for a unit direction: the stratum of it folded to z >= 0.
+uint roma_select_map_unit(vec3 unit, uint angular, out bool folded)
+{
+    folded = unit.z < 0.0;
+    if (angular == 0u)
         return 0u;
-    vec3 unit = d * ((folded ? -1.0 : 1.0) / len);
-    vec2 uv = roma_hemisphere_to_square(unit);
+    vec2 uv = roma_hemisphere_to_square(folded ? -unit : unit);
     uint sx = uint(min(uv.x * float(angular), float(angular - 1u)));
     uint sy = uint(min(uv.y * float(angular), float(angular - 1u)));
     return sy * angular + sx;
+}
+
+// Map selection for any direction; invalid ones (see roma_unit_direction) give map 0.
+uint roma_select_map(vec3 d, uint angular, out bool folded)
+{
+    vec3 unit;
+    folded = false;
+    return roma_unit_direction(d, unit) ? roma_select_map_unit(unit, angular, folded) : 0u;
 }
 
 vec3 roma_to_map_rows(vec4 r0, vec4 r1, vec4 r2, vec3 p)
@@ -143,14 +169,24 @@ int roma_first_cell(RomaWords maps, uint base, int c_lo, int c_hi, bool upward)
     return -1;
 }
 
+// A ray is traced only with a finite origin and tmin <= tmax (NaN bounds miss).
+bool roma_ray_range_valid(vec3 origin, float tmin, float tmax)
+{
+    return !(any(isnan(origin)) || any(isinf(origin))) && tmin <= tmax;
+}
+
 // Snapped query: the ray follows the candidate of its stratum (or its opposite).
 roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3 dir, float tmin,
                             float tmax, bool closest)
 {
     uint res = params.grid.dims.x, words = params.grid.dims.y;
-    bool folded;
-    uint k = roma_select_map(dir, params.grid.dims.z, folded);
+    vec3 dn;
+    bool folded = false;
+    bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
+    uint k = valid ? roma_select_map_unit(dn, params.grid.dims.z, folded) : 0u;
     roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
+    if (!valid)
+        return hit;
     // Only the fields a snapped query needs: a frame is 144 bytes.
     vec3 m = roma_to_map_rows(params.maps[k].to_map_0, params.maps[k].to_map_1, params.maps[k].to_map_2, origin);
     if (!(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
@@ -179,19 +215,21 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
                               float tmax, bool closest, uint max_steps)
 {
     uint res = params.grid.dims.x, words = params.grid.dims.y;
-    bool folded;
-    uint k = roma_select_map(dir, params.grid.dims.z, folded);
+    vec3 dn;
+    bool folded = false;
+    bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
+    uint k = valid ? roma_select_map_unit(dn, params.grid.dims.z, folded) : 0u;
     roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
-    float len = sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
-    if (!(len > 0.0) || isinf(len))
+    if (!valid)
         return hit;
     roma_map_frame f = params.maps[k];
-    precise vec3 dn = dir * (1.0 / len);
     precise vec3 dm = vec3(
         (f.to_map_0.x * dn.x + f.to_map_0.y * dn.y) + f.to_map_0.z * dn.z,
         (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
         (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
     vec3 m0 = roma_to_map(f, origin);
+    if (any(isinf(m0)))
+        return hit; // an origin so far out that its map coordinates overflow
     float fres = float(res);
     // Clip to the map's xy slab.
     float t_in = tmin, t_out = tmax;
@@ -208,10 +246,12 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
     }
     if (!(t_in <= t_out))
         return hit;
-    precise float px = m0.x + dm.x * t_in;
-    precise float py = m0.y + dm.y * t_in;
-    int ix = clamp(int(floor(px)), 0, int(res) - 1);
-    int iy = clamp(int(floor(py)), 0, int(res) - 1);
+    // t_in is infinite only when the ray runs along the map's z axis (dm.xy = 0).
+    precise float px = dm.x == 0.0 ? m0.x : m0.x + dm.x * t_in;
+    precise float py = dm.y == 0.0 ? m0.y : m0.y + dm.y * t_in;
+    // Clamped as floats: converting an out-of-range float to int is undefined.
+    int ix = int(clamp(floor(px), 0.0, fres - 1.0));
+    int iy = int(clamp(floor(py), 0.0, fres - 1.0));
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
         precise float tx = dm.x > 0.0 ? (float(ix + 1) - m0.x) / dm.x

@@ -116,21 +116,17 @@ static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame
 }
 
 static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
-                                const uint32_t *maps, const roma_ray *ray, int closest,
+                                const uint32_t *maps, const roma_ray *ray, const float dn[3], int closest,
                                 uint32_t max_steps, roma_hit hit)
 {
     const uint32_t res = grid->dims[0], words = grid->dims[1];
-    const float *d = ray->dir;
-    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if (!(len > 0.0f) || isinf(len))
-        return hit;
-    float inv_len = 1.0f / len;
-    float dn[3] = {d[0] * inv_len, d[1] * inv_len, d[2] * inv_len};
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
     float dm[3], m0[3];
     for (int a = 0; a < 3; ++a)
         dm[a] = (rows[a][0] * dn[0] + rows[a][1] * dn[1]) + rows[a][2] * dn[2];
     to_map(f, ray->origin, m0);
+    if (isinf(m0[0]) || isinf(m0[1]) || isinf(m0[2]))
+        return hit; /* an origin so far out that its map coordinates overflow */
     const float fres = (float)res;
     float t_in = ray->tmin, t_out = ray->tmax;
     for (int a = 0; a < 2; ++a) {
@@ -146,10 +142,10 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     }
     if (!(t_in <= t_out))
         return hit;
-    float px = m0[0] + dm[0] * t_in, py = m0[1] + dm[1] * t_in;
-    int ix = (int)floorf(px), iy = (int)floorf(py);
-    ix = ix < 0 ? 0 : ix > (int)res - 1 ? (int)res - 1 : ix;
-    iy = iy < 0 ? 0 : iy > (int)res - 1 ? (int)res - 1 : iy;
+    float px = dm[0] == 0.0f ? m0[0] : m0[0] + dm[0] * t_in;
+    float py = dm[1] == 0.0f ? m0[1] : m0[1] + dm[1] * t_in;
+    int ix = (int)fminf(fmaxf(floorf(px), 0.0f), fres - 1.0f);
+    int iy = (int)fminf(fmaxf(floorf(py), 0.0f), fres - 1.0f);
     float t_cur = t_in;
     for (uint32_t step = 0; step < max_steps; ++step) {
         float tx = dm[0] > 0.0f ? ((float)(ix + 1) - m0[0]) / dm[0]
@@ -190,15 +186,21 @@ roma_hit roma_cpu_trace(const roma_grid_params *grid, const roma_map_frame *fram
                         const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
                         uint32_t max_steps, int map_override, int folded_override)
 {
-    int folded;
-    uint32_t k = roma_cpu_select_map(ray->dir, grid->dims[2], &folded);
+    float unit[3];
+    const float *o = ray->origin;
+    int valid = roma_unit_direction(ray->dir, unit) && isfinite(o[0]) && isfinite(o[1]) &&
+                isfinite(o[2]) && ray->tmin <= ray->tmax;
+    int folded = 0;
+    uint32_t k = valid ? roma_unit_direction_to_map(unit, grid->dims[2], &folded) : 0;
     if (map_override >= 0) {
         k = (uint32_t)map_override;
         folded = folded_override;
     }
     roma_hit hit = {INFINITY, (k << 8) | (folded ? 0x10000u : 0u)};
+    if (!valid)
+        return hit;
     int closest = (mode & 1) != 0;
     if (mode == ROMA_TRACE_SNAPPED_ANY || mode == ROMA_TRACE_SNAPPED_CLOSEST)
         return trace_snapped(grid, &frames[k], k, folded, maps, ray, closest, hit);
-    return trace_unsnapped(grid, &frames[k], k, maps, ray, closest, max_steps ? max_steps : 8, hit);
+    return trace_unsnapped(grid, &frames[k], k, maps, ray, unit, closest, max_steps ? max_steps : 8, hit);
 }

@@ -1,5 +1,6 @@
 #include "roma/directions.h"
 
+#include <float.h>
 #include <math.h>
 
 #include "roma/sampling.h"
@@ -46,21 +47,50 @@ void roma_hemisphere_to_square(const float d[3], float *u, float *v)
     *v = fminf(fmaxf(0.5f * (b + 1.0f), 0.0f), 1.0f);
 }
 
-uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded)
+int roma_unit_direction(const float d[3], float unit[3])
 {
-    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    int fold = d[2] < 0.0f;
+    unit[0] = unit[1] = unit[2] = 0.0f;
+    float f[3];
+    for (int i = 0; i < 3; ++i) {
+        if (!isfinite(d[i]))
+            return 0;
+        f[i] = fabsf(d[i]) < FLT_MIN ? 0.0f : d[i];
+    }
+    float m = fmaxf(fmaxf(fabsf(f[0]), fabsf(f[1])), fabsf(f[2]));
+    if (!(m > 0.0f))
+        return 0;
+    float s[3] = {f[0] / m, f[1] / m, f[2] / m};
+    float len = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    float inv_len = 1.0f / len;
+    for (int i = 0; i < 3; ++i)
+        unit[i] = s[i] * inv_len;
+    return 1;
+}
+
+uint32_t roma_unit_direction_to_map(const float unit[3], uint32_t angular, int *folded)
+{
+    int fold = unit[2] < 0.0f;
     if (folded)
         *folded = fold;
-    if (!(len > 0.0f) || !isfinite(len) || angular == 0)
+    if (angular == 0)
         return 0;
-    float s = (fold ? -1.0f : 1.0f) / len;
-    float unit[3] = {d[0] * s, d[1] * s, d[2] * s};
+    float up[3] = {fold ? -unit[0] : unit[0], fold ? -unit[1] : unit[1], fold ? -unit[2] : unit[2]};
     float u, v;
-    roma_hemisphere_to_square(unit, &u, &v);
+    roma_hemisphere_to_square(up, &u, &v);
     uint32_t sx = (uint32_t)fminf(u * (float)angular, (float)(angular - 1));
     uint32_t sy = (uint32_t)fminf(v * (float)angular, (float)(angular - 1));
     return sy * angular + sx;
+}
+
+uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded)
+{
+    float unit[3];
+    if (!roma_unit_direction(d, unit)) {
+        if (folded)
+            *folded = 0;
+        return 0;
+    }
+    return roma_unit_direction_to_map(unit, angular, folded);
 }
 
 void roma_candidate_directions(uint32_t angular, uint32_t seed, uint32_t frame, int jitter,

@@ -12,8 +12,16 @@ void roma_square_to_hemisphere(float u, float v, float out_dir[3]);
 /* Inverse for unit d with d.z >= 0; (u, v) in [0,1]^2. */
 void roma_hemisphere_to_square(const float d[3], float *u, float *v);
 
-/* Map index (stratum sy * A + sx) for any direction (need not be unit); *folded
- * is 1 when d.z < 0 and -d was used. Zero or non-finite directions map to 0. */
+/* Unit vector of d, as roma_unit_direction in GLSL: components below FLT_MIN count
+ * as zero; d is divided by its largest component before the length is taken, so
+ * d * 2^k gives the same bits. Returns 0 (unit = 0) for zero, NaN or infinite d. */
+int roma_unit_direction(const float d[3], float unit[3]);
+
+/* Map index (stratum sy * A + sx) of a unit direction; *folded is 1 when
+ * unit.z < 0 and -unit was used. */
+uint32_t roma_unit_direction_to_map(const float unit[3], uint32_t angular, int *folded);
+
+/* The same for any direction; invalid ones (see above) map to 0, not folded. */
 uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded);
 
 /* A*A candidates (3 floats each), candidate k inside stratum k. jitter = 0 puts

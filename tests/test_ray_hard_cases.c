@@ -9,8 +9,8 @@
  *  2. bit ranges that start and end on word boundaries (cells 0, 31, 32, 63, ...):
  *     axis rays through plates on chosen cells agree exactly with Embree;
  *  3. a scene scaled by powers of two gives bit-identical results; scaled by 1e-3 and
- *     1e4, or moved 1e5 away from the origin, its error against Embree stays that of
- *     the unit scene;
+ *     1e4, or moved 1e4 to 1e6 away from the origin, its error against Embree stays
+ *     that of the unit scene (plus what rounding its vertices to float lost);
  *  4. degenerate scenes: flat, one triangle, sub-cell and sliver triangles, a
  *     triangle across the whole grid. */
 #include <float.h>
@@ -537,6 +537,7 @@ static void room_rays(roma_ray *rays, float tmax)
 typedef struct room_error {
     double agreement;    /* snapped any-hit within tmax vs Embree on the snapped ray */
     double median, p99;  /* |closest-hit error| in trace cells vs Embree on the snapped ray */
+    double trace_cell;   /* world units */
 } room_error;
 
 static int cmp_double(const void *a, const void *b)
@@ -597,6 +598,7 @@ static room_error measure_room(roma_context *ctx, double s, const double off[3],
     }
     qsort(err, n_err, sizeof err[0], cmp_double);
     e.agreement = (double)agree / ROOM_RAYS;
+    e.trace_cell = f.info.trace_cell;
     e.median = n_err ? err[n_err / 2] : INFINITY;
     e.p99 = n_err ? err[(n_err * 99) / 100] : INFINITY;
     CHECK(n_err > ROOM_RAYS * 95 / 100); /* a closed room: nearly every ray hits */
@@ -615,7 +617,7 @@ static void check_scale_and_placement(roma_context *ctx)
     const uint32_t res = 128;
     static roma_hit any0[ROOM_RAYS], closest0[ROOM_RAYS], any1[ROOM_RAYS], closest1[ROOM_RAYS];
     room_error base = measure_room(ctx, 1.0, NULL, res, any0, closest0);
-    printf("room, unit scale:         agreement %.4f, closest error median %.3f p99 %.3f trace cells\n",
+    printf("room, unit scale:             agreement %.4f, closest error median %.3f p99 %.3f trace cells\n",
            base.agreement, base.median, base.p99);
 
     /* Powers of two: every quantity scales exactly, so must every result. */
@@ -628,7 +630,7 @@ static void check_scale_and_placement(roma_context *ctx)
             diff += any0[r].info != any1[r].info || closest0[r].info != closest1[r].info;
             diff += (closest0[r].info & 1) && (float)((double)closest0[r].t * s) != closest1[r].t;
         }
-        printf("room scaled by 2^%-3d:     %u results differ from the unit room's (scaled)\n", exponents[i], diff);
+        printf("room scaled by 2^%-3d:         %u results differ from the unit room's (scaled)\n", exponents[i], diff);
         CHECK(diff == 0);
     }
 
@@ -638,14 +640,20 @@ static void check_scale_and_placement(roma_context *ctx)
         {1e4, {0, 0, 0}, "scaled by 1e4"},
         {1.0, {1e4, -1e4, 1e4}, "moved to (1e4,-1e4,1e4)"},
         {100.0, {-1e5, 1e5, 0}, "x100 at (-1e5,1e5,0)"},
+        {1.0, {1e5, -1e5, 1e5}, "moved to (1e5,-1e5,1e5)"},
+        {10.0, {1e6, -1e6, 1e6}, "x10 at (1e6,-1e6,1e6)"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         room_error e = measure_room(ctx, cases[i].s, cases[i].off, res, NULL, NULL);
-        printf("room %-20s agreement %.4f, closest error median %.3f p99 %.3f trace cells\n", cases[i].name,
-               e.agreement, e.median, e.p99);
+        /* Far out, the scene's own vertices are rounded to float: half an ulp of the
+         * coordinates (2^-8 at 1e5), in trace cells, is what the input itself lost. */
+        double far = fmax(fmax(fabs(cases[i].off[0]), fabs(cases[i].off[1])), fabs(cases[i].off[2])) + cases[i].s;
+        double input = 0.5 * ((double)nextafterf((float)far, INFINITY) - (double)(float)far) / e.trace_cell;
+        printf("room %-24s agreement %.4f, closest error median %.3f p99 %.3f trace cells "
+               "(input rounding %.3f)\n", cases[i].name, e.agreement, e.median, e.p99, input);
         CHECK(e.agreement >= base.agreement - 0.005);
-        CHECK(e.median <= base.median + 0.05);
-        CHECK(e.p99 <= base.p99 + 0.25);
+        CHECK(e.median <= base.median + 0.05 + input);
+        CHECK(e.p99 <= base.p99 + 0.25 + input);
     }
 }
 

@@ -61,8 +61,10 @@ ROMA_STRUCT_BEGIN(roma_grid_params)
     ROMA_UVEC4(dims);     /* x: RES, y: words per texel, z: A, w: map count */
 ROMA_STRUCT_END(roma_grid_params)
 
-/* One ray-aligned map. world -> map cell coordinates: m_i = dot(to_map_i.xyz, p) + to_map_i.w
- * (evaluated as ((x*p.x + y*p.y) + z*p.z) + w, without contraction). map -> BOM cell
+/* One ray-aligned map. world -> map cell coordinates, from the position relative to the
+ * grid origin (r = p - grid.origin.xyz, which keeps full precision far from the world
+ * origin): m_i = dot(to_map_i.xyz, r) + to_map_i.w (evaluated as
+ * ((x*r.x + y*r.y) + z*r.z) + w, without contraction). map -> BOM cell
  * coordinates: b = map_to_bom_0.xyz * m.x + map_to_bom_1.xyz * m.y + map_to_bom_2.xyz * m.z
  * + map_to_bom_3.xyz (same evaluation order). */
 ROMA_STRUCT_BEGIN(roma_map_frame)

@@ -117,9 +117,11 @@ vec3 roma_to_map_rows(vec4 r0, vec4 r1, vec4 r2, vec3 p)
     return vec3(x, y, z);
 }
 
-vec3 roma_to_map(roma_map_frame f, vec3 p)
+// World position -> map cell coordinates of frame f (see roma_shared.h).
+vec3 roma_to_map(RomaParams params, roma_map_frame f, vec3 p)
 {
-    return roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, p);
+    precise vec3 r = p - params.grid.origin.xyz;
+    return roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, r);
 }
 
 // Cells [lo, hi] (continuous cell coordinates) clamped to the map; false if empty.
@@ -188,7 +190,8 @@ roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3
     if (!valid)
         return hit;
     // Only the fields a snapped query needs: a frame is 144 bytes.
-    vec3 m = roma_to_map_rows(params.maps[k].to_map_0, params.maps[k].to_map_1, params.maps[k].to_map_2, origin);
+    precise vec3 r = origin - params.grid.origin.xyz;
+    vec3 m = roma_to_map_rows(params.maps[k].to_map_0, params.maps[k].to_map_1, params.maps[k].to_map_2, r);
     if (!(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
         return hit;
     float inv_cz = params.maps[k].cell.w, cz = params.maps[k].dir.w;
@@ -227,7 +230,7 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
         (f.to_map_0.x * dn.x + f.to_map_0.y * dn.y) + f.to_map_0.z * dn.z,
         (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
         (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
-    vec3 m0 = roma_to_map(f, origin);
+    vec3 m0 = roma_to_map(params, f, origin);
     if (any(isinf(m0)))
         return hit; // an origin so far out that its map coordinates overflow
     float fres = float(res);

@@ -41,11 +41,12 @@ uint32_t roma_cpu_select_map(const float dir[3], uint32_t angular, int *folded)
     return roma_direction_to_map(dir, angular, folded);
 }
 
-static void to_map(const roma_map_frame *f, const float p[3], float m[3])
+static void to_map(const roma_grid_params *grid, const roma_map_frame *f, const float p[3], float m[3])
 {
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
+    float r[3] = {p[0] - grid->origin[0], p[1] - grid->origin[1], p[2] - grid->origin[2]};
     for (int a = 0; a < 3; ++a)
-        m[a] = ((rows[a][0] * p[0] + rows[a][1] * p[1]) + rows[a][2] * p[2]) + rows[a][3];
+        m[a] = ((rows[a][0] * r[0] + rows[a][1] * r[1]) + rows[a][2] * r[2]) + rows[a][3];
 }
 
 static int cell_range(float lo, float hi, uint32_t res, int *c_lo, int *c_hi)
@@ -94,7 +95,7 @@ static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame
 {
     const uint32_t res = grid->dims[0], words = grid->dims[1];
     float m[3];
-    to_map(f, ray->origin, m);
+    to_map(grid, f, ray->origin, m);
     if (!(m[0] >= 0.0f && m[0] < (float)res && m[1] >= 0.0f && m[1] < (float)res))
         return hit;
     float inv_cz = f->cell[3], cz = f->dir[3];
@@ -124,7 +125,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     float dm[3], m0[3];
     for (int a = 0; a < 3; ++a)
         dm[a] = (rows[a][0] * dn[0] + rows[a][1] * dn[1]) + rows[a][2] * dn[2];
-    to_map(f, ray->origin, m0);
+    to_map(grid, f, ray->origin, m0);
     if (isinf(m0[0]) || isinf(m0[1]) || isinf(m0[2]))
         return hit; /* an origin so far out that its map coordinates overflow */
     const float fres = (float)res;

@@ -46,6 +46,7 @@ void roma_compute_map_frame(const roma_grid_params *grid, const float dir_in[3],
         axes[1][i] = b[i];
         axes[2][i] = dir_in[i];
     }
+    /* Everything relative to the grid origin: the map box of the grid cube. */
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
         lo[a] = INFINITY;
@@ -53,13 +54,13 @@ void roma_compute_map_frame(const roma_grid_params *grid, const float dir_in[3],
         for (int c = 0; c < 8; ++c) {
             double p = 0.0;
             for (int i = 0; i < 3; ++i)
-                p += axes[a][i] * ((double)grid->origin[i] + ((c >> i) & 1) * side);
+                p += axes[a][i] * (((c >> i) & 1) * side);
             lo[a] = p < lo[a] ? p : lo[a];
             hi[a] = p > hi[a] ? p : hi[a];
         }
     }
     const double inv_bom_cell = 1.0 / cell;
-    double corner[3] = {0.0, 0.0, 0.0}; /* world position of the map box's (0,0,0) corner */
+    double corner[3] = {0.0, 0.0, 0.0}; /* the map box's (0,0,0) corner, relative to the grid origin */
     float *to_map[3] = {out->to_map_0, out->to_map_1, out->to_map_2};
     float *to_bom[4] = {out->map_to_bom_0, out->map_to_bom_1, out->map_to_bom_2, out->map_to_bom_3};
     for (int a = 0; a < 3; ++a) {
@@ -73,7 +74,7 @@ void roma_compute_map_frame(const roma_grid_params *grid, const float dir_in[3],
         to_map[a][3] = (float)(-lo[a] / c);
     }
     for (int i = 0; i < 3; ++i)
-        to_bom[3][i] = (float)((corner[i] - (double)grid->origin[i]) * inv_bom_cell);
+        to_bom[3][i] = (float)(corner[i] * inv_bom_cell);
     out->dir[0] = dir_in[0];
     out->dir[1] = dir_in[1];
     out->dir[2] = dir_in[2];

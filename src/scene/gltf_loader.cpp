@@ -303,6 +303,7 @@ private:
     void check_container(const unsigned char *data, size_t size, size_t *json_off, size_t *json_len,
                          size_t *glb_len);
     void check_json(const char *text, size_t len);
+    void check_non_negative(const nlohmann::json &v);
     void parse(const unsigned char *data, size_t size, const char *base_dir);
     Accessor accessor(int index, const std::string &what, int type, unsigned allowed);
     std::string mesh_label(int mesh, size_t prim) const;
@@ -365,6 +366,45 @@ void Loader::check_container(const unsigned char *d, size_t size, size_t *json_o
     *glb_len = length;
 }
 
+/* Indices, offsets, lengths and counts are never negative in glTF; tinygltf
+ * quietly reads a negative one as "absent" (indices: -1 loads the primitive
+ * unindexed, byteOffset: -36 as 0), so they are refused here. The depth is
+ * bounded by check_json's nesting limit; "extras" belong to the author. */
+void Loader::check_non_negative(const nlohmann::json &v)
+{
+    static const char *const keys[] = {"bufferView", "buffer",   "byteOffset", "byteLength", "byteStride",
+                                       "count",      "indices",  "material",   "mesh",       "node",
+                                       "camera",     "skin",     "source",     "sampler",    "scene",
+                                       "input",      "output",   "light",      "texCoord",   "index",
+                                       "skeleton",   "inverseBindMatrices"};
+    static const char *const id_lists[] = {"nodes", "children", "joints", "attributes"};
+    auto negative = [](const nlohmann::json &x) {
+        return (x.is_number_integer() && !x.is_number_unsigned() && x.get<int64_t>() < 0) ||
+               (x.is_number_float() && x.get<double>() < 0.0);
+    };
+    if (v.is_array()) {
+        for (const auto &e : v)
+            check_non_negative(e);
+        return;
+    }
+    if (!v.is_object())
+        return;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+        const std::string &key = it.key();
+        if (key == "extras")
+            continue;
+        for (const char *k : keys)
+            if (key == k && negative(it.value()))
+                fail(ROMA_ERROR_PARSE, "'%s' is negative (%s)", k, it.value().dump().c_str());
+        for (const char *k : id_lists)
+            if (key == k && (it.value().is_array() || it.value().is_object()))
+                for (const auto &e : it.value())
+                    if (negative(e))
+                        fail(ROMA_ERROR_PARSE, "'%s' holds a negative index (%s)", k, e.dump().c_str());
+        check_non_negative(it.value());
+    }
+}
+
 /* Own pass over the JSON before tinygltf: clear parse errors, a nesting
  * limit (tinygltf converts "extras" recursively), and extensionsRequired
  * checked before tinygltf trips over e.g. Draco accessors without views. */
@@ -403,6 +443,7 @@ void Loader::check_json(const char *text, size_t len)
     std::string version = (*asset)["version"].get<std::string>();
     if (version.empty() || version[0] != '2')
         fail(ROMA_ERROR_UNSUPPORTED, "glTF version %s (only 2.x is supported)", version.c_str());
+    check_non_negative(j);
     static const char *const supported[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
                                             "KHR_texture_transform"};
     auto req = j.find("extensionsRequired");

@@ -3,13 +3,15 @@
 #               reference and with ROMA (every effect) into out/, compare them in out/compare/
 #   make test   install missing packages, build, run the test suite (ctest, lavapipe, validation on)
 #   make test-sanitize   the same suite, Debug build with ASan + UBSan in build-asan (CI runs it too)
+#   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 OUT ?= out
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
 
-.PHONY: deps configure build run test test-sanitize clean
+.PHONY: deps configure build run test test-sanitize test-fuzz clean
 
 deps:
 	./install-deps.sh
@@ -44,5 +46,13 @@ test-sanitize: deps
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# The libFuzzer target for the glTF loader and the scene builder, built with clang
+# (ASan + UBSan) and run for ROMA_FUZZ_SECONDS (60) from the seeds in tests/fuzz.
+test-fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DROMA_FUZZ=ON -DROMA_BUILD_APPS=OFF \
+	    -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene
+	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz
+
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(OUT)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(OUT)

@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers glslang-tools
   libglfw3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

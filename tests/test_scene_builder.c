@@ -246,6 +246,22 @@ static void test_rejects(void)
     roma_scene *ok = NULL;
     CHECK_RESULT(roma_scene_create(&d, &ok), ROMA_SUCCESS); /* the same light, now valid */
     roma_scene_destroy(ok);
+    /* Directions whose squares overflow (1e30) or vanish (1e-30) are still directions
+     * (the fuzzer found 1e20-long ones stored as zero, so the scene's own view was
+     * refused); all-subnormal ones count as zero. */
+    const float lengths[] = {1e30f, 1e-30f, 1e-41f};
+    for (int i = 0; i < 3; ++i) {
+        light.direction[0] = 0.0f, light.direction[1] = 0.0f, light.direction[2] = -lengths[i];
+        ok = NULL;
+        CHECK_RESULT(roma_scene_create(&d, &ok), i < 2 ? ROMA_SUCCESS : ROMA_ERROR_INVALID_SCENE);
+        if (ok) {
+            roma_scene_view lv;
+            roma_scene_get_view(ok, &lv);
+            CHECK(lv.light_count == 1 && lv.lights[0].direction[2] == -1.0f && lv.lights[0].direction[0] == 0.0f);
+            roma_scene_destroy(ok);
+        }
+    }
+    light.direction[2] = -1.0f;
 
     roma_camera cam = {{0, 0, NAN}, {0, 0, 0}, {0, 1, 0}, 45.0f};
     d = quad_desc(logger), d.camera = &cam;

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roma/directions.h"
 #include "util/log.h"
 
 struct roma_scene {
@@ -145,9 +146,11 @@ static roma_result validate_light(const roma_logger *log, const char *name, uint
         l->range < 0.0f)
         return roma_fail(log, ROMA_ERROR_INVALID_SCENE,
                          "scene '%s': light %u has a negative colour, intensity or range", name, i);
+    float unit[3];
     if (l->type != ROMA_LIGHT_POINT) {
-        const float *d = l->direction;
-        if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0.0f))
+        /* Normalised as rays are: by the largest component first, so that 1e20 or
+         * 1e-25 long directions are fine (their squares overflowed or vanished). */
+        if (!roma_unit_direction(l->direction, unit))
             return roma_fail(log, ROMA_ERROR_INVALID_SCENE, "scene '%s': light %u has a zero direction",
                              name, i);
     }
@@ -385,9 +388,9 @@ roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scen
     for (uint32_t i = 0; i < s->light_count; ++i) {
         roma_light *l = s->lights + i;
         if (l->type != ROMA_LIGHT_POINT) {
-            float *d = l->direction;
-            float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            d[0] /= len, d[1] /= len, d[2] /= len;
+            float unit[3];
+            roma_unit_direction(l->direction, unit);
+            memcpy(l->direction, unit, sizeof unit);
         }
         if (l->type == ROMA_LIGHT_SPOT && l->outer_cone_angle == 0.0f)
             l->outer_cone_angle = (float)(ROMA_PI / 4.0);

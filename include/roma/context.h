@@ -50,7 +50,7 @@ typedef struct roma_external_device {
 } roma_external_device;
 
 typedef struct roma_context_desc {
-    uint32_t flags;                       /* roma_context_flags */
+    uint32_t flags;                       /* roma_context_flags; unknown bits are rejected */
     const char *device_name;              /* substring of the device name; NULL = ROMA_DEVICE or auto */
     const roma_external_device *external; /* NULL = libroma creates its own device */
     roma_logger logger;

@@ -75,13 +75,14 @@ typedef struct roma_effect_plan {
 /* Resolves defaults and derives the plan from the scene. Rejects unknown effect
  * bits, resolutions other than 32/64/128/256, A outside 1..16 and many-light
  * counts above 65536 (ROMA_ERROR_INVALID_ARGUMENT, message through logger, which
- * may be NULL); *out_plan is zeroed on failure. */
+ * may be NULL); on failure *out_plan runs nothing: zeroed, with every pass_map -1. */
 roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_options *options,
                                     const roma_logger *logger, roma_effect_plan *out_plan);
 
+/* 0 for a NULL plan or a pass outside the enum (a shift by 32 or more is undefined). */
 static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_kind pass)
 {
-    return (plan->passes >> (uint32_t)pass) & 1u;
+    return plan && (uint32_t)pass < (uint32_t)ROMA_PASS_COUNT && ((plan->passes >> (uint32_t)pass) & 1u);
 }
 
 #ifdef __cplusplus

@@ -44,11 +44,12 @@ typedef struct roma_image_metrics {
 
 /* Compares a and b (same size and channels). mask is optional (1 channel, same size):
  * only pixels with mask > 0 count. Non-finite pixels are counted in non_finite and
- * excluded from the other figures. */
+ * excluded from the other figures. A NaN tolerance is rejected. */
 roma_result roma_image_compare(const roma_image *a, const roma_image *b, const roma_image *mask,
                                float tolerance, roma_image_metrics *out_metrics);
 
-/* |a - b| per pixel (max over channels) into a new 1-channel image. */
+/* |a - b| per pixel (max over channels) into a new 1-channel image; out_diff must
+ * not be a or b. */
 roma_result roma_image_abs_diff(const roma_image *a, const roma_image *b, roma_image *out_diff);
 
 #ifdef __cplusplus

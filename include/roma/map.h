@@ -91,7 +91,8 @@ typedef struct roma_map_frame_desc {
 
 /* Records BOM clear + rasterization + rotation into cmd (a command buffer of the
  * context's queue family, outside a render pass). timer may be NULL; otherwise
- * scopes "bom" and "rotate" are added. The parameters of the frame are written
+ * scopes "bom" and "rotate" are added (every timer passed to a map must come from
+ * a context on the map's VkDevice: ROMA_ERROR_INVALID_ARGUMENT otherwise). The parameters of the frame are written
  * to a host-visible buffer at record time: do not record two builds of the same
  * map into command buffers in flight at once. */
 roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
@@ -115,12 +116,22 @@ typedef struct roma_map_info {
 
 roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
 
-/* Candidate direction of map k this frame (unit, z >= 0). */
+/* Candidate direction of map k this frame (unit, z >= 0); zero on failure. */
 roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
 
 /* --- Queries --- */
 
-/* Matches struct roma_ray in roma_trace.glsl (std430, 32 bytes). */
+/* Matches struct roma_ray in roma_trace.glsl (std430, 32 bytes).
+ * Defined for every bit pattern (docs/robustness.md):
+ *  - dir need not be unit: any finite non-zero vector, however large or small, traces
+ *    as its unit vector (d and d * 2^k give the same bits). Components below FLT_MIN
+ *    count as zero, as GPUs may flush them. A zero, NaN or infinite dir is a miss;
+ *  - an origin with a NaN or infinite component, or NaN bounds, or tmin > tmax: a miss;
+ *  - tmin may be negative or -INFINITY, tmax INFINITY; tmin = tmax tests the cells
+ *    holding that one point;
+ *  - origins outside the grid are traced: un-snapped rays are clipped to the grid;
+ *    a snapped ray misses unless its line along the candidate crosses the grid.
+ * Invalid rays report map 0, not folded. */
 typedef struct roma_ray {
     float origin[3];
     float tmin;
@@ -164,7 +175,8 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
                            const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
                            roma_gpu_timer *timer);
 
-/* Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words). */
+/* Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words).
+ * word_count must be exactly that; ROMA_ERROR_NOT_READY before the first build. */
 roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
 roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
 

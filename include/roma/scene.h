@@ -174,7 +174,7 @@ typedef struct roma_scene_view {
     roma_scene_animation_data animation;
 } roma_scene_view;
 
-/* Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments. */
+/* Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (*out_view zeroed). */
 roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view);
 
 /* Animation data is attached by loaders after the geometry is validated; the

@@ -29,6 +29,8 @@ static int normalize3(float v[3])
 int roma_camera_make_frame(const roma_camera *camera, uint32_t width, uint32_t height,
                            roma_camera_frame *out)
 {
+    if (!out)
+        return 0;
     memset(out, 0, sizeof *out);
     if (!camera || width == 0 || height == 0)
         return 0;
@@ -63,6 +65,13 @@ int roma_camera_make_frame(const roma_camera *camera, uint32_t width, uint32_t h
 
 void roma_camera_ray(const roma_camera_frame *f, float px, float py, float origin[3], float dir[3])
 {
+    if (origin)
+        origin[0] = origin[1] = origin[2] = 0.0f;
+    if (dir)
+        dir[0] = dir[1] = dir[2] = 0.0f;
+    /* A zeroed frame (failed roma_camera_make_frame) would divide by a zero size. */
+    if (!f || !origin || !dir || f->width == 0 || f->height == 0)
+        return;
     /* NDC in [-1, 1], y flipped so that row 0 is the top of the image. */
     float sx = (2.0f * px / (float)f->width - 1.0f) * f->tan_half_fovy * f->aspect;
     float sy = (1.0f - 2.0f * py / (float)f->height) * f->tan_half_fovy;
@@ -78,12 +87,18 @@ void roma_camera_ray(const roma_camera_frame *f, float px, float py, float origi
 void roma_camera_frame_bounds(const float bmin[3], const float bmax[3], float aspect,
                               roma_camera *out)
 {
+    if (!out)
+        return;
     memset(out, 0, sizeof *out);
+    if (!bmin || !bmax)
+        return;
     float center[3], radius = 0.0f;
     for (int i = 0; i < 3; ++i) {
         center[i] = 0.5f * (bmin[i] + bmax[i]);
         float h = 0.5f * (bmax[i] - bmin[i]);
         radius += h * h;
+        if (!isfinite(center[i]))
+            return; /* zeroed: roma_camera_make_frame refuses it (eye == target) */
     }
     radius = sqrtf(radius);
     if (!(radius > 0.0f) || !isfinite(radius))

@@ -49,11 +49,11 @@ static roma_result upload_positions(roma_map *map, const float *positions)
 roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, const roma_scene *scene,
                             roma_map **out)
 {
-    if (!out)
-        return ROMA_ERROR_INVALID_ARGUMENT;
-    *out = NULL;
     roma_map_desc desc = desc_in ? *desc_in : (roma_map_desc){0};
     const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
+    if (!out)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: out_map is NULL");
+    *out = NULL;
     if (!ctx || !scene)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: context and scene are required");
     if (desc.resolution == 0)
@@ -157,7 +157,8 @@ void roma_map_destroy(roma_map *map)
 roma_result roma_map_update_positions(roma_map *map, const float *positions, uint32_t vertex_count)
 {
     if (!map || !positions)
-        return ROMA_ERROR_INVALID_ARGUMENT;
+        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_update_positions: %s is NULL", map ? "positions" : "map");
     if (vertex_count != map->vertex_count)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map_update_positions: %u vertices given, the map was made with %u",
@@ -207,13 +208,28 @@ static void compute_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dst_stage
                             dst_stage, dst_access);
 }
 
+/* A timer's queries are recorded into the map's command buffers: its pool must live on
+ * the map's VkDevice (contexts sharing one device through desc.external may mix). */
+static roma_result check_timer(const roma_map *map, const roma_gpu_timer *timer, const char *fn)
+{
+    const roma_context *owner = roma_gpu_timer_context(timer);
+    if (owner && owner->device != map->ctx->device)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: timer was created on another Vulkan device than the map", fn);
+    return ROMA_SUCCESS;
+}
+
 roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
                                   roma_gpu_timer *timer)
 {
     if (!map || !cmd)
-        return ROMA_ERROR_INVALID_ARGUMENT;
+        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_record_build: %s is NULL", map ? "cmd" : "map");
+    roma_result r = check_timer(map, timer, "roma_map_record_build");
+    if (r != ROMA_SUCCESS)
+        return r;
     roma_map_frame_desc frame = frame_in ? *frame_in : (roma_map_frame_desc){0};
-    roma_result r = write_frame_params(map, &frame);
+    r = write_frame_params(map, &frame);
     if (r != ROMA_SUCCESS)
         return r;
 
@@ -253,9 +269,12 @@ roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma
 roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame, roma_gpu_timer *timer)
 {
     if (!map)
-        return ROMA_ERROR_INVALID_ARGUMENT;
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_build: map is NULL");
+    roma_result r = check_timer(map, timer, "roma_map_build"); /* before the reset is recorded */
+    if (r != ROMA_SUCCESS)
+        return r;
     VkCommandBuffer cmd;
-    roma_result r = roma_begin_one_shot(map->ctx, &cmd);
+    r = roma_begin_one_shot(map->ctx, &cmd);
     if (r != ROMA_SUCCESS)
         return r;
     roma_gpu_timer_reset(timer, cmd);
@@ -266,9 +285,11 @@ roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame, roma
 
 roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
 {
+    if (out)
+        memset(out, 0, sizeof *out);
     if (!map || !out)
-        return ROMA_ERROR_INVALID_ARGUMENT;
-    memset(out, 0, sizeof *out);
+        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_get_info: %s is NULL", map ? "out_info" : "map");
     out->resolution = map->res;
     out->angular = map->angular;
     out->map_count = map->map_count;
@@ -287,27 +308,43 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
 
 roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3])
 {
-    if (!map || !out_dir || k >= map->map_count)
-        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (out_dir)
+        out_dir[0] = out_dir[1] = out_dir[2] = 0.0f;
+    if (!map || !out_dir)
+        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_candidate: %s is NULL", map ? "out_dir" : "map");
+    if (k >= map->map_count)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_candidate: k = %u but the map has %u candidates", k, map->map_count);
     if (!map->built)
         return roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "roma_map_candidate: the map has not been built yet");
     memcpy(out_dir, map->frames[k].dir, 3 * sizeof(float));
     return ROMA_SUCCESS;
 }
 
+/* Checks shared by both trace calls: arguments first, then whether there is a map to trace. */
+static roma_result check_trace(const roma_map *map, roma_trace_mode mode, uint32_t ray_count,
+                               const roma_gpu_timer *timer, const char *fn)
+{
+    if ((unsigned)mode > ROMA_TRACE_UNSNAPPED_CLOSEST)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: unknown mode %d", fn, (int)mode);
+    roma_result r = check_timer(map, timer, fn);
+    if (r == ROMA_SUCCESS && ray_count && !map->built)
+        r = roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "%s: build the map first", fn);
+    return r;
+}
+
 roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
                                   roma_gpu_timer *timer)
 {
     if (!map || !cmd || !desc)
-        return ROMA_ERROR_INVALID_ARGUMENT;
-    if (desc->ray_count == 0)
-        return ROMA_SUCCESS;
-    if (!desc->rays || !desc->hits)
+        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_record_trace: %s is NULL", !map ? "map" : !cmd ? "cmd" : "desc");
+    if (desc->ray_count && (!desc->rays || !desc->hits))
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_record_trace: rays and hits addresses are required");
-    if ((unsigned)desc->mode > ROMA_TRACE_UNSNAPPED_CLOSEST)
-        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_record_trace: unknown mode %d", (int)desc->mode);
-    if (!map->built)
-        return roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "roma_map_record_trace: record a build first");
+    roma_result r = check_trace(map, desc->mode, desc->ray_count, timer, "roma_map_record_trace");
+    if (r != ROMA_SUCCESS || desc->ray_count == 0)
+        return r;
     roma_trace_push push = {
         .maps = map->maps.address,
         .params = map->params.address,
@@ -337,10 +374,13 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
                            uint32_t ray_count, roma_hit *out_hits, roma_gpu_timer *timer)
 {
     if (!map || (ray_count && (!rays || !out_hits)))
-        return ROMA_ERROR_INVALID_ARGUMENT;
-    if (ray_count == 0)
-        return ROMA_SUCCESS;
-    roma_result r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
+        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_trace: %s is NULL",
+                         !map ? "map" : !rays ? "rays" : "out_hits");
+    /* Refused before the staging buffers are resized for the batch. */
+    roma_result r = check_trace(map, mode, ray_count, timer, "roma_map_trace");
+    if (r != ROMA_SUCCESS || ray_count == 0)
+        return r;
+    r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
     if (r == ROMA_SUCCESS)
         r = ensure_staging(map, &map->hit_staging, sizeof(roma_hit) * (VkDeviceSize)ray_count, ROMA_MEMORY_READBACK);
     if (r != ROMA_SUCCESS)
@@ -367,12 +407,15 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
 
 static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out, uint64_t word_count)
 {
-    if (!map || !out)
-        return ROMA_ERROR_INVALID_ARGUMENT;
-    if (word_count * 4 != src->size)
+    if (!out)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map download: out_words is NULL");
+    /* Compared in words: word_count * 4 wraps for huge counts and could match the size. */
+    if (word_count != src->size / 4)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_map download: %llu words asked, the buffer holds %llu",
+                         "roma_map download: word_count %llu, the buffer holds %llu words",
                          (unsigned long long)word_count, (unsigned long long)(src->size / 4));
+    if (!map->built) /* device memory not written yet: no garbage handed out */
+        return roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "roma_map download: the map has not been built yet");
     roma_buffer staging;
     roma_result r = roma_buffer_create(map->ctx, src->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &staging);
     if (r != ROMA_SUCCESS)
@@ -396,12 +439,14 @@ static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out
 
 roma_result roma_map_download_bom(roma_map *map, uint32_t *out, uint64_t word_count)
 {
-    return map ? download(map, &map->bom, out, word_count) : ROMA_ERROR_INVALID_ARGUMENT;
+    return map ? download(map, &map->bom, out, word_count)
+               : roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_download_bom: map is NULL");
 }
 
 roma_result roma_map_download_maps(roma_map *map, uint32_t *out, uint64_t word_count)
 {
-    return map ? download(map, &map->maps, out, word_count) : ROMA_ERROR_INVALID_ARGUMENT;
+    return map ? download(map, &map->maps, out, word_count)
+               : roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_download_maps: map is NULL");
 }
 
 roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid, const roma_map_frame **frames)

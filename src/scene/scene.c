@@ -415,11 +415,12 @@ oom:
 
 roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view)
 {
+    if (out_view)
+        memset(out_view, 0, sizeof *out_view);
     if (!scene || !out_view)
         return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_scene_get_view: scene and out_view must not be NULL");
     roma_scene_view *v = out_view;
-    memset(v, 0, sizeof *v);
     v->name = scene->name;
     v->positions = scene->positions;
     v->normals = scene->normals;

@@ -12,8 +12,8 @@ static int valid_shape(uint32_t width, uint32_t height, uint32_t channels)
 {
     if (width == 0 || height == 0 || (channels != 1 && channels != 3))
         return 0;
-    unsigned long long bytes = (unsigned long long)width * height * channels * sizeof(float);
-    return bytes <= ROMA_IMAGE_MAX_BYTES;
+    /* width * height fits 64 bits; times channels * 4 bytes could wrap (2^31 x 2^31 x 1 -> 0). */
+    return (unsigned long long)width * height <= ROMA_IMAGE_MAX_BYTES / (channels * sizeof(float));
 }
 
 
@@ -92,6 +92,8 @@ roma_result roma_image_read_pfm(const char *path, roma_image *out)
     }
     result = ROMA_SUCCESS;
 done:
+    if (result == ROMA_ERROR_PARSE && ferror(f))
+        result = ROMA_ERROR_IO; /* e.g. a directory: nothing could be read, nothing malformed */
     fclose(f);
     return result;
 }
@@ -112,8 +114,8 @@ roma_result roma_image_compare(const roma_image *a, const roma_image *b, const r
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
-    if (!usable(a) || !usable(b) || !same_shape(a, b))
-        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (!usable(a) || !usable(b) || !same_shape(a, b) || isnan(tolerance))
+        return ROMA_ERROR_INVALID_ARGUMENT; /* NaN would silently count no pixel as above */
     if (mask && (!usable(mask) || mask->channels != 1 || mask->width != a->width ||
                  mask->height != a->height))
         return ROMA_ERROR_INVALID_ARGUMENT;
@@ -164,7 +166,8 @@ roma_result roma_image_compare(const roma_image *a, const roma_image *b, const r
 
 roma_result roma_image_abs_diff(const roma_image *a, const roma_image *b, roma_image *out)
 {
-    if (!out)
+    /* out aliasing an input would be zeroed (and its pixels leaked) before being read. */
+    if (!out || out == a || out == b)
         return ROMA_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     if (!usable(a) || !usable(b) || !same_shape(a, b))

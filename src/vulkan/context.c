@@ -204,6 +204,10 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     roma_context_desc defaults = {0};
     if (!desc)
         desc = &defaults;
+    const uint32_t known_flags = ROMA_CONTEXT_VALIDATION | ROMA_CONTEXT_REQUIRE_GPU;
+    if (desc->flags & ~known_flags)
+        return roma_fail(&desc->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_context_create: unknown flags 0x%x", desc->flags & ~known_flags);
     roma_context *ctx = calloc(1, sizeof *ctx);
     if (!ctx)
         return roma_fail(&desc->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_context_create: out of memory");
@@ -281,9 +285,11 @@ void roma_context_destroy(roma_context *ctx)
 
 roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *out)
 {
+    if (out)
+        memset(out, 0, sizeof *out);
     if (!ctx || !out)
-        return ROMA_ERROR_INVALID_ARGUMENT;
-    memset(out, 0, sizeof *out);
+        return roma_fail(ctx ? &ctx->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_context_get_info: %s is NULL", ctx ? "out_info" : "context");
     memcpy(out->device_name, ctx->properties.deviceName, sizeof out->device_name);
     out->device_type = ctx->properties.deviceType;
     out->api_version = ctx->properties.apiVersion;

@@ -11,26 +11,31 @@ struct roma_gpu_timer {
     uint32_t used;
     uint64_t valid_mask; /* timestampValidBits of the queue family */
     roma_gpu_timing *names;
+    unsigned char *open; /* per scope: begun, not yet ended (a second end would rewrite its query) */
 };
 
 roma_result roma_gpu_timer_create(roma_context *ctx, uint32_t max_scopes, roma_gpu_timer **out)
 {
     if (!out)
-        return ROMA_ERROR_INVALID_ARGUMENT;
+        return roma_fail(ctx ? &ctx->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_gpu_timer_create: out_timer is NULL");
     *out = NULL;
     if (!ctx || max_scopes == 0 || max_scopes > 4096)
         return roma_fail(ctx ? &ctx->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_gpu_timer_create: need a context and 1..4096 scopes (got %u)", max_scopes);
     roma_gpu_timer *t = calloc(1, sizeof *t);
     roma_gpu_timing *names = calloc(max_scopes, sizeof *names);
-    if (!t || !names) {
+    unsigned char *open = calloc(max_scopes, 1);
+    if (!t || !names || !open) {
         free(t);
         free(names);
+        free(open);
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_gpu_timer_create: out of memory");
     }
     t->ctx = ctx;
     t->max_scopes = max_scopes;
     t->names = names;
+    t->open = open;
     uint32_t family_count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical_device, &family_count, NULL);
     VkQueueFamilyProperties *families = calloc(family_count ? family_count : 1, sizeof *families);
@@ -58,6 +63,11 @@ roma_result roma_gpu_timer_create(roma_context *ctx, uint32_t max_scopes, roma_g
     return ROMA_SUCCESS;
 }
 
+const roma_context *roma_gpu_timer_context(const roma_gpu_timer *t)
+{
+    return t ? t->ctx : NULL;
+}
+
 void roma_gpu_timer_destroy(roma_gpu_timer *t)
 {
     if (!t)
@@ -65,6 +75,7 @@ void roma_gpu_timer_destroy(roma_gpu_timer *t)
     if (t->pool)
         vkDestroyQueryPool(t->ctx->device, t->pool, NULL);
     free(t->names);
+    free(t->open);
     free(t);
 }
 
@@ -74,6 +85,7 @@ void roma_gpu_timer_reset(roma_gpu_timer *t, VkCommandBuffer cmd)
         return;
     vkCmdResetQueryPool(cmd, t->pool, 0, 2 * t->max_scopes);
     t->used = 0;
+    memset(t->open, 0, t->max_scopes);
 }
 
 uint32_t roma_gpu_timer_begin(roma_gpu_timer *t, VkCommandBuffer cmd, const char *name)
@@ -83,21 +95,25 @@ uint32_t roma_gpu_timer_begin(roma_gpu_timer *t, VkCommandBuffer cmd, const char
     uint32_t scope = t->used++;
     snprintf(t->names[scope].name, sizeof t->names[scope].name, "%s", name ? name : "");
     t->names[scope].milliseconds = 0.0;
+    t->open[scope] = 1;
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, t->pool, 2 * scope);
     return scope;
 }
 
 void roma_gpu_timer_end(roma_gpu_timer *t, VkCommandBuffer cmd, uint32_t scope)
 {
-    if (!t || !cmd || scope >= t->used)
+    if (!t || !cmd || scope >= t->used || !t->open[scope])
         return;
+    t->open[scope] = 0;
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, t->pool, 2 * scope + 1);
 }
 
 roma_result roma_gpu_timer_read(roma_gpu_timer *t, roma_gpu_timing *out, uint32_t *count)
 {
     if (!t || !count || (!out && *count))
-        return ROMA_ERROR_INVALID_ARGUMENT;
+        return roma_fail(t ? &t->ctx->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_gpu_timer_read: %s", !t ? "timer is NULL" : !count ? "count is NULL"
+                                                                          : "out_timings is NULL but *count is not 0");
     uint32_t n = *count < t->used ? *count : t->used;
     *count = t->used;
     if (n == 0)

@@ -9,8 +9,10 @@
  * with the dispatch timed: device, embedded SPIR-V, descriptors and timers in one go. */
 roma_result roma_context_self_test(roma_context *ctx, double *out_gpu_ms)
 {
+    if (out_gpu_ms)
+        *out_gpu_ms = 0.0;
     if (!ctx)
-        return ROMA_ERROR_INVALID_ARGUMENT;
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_context_self_test: context is NULL");
     roma_compute_pipeline pipe;
     roma_buffer buffer = {0};
     roma_gpu_timer *timer = NULL;

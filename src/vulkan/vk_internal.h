@@ -46,6 +46,11 @@ roma_result roma_select_device(const roma_context *ctx, const char *name_filter,
 roma_result roma_check_device_support(const roma_context *ctx, VkPhysicalDevice pd,
                                       int *out_has_geometry_shader);
 
+/* --- GPU timers (gpu_timer.c) --- */
+/* The context a timer was created on (NULL for NULL), so that callers can refuse a
+ * timer whose query pool belongs to another VkDevice. */
+const roma_context *roma_gpu_timer_context(const roma_gpu_timer *timer);
+
 /* --- buffers (vk_util.c) --- */
 typedef struct roma_buffer {
     VkBuffer buffer;

@@ -54,6 +54,11 @@ typedef struct roma_context_desc {
     const char *device_name;              /* substring of the device name; NULL = ROMA_DEVICE or auto */
     const roma_external_device *external; /* NULL = libroma creates its own device */
     roma_logger logger;
+    /* Bytes of device memory (every vkAllocateMemory: device-local and staging) that
+     * objects on this context may hold together; 0 = no limit but the device's.
+     * A create call that would pass it fails with ROMA_ERROR_OUT_OF_DEVICE_MEMORY
+     * and leaves nothing allocated. */
+    uint64_t device_memory_budget;
 } roma_context_desc;
 
 roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
@@ -68,6 +73,9 @@ typedef struct roma_context_info {
     float timestamp_period_ns;  /* nanoseconds per timestamp tick */
     int validation_enabled;
     int owns_device;            /* 0 when running on the caller's device */
+    uint64_t device_memory_in_use; /* bytes libroma's objects on this context hold now */
+    uint64_t device_memory_budget; /* desc.device_memory_budget (0 = none) */
+    uint64_t max_allocation_size;  /* the device's largest single allocation */
 } roma_context_info;
 
 roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);

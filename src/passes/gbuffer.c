@@ -17,6 +17,7 @@ struct roma_gbuffer {
     VkPipeline shade_pipeline;   /* pass 2: EQUAL, early tests, writes the pixels */
     VkImage depth;
     VkDeviceMemory depth_memory;
+    VkDeviceSize depth_bytes; /* counted against the context's memory use */
     VkImageView depth_view;
     roma_buffer params;          /* roma_gbuffer_params, written with vkCmdUpdateBuffer */
     roma_buffer pixels;          /* width * height roma_gbuffer_pixel */
@@ -94,6 +95,10 @@ static roma_result create_depth(roma_gbuffer *g)
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
+    res = roma_device_memory_reserve(ctx, req.size, "roma_gbuffer_create: depth image");
+    if (res != ROMA_SUCCESS)
+        return res;
+    g->depth_bytes = req.size;
     res = roma_vk_check(ctx, vkAllocateMemory(ctx->device, &alloc, NULL, &g->depth_memory), "vkAllocateMemory");
     if (res == ROMA_SUCCESS)
         res = roma_vk_check(ctx, vkBindImageMemory(ctx->device, g->depth, g->depth_memory, 0),
@@ -162,6 +167,7 @@ void roma_gbuffer_destroy(roma_gbuffer *g)
         vkDestroyImage(dev, g->depth, NULL);
     if (g->depth_memory)
         vkFreeMemory(dev, g->depth_memory, NULL);
+    roma_device_memory_release(g->ctx, g->depth_bytes);
     if (g->shade_pipeline)
         vkDestroyPipeline(dev, g->shade_pipeline, NULL);
     if (g->depth_pipeline)

@@ -213,6 +213,7 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         return roma_fail(&desc->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_context_create: out of memory");
     ctx->logger = desc->logger;
     ctx->flags = desc->flags;
+    ctx->memory_budget = desc->device_memory_budget;
     atomic_init(&ctx->validation_errors, 0u);
 
     roma_result r;
@@ -237,6 +238,11 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     }
     if (r == ROMA_SUCCESS) {
         vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
+        VkPhysicalDeviceMaintenance3Properties m3 = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+        VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};
+        vkGetPhysicalDeviceProperties2(ctx->physical_device, &p2);
+        ctx->max_allocation_size = m3.maxMemoryAllocationSize;
         vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
         r = create_submit_objects(ctx);
     }
@@ -295,6 +301,9 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
     out->api_version = ctx->properties.apiVersion;
     out->driver_version = ctx->properties.driverVersion;
     out->timestamp_period_ns = ctx->properties.limits.timestampPeriod;
+    out->device_memory_in_use = ctx->memory_in_use;
+    out->device_memory_budget = ctx->memory_budget;
+    out->max_allocation_size = ctx->max_allocation_size;
     out->validation_enabled = ctx->validation_enabled;
     out->owns_device = ctx->owns_device;
     return ROMA_SUCCESS;

@@ -22,6 +22,9 @@ struct roma_context {
     VkQueue queue;
     VkPhysicalDeviceProperties properties;
     VkPhysicalDeviceMemoryProperties memory_properties;
+    VkDeviceSize max_allocation_size; /* VkPhysicalDeviceMaintenance3Properties */
+    uint64_t memory_budget;           /* desc.device_memory_budget; 0 = none */
+    uint64_t memory_in_use;           /* bytes of every vkAllocateMemory libroma made */
     int has_geometry_shader;
     /* For the context's own blocking submissions (uploads, readbacks, self-test). */
     VkCommandPool command_pool;
@@ -51,6 +54,13 @@ roma_result roma_check_device_support(const roma_context *ctx, VkPhysicalDevice 
  * timer whose query pool belongs to another VkDevice. */
 const roma_context *roma_gpu_timer_context(const roma_gpu_timer *timer);
 
+/* --- device memory accounting (vk_util.c) --- */
+/* Every vkAllocateMemory goes through these: an allocation larger than the device
+ * allows, or past the context's budget, fails with ROMA_ERROR_OUT_OF_DEVICE_MEMORY
+ * before Vulkan is asked (drivers need not fail cleanly past maxMemoryAllocationSize). */
+roma_result roma_device_memory_reserve(roma_context *ctx, VkDeviceSize bytes, const char *what);
+void roma_device_memory_release(roma_context *ctx, VkDeviceSize bytes);
+
 /* --- buffers (vk_util.c) --- */
 typedef struct roma_buffer {
     VkBuffer buffer;
@@ -58,6 +68,7 @@ typedef struct roma_buffer {
     VkDeviceSize size;
     void *mapped; /* non-NULL for host-visible buffers */
     VkDeviceAddress address; /* non-zero when created with SHADER_DEVICE_ADDRESS usage */
+    VkDeviceSize allocated;  /* bytes counted against the context's memory use */
 } roma_buffer;
 
 typedef enum roma_memory_kind {

@@ -51,6 +51,26 @@ static uint32_t find_memory_type(const roma_context *ctx, uint32_t type_bits, Vk
     return UINT32_MAX;
 }
 
+roma_result roma_device_memory_reserve(roma_context *ctx, VkDeviceSize bytes, const char *what)
+{
+    if (ctx->max_allocation_size && bytes > ctx->max_allocation_size)
+        return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
+                         "%s: %llu bytes in one allocation, the device allows at most %llu", what,
+                         (unsigned long long)bytes, (unsigned long long)ctx->max_allocation_size);
+    if (ctx->memory_budget && bytes > ctx->memory_budget - ctx->memory_in_use)
+        return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
+                         "%s: %llu more bytes of device memory would exceed the context's budget of %llu "
+                         "(%llu in use)", what, (unsigned long long)bytes,
+                         (unsigned long long)ctx->memory_budget, (unsigned long long)ctx->memory_in_use);
+    ctx->memory_in_use += bytes;
+    return ROMA_SUCCESS;
+}
+
+void roma_device_memory_release(roma_context *ctx, VkDeviceSize bytes)
+{
+    ctx->memory_in_use -= bytes < ctx->memory_in_use ? bytes : ctx->memory_in_use;
+}
+
 roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                                roma_memory_kind kind, roma_buffer *out)
 {
@@ -97,6 +117,12 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
+    r = roma_device_memory_reserve(ctx, req.size, "buffer");
+    if (r != ROMA_SUCCESS) {
+        roma_buffer_destroy(ctx, out);
+        return r;
+    }
+    out->allocated = req.size;
     VkResult vr = vkAllocateMemory(ctx->device, &alloc, NULL, &out->memory);
     if (vr == VK_SUCCESS)
         vr = vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0);
@@ -125,6 +151,7 @@ void roma_buffer_destroy(roma_context *ctx, roma_buffer *b)
         vkDestroyBuffer(ctx->device, b->buffer, NULL);
     if (b->memory)
         vkFreeMemory(ctx->device, b->memory, NULL); /* unmaps implicitly */
+    roma_device_memory_release(ctx, b->allocated);
     memset(b, 0, sizeof *b);
 }
 

@@ -70,7 +70,11 @@ typedef struct roma_map_desc {
     roma_logger logger;       /* 0 = the context's */
 } roma_map_desc;
 
-/* Geometry is uploaded here (positions and indices); call again when it moves. */
+/* Geometry is uploaded here (positions and indices); call again when it moves.
+ * Supported scenes: the grid cube around the scene must lie within +-8.5e37 world
+ * units and its cells be at least 1e-35 across (scenes from about 1e-33 to 1e37
+ * units wide); others are refused with ROMA_ERROR_INVALID_SCENE, as is an update
+ * that moves the scene out of that range (the map then keeps its positions). */
 roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                             const roma_scene *scene, roma_map **out_map);
 /* Accepts NULL. The caller makes sure no submitted work still uses the map (the

@@ -33,6 +33,28 @@ static void scene_bounds(const float *positions, const uint32_t *indices, uint32
     }
 }
 
+/* Refuses scene bounds the grid's float arithmetic cannot handle (map_params.h). */
+static roma_result check_bounds(const roma_logger *log, const float bmin[3], const float bmax[3],
+                                uint32_t res, float margin_cells, const char *fn)
+{
+    switch (roma_grid_check(bmin, bmax, res, margin_cells)) {
+    case ROMA_GRID_OK:
+        return ROMA_SUCCESS;
+    case ROMA_GRID_EMPTY:
+        return roma_fail(log, ROMA_ERROR_INVALID_SCENE, "%s: the scene bounds are empty or not finite", fn);
+    case ROMA_GRID_TOO_LARGE:
+        return roma_fail(log, ROMA_ERROR_INVALID_SCENE,
+                         "%s: the scene reaches (%g, %g, %g)-(%g, %g, %g); the grid must stay within "
+                         "+-%g world units", fn, (double)bmin[0], (double)bmin[1], (double)bmin[2],
+                         (double)bmax[0], (double)bmax[1], (double)bmax[2], ROMA_GRID_MAX_COORDINATE);
+    case ROMA_GRID_TOO_SMALL:
+        break;
+    }
+    return roma_fail(log, ROMA_ERROR_INVALID_SCENE,
+                     "%s: the scene is too small: cells of a RES %u grid around it would be under %g world "
+                     "units", fn, res, ROMA_GRID_MIN_CELL);
+}
+
 static roma_result upload_positions(roma_map *map, const float *positions)
 {
     float *dst = map->positions.mapped;
@@ -77,6 +99,10 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                          (double)desc.margin_cells);
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);
+    roma_result bounds = check_bounds(log, sv.bounds_min, sv.bounds_max, desc.resolution, desc.margin_cells,
+                                      "roma_map_create");
+    if (bounds != ROMA_SUCCESS)
+        return bounds;
 
     roma_map *map = calloc(1, sizeof *map);
     uint32_t *indices = malloc(sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
@@ -168,6 +194,12 @@ roma_result roma_map_update_positions(roma_map *map, const float *positions, uin
             return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE,
                              "roma_map_update_positions: vertex %llu is not finite",
                              (unsigned long long)(i / 3));
+    float bmin[3], bmax[3];
+    scene_bounds(positions, map->indices_host, map->triangle_count, bmin, bmax);
+    roma_result r = check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells,
+                                 "roma_map_update_positions");
+    if (r != ROMA_SUCCESS)
+        return r;
     /* The previous build may still read the buffer. */
     vkQueueWaitIdle(map->ctx->queue);
     return upload_positions(map, positions);

@@ -5,20 +5,44 @@
 
 #include "roma/sampling.h"
 
-int roma_compute_grid(const float bmin[3], const float bmax[3], uint32_t res, uint32_t angular,
-                      float margin_cells, const float jitter[3], roma_grid_params *out)
+/* Side of the grid cube around [bmin, bmax], or 0 when the box is empty or not finite. */
+static double grid_side(const float bmin[3], const float bmax[3], uint32_t res, float margin_cells)
 {
-    memset(out, 0, sizeof *out);
     double extent = 0.0;
     for (int i = 0; i < 3; ++i) {
         double e = (double)bmax[i] - (double)bmin[i];
         if (!isfinite(e) || e < 0.0)
-            return 0;
+            return 0.0;
         extent = e > extent ? e : extent;
     }
     if (!(extent > 0.0) || res < 32 || margin_cells < 0.0f || 2.0 * margin_cells >= res)
+        return 0.0;
+    return extent * (double)res / ((double)res - 2.0 * margin_cells);
+}
+
+roma_grid_status roma_grid_check(const float bmin[3], const float bmax[3], uint32_t res, float margin_cells)
+{
+    double side = grid_side(bmin, bmax, res, margin_cells);
+    if (!(side > 0.0))
+        return ROMA_GRID_EMPTY;
+    if (side / (double)res < ROMA_GRID_MIN_CELL)
+        return ROMA_GRID_TOO_SMALL;
+    double reach = side * (0.5 + 1.0 / (double)res); /* half the cube plus the jitter */
+    for (int i = 0; i < 3; ++i) {
+        double centre = 0.5 * ((double)bmin[i] + (double)bmax[i]);
+        if (fabs(centre) + reach > ROMA_GRID_MAX_COORDINATE)
+            return ROMA_GRID_TOO_LARGE;
+    }
+    return ROMA_GRID_OK;
+}
+
+int roma_compute_grid(const float bmin[3], const float bmax[3], uint32_t res, uint32_t angular,
+                      float margin_cells, const float jitter[3], roma_grid_params *out)
+{
+    memset(out, 0, sizeof *out);
+    if (roma_grid_check(bmin, bmax, res, margin_cells) != ROMA_GRID_OK)
         return 0;
-    double side = extent * (double)res / ((double)res - 2.0 * margin_cells);
+    double side = grid_side(bmin, bmax, res, margin_cells);
     double cell = side / (double)res;
     for (int i = 0; i < 3; ++i) {
         double centre = 0.5 * ((double)bmin[i] + (double)bmax[i]);

@@ -17,6 +17,7 @@
 #extension GL_EXT_buffer_reference_uvec2 : enable
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : enable
 
+#include "roma_float.glsl"
 #include "roma_shared.h"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaWords { uint w[]; };
@@ -76,9 +77,9 @@ vec2 roma_hemisphere_to_square(vec3 d)
 bool roma_unit_direction(vec3 d, out vec3 unit)
 {
     unit = vec3(0.0);
-    if (any(isnan(d)) || any(isinf(d)))
+    if (!roma_all_finite(d))
         return false;
-    vec3 f = mix(d, vec3(0.0), lessThan(abs(d), vec3(1.17549435e-38)));
+    vec3 f = roma_flush_subnormal(d);
     float m = max(max(abs(f.x), abs(f.y)), abs(f.z));
     if (!(m > 0.0))
         return false;
@@ -174,7 +175,7 @@ int roma_first_cell(RomaWords maps, uint base, int c_lo, int c_hi, bool upward)
 // A ray is traced only with a finite origin and tmin <= tmax (NaN bounds miss).
 bool roma_ray_range_valid(vec3 origin, float tmin, float tmax)
 {
-    return !(any(isnan(origin)) || any(isinf(origin))) && tmin <= tmax;
+    return roma_all_finite(origin) && !roma_is_nan(tmin) && !roma_is_nan(tmax) && tmin <= tmax;
 }
 
 // Snapped query: the ray follows the candidate of its stratum (or its opposite).
@@ -231,7 +232,7 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
         (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
         (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
     vec3 m0 = roma_to_map(params, f, origin);
-    if (any(isinf(m0)))
+    if (!roma_all_finite(m0))
         return hit; // an origin so far out that its map coordinates overflow
     float fres = float(res);
     // Clip to the map's xy slab.

@@ -24,7 +24,7 @@ void main()
     uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaAoPixels(pc.pixels).p[pixel];
     // Background: the caller writes AO 1 there.
-    if (isinf(g.position_t.w))
+    if (roma_is_inf(g.position_t.w))
         return;
     RomaParams params = RomaParams(pc.params);
     RomaWords maps = RomaWords(pc.maps);

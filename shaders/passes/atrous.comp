@@ -25,7 +25,7 @@ void main()
     uint pixel = xy.y * uint(width) + xy.x;
     vec4 centre = RomaVec4s(pc.src).v[pixel];
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
-    if (isinf(g.position_t.w)) {
+    if (roma_is_inf(g.position_t.w)) {
         RomaVec4Out(pc.dst).v[pixel] = centre;
         return;
     }
@@ -42,7 +42,7 @@ void main()
                 continue;
             uint q = uint(p.y) * uint(width) + uint(p.x);
             roma_gbuffer_pixel h = RomaGbufferPixels(pc.pixels).p[q];
-            if (isinf(h.position_t.w))
+            if (roma_is_inf(h.position_t.w))
                 continue;
             float w = kernel[abs(dx)] * kernel[abs(dy)];
             // Distance of the tap's surface from this pixel's tangent plane, and normal agreement.

@@ -37,7 +37,7 @@ vec3 rsm_radiance(vec3 h)
             continue;
         uint texel = uint(q.y) * view.info.y + uint(q.x);
         roma_gbuffer_pixel y = RomaGbufferPixels(view.info.zw).p[texel];
-        if (isinf(y.position_t.w))
+        if (roma_is_inf(y.position_t.w))
             continue;
         roma_gpu_light light = RomaLights(gi.lights).l[view.info.x];
         vec3 lp = light.position_type.xyz;
@@ -60,7 +60,7 @@ void main()
         return;
     uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(gi.pixels).p[pixel];
-    if (isinf(g.position_t.w))
+    if (roma_is_inf(g.position_t.w))
         return;
     RomaParams params = RomaParams(gi.params);
     RomaWords maps = RomaWords(gi.maps);

@@ -29,7 +29,7 @@ void main()
         return;
     uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
-    if (isinf(g.position_t.w))
+    if (roma_is_inf(g.position_t.w))
         return;
     RomaParams params = RomaParams(pc.params);
     RomaWords maps = RomaWords(pc.maps);

@@ -25,7 +25,7 @@ void main()
         return;
     uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
-    bool covered = !isinf(g.position_t.w);
+    bool covered = !roma_is_inf(g.position_t.w);
     float inv_spp = pc.scale.x;
     vec3 value = vec3(mode == ROMA_RESOLVE_AO ? 1.0 : 0.0); // background: nothing occludes, nothing lit
     if (covered) {

@@ -28,13 +28,13 @@ void main()
     float count = 0.0;
     vec3 history = vec3(0.0);
     vec2 motion = vec2(g.shading_normal.w, g.geometric_normal.w);
-    if (pc.config.w != 0u && !isinf(g.position_t.w) && !isinf(motion.x)) {
+    if (pc.config.w != 0u && !roma_is_inf(g.position_t.w) && !roma_is_inf(motion.x)) {
         vec2 prev = vec2(xy) + 0.5 + motion;
         if (prev.x >= 0.0 && prev.y >= 0.0 && prev.x < float(width) && prev.y < float(height)) {
             uint q = uint(prev.y) * width + uint(prev.x);
             roma_gbuffer_pixel h = RomaGbufferPixels(pc.previous).p[q];
             float tolerance = pc.test.x * g.position_t.w;
-            if (!isinf(h.position_t.w) && distance(h.position_t.xyz, g.position_t.xyz) <= tolerance &&
+            if (!roma_is_inf(h.position_t.w) && distance(h.position_t.xyz, g.position_t.xyz) <= tolerance &&
                 dot(h.geometric_normal.xyz, g.geometric_normal.xyz) >= pc.test.y) {
                 vec4 hv = RomaVec4s(pc.history).v[q];
                 history = hv.rgb;

@@ -74,28 +74,33 @@ int main(void)
     CHECK(in_use(ctx) == base);
     roma_context_destroy(ctx);
 
-    /* Budgets from 1 byte to just short of what the map takes: map creation, the
-     * first build and the first trace each fail cleanly, at every allocation. */
-    uint64_t budgets[40];
-    int n = 0;
-    budgets[n++] = 1;
-    for (int k = 1; k < 32; ++k)
-        budgets[n++] = map_bytes * (uint64_t)k / 32;
-    budgets[n++] = map_bytes - 1;
-    int refused = 0, created = 0;
-    for (int i = 0; i < n; ++i) {
-        roma_context *c = budget_context(budgets[i], &log);
-        if (!c)
+    /* Budgets in 64-byte steps up to just short of what a second map takes, on top
+     * of a first map that stays alive (so that memory in use never starts at zero,
+     * where a double release would hide): creation, the first build and the first
+     * trace fail in turn at every allocation, and each failure gives back exactly
+     * what its call took. */
+    int refused = 0, created = 0, steps = 0;
+    for (uint64_t extra = 0; extra < map_bytes; extra += 64, ++steps) {
+        roma_context *c = budget_context(base + map_bytes + extra, &log);
+        roma_map *ballast = NULL;
+        if (!c || roma_map_create(c, &small, scene, &ballast) != ROMA_SUCCESS || !map_works(ballast)) {
+            CHECK(!"a context with room for one map could not hold it");
+            roma_map_destroy(ballast);
+            roma_test_context_finish(c);
             break;
+        }
         uint64_t before = in_use(c);
+        CHECK(before == base + map_bytes);
         roma_map *m = (roma_map *)1;
         log.errors = 0;
         roma_result r = roma_map_create(c, &small, scene, &m);
         if (r == ROMA_SUCCESS) {
             ++created;
             /* Created within the budget: building and tracing need the rest. */
+            uint64_t after_create = in_use(c);
             CHECK(!map_works(m));
             CHECK(log.errors >= 1 && strstr(log.last, "budget") != NULL);
+            CHECK(in_use(c) == after_create); /* a failed build keeps nothing; a failed trace drops its cache */
             roma_map_destroy(m);
         } else {
             ++refused;
@@ -104,11 +109,14 @@ int main(void)
             CHECK(log.errors == 1 && strstr(log.last, "budget") != NULL);
         }
         CHECK(in_use(c) == before);
+        CHECK(map_works(ballast)); /* the context and its other objects carry on */
+        roma_map_destroy(ballast);
+        CHECK(in_use(c) == base);
         roma_test_context_finish(c);
     }
-    printf("budgets below the map's %llu bytes: %d refused at creation, %d at the first build or trace\n",
-           (unsigned long long)map_bytes, refused, created);
-    CHECK(refused > 0);
+    printf("%d budgets below a second map's %llu bytes: %d refused at creation, %d at the first build or trace\n",
+           steps, (unsigned long long)map_bytes, refused, created);
+    CHECK(refused > 0 && created > 0);
 
     /* Enough for the map, not for a large trace's staging buffers. */
     ctx = budget_context(map_bytes + 4096, &log);

@@ -509,6 +509,7 @@ static const bad_case cases[] = {
     {"negative_index.gltf", "\"indices\":1}", "\"indices\":-1}", ROMA_ERROR_PARSE},
     {"negative_attribute.gltf", "\"POSITION\":0", "\"POSITION\":-2", ROMA_ERROR_PARSE},
     {"negative_node.gltf", "\"nodes\":[0]", "\"nodes\":[-1]", ROMA_ERROR_PARSE},
+    {"negative_mode.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":-1}", ROMA_ERROR_PARSE},
     {"negative_child.gltf", "{\"mesh\":0}", "{\"mesh\":0,\"children\":[-4]}", ROMA_ERROR_PARSE},
     {"negative_in_extras.gltf", "{\"mesh\":0}", "{\"mesh\":0,\"extras\":{\"count\":-1}}", ROMA_SUCCESS},
 };

@@ -227,8 +227,8 @@ static trace_counts trace_checked(const fixture *f, const roma_ray *rays, uint32
                             label, m, i, gpu[i].t, gpu[i].info, r->tmin, r->tmax);
                 ++c.undefined;
             }
-            if (!ray_valid(r) && (gpu[i].info & ROMA_HIT_FLAG))
-                ++c.invalid_hits;
+            if (!ray_valid(r) && (gpu[i].info != 0 || gpu[i].t != INFINITY))
+                ++c.invalid_hits; /* must be a plain miss: map 0, not folded */
         }
         if (hits)
             memcpy(hits[m], gpu, sizeof(roma_hit) * n);
@@ -261,6 +261,8 @@ static uint32_t hard_directions(uint32_t angular, float dirs[MAX_DIRS][3])
     DIR(0.0f, 1e-7f, -1.0f);
     DIR(3.0f, 4.0f, 12.0f);              /* unnormalised */
     DIR(0.001f, -0.002f, 0.003f);
+    DIR(1.0f, 1e-40f, 0.0f);             /* subnormal beside normal: as (1, 0, 0) */
+    DIR(1e6f, 1e-33f, 0.0f);             /* a ratio below FLT_MIN: as (1, 0, 0) */
     /* Stratum edges and corners of the candidate grid, upper and lower hemisphere. */
     for (uint32_t i = 0; i <= angular && n + 4 < MAX_DIRS - 24; ++i)
         for (uint32_t j = 0; j <= angular && n + 4 < MAX_DIRS - 24; j += angular > 2 ? angular / 2 : 1) {
@@ -321,7 +323,10 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
         {occupied[0], occupied[1], occupied[2]},
         {occupied[0] + 0.49f, occupied[1] - 0.49f, occupied[2] + 0.49f},
     };
-    const uint32_t n_origins = sizeof origins / sizeof origins[0];
+    const uint32_t n_cell_origins = sizeof origins / sizeof origins[0];
+    /* World-space origins so far out that map coordinates overflow. */
+    const float far[][3] = {{1e38f, 1e38f, 1e38f}, {-3e38f, 1e20f, 0.0f}, {1e10f, -1e10f, 1e10f}};
+    const uint32_t n_origins = n_cell_origins + sizeof far / sizeof far[0];
     const float ranges[][2] = {
         {0.0f, INFINITY}, {0.0f, 0.0f}, {3.0f, 3.0f}, {-5.0f, INFINITY}, {-INFINITY, INFINITY},
         {0.0f, 0.5f}, {5.0f, 2.0f}, {INFINITY, INFINITY}, {NAN, INFINITY}, {0.0f, NAN},
@@ -356,7 +361,10 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
         }
         for (uint32_t o = 0; o < n_origins; ++o)
             for (uint32_t r = 0; r < n_ranges; ++r, ++i) {
-                grid_point(&f, origins[o][0], origins[o][1], origins[o][2], rays[i].origin);
+                if (o < n_cell_origins)
+                    grid_point(&f, origins[o][0], origins[o][1], origins[o][2], rays[i].origin);
+                else
+                    memcpy(rays[i].origin, far[o - n_cell_origins], sizeof rays[i].origin);
                 memcpy(rays[i].dir, dir, sizeof dir);
                 rays[i].tmin = ranges[r][0] * cell;
                 rays[i].tmax = ranges[r][1] * cell;
@@ -380,8 +388,17 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
     }
     for (uint32_t j = 0; j < n_regular * per_dir; ++j)
         hit_count += hits[ROMA_TRACE_SNAPPED_ANY][j].info & ROMA_HIT_FLAG;
+    /* Directions that differ only below FLT_MIN trace as (1, 0, 0) (index 1). */
+    for (uint32_t d = 0; d < n_regular; ++d) {
+        const float *v = dirs[d];
+        if (!(v[0] >= 1.0f && v[1] > 0.0f && v[1] < 1e-30f && v[2] == 0.0f))
+            continue;
+        for (uint32_t j = 0; j < per_dir; ++j)
+            for (int m = 0; m < 4; ++m)
+                scaled_diff += !same_hit(hits[m][d * per_dir + j], hits[m][1 * per_dir + j]);
+    }
     printf("%-24s %6u rays x 4 modes: %u mirror mismatches, %u ill-defined, %u selection "
-           "differences (stratum edges), %u hits of invalid rays, %u scaled-direction differences, "
+           "differences (stratum edges), %u invalid rays not a plain miss, %u scaled-direction differences, "
            "%u snapped hits\n", label, n, c.mismatches, c.undefined, c.selection, c.invalid_hits,
            scaled_diff, hit_count);
     CHECK(c.mismatches == 0);
@@ -549,7 +566,8 @@ static int cmp_double(const void *a, const void *b)
 /* Traces the room (scaled by s, moved by off) and, with_reference, measures it against
  * Embree. out_any and out_closest (optional) receive the snapped results. */
 static room_error measure_room(roma_context *ctx, double s, const double off[3], uint32_t res,
-                               int with_reference, roma_hit *out_any, roma_hit *out_closest)
+                               int with_reference, roma_hit *out_any, roma_hit *out_closest,
+                               roma_hit *out_unsnapped)
 {
     room_error e = {0};
     mesh *m = calloc(1, sizeof *m);
@@ -580,6 +598,9 @@ static room_error measure_room(roma_context *ctx, double s, const double off[3],
     CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_SNAPPED_ANY, 0, rays[0], ROOM_RAYS, any, NULL), ROMA_SUCCESS);
     CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_SNAPPED_CLOSEST, 0, rays[1], ROOM_RAYS, closest, NULL),
                  ROMA_SUCCESS);
+    if (out_unsnapped)
+        CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_UNSNAPPED_CLOSEST, 64, rays[1], ROOM_RAYS, out_unsnapped, NULL),
+                     ROMA_SUCCESS);
     static double err[ROOM_RAYS];
     uint32_t agree = 0, n_err = 0;
     for (uint32_t i = 0; i < ROOM_RAYS && with_reference; ++i) {
@@ -616,8 +637,9 @@ static room_error measure_room(roma_context *ctx, double s, const double off[3],
 static void check_scale_and_placement(roma_context *ctx)
 {
     const uint32_t res = 128;
-    static roma_hit any0[ROOM_RAYS], closest0[ROOM_RAYS], any1[ROOM_RAYS], closest1[ROOM_RAYS];
-    room_error base = measure_room(ctx, 1.0, NULL, res, 1, any0, closest0);
+    static roma_hit any0[ROOM_RAYS], closest0[ROOM_RAYS], any1[ROOM_RAYS], closest1[ROOM_RAYS],
+        unsnapped0[ROOM_RAYS], unsnapped1[ROOM_RAYS];
+    room_error base = measure_room(ctx, 1.0, NULL, res, 1, any0, closest0, unsnapped0);
     printf("room, unit scale:             agreement %.4f, closest error median %.3f p99 %.3f trace cells\n",
            base.agreement, base.median, base.p99);
 
@@ -627,11 +649,13 @@ static void check_scale_and_placement(roma_context *ctx)
     const int exponents[] = {-105, -10, 13, 123};
     for (int i = 0; i < 4; ++i) {
         double s = ldexp(1.0, exponents[i]);
-        measure_room(ctx, s, NULL, res, 0, any1, closest1);
+        measure_room(ctx, s, NULL, res, 0, any1, closest1, unsnapped1);
         uint32_t diff = 0;
         for (uint32_t r = 0; r < ROOM_RAYS; ++r) {
             diff += any0[r].info != any1[r].info || closest0[r].info != closest1[r].info;
             diff += (closest0[r].info & 1) && (float)((double)closest0[r].t * s) != closest1[r].t;
+            diff += unsnapped0[r].info != unsnapped1[r].info;
+            diff += (unsnapped0[r].info & 1) && (float)((double)unsnapped0[r].t * s) != unsnapped1[r].t;
         }
         printf("room scaled by 2^%-3d:         %u results differ from the unit room's (scaled)\n", exponents[i], diff);
         CHECK(diff == 0);
@@ -647,7 +671,7 @@ static void check_scale_and_placement(roma_context *ctx)
         {10.0, {1e6, -1e6, 1e6}, "x10 at (1e6,-1e6,1e6)"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        room_error e = measure_room(ctx, cases[i].s, cases[i].off, res, 1, NULL, NULL);
+        room_error e = measure_room(ctx, cases[i].s, cases[i].off, res, 1, NULL, NULL, NULL);
         /* Far out, the scene's own vertices are rounded to float: half an ulp of the
          * coordinates (2^-8 at 1e5), in trace cells, is what the input itself lost. */
         double far = fmax(fmax(fabs(cases[i].off[0]), fabs(cases[i].off[1])), fabs(cases[i].off[2])) + cases[i].s;

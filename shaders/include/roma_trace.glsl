@@ -83,7 +83,8 @@ bool roma_unit_direction(vec3 d, out vec3 unit)
     float m = max(max(abs(f.x), abs(f.y)), abs(f.z));
     if (!(m > 0.0))
         return false;
-    precise vec3 s = vec3(f.x / m, f.y / m, f.z / m);
+    // A ratio below FLT_MIN (1e10 beside 1e-30) is flushed too, for the same reason.
+    precise vec3 s = roma_flush_subnormal(vec3(f.x / m, f.y / m, f.z / m));
     precise float len = sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
     precise float inv_len = 1.0 / len;
     unit = s * inv_len;
@@ -178,22 +179,34 @@ bool roma_ray_range_valid(vec3 origin, float tmin, float tmax)
     return roma_all_finite(origin) && !roma_is_nan(tmin) && !roma_is_nan(tmax) && tmin <= tmax;
 }
 
+// Start of both queries: the unit direction, its map and fold, and the miss that
+// is returned unless a hit is found. False for rays that are not traced at all.
+bool roma_trace_begin(RomaParams params, vec3 origin, vec3 dir, float tmin, float tmax, out vec3 dn,
+                      out uint k, out bool folded, out roma_hit miss)
+{
+    folded = false;
+    bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
+    k = valid ? roma_select_map_unit(dn, params.grid.dims.z, folded) : 0u;
+    miss = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
+    return valid;
+}
+
 // Snapped query: the ray follows the candidate of its stratum (or its opposite).
 roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3 dir, float tmin,
                             float tmax, bool closest)
 {
     uint res = params.grid.dims.x, words = params.grid.dims.y;
     vec3 dn;
-    bool folded = false;
-    bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
-    uint k = valid ? roma_select_map_unit(dn, params.grid.dims.z, folded) : 0u;
-    roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
-    if (!valid)
+    uint k;
+    bool folded;
+    roma_hit hit;
+    if (!roma_trace_begin(params, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
     // Only the fields a snapped query needs: a frame is 144 bytes.
     precise vec3 r = origin - params.grid.origin.xyz;
     vec3 m = roma_to_map_rows(params.maps[k].to_map_0, params.maps[k].to_map_1, params.maps[k].to_map_2, r);
-    if (!(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
+    // Finite first (an origin ~1e38 away overflows): the range test must not meet a NaN.
+    if (!roma_all_finite(m) || !(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
         return hit;
     float inv_cz = params.maps[k].cell.w, cz = params.maps[k].dir.w;
     precise float lo = folded ? m.z - tmax * inv_cz : m.z + tmin * inv_cz;
@@ -220,11 +233,10 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
 {
     uint res = params.grid.dims.x, words = params.grid.dims.y;
     vec3 dn;
-    bool folded = false;
-    bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
-    uint k = valid ? roma_select_map_unit(dn, params.grid.dims.z, folded) : 0u;
-    roma_hit hit = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
-    if (!valid)
+    uint k;
+    bool folded;
+    roma_hit hit;
+    if (!roma_trace_begin(params, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
     roma_map_frame f = params.maps[k];
     precise vec3 dm = vec3(
@@ -263,8 +275,9 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
         precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) / dm.y
                          : dm.y < 0.0 ? (float(iy) - m0.y) / dm.y : 1.0 / 0.0;
         float t_next = min(min(tx, ty), t_out);
-        precise float za = m0.z + dm.z * t_cur;
-        precise float zb = m0.z + dm.z * t_next;
+        // dm.z = 0 with an infinite t would give 0 * inf = NaN.
+        precise float za = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_cur;
+        precise float zb = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_next;
         int c_lo, c_hi;
         if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi)) {
             uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);

@@ -96,6 +96,8 @@ static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame
     const uint32_t res = grid->dims[0], words = grid->dims[1];
     float m[3];
     to_map(grid, f, ray->origin, m);
+    if (!isfinite(m[0]) || !isfinite(m[1]) || !isfinite(m[2]))
+        return hit;
     if (!(m[0] >= 0.0f && m[0] < (float)res && m[1] >= 0.0f && m[1] < (float)res))
         return hit;
     float inv_cz = f->cell[3], cz = f->dir[3];
@@ -126,7 +128,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     for (int a = 0; a < 3; ++a)
         dm[a] = (rows[a][0] * dn[0] + rows[a][1] * dn[1]) + rows[a][2] * dn[2];
     to_map(grid, f, ray->origin, m0);
-    if (isinf(m0[0]) || isinf(m0[1]) || isinf(m0[2]))
+    if (!isfinite(m0[0]) || !isfinite(m0[1]) || !isfinite(m0[2]))
         return hit; /* an origin so far out that its map coordinates overflow */
     const float fres = (float)res;
     float t_in = ray->tmin, t_out = ray->tmax;
@@ -154,8 +156,8 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
         float ty = dm[1] > 0.0f ? ((float)(iy + 1) - m0[1]) / dm[1]
                  : dm[1] < 0.0f ? ((float)iy - m0[1]) / dm[1] : INFINITY;
         float t_next = fminf(fminf(tx, ty), t_out);
-        float za = m0[2] + dm[2] * t_cur;
-        float zb = m0[2] + dm[2] * t_next;
+        float za = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_cur;
+        float zb = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_next;
         int c_lo, c_hi;
         if (cell_range(fminf(za, zb), fmaxf(za, zb), res, &c_lo, &c_hi)) {
             uint32_t base = ((k * res + (uint32_t)iy) * res + (uint32_t)ix) * words;

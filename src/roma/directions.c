@@ -59,7 +59,11 @@ int roma_unit_direction(const float d[3], float unit[3])
     float m = fmaxf(fmaxf(fabsf(f[0]), fabsf(f[1])), fabsf(f[2]));
     if (!(m > 0.0f))
         return 0;
-    float s[3] = {f[0] / m, f[1] / m, f[2] / m};
+    float s[3];
+    for (int i = 0; i < 3; ++i) {
+        s[i] = f[i] / m;
+        s[i] = fabsf(s[i]) < FLT_MIN ? 0.0f : s[i]; /* as roma_unit_direction in GLSL */
+    }
     float len = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     float inv_len = 1.0f / len;
     for (int i = 0; i < 3; ++i)

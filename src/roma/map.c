@@ -415,8 +415,12 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
     r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
     if (r == ROMA_SUCCESS)
         r = ensure_staging(map, &map->hit_staging, sizeof(roma_hit) * (VkDeviceSize)ray_count, ROMA_MEMORY_READBACK);
-    if (r != ROMA_SUCCESS)
+    if (r != ROMA_SUCCESS) {
+        /* Keep nothing this call grew: the staging buffers are only a cache. */
+        roma_buffer_destroy(map->ctx, &map->ray_staging);
+        roma_buffer_destroy(map->ctx, &map->hit_staging);
         return r;
+    }
     memcpy(map->ray_staging.mapped, rays, sizeof(roma_ray) * (size_t)ray_count);
     VkCommandBuffer cmd;
     r = roma_begin_one_shot(map->ctx, &cmd);

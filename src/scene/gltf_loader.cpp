@@ -376,7 +376,7 @@ void Loader::check_non_negative(const nlohmann::json &v)
                                        "count",      "indices",  "material",   "mesh",       "node",
                                        "camera",     "skin",     "source",     "sampler",    "scene",
                                        "input",      "output",   "light",      "texCoord",   "index",
-                                       "skeleton",   "inverseBindMatrices"};
+                                       "skeleton",   "inverseBindMatrices", "mode"};
     static const char *const id_lists[] = {"nodes", "children", "joints", "attributes"};
     auto negative = [](const nlohmann::json &x) {
         return (x.is_number_integer() && !x.is_number_unsigned() && x.get<int64_t>() < 0) ||

@@ -46,5 +46,12 @@ int main(void)
         CHECK(fabsf(y / z) <= f.tan_half_fovy);
         CHECK(fabsf(x / z) <= f.tan_half_fovy * f.aspect);
     }
+    /* Bounds near FLT_MAX: the centre is taken from halves, so it does not overflow
+     * (it used to, and the camera came back zeroed). */
+    const float far_min[3] = {1.8e38f, 1.8e38f, 1.8e38f}, far_max[3] = {1.9e38f, 1.9e38f, 1.9e38f};
+    roma_camera_frame_bounds(far_min, far_max, 1.0f, &framed);
+    CHECK(roma_camera_make_frame(&framed, 64, 64, &f));
+    CHECK(isfinite(f.origin[0]) && isfinite(f.origin[1]) && isfinite(f.origin[2]));
+    CHECK_NEAR(framed.target[0] / 1.85e38, 1.0, 1e-6);
     return roma_test_finish("test_camera");
 }

@@ -56,8 +56,9 @@ typedef struct roma_context_desc {
     roma_logger logger;
     /* Bytes of device memory (every vkAllocateMemory: device-local and staging) that
      * objects on this context may hold together; 0 = no limit but the device's.
-     * A create call that would pass it fails with ROMA_ERROR_OUT_OF_DEVICE_MEMORY
-     * and leaves nothing allocated. */
+     * Any call that would pass it (a create, a first build, a trace that needs larger
+     * staging buffers) fails with ROMA_ERROR_OUT_OF_DEVICE_MEMORY and keeps nothing
+     * it allocated (a failed trace also drops its staging buffers, a cache). */
     uint64_t device_memory_budget;
 } roma_context_desc;
 

@@ -72,9 +72,10 @@ typedef struct roma_map_desc {
 
 /* Geometry is uploaded here (positions and indices); call again when it moves.
  * Supported scenes: the grid cube around the scene must lie within +-8.5e37 world
- * units and its cells be at least 1e-35 across (scenes from about 1e-33 to 1e37
- * units wide); others are refused with ROMA_ERROR_INVALID_SCENE, as is an update
- * that moves the scene out of that range (the map then keeps its positions). */
+ * units on every axis and its cells be at least 1e-35 across (at RES 32, scenes at
+ * least ~3e-34 wide; at most ~1.6e38 wide when centred on the origin); others are
+ * refused with ROMA_ERROR_INVALID_SCENE, as is an update that would move the scene
+ * out of that range (the map then keeps its positions). */
 roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                             const roma_scene *scene, roma_map **out_map);
 /* Accepts NULL. The caller makes sure no submitted work still uses the map (the
@@ -128,8 +129,9 @@ roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]
 /* Matches struct roma_ray in roma_trace.glsl (std430, 32 bytes).
  * Defined for every bit pattern (docs/robustness.md):
  *  - dir need not be unit: any finite non-zero vector, however large or small, traces
- *    as its unit vector (d and d * 2^k give the same bits). Components below FLT_MIN
- *    count as zero, as GPUs may flush them. A zero, NaN or infinite dir is a miss;
+ *    as its unit vector (d and d * 2^k give the same bits while no component crosses
+ *    FLT_MIN). Components, and their ratios to the largest one, below FLT_MIN count
+ *    as zero, as GPUs may flush them. A zero, NaN or infinite dir is a miss;
  *  - an origin with a NaN or infinite component, or NaN bounds, or tmin > tmax: a miss;
  *  - tmin may be negative or -INFINITY, tmax INFINITY; tmin = tmax tests the cells
  *    holding that one point;

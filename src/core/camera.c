@@ -3,10 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+#include "roma/directions.h"
 
 static void cross3(const float a[3], const float b[3], float out[3])
 {
@@ -15,14 +12,13 @@ static void cross3(const float a[3], const float b[3], float out[3])
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Safe for any finite length (the squares of 1e20 overflow): see roma_unit_direction. */
 static int normalize3(float v[3])
 {
-    float len = sqrtf(dot3(v, v));
-    if (!(len > 0.0f) || !isfinite(len))
+    float unit[3];
+    if (!roma_unit_direction(v, unit))
         return 0;
-    v[0] /= len;
-    v[1] /= len;
-    v[2] /= len;
+    memcpy(v, unit, sizeof unit);
     return 1;
 }
 
@@ -92,15 +88,21 @@ void roma_camera_frame_bounds(const float bmin[3], const float bmax[3], float as
     memset(out, 0, sizeof *out);
     if (!bmin || !bmax)
         return;
-    float center[3], radius = 0.0f;
+    /* Halves first and the radius scaled by the largest half-extent, so that bounds
+     * near FLT_MAX neither overflow the centre nor the squares. */
+    float center[3], h[3], largest = 0.0f, radius = 0.0f;
     for (int i = 0; i < 3; ++i) {
-        center[i] = 0.5f * (bmin[i] + bmax[i]);
-        float h = 0.5f * (bmax[i] - bmin[i]);
-        radius += h * h;
-        if (!isfinite(center[i]))
+        center[i] = 0.5f * bmin[i] + 0.5f * bmax[i];
+        h[i] = 0.5f * bmax[i] - 0.5f * bmin[i];
+        if (!isfinite(center[i]) || !isfinite(h[i]))
             return; /* zeroed: roma_camera_make_frame refuses it (eye == target) */
+        largest = fmaxf(largest, fabsf(h[i]));
     }
-    radius = sqrtf(radius);
+    if (largest > 0.0f) {
+        for (int i = 0; i < 3; ++i)
+            radius += (h[i] / largest) * (h[i] / largest);
+        radius = largest * sqrtf(radius);
+    }
     if (!(radius > 0.0f) || !isfinite(radius))
         radius = 1.0f;
     out->fovy_deg = 45.0f;

@@ -11,7 +11,7 @@
 /* The range of world coordinates where the grid's float arithmetic stays exact
  * enough: every corner of the grid cube within +-ROMA_GRID_MAX_COORDINATE (a quarter
  * of FLT_MAX, so that differences, rotated box extents and ray distances stay
- * finite), and cells no smaller than ROMA_GRID_MIN_CELL (so that a thousandth of a
+ * finite), and cells no smaller than ROMA_GRID_MIN_CELL (so that a hundredth of a
  * cell is still a normal float on GPUs that flush subnormals). */
 #define ROMA_GRID_MAX_COORDINATE 8.5e37
 #define ROMA_GRID_MIN_CELL 1e-35

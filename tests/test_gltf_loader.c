@@ -512,6 +512,28 @@ static const bad_case cases[] = {
     {"negative_mode.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":-1}", ROMA_ERROR_PARSE},
     {"negative_child.gltf", "{\"mesh\":0}", "{\"mesh\":0,\"children\":[-4]}", ROMA_ERROR_PARSE},
     {"negative_in_extras.gltf", "{\"mesh\":0}", "{\"mesh\":0,\"extras\":{\"count\":-1}}", ROMA_SUCCESS},
+    /* Transforms whose product overflows float: every factor is finite, the world
+     * positions are not. */
+    {"scale_overflow.gltf", "\"nodes\":[{\"mesh\":0}]",
+     "\"nodes\":[{\"children\":[1],\"scale\":[1e30,1e30,1e30]},{\"mesh\":0,\"scale\":[1e30,1e30,1e30]}]",
+     ROMA_ERROR_INVALID_SCENE},
+    {"translation_overflow.gltf", "\"nodes\":[{\"mesh\":0}]",
+     "\"nodes\":[{\"children\":[1],\"translation\":[3e38,0,0]},{\"mesh\":0,\"translation\":[3e38,0,0]}]",
+     ROMA_ERROR_INVALID_SCENE},
+    /* Skins and animations with dangling references. */
+    {"skin_bad_joint.gltf", "\"nodes\":[{\"mesh\":0}],", "\"nodes\":[{\"mesh\":0}],\"skins\":[{\"joints\":[7]}],",
+     ROMA_ERROR_INVALID_SCENE},
+    {"skin_bad_matrices.gltf", "\"nodes\":[{\"mesh\":0}],",
+     "\"nodes\":[{\"mesh\":0}],\"skins\":[{\"joints\":[0],\"inverseBindMatrices\":9}],",
+     ROMA_ERROR_INVALID_SCENE},
+    {"animation_bad_node.gltf", "\"nodes\":[{\"mesh\":0}],",
+     "\"nodes\":[{\"mesh\":0}],\"animations\":[{\"channels\":[{\"sampler\":0,\"target\":"
+     "{\"node\":9,\"path\":\"translation\"}}],\"samplers\":[{\"input\":1,\"output\":0}]}],",
+     ROMA_ERROR_INVALID_SCENE},
+    {"animation_bad_sampler.gltf", "\"nodes\":[{\"mesh\":0}],",
+     "\"nodes\":[{\"mesh\":0}],\"animations\":[{\"channels\":[{\"sampler\":5,\"target\":"
+     "{\"node\":0,\"path\":\"translation\"}}],\"samplers\":[{\"input\":1,\"output\":0}]}],",
+     ROMA_ERROR_INVALID_SCENE},
 };
 
 static void test_corpus(void)
@@ -625,6 +647,29 @@ static void test_corpus(void)
     strcpy(deep + at + 2 * depth, "}");
     expect_code("deep.gltf", deep, strlen(deep), ROMA_ERROR_PARSE);
     free(deep);
+
+    /* A valid chain of 100,000 nodes, each the child of the one before: the node
+     * walk is iterative, so this loads (no recursion to overflow the stack). */
+    const uint32_t chain = 100000;
+    char *nodes = malloc((size_t)chain * 64 + 64); /* each node takes under 64 characters */
+    size_t at_node = 0;
+    at_node += (size_t)sprintf(nodes + at_node, "\"nodes\":[");
+    for (uint32_t i = 0; i + 1 < chain; ++i)
+        at_node += (size_t)sprintf(nodes + at_node, "{\"children\":[%u],\"translation\":[0,0,1e-5]},", i + 1);
+    sprintf(nodes + at_node, "{\"mesh\":0}]");
+    doc = tri_doc("\"nodes\":[{\"mesh\":0}]", nodes, NULL);
+    free(nodes);
+    s = NULL;
+    CHECK_RESULT(load_case("node_chain.gltf", doc, strlen(doc), NULL, &s), ROMA_SUCCESS);
+    if (s) {
+        roma_scene_view v;
+        roma_scene_get_view(s, &v);
+        CHECK(v.triangle_count == 1);
+        /* The translations add up along the chain: z = 99,999 * 1e-5. */
+        CHECK_NEAR(v.positions[2], 0.99999, 1e-3);
+        roma_scene_destroy(s);
+    }
+    free(doc);
 
     /* Missing file and bad arguments. */
     char path[1024];

@@ -53,16 +53,20 @@ int main(void)
                 CHECK(folded == 0);
             }
         }
-        /* Jitter at the ends of its range ([1e-4, 1 - 1e-4] of the stratum, the clamp in
-         * roma_candidate_directions) keeps the candidate in its stratum, for every A. */
+        /* Jitter at and beyond the ends of its range (roma_random gives [0, 1); the
+         * clamp keeps [1e-4, 1 - 1e-4]) puts the candidate in its stratum, for every A. */
+        const float ends[] = {0.0f, 1e-4f, 0.5f, 1.0f - 1e-4f, 0x1.fffffep-1f, 1.0f, -1.0f, 2.0f, NAN};
+        const uint32_t n_ends = sizeof ends / sizeof ends[0];
+        uint32_t outside = 0;
         for (uint32_t a = angular; a < 2 * angular && a <= 16; ++a)
             for (uint32_t k = 0; k < a * a; ++k)
-                for (int corner = 0; corner < 4; ++corner) {
-                    float ju = (corner & 1) ? 1.0f - 1e-4f : 1e-4f, jv = (corner & 2) ? 1.0f - 1e-4f : 1e-4f, d[3];
-                    roma_square_to_hemisphere(((float)(k % a) + ju) / (float)a, ((float)(k / a) + jv) / (float)a, d);
+                for (uint32_t i = 0; i < n_ends * n_ends; ++i) {
+                    float d[3];
+                    roma_stratum_candidate(a, k, ends[i % n_ends], ends[i / n_ends], d);
                     int folded = 1;
-                    CHECK(roma_direction_to_map(d, a, &folded) == k && folded == 0);
+                    outside += !(roma_direction_to_map(d, a, &folded) == k && folded == 0);
                 }
+        CHECK(outside == 0);
         /* Random directions land in a stratum whose candidate is within its angular radius;
          * d and -d select the same map. */
         float radius[256];

@@ -97,18 +97,22 @@ uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded)
     return roma_unit_direction_to_map(unit, angular, folded);
 }
 
+void roma_stratum_candidate(uint32_t angular, uint32_t k, float ju, float jv, float out_dir[3])
+{
+    /* Strictly inside the stratum: on its edge, float rounding could select a neighbour.
+     * fmaxf/fminf also turn a NaN jitter into the edge of the range. */
+    ju = fminf(fmaxf(ju, 1e-4f), 1.0f - 1e-4f);
+    jv = fminf(fmaxf(jv, 1e-4f), 1.0f - 1e-4f);
+    roma_square_to_hemisphere(((float)(k % angular) + ju) / (float)angular,
+                              ((float)(k / angular) + jv) / (float)angular, out_dir);
+}
+
 void roma_candidate_directions(uint32_t angular, uint32_t seed, uint32_t frame, int jitter,
                                float *out)
 {
-    for (uint32_t sy = 0; sy < angular; ++sy)
-        for (uint32_t sx = 0; sx < angular; ++sx) {
-            uint32_t k = sy * angular + sx;
-            float ju = jitter ? roma_random(seed, k, frame, 0) : 0.5f;
-            float jv = jitter ? roma_random(seed, k, frame, 1) : 0.5f;
-            /* Keep the candidate strictly inside its stratum. */
-            ju = fminf(fmaxf(ju, 1e-4f), 1.0f - 1e-4f);
-            jv = fminf(fmaxf(jv, 1e-4f), 1.0f - 1e-4f);
-            roma_square_to_hemisphere(((float)sx + ju) / (float)angular,
-                                      ((float)sy + jv) / (float)angular, out + 3 * k);
-        }
+    for (uint32_t k = 0; k < angular * angular; ++k) {
+        float ju = jitter ? roma_random(seed, k, frame, 0) : 0.5f;
+        float jv = jitter ? roma_random(seed, k, frame, 1) : 0.5f;
+        roma_stratum_candidate(angular, k, ju, jv, out + 3 * k);
+    }
 }

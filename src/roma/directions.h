@@ -24,6 +24,10 @@ uint32_t roma_unit_direction_to_map(const float unit[3], uint32_t angular, int *
 /* The same for any direction; invalid ones (see above) map to 0, not folded. */
 uint32_t roma_direction_to_map(const float d[3], uint32_t angular, int *folded);
 
+/* The candidate of stratum k (sx = k % A, sy = k / A) at (ju, jv) within it; the
+ * jitter is clamped to [1e-4, 1 - 1e-4] so that the candidate selects map k. */
+void roma_stratum_candidate(uint32_t angular, uint32_t k, float ju, float jv, float out_dir[3]);
+
 /* A*A candidates (3 floats each), candidate k inside stratum k. jitter = 0 puts
  * each at its stratum centre; otherwise the position in the stratum comes from
  * roma_random(seed, k, frame, 0..1). */

@@ -446,7 +446,29 @@ static void test_map(gpu *g, roma_context *same_device, roma_context *other_devi
     bad = desc;
     bad.resolution = UINT32_MAX;
     FAILS(roma_map_create(g->ctx, &bad, scene, &map), ROMA_ERROR_INVALID_ARGUMENT, &log, "resolution");
+    /* Powers of two and multiples of 32 that the maps do not support. */
+    const uint32_t unsupported[] = {16, 48, 512};
+    for (int i = 0; i < 3; ++i) {
+        bad.resolution = unsupported[i];
+        FAILS(roma_map_create(g->ctx, &bad, scene, &map), ROMA_ERROR_INVALID_ARGUMENT, &log, "resolution");
+    }
+    bad = desc;
+    bad.angular = 17; /* A goes up to 16 */
+    FAILS(roma_map_create(g->ctx, &bad, scene, &map), ROMA_ERROR_INVALID_ARGUMENT, &log, "angular");
     CHECK(map == NULL);
+
+    /* A NULL map: no logger to reach, the code says it. */
+    roma_map_frame_desc frame0 = {0};
+    roma_ray ray0 = {{0.0f, 0.0f, 0.0f}, 0.0f, {1.0f, 0.0f, 0.0f}, INFINITY};
+    roma_hit hit0 = {-1.0f, 0xdeadu};
+    uint32_t word0 = 0xdeadu;
+    CHECK_RESULT(roma_map_build(NULL, &frame0, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_map_trace(NULL, ROMA_TRACE_SNAPPED_ANY, 0, &ray0, 1, &hit0, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(hit0.t == -1.0f && hit0.info == 0xdeadu);
+    CHECK_RESULT(roma_map_download_bom(NULL, &word0, 1), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(word0 == 0xdeadu);
+    CHECK_RESULT(roma_map_update_positions(NULL, &ray0.origin[0], 1), ROMA_ERROR_INVALID_ARGUMENT);
+    roma_map_destroy(NULL);
 
     map = NULL;
     CHECK_RESULT(roma_map_create(g->ctx, &desc, scene, &map), ROMA_SUCCESS);
@@ -490,6 +512,8 @@ static void test_map(gpu *g, roma_context *same_device, roma_context *other_devi
     if (cmd) {
         roma_trace_desc td = {.mode = ROMA_TRACE_SNAPPED_ANY, .ray_count = 1};
         FAILS(roma_map_record_build(map, VK_NULL_HANDLE, &frame, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "cmd");
+        CHECK_RESULT(roma_map_record_build(NULL, cmd, &frame, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+        CHECK_RESULT(roma_map_record_trace(NULL, cmd, &td, NULL), ROMA_ERROR_INVALID_ARGUMENT);
         if (foreign)
             FAILS(roma_map_record_build(map, cmd, &frame, foreign), ROMA_ERROR_INVALID_ARGUMENT, &log, "timer");
         FAILS(roma_map_record_trace(map, cmd, NULL, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "desc");

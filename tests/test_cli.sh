@@ -166,6 +166,7 @@ bad_args() {
   [ -s "$dir/bad.err" ] || fail "roma-render $what: no message on stderr"
 }
 bad_args "--size 0x0" --size 0x0
+bad_args "--size 100000x100000" --size 100000x100000
 bad_args "--effects bogus" --effects bogus
 bad_args "--tracer bogus" --tracer bogus
 bad_args "--shadow-angular 17" --tracer roma --shadow-angular 17

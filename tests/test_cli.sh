@@ -175,6 +175,12 @@ bad_args "unknown option" --no-such-option
 bad_args "--camera with eye == target" --camera 1,2,3,1,2,3,45
 [ -e "$dir/bad" ] && fail "roma-render created its output folder despite bad arguments"
 
+# Valid, but more than the device holds: a clear error, exit status 1, no output folder.
+"$render" --tracer roma --effects ao --size 16384x16384 --spp 1 --quiet --out "$dir/huge" >/dev/null 2>"$dir/huge.err"
+expect_status 1 $? "roma-render --size 16384x16384"
+grep -q "out of device memory" "$dir/huge.err" || fail "roma-render --size 16384x16384 does not say 'out of device memory'"
+[ -e "$dir/huge" ] && fail "roma-render left an output folder after failing"
+
 missing="$dir/no_such_scene.glb"
 "$render" --scene "$missing" --size 8x8 --spp 1 --out "$dir/missing" >/dev/null 2>"$dir/missing.err"
 expect_status 1 $? "roma-render with a missing scene file"

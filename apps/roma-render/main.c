@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -382,6 +383,8 @@ int main(int argc, char **argv)
     roma_camera cam = o.camera;
     if (!o.has_camera)
         roma_scene_default_camera(scene, (float)o.width / (float)o.height, &cam);
+    struct stat out_stat;
+    const int out_existed = stat(o.out, &out_stat) == 0;
     if (!roma_app_make_dir(o.out)) {
         fprintf(stderr, "roma-render: cannot create output folder %s\n", o.out);
         roma_scene_destroy(scene);
@@ -534,5 +537,9 @@ int main(int argc, char **argv)
     free(light_positions);
     roma_ref_destroy(ref);
     roma_scene_destroy(scene);
+    /* A run that failed before writing anything leaves no empty folder behind
+     * (rmdir removes only an empty one: outputs already written stay). */
+    if (status != 0 && !out_existed)
+        rmdir(o.out);
     return status;
 }

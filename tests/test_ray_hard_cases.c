@@ -241,7 +241,25 @@ static trace_counts trace_checked(const fixture *f, const roma_ray *rays, uint32
 
 /* --- 1. crafted rays --- */
 
-enum { MAX_DIRS = 96 };
+/* The exponent k for which d * 2^k has its largest component in [2^127, FLT_MAX]
+ * (2^k itself may not be a float: scale with ldexpf). */
+static int top_exponent(const float d[3])
+{
+    float m = fmaxf(fmaxf(fabsf(d[0]), fabsf(d[1])), fabsf(d[2]));
+    int e;
+    frexpf(m, &e); /* m = f * 2^e, f in [0.5, 1) */
+    return 128 - e;
+}
+
+static int has_subnormal(const float d[3])
+{
+    for (int a = 0; a < 3; ++a)
+        if (d[a] != 0.0f && fabsf(d[a]) < FLT_MIN)
+            return 1;
+    return 0;
+}
+
+enum { MAX_DIRS = 128 };
 
 static uint32_t hard_directions(uint32_t angular, float dirs[MAX_DIRS][3])
 {
@@ -266,7 +284,7 @@ static uint32_t hard_directions(uint32_t angular, float dirs[MAX_DIRS][3])
     DIR(1e6f, 1e-33f, 0.0f);             /* a ratio below FLT_MIN: as (1, 0, 0) */
     /* Stratum edges and corners of the candidate grid, upper and lower hemisphere. */
     for (uint32_t i = 0; i <= angular && n + 4 < MAX_DIRS - 24; ++i)
-        for (uint32_t j = 0; j <= angular && n + 4 < MAX_DIRS - 24; j += angular > 2 ? angular / 2 : 1) {
+        for (uint32_t j = 0; j <= angular && n + 4 < MAX_DIRS - 24; ++j) {
             float d[3];
             roma_square_to_hemisphere((float)i / (float)angular, (float)j / (float)angular, d);
             DIR(d[0], d[1], d[2]);
@@ -279,6 +297,89 @@ static uint32_t hard_directions(uint32_t angular, float dirs[MAX_DIRS][3])
     }
     return n;
 #undef DIR
+}
+
+/* The GPU's rotation of this frame equals the mirror's, word for word. */
+static void check_rotation(const fixture *f, const char *label)
+{
+    const uint32_t res = f->info.resolution, words = f->info.words_per_texel;
+    const uint64_t bom_words = (uint64_t)res * res * words, map_words = bom_words * f->info.map_count;
+    uint32_t *bom = malloc(bom_words * sizeof(uint32_t)), *maps = malloc(map_words * sizeof(uint32_t));
+    CHECK(bom && maps);
+    if (bom && maps) {
+        CHECK_RESULT(roma_map_download_bom(f->map, bom, bom_words), ROMA_SUCCESS);
+        roma_cpu_rotate(&f->grid, f->frames, bom, maps);
+        uint64_t diff = 0;
+        for (uint64_t i = 0; i < map_words; ++i)
+            diff += maps[i] != f->maps[i];
+        printf("%-24s rotation: %llu of %llu words differ from the mirror\n", label, (unsigned long long)diff,
+               (unsigned long long)map_words);
+        CHECK(diff == 0);
+    }
+    free(bom);
+    free(maps);
+}
+
+/* World point of map k's cell coordinates m (roma_shared.h: map -> BOM -> world). */
+static void map_point(const fixture *f, uint32_t k, const float m[3], float out[3])
+{
+    const roma_map_frame *fr = &f->frames[k];
+    for (int a = 0; a < 3; ++a) {
+        float b = ((fr->map_to_bom_0[a] * m[0] + fr->map_to_bom_1[a] * m[1]) + fr->map_to_bom_2[a] * m[2]) +
+                  fr->map_to_bom_3[a];
+        out[a] = f->grid.origin[a] + b * f->grid.origin[3];
+    }
+}
+
+/* Origins at the centre of an occupied cell of each map, traced along that map's
+ * candidate and its opposite (so that map is the one selected), snapped and
+ * un-snapped: always a hit, and a closest hit at t = tmin exactly, because the
+ * origin's own cell holds the tmin point (tmin = 0, -cell/4, and tmin = tmax = 0). */
+static void check_inside_occupied(const fixture *f, const char *label)
+{
+    const uint32_t res = f->info.resolution, words = f->info.words_per_texel;
+    uint32_t rays = 0, wrong = 0, cells = 0;
+    for (uint32_t k = 0; k < f->info.map_count; ++k) {
+        /* The first occupied cell from the middle texel row on. */
+        int x = -1, y = -1, c = -1;
+        for (uint32_t t = res * res / 2; t < res * res && c < 0; ++t)
+            for (uint32_t w = 0; w < words && c < 0; ++w) {
+                uint32_t bits = f->maps[((uint64_t)k * res * res + t) * words + w];
+                if (bits)
+                    x = (int)(t % res), y = (int)(t / res), c = (int)(w * 32 + (uint32_t)__builtin_ctz(bits));
+            }
+        CHECK(c >= 0);
+        if (c < 0)
+            continue;
+        ++cells;
+        const float m[3] = {(float)x + 0.5f, (float)y + 0.5f, (float)c + 0.5f};
+        const float cz = f->frames[k].dir[3];
+        roma_ray ray;
+        map_point(f, k, m, ray.origin);
+        const float ranges[3][2] = {{0.0f, INFINITY}, {-0.25f * cz, INFINITY}, {0.0f, 0.0f}};
+        for (int side = 0; side < 2; ++side)
+            for (int r = 0; r < 3; ++r) {
+                for (int a = 0; a < 3; ++a)
+                    ray.dir[a] = side ? -f->frames[k].dir[a] : f->frames[k].dir[a];
+                ray.tmin = ranges[r][0];
+                ray.tmax = ranges[r][1];
+                for (int mode = 0; mode < 4; ++mode) {
+                    roma_hit h;
+                    CHECK_RESULT(roma_map_trace(f->map, (roma_trace_mode)mode, 8, &ray, 1, &h, NULL), ROMA_SUCCESS);
+                    int closest = mode == ROMA_TRACE_SNAPPED_CLOSEST || mode == ROMA_TRACE_UNSNAPPED_CLOSEST;
+                    int ok = (h.info & ROMA_HIT_FLAG) && ROMA_HIT_MAP(h.info) == k &&
+                             ((h.info >> 16) & 1u) == (uint32_t)side && (closest ? h.t == ray.tmin : h.t == INFINITY);
+                    if (!ok && wrong < 4)
+                        fprintf(stderr, "  %s map %u cell (%d %d %d) side %d mode %d [%g, %g]: t %.9g info %#x\n",
+                                label, k, x, y, c, side, mode, ray.tmin, ray.tmax, h.t, h.info);
+                    wrong += !ok;
+                    ++rays;
+                }
+            }
+    }
+    printf("%-24s origins in occupied cells of %u maps: %u of %u traces not a hit at tmin\n", label, cells, wrong,
+           rays);
+    CHECK(wrong == 0);
 }
 
 static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t res, uint32_t angular,
@@ -297,13 +398,15 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
     uint32_t *bom = malloc(bom_words * sizeof(uint32_t));
     CHECK_RESULT(roma_map_download_bom(f.map, bom, bom_words), ROMA_SUCCESS);
     float occupied[3] = {0.5f, 0.5f, 0.5f};
-    for (uint64_t i = bom_words / 2; i < bom_words; ++i)
+    int found = 0;
+    for (uint64_t i = bom_words / 2; i < bom_words && !found; ++i)
         if (bom[i]) {
             uint32_t texel = (uint32_t)(i / (res / 32)), z = (uint32_t)(i % (res / 32)) * 32 + (uint32_t)__builtin_ctz(bom[i]);
             occupied[0] = (float)(texel % res) + 0.5f, occupied[1] = (float)(texel / res) + 0.5f;
             occupied[2] = (float)z + 0.5f;
-            break;
+            found = 1;
         }
+    CHECK(found);
     free(bom);
 
     /* Origins in BOM cell coordinates. */
@@ -313,8 +416,9 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
         {h, h, h},                       /* cell corner */
         {h, h, h + 0.5f},                /* cell edge */
         {h + 0.5f, h + 0.5f, h},         /* cell face */
-        {h + 0.5f, h + 0.5f, 31.0f},     /* face between words 0 and 1 */
+        {h + 0.5f, h + 0.5f, 32.0f},     /* face between words 0 and 1 (the grid's top face at RES 32) */
         {h + 0.5f, h + 0.5f, 32.0f - 1e-3f},
+        {h + 0.5f, h + 0.5f, (float)res - 32.0f}, /* face between the last two words */
         {0.0f, 0.0f, 0.0f},              /* grid corner */
         {(float)res, (float)res, (float)res},
         {0.5f, h, (float)res},           /* on the boundary */
@@ -336,7 +440,7 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
     const uint32_t n_ranges = sizeof ranges / sizeof ranges[0];
 
     /* Invalid directions come after the regular and scaled ones. */
-    uint32_t n_scaled = 3 * n_regular;
+    uint32_t n_scaled = 4 * n_regular;
     const float invalid[][3] = {
         {0.0f, 0.0f, 0.0f}, {-0.0f, 0.0f, -0.0f}, {NAN, 0.0f, 1.0f}, {0.0f, 0.0f, NAN},
         {INFINITY, 0.0f, 0.0f}, {1.0f, -INFINITY, 1.0f}, {1e-40f, -1e-41f, 0.0f},
@@ -351,12 +455,13 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
         if (d < n_regular) {
             memcpy(dir, dirs[d], sizeof dir);
         } else if (d < n_regular + n_scaled) {
-            /* 2^100, 2^-100 (squares overflow / underflow) and 2^-140 (subnormal
+            /* 2^100, 2^-100 (squares overflow / underflow), the power of two that puts
+             * the largest component in [2^127, FLT_MAX] and 2^-140 (subnormal
              * components; below FLT_MIN they count as zero, see direction_valid). */
             uint32_t base = (d - n_regular) % n_regular, which = (d - n_regular) / n_regular;
-            float s = which == 0 ? 0x1p100f : which == 1 ? 0x1p-100f : 0x1p-140f;
+            int k = which == 0 ? 100 : which == 1 ? -100 : which == 2 ? top_exponent(dirs[base]) : -140;
             for (int a = 0; a < 3; ++a)
-                dir[a] = dirs[base][a] * s;
+                dir[a] = ldexpf(dirs[base][a], k);
         } else {
             memcpy(dir, invalid[d - n_regular - n_scaled], sizeof dir);
         }
@@ -377,12 +482,17 @@ static void check_crafted(roma_context *ctx, const roma_scene *scene, uint32_t r
     char label[64];
     snprintf(label, sizeof label, "RES %u A %u frame %u", res, angular, frame.frame);
     trace_counts c = trace_checked(&f, rays, n, 2 * res, hits, label);
+    check_rotation(&f, label);
+    check_inside_occupied(&f, label);
 
-    /* A direction scaled by 2^100 or 2^-100 traces exactly as the unscaled one. */
+    /* A direction scaled by 2^100, 2^-100 or up to the largest floats traces exactly as
+     * the unscaled one (unless it had subnormal components: scaled up, they are not). */
     uint32_t scaled_diff = 0, hit_count = 0;
     const uint32_t per_dir = n_origins * n_ranges;
-    for (uint32_t d = n_regular; d < n_regular + 2 * n_regular; ++d) {
+    for (uint32_t d = n_regular; d < n_regular + 3 * n_regular; ++d) {
         uint32_t base = (d - n_regular) % n_regular;
+        if (has_subnormal(dirs[base]))
+            continue;
         for (uint32_t j = 0; j < per_dir; ++j)
             for (int m = 0; m < 4; ++m)
                 scaled_diff += !same_hit(hits[m][d * per_dir + j], hits[m][base * per_dir + j]);
@@ -817,6 +927,20 @@ static void check_degenerate_scenes(roma_context *ctx)
     for (int i = 1; i < 4; ++i)
         sub_pts[i][1] = 0.9f + 0.5e-4f * (sub_pts[i][0] - 0.1f) / 0.8f;
     check_down_rays(ctx, m, ROMA_BOM_CONSERVATIVE, (const float (*)[2])sub_pts, 4, 0.8f, "sub-cell + sliver");
+    /* The same without the floor, so that any-hit queries must find the small shapes
+     * themselves, plus two points well away from them (misses). The two plate
+     * triangles (the floor) are dropped by rebuilding from the other triangles. */
+    mesh *nf = calloc(1, sizeof *nf);
+    for (uint32_t t = 2; t < m->triangles; ++t)
+        add_triangle(nf, m->pos + 3 * m->idx[3 * t], m->pos + 3 * m->idx[3 * t + 1], m->pos + 3 * m->idx[3 * t + 2]);
+    const float grid_corner[3] = {0.0f, 0.0f, 0.0f}; /* zero area: keeps the grid's extent as before */
+    add_triangle(nf, grid_corner, grid_corner, grid_corner);
+    float nf_pts[6][2];
+    memcpy(nf_pts, sub_pts, sizeof sub_pts);
+    nf_pts[4][0] = 0.2f, nf_pts[4][1] = 0.2f;
+    nf_pts[5][0] = 0.7f, nf_pts[5][1] = 0.3f;
+    check_down_rays(ctx, nf, ROMA_BOM_CONSERVATIVE, (const float (*)[2])nf_pts, 6, 0.8f, "sub-cell + sliver, no floor");
+    free(nf);
 
     /* A triangle across the whole grid, through a room. */
     memset(m, 0, sizeof *m);

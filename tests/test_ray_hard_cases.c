@@ -963,7 +963,7 @@ static void check_frames(roma_context *ctx, const roma_scene *scene)
     CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 32, .angular = 5}, scene, &map), ROMA_SUCCESS);
     if (!map)
         return;
-    roma_map_build(map, &(roma_map_frame_desc){0}, NULL);
+    CHECK_RESULT(roma_map_build(map, &(roma_map_frame_desc){0}, NULL), ROMA_SUCCESS);
     roma_map_info still;
     roma_map_get_info(map, &still);
     uint32_t bad = 0;

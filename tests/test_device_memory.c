@@ -83,7 +83,7 @@ int main(void)
     CHECK(map_bytes >= mi.bom_bytes + mi.maps_bytes + mi.params_bytes);
     roma_map_destroy(map);
     CHECK(in_use(ctx) == base);
-    roma_context_destroy(ctx);
+    roma_test_context_finish(ctx);
 
     /* Budgets in 64-byte steps up to just short of what a second map takes, on top
      * of a first map that stays alive (so that memory in use never starts at zero,
@@ -130,7 +130,7 @@ int main(void)
     CHECK(refused > 0 && created > 0);
 
     /* Enough for the map, not for a large trace's staging buffers. */
-    ctx = budget_context(map_bytes + 4096, &log);
+    ctx = budget_context(base + map_bytes + 4096, &log);
     map = NULL;
     uint64_t ctx_base = ctx ? in_use(ctx) : 0;
     if (ctx)

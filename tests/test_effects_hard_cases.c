@@ -11,10 +11,10 @@
  *    coverage 0 or 1 and equal to Embree's primary hits.
  * 2. A light of zero intensity renders exactly as no light at all.
  * 3. Direct light of the punctual cases (no area light, so no sampling noise)
- *    against Embree at the G-buffer's points: a light shut in the box lights
- *    nothing the camera sees, a light on the floor and a sun grazing it give
- *    the floor exactly nothing, and elsewhere ROMA's voxel shadows stay within
- *    the measured error.
+ *    against Embree at the G-buffer's points: a light shut in the box leaks onto
+ *    at most the measured fraction of pixels, a light on the floor and a sun in
+ *    its plane give the floor exactly nothing, and elsewhere ROMA's voxel shadows
+ *    stay within the measured error.
  * RES 64 and small RSMs keep it fast. Validation stays clean. */
 #include <math.h>
 #include <stdio.h>
@@ -191,7 +191,7 @@ static void check_same_images(const char *what, const render_out *a, const rende
 /* 3. Direct light of one punctual light, no area light: ROMA against Embree at the
  * G-buffer's points (the same points, so the difference is visibility only). */
 typedef struct direct_bounds {
-    double max_rel_mae;      /* sum |roma - ref| / sum ref (0 where the reference is dark everywhere) */
+    double max_rel_mae;      /* sum |roma - ref| / sum ref (infinite if ROMA lights a scene Embree leaves dark) */
     double max_dark_lit;     /* fraction of pixels Embree leaves dark that ROMA lights */
     int floor_dark;          /* the light lies in the floor's plane: the floor is exactly dark in both */
 } direct_bounds;
@@ -241,7 +241,8 @@ static void check_direct_against_embree(roma_context *ctx, const char *name, con
                 dark_lit += roma[0] > 0.0f || roma[1] > 0.0f || roma[2] > 0.0f;
             }
         }
-        double rel_mae = sum_ref > 0.0 ? sum_abs / sum_ref : 0.0;
+        /* Where Embree is dark everywhere, any light from ROMA is an infinite relative error. */
+        double rel_mae = sum_ref > 0.0 ? sum_abs / sum_ref : sum_abs > 0.0 ? INFINITY : 0.0;
         double dark_frac = dark ? (double)dark_lit / dark : 0.0;
         printf("%-52s vs Embree: %u px, relative MAE %.4f, %u of %u dark px lit (%.4f), floor %g / %g\n", name,
                covered, rel_mae, dark_lit, dark, dark_frac, floor_roma, floor_ref);
@@ -327,7 +328,8 @@ int main(void)
                                  .color = {1, 1, 1}, .intensity = 3.0f};
     const roma_light sun_30deg = {.type = ROMA_LIGHT_DIRECTIONAL, .direction = {0.8660254f, -0.5f, 0.0f},
                                   .color = {1, 1, 1}, .intensity = 3.0f};
-    check_direct_against_embree(ctx, "light shut in the box", &in_box, (direct_bounds){0.0, 0.008, 0});
+    /* All dark in Embree: the leak is bounded by the fraction of pixels ROMA lights. */
+    check_direct_against_embree(ctx, "light shut in the box", &in_box, (direct_bounds){INFINITY, 0.008, 0});
     check_direct_against_embree(ctx, "light on the floor", &on_floor, (direct_bounds){0.127, 0.005, 1});
     check_direct_against_embree(ctx, "sun in the floor's plane", &grazing, (direct_bounds){0.0, 0.005, 1});
     check_direct_against_embree(ctx, "sun 1 degree above the floor", &sun_1deg, (direct_bounds){0.005, 0.005, 0});

@@ -261,7 +261,6 @@ static void test_rejects(void)
             roma_scene_destroy(ok);
         }
     }
-    light.direction[2] = -1.0f;
 
     roma_camera cam = {{0, 0, NAN}, {0, 0, 0}, {0, 1, 0}, 45.0f};
     d = quad_desc(logger), d.camera = &cam;

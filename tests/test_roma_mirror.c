@@ -1,5 +1,7 @@
 /* The GPU rotation and traces equal the plain C mirror bit for bit, on several
- * scenes and parameter sets, given the BOM the GPU rasterized. */
+ * scenes, BOM modes and parameter sets, given the BOM the GPU built. The rotation
+ * runs by scatter (occupied-cell list) unless the list overflows; a dense stack of
+ * planes that fills more than the list (1/16 of the grid) checks the gather fallback. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,14 +36,21 @@ static int same_hit(roma_hit a, roma_hit b)
     return a.info == b.info && memcmp(&a.t, &b.t, sizeof a.t) == 0;
 }
 
-static void check_scene(roma_context *ctx, roma_scene *scene, const char *name, uint32_t res,
-                        uint32_t angular, roma_bom_mode mode)
+static const char *mode_name(roma_bom_mode mode)
+{
+    return mode == ROMA_BOM_EXACT ? "exact       " : mode == ROMA_BOM_UNION3 ? "union3      "
+         : mode == ROMA_BOM_DOMINANT ? "dominant    " : "conservative";
+}
+
+/* Returns the number of occupied BOM cells. */
+static uint64_t check_scene(roma_context *ctx, roma_scene *scene, const char *name, uint32_t res,
+                            uint32_t angular, roma_bom_mode mode)
 {
     roma_map_desc desc = {.resolution = res, .angular = angular, .bom_mode = mode};
     roma_map *map = NULL;
     CHECK_RESULT(roma_map_create(ctx, &desc, scene, &map), ROMA_SUCCESS);
     if (!map)
-        return;
+        return 0;
     roma_map_frame_desc frame = {.frame = 5, .seed = 9, .jitter_grid = 1, .jitter_directions = 1};
     CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
     roma_map_info info;
@@ -55,14 +64,16 @@ static void check_scene(roma_context *ctx, roma_scene *scene, const char *name, 
     const roma_map_frame *frames;
     roma_map_get_frame_params(map, &grid, &frames);
     roma_cpu_rotate(&grid, frames, bom, mirror);
-    uint64_t diff = 0, occupied = 0;
+    uint64_t diff = 0, occupied = 0, bom_cells = 0;
+    for (uint64_t i = 0; i < texel_words; ++i)
+        bom_cells += (uint64_t)__builtin_popcount(bom[i]);
     for (uint64_t i = 0; i < texel_words * info.map_count; ++i) {
         diff += maps[i] != mirror[i];
         occupied += __builtin_popcount(maps[i]);
     }
-    printf("%-10s RES %3u A %2u %s: %llu occupied cells over %u maps, %llu words differ from the mirror\n",
-           name, res, angular, mode == ROMA_BOM_UNION3 ? "union3      " : mode == ROMA_BOM_DOMINANT ? "dominant    " : "conservative", (unsigned long long)occupied,
-           info.map_count, (unsigned long long)diff);
+    printf("%-10s RES %3u A %2u %s: %llu BOM cells, %llu occupied cells over %u maps, %llu words differ "
+           "from the mirror\n", name, res, angular, mode_name(mode), (unsigned long long)bom_cells,
+           (unsigned long long)occupied, info.map_count, (unsigned long long)diff);
     CHECK(diff == 0);
     CHECK(occupied > 0);
 
@@ -98,6 +109,29 @@ static void check_scene(roma_context *ctx, roma_scene *scene, const char *name, 
     free(maps);
     free(mirror);
     roma_map_destroy(map);
+    return bom_cells;
+}
+
+/* planes parallel quads one unit apart, tilted so that each crosses many cells. */
+static roma_scene *dense_planes(uint32_t planes)
+{
+    float *p = malloc(sizeof(float) * 12 * planes);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * planes);
+    roma_scene *scene = NULL;
+    if (p && idx) {
+        for (uint32_t i = 0; i < planes; ++i) {
+            float z = (float)i, corners[4][3] = {{0, 0, z}, {32, 0, z + 3}, {32, 32, z + 5}, {0, 32, z + 2}};
+            memcpy(p + 12 * i, corners, sizeof corners);
+            const uint32_t q[6] = {4 * i, 4 * i + 1, 4 * i + 2, 4 * i, 4 * i + 2, 4 * i + 3};
+            memcpy(idx + 6 * i, q, sizeof q);
+        }
+        roma_scene_desc d = {.positions = p, .vertex_count = 4 * planes, .indices = idx,
+                             .triangle_count = 2 * planes, .name = "dense"};
+        CHECK_RESULT(roma_scene_create(&d, &scene), ROMA_SUCCESS);
+    }
+    free(p);
+    free(idx);
+    return scene;
 }
 
 int main(void)
@@ -109,6 +143,16 @@ int main(void)
     CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &cornell), ROMA_SUCCESS);
     CHECK_RESULT(roma_scene_create_builtin("blinds", NULL, &blinds), ROMA_SUCCESS);
     check_scene(ctx, cornell, "cornell", 32, 2, ROMA_BOM_UNION3);
+    check_scene(ctx, cornell, "cornell", 64, 3, ROMA_BOM_EXACT);
+    check_scene(ctx, blinds, "blinds", 128, 4, ROMA_BOM_EXACT);
+    /* Every other BOM cell occupied: the cell list (RES^3 / 16) overflows and the
+     * gather rotates instead. */
+    roma_scene *dense = dense_planes(32);
+    if (dense) {
+        uint64_t cells = check_scene(ctx, dense, "dense", 32, 2, ROMA_BOM_EXACT);
+        CHECK(cells > 32 * 32 * 32 / 16);
+        roma_scene_destroy(dense);
+    }
     check_scene(ctx, cornell, "cornell", 64, 4, ROMA_BOM_DOMINANT);
     check_scene(ctx, blinds, "blinds", 128, 3, ROMA_BOM_CONSERVATIVE);
     /* 81 maps at RES 128: more than 65535 workgroups, so the 2D dispatch path runs. */

@@ -2,7 +2,7 @@
  *
  * A roma_map owns, on the GPU:
  *  - the base occupancy map (BOM): a RES^3 binary grid over a cube fitted to the
- *    scene, rasterized from the triangles every build. Texel (x, y) holds RES/32
+ *    scene, voxelized from the triangles every build. Texel (x, y) holds RES/32
  *    words; bit b of word w is cell z = 32 w + b (least significant bit = lowest z);
  *  - A x A ray-aligned occupancy maps, one per candidate direction, each the BOM
  *    resampled ("rotated") into a box whose z axis is the candidate direction;
@@ -53,12 +53,14 @@ extern "C" {
 typedef struct roma_map roma_map;
 
 typedef enum roma_bom_mode {
-    ROMA_BOM_UNION3 = 0,  /* default: rasterize along x, y and z at pixel centres, union */
+    /* Default: the exact voxelization, in compute on every device: a cell is occupied
+     * when a triangle overlaps it (separating-axis test), up to float ties. */
+    ROMA_BOM_EXACT = 0,
+    ROMA_BOM_UNION3,      /* rasterize along x, y and z at pixel centres, union (misses thin parts) */
     ROMA_BOM_DOMINANT,    /* each triangle only along its dominant normal axis, pixel centres */
     /* Dominant axis rasterized conservatively (the projected triangle grown by half a
-     * pixel, pixels it does not touch discarded): close to an exact triangle/box
-     * voxelization. More cells are occupied, so rays meet their own surface more
-     * often; docs/accuracy.md compares the modes on rays against Embree. */
+     * pixel, pixels it does not touch discarded): the exact voxelization through the
+     * raster pipeline, for devices where that is faster (large triangles on a GPU). */
     ROMA_BOM_CONSERVATIVE
 } roma_bom_mode;
 
@@ -94,7 +96,7 @@ typedef struct roma_map_frame_desc {
     int jitter_directions; /* candidates jittered inside their strata (else stratum centres) */
 } roma_map_frame_desc;
 
-/* Records BOM clear + rasterization + rotation into cmd (a command buffer of the
+/* Records BOM clear + voxelization + rotation into cmd (a command buffer of the
  * context's queue family, outside a render pass). timer may be NULL; otherwise
  * scopes "bom" and "rotate" are added (every timer passed to a map must come from
  * a context on the map's VkDevice: ROMA_ERROR_INVALID_ARGUMENT otherwise). The parameters of the frame are written

@@ -1,4 +1,4 @@
-// BOM rasterization, shared by roma/bom.vert and roma/bom.frag.
+// BOM rasterization, shared by voxelize/bom.vert and voxelize/bom.frag.
 //
 // Projection of draw `axis` (cyclic, so the 2D cross product of projected edges
 // is exactly the 3D normal's component along the axis):

@@ -96,7 +96,37 @@ ROMA_STRUCT_END(roma_bom_push)
  * stage, exact pixel/triangle overlap in the fragment stage). */
 #define ROMA_BOM_FLAG_CONSERVATIVE 1u
 
-/* Rotation: one invocation per output word. */
+/* BOM voxelization in compute (src/roma/bom_voxelize.h): exact triangle/cell overlap.
+ * voxelize.comp runs one invocation per triangle; a triangle whose footprint along its
+ * dominant axis spans more than ROMA_VOXELIZE_INLINE_COLUMNS columns is split into
+ * tiles of ROMA_VOXELIZE_TILE x ROMA_VOXELIZE_TILE columns, queued and processed by
+ * voxelize_tiles.comp (one invocation per tile, indirect dispatch), so that a few large
+ * triangles do not serialise the pass. */
+#define ROMA_VOXELIZE_WORKGROUP_SIZE 64
+#define ROMA_VOXELIZE_INLINE_COLUMNS 32u
+#define ROMA_VOXELIZE_TILE 8u
+ROMA_STRUCT_BEGIN(roma_voxelize_push)
+    ROMA_U64(positions);  /* float4 per vertex */
+    ROMA_U64(indices);    /* uint x3 per triangle */
+    ROMA_U64(bom);        /* RES*RES*words uint, cleared */
+    ROMA_U64(params);     /* roma_grid_params */
+    ROMA_U64(queue);      /* roma_voxelize_queue header + capacity uvec2 items */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: triangle count, y: queue capacity (items) */
+ROMA_STRUCT_END(roma_voxelize_push)
+/* Header of the tile queue; dispatch is the VkDispatchIndirectCommand of voxelize_tiles. */
+ROMA_STRUCT_BEGIN(roma_voxelize_queue)
+    ROMA_UVEC4(dispatch); /* x: workgroups (grown with atomicMax), y = z = 1, w: items queued */
+ROMA_STRUCT_END(roma_voxelize_queue)
+
+/* Rotation. The definition (paper Algorithm 1): bit i of map word w at texel (x, y) is
+ * set when one of ROMA_ROTATE_SAMPLES points along the map's z in that rotated cell
+ * (m = (x + 0.5, y + 0.5, 32 w + i + (h + 0.5) / ROMA_ROTATE_SAMPLES)), mapped to BOM
+ * coordinates, falls in an occupied BOM cell. rotate_gather.comp evaluates it per
+ * output word; the default path lists the occupied BOM cells (occupied_cells.comp) and
+ * scatters each into every map (rotate_scatter.comp), testing the same sample points
+ * with the same float expression, so both give the same bits. When the cell list
+ * overflows, the gather runs instead (its indirect dispatch is enabled by the list pass). */
 #define ROMA_ROTATE_WORKGROUP_SIZE 64
 /* BOM samples per rotated cell, spread along the map's z axis. */
 #define ROMA_ROTATE_SAMPLES 2
@@ -104,8 +134,14 @@ ROMA_STRUCT_BEGIN(roma_rotate_push)
     ROMA_U64(bom);
     ROMA_U64(maps);       /* map_count*RES*RES*words uint */
     ROMA_U64(params);     /* roma_grid_params followed by map_count roma_map_frame */
-    ROMA_U64(pad_);
+    ROMA_U64(cells);      /* roma_rotate_cells header + capacity uint (x | y << 8 | z << 16) */
+    ROMA_UVEC4(config);   /* x: cell list capacity, y/z: the gather's workgroups (x, y) */
 ROMA_STRUCT_END(roma_rotate_push)
+/* Header of the occupied-cell list: two VkDispatchIndirectCommands. */
+ROMA_STRUCT_BEGIN(roma_rotate_cells)
+    ROMA_UVEC4(scatter);  /* x: workgroups over cells (atomicMax), y: map count, z: 1, w: cells listed */
+    ROMA_UVEC4(gather);   /* x, y: the gather's workgroups when the list overflowed (else 0), z: 1 */
+ROMA_STRUCT_END(roma_rotate_cells)
 
 /* Batch trace: one invocation per ray. */
 #define ROMA_TRACE_WORKGROUP_SIZE 64

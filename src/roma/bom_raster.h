@@ -1,6 +1,6 @@
 /* BOM rasterization (internal): the base occupancy map is rasterized with a
  * graphics pipeline that has no attachments. Triangles are pulled by buffer
- * address in the vertex shader (shaders/roma/bom.vert) and the fragment shader
+ * address in the vertex shader (shaders/voxelize/bom.vert) and the fragment shader
  * (bom.frag) sets the BOM bits of every cell its pixel column shares with the
  * triangle, with atomicOr.
  *

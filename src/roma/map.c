@@ -3,10 +3,12 @@
 #include "roma/map.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "roma/bom_raster.h"
+#include "roma/bom_voxelize.h"
 #include "roma/directions.h"
 #include "roma/map_internal.h"
 #include "roma/map_params.h"
@@ -138,14 +140,27 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->bom);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4 * texel_words * map->map_count,
-                               storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->maps);
+                               storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               ROMA_MEMORY_DEVICE, &map->maps);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, sizeof(roma_grid_params) + sizeof(roma_map_frame) * map->map_count,
                                storage, ROMA_MEMORY_UPLOAD, &map->params);
+    /* The scatter rotation's cell list: 1/16 of the grid's cells (scenes occupy a few
+     * percent); a fuller grid is rotated by the gather instead. */
+    map->cell_capacity = (uint32_t)(texel_words * 32 / 16);
     if (r == ROMA_SUCCESS)
-        r = roma_bom_raster_create(ctx, &map->raster);
+        r = roma_buffer_create(ctx, sizeof(roma_rotate_cells) + 4ull * map->cell_capacity,
+                               storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               ROMA_MEMORY_DEVICE, &map->cells);
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "rotate.comp", 0, sizeof(roma_rotate_push), &map->rotate);
+        r = desc.bom_mode == ROMA_BOM_EXACT ? roma_bom_voxelizer_create(ctx, map->res, &map->voxelizer)
+                                            : roma_bom_raster_create(ctx, &map->raster);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "occupied_cells.comp", 0, sizeof(roma_rotate_push), &map->occupied_cells);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "rotate_scatter.comp", 0, sizeof(roma_rotate_push), &map->rotate_scatter);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "rotate_gather.comp", 0, sizeof(roma_rotate_push), &map->rotate_gather);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create(ctx, "trace.comp", 0, sizeof(roma_trace_push), &map->trace);
     if (r == ROMA_SUCCESS) {
@@ -166,8 +181,12 @@ void roma_map_destroy(roma_map *map)
         return;
     roma_context *ctx = map->ctx;
     roma_compute_pipeline_destroy(ctx, &map->trace);
-    roma_compute_pipeline_destroy(ctx, &map->rotate);
+    roma_compute_pipeline_destroy(ctx, &map->rotate_gather);
+    roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
+    roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
     roma_bom_raster_destroy(map->raster);
+    roma_bom_voxelizer_destroy(map->voxelizer);
+    roma_buffer_destroy(ctx, &map->cells);
     roma_buffer_destroy(ctx, &map->params);
     roma_buffer_destroy(ctx, &map->maps);
     roma_buffer_destroy(ctx, &map->bom);
@@ -224,15 +243,6 @@ static roma_result write_frame_params(roma_map *map, const roma_map_frame_desc *
     return ROMA_SUCCESS;
 }
 
-/* 1D work over a 2D grid of workgroups (each dimension is limited to 65535). */
-static void dispatch_linear(VkCommandBuffer cmd, uint64_t invocations, uint32_t group_size)
-{
-    uint64_t groups = (invocations + group_size - 1) / group_size;
-    uint32_t x = groups < 65535u ? (uint32_t)groups : 65535u;
-    uint32_t y = (uint32_t)((groups + x - 1) / x);
-    vkCmdDispatch(cmd, x, y, 1);
-}
-
 /* Compute-shader writes of libroma's passes made visible to the next consumer. */
 static void compute_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
 {
@@ -251,6 +261,51 @@ static roma_result check_timer(const roma_map *map, const roma_gpu_timer *timer,
     return ROMA_SUCCESS;
 }
 
+/* Rotation (roma_shared.h): clear the maps, list the occupied BOM cells, scatter
+ * them into every map; the gather runs instead when the list overflowed. */
+static void record_rotation(roma_map *map, VkCommandBuffer cmd)
+{
+    const uint64_t words = (uint64_t)map->res * map->res * map->words;
+    const uint64_t gather_groups = (words * map->map_count + ROMA_ROTATE_WORKGROUP_SIZE - 1) /
+                                   ROMA_ROTATE_WORKGROUP_SIZE;
+    const uint32_t gather_x = gather_groups < 65535u ? (uint32_t)gather_groups : 65535u;
+    const uint32_t gather_y = (uint32_t)((gather_groups + gather_x - 1) / gather_x);
+    roma_rotate_push push = {
+        .bom = map->bom.address,
+        .maps = map->maps.address,
+        .params = map->params.address,
+        .cells = map->cells.address,
+        .config = {map->cell_capacity, gather_x, gather_y, 0},
+    };
+    /* WAR against earlier readers of the maps and the list (traces, downloads, the
+     * previous build's indirect dispatches). */
+    roma_cmd_memory_barrier(cmd,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT |
+                                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, map->maps.buffer, 0, map->maps.size, 0);
+    const roma_rotate_cells header = {.scatter = {0, map->map_count, 1, 0}, .gather = {0, 0, 1, 0}};
+    vkCmdUpdateBuffer(cmd, map->cells.buffer, 0, sizeof header, &header);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->occupied_cells.pipeline);
+    vkCmdPushConstants(cmd, map->occupied_cells.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    roma_cmd_dispatch_linear(cmd, words, ROMA_ROTATE_WORKGROUP_SIZE);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate_scatter.pipeline);
+    vkCmdPushConstants(cmd, map->rotate_scatter.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, scatter));
+    /* Zero workgroups unless the list overflowed (then the scatter did nothing). */
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate_gather.pipeline);
+    vkCmdPushConstants(cmd, map->rotate_gather.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, gather));
+}
+
 roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
                                   roma_gpu_timer *timer)
 {
@@ -265,31 +320,34 @@ roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma
     if (r != ROMA_SUCCESS)
         return r;
 
-    roma_bom_push bom_push = {
-        .positions = map->positions.address,
-        .indices = map->indices.address,
-        .bom = map->bom.address,
-        .params = map->params.address,
-        .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
-                   map->triangle_count,
-                   map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
-    };
     uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
-    r = roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
+    if (map->voxelizer) {
+        roma_voxelize_push vox_push = {
+            .positions = map->positions.address,
+            .indices = map->indices.address,
+            .bom = map->bom.address,
+            .params = map->params.address,
+            .config = {map->triangle_count, 0, 0, 0},
+        };
+        r = roma_bom_voxelize_record(map->voxelizer, cmd, &vox_push, map->bom.buffer, map->bom.size, map->res);
+    } else {
+        roma_bom_push bom_push = {
+            .positions = map->positions.address,
+            .indices = map->indices.address,
+            .bom = map->bom.address,
+            .params = map->params.address,
+            .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
+                       map->triangle_count,
+                       map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
+        };
+        r = roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
+    }
     roma_gpu_timer_end(timer, cmd, scope);
     if (r != ROMA_SUCCESS)
         return r;
 
-    roma_rotate_push push = {
-        .bom = map->bom.address,
-        .maps = map->maps.address,
-        .params = map->params.address,
-    };
-    uint64_t words = (uint64_t)map->res * map->res * map->words * map->map_count;
     scope = roma_gpu_timer_begin(timer, cmd, "rotate");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate.pipeline);
-    vkCmdPushConstants(cmd, map->rotate.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    dispatch_linear(cmd, words, ROMA_ROTATE_WORKGROUP_SIZE);
+    record_rotation(map, cmd);
     roma_gpu_timer_end(timer, cmd, scope);
     /* Maps feed traces (compute) and downloads (transfer). */
     compute_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -387,7 +445,7 @@ roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma
     uint32_t scope = roma_gpu_timer_begin(timer, cmd, "trace");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->trace.pipeline);
     vkCmdPushConstants(cmd, map->trace.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    dispatch_linear(cmd, desc->ray_count, ROMA_TRACE_WORKGROUP_SIZE);
+    roma_cmd_dispatch_linear(cmd, desc->ray_count, ROMA_TRACE_WORKGROUP_SIZE);
     roma_gpu_timer_end(timer, cmd, scope);
     return ROMA_SUCCESS;
 }

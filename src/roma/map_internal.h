@@ -7,6 +7,7 @@
 #include "vulkan/vk_internal.h"
 
 struct roma_bom_raster;
+struct roma_bom_voxelizer;
 
 struct roma_map {
     roma_context *ctx;
@@ -21,8 +22,11 @@ struct roma_map {
     roma_buffer bom, maps;          /* device-local words */
     roma_buffer params;             /* roma_grid_params + map_count roma_map_frame (host-visible) */
     roma_buffer ray_staging, hit_staging; /* roma_map_trace only */
-    struct roma_bom_raster *raster;
-    roma_compute_pipeline rotate, trace;
+    roma_buffer cells;              /* occupied-cell list of the scatter rotation (device) */
+    uint32_t cell_capacity;
+    struct roma_bom_raster *raster;         /* raster modes only */
+    struct roma_bom_voxelizer *voxelizer;   /* ROMA_BOM_EXACT */
+    roma_compute_pipeline occupied_cells, rotate_scatter, rotate_gather, trace;
     roma_grid_params grid;          /* host copies of this frame's parameters */
     roma_map_frame *frames;
     int built;

@@ -87,6 +87,10 @@ roma_result roma_buffer_invalidate(roma_context *ctx, const roma_buffer *buffer)
 void roma_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                              VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
+/* 1D work over a 2D grid of workgroups (each dimension is limited to 65535); the
+ * shader computes its index as (group.y * groups.x + group.x) * group_size + local.x. */
+void roma_cmd_dispatch_linear(VkCommandBuffer cmd, uint64_t invocations, uint32_t group_size);
+
 /* --- one-shot submissions on the context's queue (blocking) --- */
 roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd);
 /* Ends, submits, waits and frees the command buffer (also on failure). */

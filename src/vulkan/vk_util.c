@@ -237,3 +237,13 @@ const roma_spirv_module *roma_find_spirv(const char *name)
             return m;
     return NULL;
 }
+
+void roma_cmd_dispatch_linear(VkCommandBuffer cmd, uint64_t invocations, uint32_t group_size)
+{
+    uint64_t groups = (invocations + group_size - 1) / group_size;
+    if (groups == 0)
+        return;
+    uint32_t x = groups < 65535u ? (uint32_t)groups : 65535u;
+    uint32_t y = (uint32_t)((groups + x - 1) / x);
+    vkCmdDispatch(cmd, x, y, 1);
+}

@@ -1,14 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Rotation (paper Algorithm 1, RES bits per column): one invocation writes one
-// 32-bit word of one ray-aligned map by sampling the BOM at its 32 cell centres.
-#include "roma_trace.glsl"
+// Rotation by gathering (paper Algorithm 1): one invocation writes one 32-bit word of
+// one ray-aligned map by sampling the BOM at its cells' sample points. The fallback
+// when the occupied-cell list overflows (dispatched indirectly), and the definition
+// the C mirror and the scatter path reproduce.
+#include "roma_rotate.glsl"
 
 layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
-
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaWordsOut { uint w[]; };
-
-layout(push_constant) uniform Push { roma_rotate_push pc; };
 
 void main()
 {
@@ -26,7 +24,6 @@ void main()
     uint texel = r / words, w = r - texel * words;
     uint x = texel % res, y = texel / res;
     roma_map_frame f = params.maps[k];
-    float mx = float(x) + 0.5, my = float(y) + 0.5;
     float fres = float(res);
     uint out_word = 0u;
     for (uint i = 0u; i < 32u; ++i) {
@@ -34,9 +31,7 @@ void main()
         // rotated cells are up to sqrt(3) BOM cells long, and one sample per cell would step
         // over one-cell-thick walls.
         for (uint h = 0u; h < ROMA_ROTATE_SAMPLES; ++h) {
-            float mz = float(w * 32u + i) + (float(h) + 0.5) / float(ROMA_ROTATE_SAMPLES);
-            precise vec3 b = ((f.map_to_bom_0.xyz * mx + f.map_to_bom_1.xyz * my) + f.map_to_bom_2.xyz * mz)
-                             + f.map_to_bom_3.xyz;
+            vec3 b = roma_rotate_sample(f, x, y, w * 32u + i, h);
             if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0 && b.x < fres && b.y < fres && b.z < fres) {
                 uvec3 c = uvec3(floor(b));
                 uint word = bom.w[(c.y * res + c.x) * words + (c.z >> 5)];

@@ -1,0 +1,38 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Lists the occupied BOM cells for the scatter rotation: one invocation per BOM word.
+// Grows the scatter's indirect dispatch; when the list is full, enables the gather.
+#include "roma_rotate.glsl"
+
+layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
+
+void main()
+{
+    RomaParams params = RomaParams(pc.params);
+    uint res = params.grid.dims.x, words = params.grid.dims.y;
+    uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
+              + gl_LocalInvocationID.x;
+    if (id >= res * res * words)
+        return;
+    uint word = RomaWords(pc.bom).w[id];
+    if (word == 0u)
+        return;
+    RomaRotateCells list = RomaRotateCells(pc.cells);
+    uint n = uint(bitCount(word));
+    uint capacity = pc.config.x;
+    uint first = atomicAdd(list.header.scatter.w, n);
+    if (first + n > capacity) {
+        // Overflow: the gather rebuilds every map (the scatter skips an incomplete list).
+        atomicMax(list.header.gather.x, pc.config.y);
+        atomicMax(list.header.gather.y, pc.config.z);
+        return;
+    }
+    uint texel = id / words, w = id - texel * words;
+    uint xy = (texel % res) | ((texel / res) << 8u);
+    for (uint i = 0u; i < n; ++i) {
+        int b = findLSB(word);
+        word &= word - 1u;
+        list.cells[first + i] = xy | ((w * 32u + uint(b)) << 16u);
+    }
+    atomicMax(list.header.scatter.x, (first + n + ROMA_ROTATE_WORKGROUP_SIZE - 1u) / ROMA_ROTATE_WORKGROUP_SIZE);
+}

@@ -1,0 +1,20 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// BOM voxelization of large triangles: one invocation per queued tile of columns
+// (dispatched indirectly with the count voxelize.comp grew).
+#include "roma_voxelize.glsl"
+
+layout(local_size_x = ROMA_VOXELIZE_WORKGROUP_SIZE) in;
+
+void main()
+{
+    RomaVoxQueue queue = RomaVoxQueue(pc.queue);
+    uint item = gl_GlobalInvocationID.x;
+    if (item >= min(queue.header.dispatch.w, pc.config.y))
+        return;
+    uvec2 work = queue.items[item];
+    roma_grid_params grid = RomaVoxParams(pc.params).grid;
+    int res = int(grid.dims.x);
+    roma_vox_triangle t = roma_vox_load(work.x, res);
+    roma_vox_tile(t, work.y, res, grid.dims.y);
+}

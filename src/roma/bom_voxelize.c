@@ -1,0 +1,117 @@
+#include "roma/bom_voxelize.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct roma_bom_voxelizer {
+    roma_context *ctx;
+    uint32_t resolution;
+    uint32_t capacity; /* tile items the queue holds */
+    roma_buffer queue; /* roma_voxelize_queue header + capacity uvec2 items */
+    roma_compute_pipeline triangles, tiles;
+};
+
+roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, roma_bom_voxelizer **out)
+{
+    if (!out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    *out = NULL;
+    if (!ctx)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (resolution < 32 || resolution > ROMA_MAX_RESOLUTION || resolution % 32 != 0)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelizer_create: resolution %u is not a multiple of 32 in [32, %u]",
+                         resolution, (unsigned)ROMA_MAX_RESOLUTION);
+    roma_bom_voxelizer *v = calloc(1, sizeof *v);
+    if (!v)
+        return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_bom_voxelizer_create: out of memory");
+    v->ctx = ctx;
+    v->resolution = resolution;
+    /* Four tiles per column of one face of the grid: room for every large triangle of
+     * typical scenes (a grid-wide wall is (RES/8)^2 tiles); the rest go inline. */
+    v->capacity = 4 * resolution * resolution;
+    roma_result r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue) + 8ull * v->capacity,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       ROMA_MEMORY_DEVICE, &v->queue);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "voxelize.comp", 0, sizeof(roma_voxelize_push), &v->triangles);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "voxelize_tiles.comp", 0, sizeof(roma_voxelize_push), &v->tiles);
+    if (r != ROMA_SUCCESS) {
+        roma_bom_voxelizer_destroy(v);
+        return r;
+    }
+    *out = v;
+    return ROMA_SUCCESS;
+}
+
+void roma_bom_voxelizer_destroy(roma_bom_voxelizer *v)
+{
+    if (!v)
+        return;
+    roma_compute_pipeline_destroy(v->ctx, &v->tiles);
+    roma_compute_pipeline_destroy(v->ctx, &v->triangles);
+    roma_buffer_destroy(v->ctx, &v->queue);
+    free(v);
+}
+
+roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_voxelize_push *push_in,
+                                     VkBuffer bom_buffer, VkDeviceSize bom_bytes, uint32_t resolution)
+{
+    if (!v)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    roma_context *ctx = v->ctx;
+    if (!cmd || !push_in || !bom_buffer)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: cmd, push and bom_buffer are required");
+    if (resolution != v->resolution)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: resolution %u, the voxelizer was made for %u", resolution,
+                         v->resolution);
+    const VkDeviceSize need = (VkDeviceSize)resolution * resolution * resolution / 8;
+    if (bom_bytes < need || bom_bytes % 4 != 0)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: bom_bytes %llu (need a multiple of 4, at least %llu)",
+                         (unsigned long long)bom_bytes, (unsigned long long)need);
+    const uint32_t triangles = push_in->config[0];
+    if (triangles && (!push_in->positions || !push_in->indices || !push_in->bom || !push_in->params))
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: a buffer address is zero");
+    roma_voxelize_push push = *push_in;
+    push.queue = v->queue.address;
+    push.config[1] = v->capacity;
+
+    /* WAR/WAW against the previous build (voxelization, rotation, downloads, the
+     * indirect read of the queue) and geometry written by transfers or compute. */
+    roma_cmd_memory_barrier(cmd,
+                            VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                                VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    vkCmdFillBuffer(cmd, bom_buffer, 0, bom_bytes, 0);
+    const uint32_t header[4] = {0, 1, 1, 0}; /* no workgroups yet, y = z = 1, no items */
+    vkCmdUpdateBuffer(cmd, v->queue.buffer, 0, sizeof header, header);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    if (triangles) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.pipeline);
+        vkCmdPushConstants(cmd, v->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        roma_cmd_dispatch_linear(cmd, triangles, ROMA_VOXELIZE_WORKGROUP_SIZE);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                    VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->tiles.pipeline);
+        vkCmdPushConstants(cmd, v->tiles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        vkCmdDispatchIndirect(cmd, v->queue.buffer, 0);
+    }
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                VK_ACCESS_2_TRANSFER_READ_BIT);
+    return ROMA_SUCCESS;
+}

@@ -1,0 +1,47 @@
+/* BOM voxelization in compute (internal): the exact voxelization of the triangles,
+ * the default way to build the base occupancy map on every device.
+ *
+ * A cell is occupied when the triangle overlaps its half-open box [k, k+1)^3 in grid
+ * units (separating-axis test, 13 axes; shaders/include/roma_voxelize.glsl): the same
+ * definition as the CPU voxelizer of the tests, which this matches up to float ties.
+ * Zero-area triangles (sine of the edge angle below 1e-6) and triangles with NaN or Inf
+ * corners mark nothing; geometry outside the grid writes nothing.
+ *
+ * Work is split so that triangle sizes do not serialise it: voxelize.comp runs one
+ * invocation per triangle and marks small triangles itself; a triangle whose
+ * footprint spans more than ROMA_VOXELIZE_INLINE_COLUMNS columns along its dominant
+ * axis is queued as tiles of 8 x 8 columns, and voxelize_tiles.comp processes one tile
+ * per invocation (indirect dispatch). When the queue is full, triangles are marked
+ * inline: slower, the same bits. */
+#ifndef ROMA_BOM_VOXELIZE_H
+#define ROMA_BOM_VOXELIZE_H
+
+#include <vulkan/vulkan.h>
+
+#include "roma/context.h"
+#include "roma_shared.h"
+#include "vulkan/vk_internal.h"
+
+typedef struct roma_bom_voxelizer roma_bom_voxelizer;
+
+/* The tile queue is sized for resolution (queue_capacity items, 8 bytes each). */
+roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, roma_bom_voxelizer **out);
+/* Accepts NULL. The caller makes sure no recorded use is still executing. */
+void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
+
+/* Records into cmd (outside any render pass):
+ *  1. a barrier: earlier shader/transfer/indirect accesses of the BOM and the queue
+ *     complete before they are cleared, and earlier transfer/compute writes
+ *     (geometry uploads, skinning) are visible to the compute reads;
+ *  2. the BOM cleared (vkCmdFillBuffer) and the queue header reset (vkCmdUpdateBuffer);
+ *  3. voxelize.comp over triangle_count triangles, a barrier, voxelize_tiles.comp
+ *     (vkCmdDispatchIndirect from the queue);
+ *  4. a barrier making the BOM visible to compute-shader reads/writes and transfer reads.
+ * push->positions, indices, bom and params are buffer device addresses (as in
+ * roma_bom_raster_record); push->queue and config.y are filled in here; config.x is
+ * the triangle count (0: clear only). bom_buffer is the buffer behind push->bom, at
+ * least RES^3 / 8 bytes. resolution must be the one the voxelizer was created for. */
+roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_voxelize_push *push,
+                                     VkBuffer bom_buffer, VkDeviceSize bom_bytes, uint32_t resolution);
+
+#endif /* ROMA_BOM_VOXELIZE_H */

@@ -30,7 +30,7 @@ static const char *usage =
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
     "  --skip C                    ROMA shadow rays skip their first C trace cells (default 1)\n"
-    "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.5)\n"
+    "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.6)\n"
     "  --lights-per-frame K        ROMA lights: test K random lights per pixel and frame\n"
     "                              (stochastic, accumulated) instead of all (default: all)\n"
     "  --spp N                     samples per pixel for ao, area lights and gi (default 64)\n"
@@ -313,7 +313,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
         roma_json_int(&j, "max_steps", o->max_steps);
         roma_json_number(&j, "skip_cells", o->skip < 0.0f ? 1.0f : o->skip);
-        roma_json_number(&j, "ao_skip_cells", o->ao_skip < 0.0f ? 1.5f : o->ao_skip);
+        roma_json_number(&j, "ao_skip_cells", o->ao_skip < 0.0f ? 1.6f : o->ao_skip);
         roma_json_int(&j, "lights_per_frame", o->lights_per_frame ? o->lights_per_frame : o->lights);
     }
     roma_json_begin_object(&j, "camera");

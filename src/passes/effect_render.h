@@ -36,7 +36,7 @@ typedef struct roma_effect_render_desc {
     float ao_radius;                   /* <= 0: unbounded */
     float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
     float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = 1, negative = none */
-    float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = 1.5, negative = none */
+    float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = 1.6, negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */

@@ -151,9 +151,7 @@ static roma_result run_gpu(roma_context *ctx, roma_bom_raster *raster, const gpu
     roma_buffer params = {0}, bom = {0}, readback = {0};
     roma_gpu_timer *timer = NULL;
     roma_bom_voxelizer *vox = NULL;
-    roma_result r = var.compute ? roma_bom_voxelizer_create(ctx, res, &vox) : ROMA_SUCCESS;
-    if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, sizeof(roma_grid_params),
+    roma_result r = roma_buffer_create(ctx, sizeof(roma_grid_params),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                                        ROMA_MEMORY_UPLOAD, &params);
     if (r == ROMA_SUCCESS)
@@ -166,8 +164,11 @@ static roma_result run_gpu(roma_context *ctx, roma_bom_raster *raster, const gpu
                                ROMA_MEMORY_READBACK, &readback);
     if (r == ROMA_SUCCESS)
         r = roma_gpu_timer_create(ctx, 1, &timer);
+    if (r == ROMA_SUCCESS && var.compute)
+        r = roma_bom_voxelizer_create(ctx, res, geo->positions.buffer, geo->indices.buffer, bom.buffer, bom_bytes, &vox);
+    roma_grid_params gp = {0};
     if (r == ROMA_SUCCESS) {
-        roma_grid_params gp = {
+        gp = (roma_grid_params){
             .origin = {grid->origin[0], grid->origin[1], grid->origin[2], 1.0f / grid->inv_cell},
             .inv_cell = {grid->inv_cell, 0, 0, 0},
             .dims = {res, res / 32, 0, 0},
@@ -190,14 +191,7 @@ static roma_result run_gpu(roma_context *ctx, roma_bom_raster *raster, const gpu
         roma_gpu_timer_reset(timer, cmd);
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
         if (var.compute) {
-            roma_voxelize_push vpush = {
-                .positions = geo->positions.address,
-                .indices = geo->indices.address,
-                .bom = bom.address,
-                .params = params.address,
-                .config = {geo->triangle_count, 0, 0, 0},
-            };
-            r = vox ? roma_bom_voxelize_record(vox, cmd, &vpush, bom.buffer, bom_bytes, res) : ROMA_ERROR_INVALID_ARGUMENT;
+            r = roma_bom_voxelize_record(vox, cmd, &gp, geo->triangle_count);
         } else {
             r = roma_bom_raster_record(raster, cmd, &push, bom.buffer, bom_bytes, res);
         }

@@ -12,6 +12,7 @@
 #include "reference.h"
 #include "roma/map.h"
 #include "roma/roma.h"
+#include "roma/map_internal.h"
 #include "vulkan/vk_internal.h"
 
 static const char *usage =
@@ -64,6 +65,20 @@ static double host_trace_ms(roma_context *ctx, roma_map *map, roma_trace_mode mo
     roma_result r = roma_submit_one_shot(ctx, cmd);
     double ms = roma_app_now_ms() - t0;
     return r == ROMA_SUCCESS ? ms : NAN;
+}
+
+/* Host-observed time of recording `steps` of a build (roma_map_record_steps) into a
+ * dedicated submission, from submit to fence. */
+static double host_build_ms(roma_context *ctx, roma_map *map, const roma_map_frame_desc *frame, uint32_t steps)
+{
+    VkCommandBuffer cmd;
+    if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
+        return NAN;
+    roma_result r = roma_map_record_steps(map, cmd, frame, NULL, steps);
+    double t0 = roma_app_now_ms();
+    roma_result s = roma_submit_one_shot(ctx, cmd);
+    double ms = roma_app_now_ms() - t0;
+    return r == ROMA_SUCCESS && s == ROMA_SUCCESS ? ms : NAN;
 }
 
 /* AO rays from the surface points the camera sees, repeated until n rays. */
@@ -193,33 +208,39 @@ int main(int argc, char **argv)
     if (cpu_device)
         printf("note: CPU Vulkan device: its timestamp queries do not cover compute work, so the host-observed\n"
                "      columns (submit to fence, inputs already on the device) are the ones to read\n");
-    printf("\n| RES | A | maps | BOM ms (timestamps) | rotate ms (timestamps) | build ms (host-observed) | maps MiB |\n"
-           "|---|---|---|---|---|---|---|\n");
-    double *samples = malloc(sizeof(double) * runs * 3);
+    printf("\n| RES | A | maps | voxelize ms (host) | rotate ms (host) | build ms (host) | BOM ms (timestamps) "
+           "| rotate ms (timestamps) | maps MiB |\n|---|---|---|---|---|---|---|---|---|\n");
+    double *samples = malloc(sizeof(double) * runs * 5);
     for (int ri = 0; ri < res_n; ++ri)
         for (int ai = 0; ai < ang_n; ++ai) {
             roma_map_desc desc = {.resolution = res_list[ri], .angular = ang_list[ai]};
             roma_map *map = NULL;
             if (roma_map_create(ctx, &desc, scene, &map) != ROMA_SUCCESS)
                 continue;
+            roma_map_frame_desc warm = {.frame = 0, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
+            roma_map_build(map, &warm, NULL);
             for (uint32_t k = 0; k < runs; ++k) {
                 roma_map_frame_desc frame = {.frame = k, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
-                double t0 = roma_app_now_ms();
+                /* Each step alone, then the whole build, then the build with timestamps. */
+                samples[k] = host_build_ms(ctx, map, &frame, ROMA_MAP_STEP_VOXELIZE);
+                samples[runs + k] = host_build_ms(ctx, map, &frame, ROMA_MAP_STEP_ROTATE);
+                samples[2 * runs + k] = host_build_ms(ctx, map, &frame, ROMA_MAP_STEP_VOXELIZE | ROMA_MAP_STEP_ROTATE);
                 roma_map_build(map, &frame, timer);
-                samples[2 * runs + k] = roma_app_now_ms() - t0;
-                samples[k] = timer_ms(timer, "bom");
-                samples[runs + k] = timer_ms(timer, "rotate");
+                samples[3 * runs + k] = timer_ms(timer, "bom");
+                samples[4 * runs + k] = timer_ms(timer, "rotate");
             }
             roma_map_info mi;
             roma_map_get_info(map, &mi);
-            double bom = roma_app_median(samples, (int)runs), rot = roma_app_median(samples + runs, (int)runs),
-                   host = roma_app_median(samples + 2 * runs, (int)runs);
-            printf("| %u | %u | %u | %.3f | %.3f | %.2f | %.2f |\n", res_list[ri], ang_list[ai], mi.map_count, bom,
-                   rot, host, mi.maps_bytes / 1048576.0);
+            double med[5];
+            for (int c = 0; c < 5; ++c)
+                med[c] = roma_app_median(samples + c * runs, (int)runs);
+            printf("| %u | %u | %u | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f |\n", res_list[ri], ang_list[ai],
+                   mi.map_count, med[0], med[1], med[2], med[3], med[4], mi.maps_bytes / 1048576.0);
             if (csv) {
-                fprintf(csv, "generation,bom_timestamp,%u,%u,%.6f,ms\n", res_list[ri], ang_list[ai], bom);
-                fprintf(csv, "generation,rotate_timestamp,%u,%u,%.6f,ms\n", res_list[ri], ang_list[ai], rot);
-                fprintf(csv, "generation,build_host,%u,%u,%.6f,ms\n", res_list[ri], ang_list[ai], host);
+                static const char *names[5] = {"voxelize_host", "rotate_host", "build_host", "bom_timestamp",
+                                               "rotate_timestamp"};
+                for (int c = 0; c < 5; ++c)
+                    fprintf(csv, "generation,%s,%u,%u,%.6f,ms\n", names[c], res_list[ri], ang_list[ai], med[c]);
             }
             roma_map_destroy(map);
         }

@@ -1,15 +1,22 @@
-// Rotation shaders (rotate/*.comp): push constants and the buffers they share.
+// Rotation shaders (rotate/*.comp): push constants, bindings and the sample expression
+// they share. Buffers are bound, not reached by address: on CPU devices address-based
+// loads run one lane at a time.
 #ifndef ROMA_ROTATE_GLSL
 #define ROMA_ROTATE_GLSL
 
-#include "roma_trace.glsl"
+#include "roma_shared.h"
 
 layout(push_constant) uniform Push { roma_rotate_push pc; };
 
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaWordsOut { uint w[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer RomaRotateCells {
-    roma_rotate_cells header;
+layout(std430, set = 0, binding = ROMA_ROTATE_BINDING_BOM) readonly buffer RomaRotateBom { uint bom[]; };
+layout(std430, set = 0, binding = ROMA_ROTATE_BINDING_MAPS) buffer RomaRotateMaps { uint maps[]; };
+layout(std430, set = 0, binding = ROMA_ROTATE_BINDING_CELLS) buffer RomaRotateCells {
+    roma_rotate_cells list_header;
     uint cells[];        // x | y << 8 | z << 16
+};
+layout(std140, set = 0, binding = ROMA_ROTATE_BINDING_PARAMS) uniform RomaRotateParams {
+    roma_grid_params grid;
+    roma_map_frame frames[ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
 };
 
 // The BOM coordinates of sample h of map cell (x, y, j): the one float expression

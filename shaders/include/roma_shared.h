@@ -79,6 +79,10 @@ ROMA_STRUCT_BEGIN(roma_map_frame)
     ROMA_VEC4(cell);      /* world cell size along map x, y, z */
 ROMA_STRUCT_END(roma_map_frame)
 
+/* The parameters buffer of a map: grid + up to ROMA_MAX_ANGULAR^2 frames, read by the
+ * rotation as one uniform block of this size (48 + 256 * 144 bytes). */
+#define ROMA_PARAMS_BLOCK_BYTES (48u + 144u * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR)
+
 /* BOM rasterization (graphics pipeline, vertex pulling through buffer addresses). */
 ROMA_STRUCT_BEGIN(roma_bom_push)
     ROMA_U64(positions);  /* float4 per vertex */
@@ -104,15 +108,19 @@ ROMA_STRUCT_END(roma_bom_push)
  * triangles do not serialise the pass. */
 #define ROMA_VOXELIZE_WORKGROUP_SIZE 64
 #define ROMA_VOXELIZE_INLINE_COLUMNS 32u
+/* Triangles whose bounding box has at most this many cells test each of them. */
+#define ROMA_VOXELIZE_BOX_CELLS 12u
 #define ROMA_VOXELIZE_TILE 8u
+/* Bindings (descriptor set 0): positions (float4 per vertex), indices (uint x3 per
+ * triangle), the BOM words and the tile queue, all storage buffers. */
+#define ROMA_VOXELIZE_BINDING_POSITIONS 0
+#define ROMA_VOXELIZE_BINDING_INDICES 1
+#define ROMA_VOXELIZE_BINDING_BOM 2
+#define ROMA_VOXELIZE_BINDING_QUEUE 3
+#define ROMA_VOXELIZE_BINDINGS 4
 ROMA_STRUCT_BEGIN(roma_voxelize_push)
-    ROMA_U64(positions);  /* float4 per vertex */
-    ROMA_U64(indices);    /* uint x3 per triangle */
-    ROMA_U64(bom);        /* RES*RES*words uint, cleared */
-    ROMA_U64(params);     /* roma_grid_params */
-    ROMA_U64(queue);      /* roma_voxelize_queue header + capacity uvec2 items */
-    ROMA_U64(pad_);
-    ROMA_UVEC4(config);   /* x: triangle count, y: queue capacity (items) */
+    roma_grid_params grid; /* this frame's placement (dims.x = RES, dims.y = words) */
+    ROMA_UVEC4(config);    /* x: triangle count, y: queue capacity (items) */
 ROMA_STRUCT_END(roma_voxelize_push)
 /* Header of the tile queue; dispatch is the VkDispatchIndirectCommand of voxelize_tiles. */
 ROMA_STRUCT_BEGIN(roma_voxelize_queue)
@@ -130,11 +138,14 @@ ROMA_STRUCT_END(roma_voxelize_queue)
 #define ROMA_ROTATE_WORKGROUP_SIZE 64
 /* BOM samples per rotated cell, spread along the map's z axis. */
 #define ROMA_ROTATE_SAMPLES 2
+/* Bindings (descriptor set 0, storage buffers): the BOM, the maps, the cell list and the
+ * parameters (roma_grid_params followed by map_count roma_map_frame). */
+#define ROMA_ROTATE_BINDING_BOM 0
+#define ROMA_ROTATE_BINDING_MAPS 1
+#define ROMA_ROTATE_BINDING_CELLS 2
+#define ROMA_ROTATE_BINDING_PARAMS 3
+#define ROMA_ROTATE_BINDINGS 4
 ROMA_STRUCT_BEGIN(roma_rotate_push)
-    ROMA_U64(bom);
-    ROMA_U64(maps);       /* map_count*RES*RES*words uint */
-    ROMA_U64(params);     /* roma_grid_params followed by map_count roma_map_frame */
-    ROMA_U64(cells);      /* roma_rotate_cells header + capacity uint (x | y << 8 | z << 16) */
     ROMA_UVEC4(config);   /* x: cell list capacity, y/z: the gather's workgroups (x, y) */
 ROMA_STRUCT_END(roma_rotate_push)
 /* Header of the occupied-cell list: two VkDispatchIndirectCommands. */

@@ -13,22 +13,17 @@
 #ifndef ROMA_VOXELIZE_GLSL
 #define ROMA_VOXELIZE_GLSL
 
-#extension GL_EXT_buffer_reference : require
-#extension GL_EXT_buffer_reference_uvec2 : require
-
 #include "roma_shared.h"
 
 layout(push_constant, std430) uniform RomaVoxelizePushBlock { roma_voxelize_push pc; };
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaVoxPositions { vec4 p[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaVoxIndices { uint i[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaVoxWords { uint w[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaVoxParams {
-    roma_grid_params grid;
-};
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer RomaVoxQueue {
-    roma_voxelize_queue header;
-    uvec2 items[];       // (triangle, tile index)
+// Bound, not reached by address: on CPU devices address-based loads run one lane at a time.
+layout(std430, set = 0, binding = ROMA_VOXELIZE_BINDING_POSITIONS) readonly buffer RomaVoxPositions { vec4 positions[]; };
+layout(std430, set = 0, binding = ROMA_VOXELIZE_BINDING_INDICES) readonly buffer RomaVoxIndices { uint indices[]; };
+layout(std430, set = 0, binding = ROMA_VOXELIZE_BINDING_BOM) buffer RomaVoxWords { uint bom[]; };
+layout(std430, set = 0, binding = ROMA_VOXELIZE_BINDING_QUEUE) buffer RomaVoxQueue {
+    roma_voxelize_queue queue_header;
+    uvec2 queue_items[];  // (triangle, tile index)
 };
 
 // Same sine threshold as the raster path: below it a triangle has no area.
@@ -36,58 +31,84 @@ const float ROMA_VOX_DEGENERATE_SIN2 = 1e-12;
 // Upper face of a cell: the largest float below 1 (half-open cells).
 const float ROMA_VOX_BOX = 0.99999994;
 
+// The triangle in its column frame: coordinates permuted cyclically so that z is its
+// dominant normal axis (the separating-axis test is the same for a permuted cube), which
+// keeps dynamic component indexing out of the loops.
 struct roma_vox_triangle {
-    vec3 g0, g1, g2;      // corners in grid units
-    vec3 n;               // unnormalised normal
-    ivec3 clo, chi;       // candidate cells (bounding box clamped to the grid)
-    uint a, u, v;         // dominant axis and the two column axes (cyclic)
+    vec3 g0, g1, g2;      // corners in grid units, column frame
+    vec3 n;               // unnormalised normal, column frame
+    vec3 e0, e1, e2;      // edges g1 - g0, g2 - g1, g0 - g2
+    ivec3 clo, chi;       // candidate cells (bounding box clamped to the grid), column frame
+    uint a;               // dominant world axis: column frame = (a+1, a+2, a) of the world
     bool keep;            // non-degenerate and touching the grid
 };
 
+vec3 roma_vox_to_columns(vec3 p, uint a)
+{
+    return a == 0u ? p.yzx : (a == 1u ? p.zxy : p);
+}
+
+ivec3 roma_vox_to_columns(ivec3 p, uint a)
+{
+    return a == 0u ? p.yzx : (a == 1u ? p.zxy : p);
+}
+
+ivec3 roma_vox_from_columns(ivec3 c, uint a)
+{
+    return a == 0u ? c.zxy : (a == 1u ? c.yzx : c);
+}
+
 roma_vox_triangle roma_vox_load(uint tri, int res)
 {
-    roma_grid_params grid = RomaVoxParams(pc.params).grid;
-    RomaVoxIndices idx = RomaVoxIndices(pc.indices);
-    RomaVoxPositions pos = RomaVoxPositions(pc.positions);
     roma_vox_triangle t;
     // Same expression as the raster path and the CPU voxelizer.
-    precise vec3 g0 = (pos.p[idx.i[3u * tri + 0u]].xyz - grid.origin.xyz) * grid.inv_cell.x;
-    precise vec3 g1 = (pos.p[idx.i[3u * tri + 1u]].xyz - grid.origin.xyz) * grid.inv_cell.x;
-    precise vec3 g2 = (pos.p[idx.i[3u * tri + 2u]].xyz - grid.origin.xyz) * grid.inv_cell.x;
-    t.g0 = g0;
-    t.g1 = g1;
-    t.g2 = g2;
+    precise vec3 g0 = (positions[indices[3u * tri + 0u]].xyz - pc.grid.origin.xyz) * pc.grid.inv_cell.x;
+    precise vec3 g1 = (positions[indices[3u * tri + 1u]].xyz - pc.grid.origin.xyz) * pc.grid.inv_cell.x;
+    precise vec3 g2 = (positions[indices[3u * tri + 2u]].xyz - pc.grid.origin.xyz) * pc.grid.inv_cell.x;
     vec3 e1 = g1 - g0, e2 = g2 - g0;
-    t.n = cross(e1, e2);
+    vec3 n = cross(e1, e2);
     // "keep if", so that NaN or Inf corners drop the triangle.
-    t.keep = dot(t.n, t.n) > ROMA_VOX_DEGENERATE_SIN2 * dot(e1, e1) * dot(e2, e2);
+    t.keep = dot(n, n) > ROMA_VOX_DEGENERATE_SIN2 * dot(e1, e1) * dot(e2, e2);
     vec3 lo = min(g0, min(g1, g2)), hi = max(g0, max(g1, g2));
     t.keep = t.keep && all(greaterThanEqual(hi, vec3(0.0))) && all(lessThan(lo, vec3(float(res))));
-    // Clamp in float before converting: no overflow for corners far outside.
-    t.clo = ivec3(clamp(floor(lo), vec3(0.0), vec3(float(res - 1))));
-    t.chi = ivec3(clamp(floor(hi), vec3(0.0), vec3(float(res - 1))));
-    vec3 an = abs(t.n);
+    vec3 an = abs(n);
     t.a = (an.x >= an.y && an.x >= an.z) ? 0u : (an.y >= an.z ? 1u : 2u);
-    t.u = (t.a + 1u) % 3u;
-    t.v = (t.a + 2u) % 3u;
+    t.g0 = roma_vox_to_columns(g0, t.a);
+    t.g1 = roma_vox_to_columns(g1, t.a);
+    t.g2 = roma_vox_to_columns(g2, t.a);
+    t.e0 = t.g1 - t.g0;
+    t.e1 = t.g2 - t.g1;
+    t.e2 = t.g0 - t.g2;
+    t.n = cross(t.e0, t.e1);
+    // Clamp in float before converting: no overflow for corners far outside.
+    t.clo = ivec3(clamp(floor(roma_vox_to_columns(lo, t.a)), vec3(0.0), vec3(float(res - 1))));
+    t.chi = ivec3(clamp(floor(roma_vox_to_columns(hi, t.a)), vec3(0.0), vec3(float(res - 1))));
     return t;
 }
 
 // Columns of the triangle's footprint along its dominant axis.
 uvec2 roma_vox_columns(roma_vox_triangle t)
 {
-    return uvec2(t.chi[t.u] - t.clo[t.u] + 1, t.chi[t.v] - t.clo[t.v] + 1);
+    return uvec2(t.chi.xy - t.clo.xy + 1);
 }
 
-// True when the projections of the triangle and of the box [0, s]^3 on axis are disjoint.
-bool roma_vox_separated(vec3 axis, vec3 a, vec3 b, vec3 c)
+// True when [lo, hi] and the projection of the box [0, B]^3 on axis are disjoint. The
+// box interval is built from corners (not centre +- radius), so that axis-aligned
+// contacts compare equal values.
+bool roma_vox_apart(vec3 axis, float lo, float hi)
 {
-    float p0 = dot(axis, a), p1 = dot(axis, b), p2 = dot(axis, c);
-    float lo = min(p0, min(p1, p2)), hi = max(p0, max(p1, p2));
     vec3 s = axis * ROMA_VOX_BOX;
     float box_lo = min(s.x, 0.0) + min(s.y, 0.0) + min(s.z, 0.0);
     float box_hi = max(s.x, 0.0) + max(s.y, 0.0) + max(s.z, 0.0);
     return lo > box_hi || hi < box_lo;
+}
+
+// The same for an edge axis, where the triangle projects onto [p, q] in either order
+// (the edge's two corners project to one value).
+bool roma_vox_apart2(vec3 axis, vec3 p, vec3 q)
+{
+    float dp = dot(axis, p), dq = dot(axis, q);
+    return roma_vox_apart(axis, min(dp, dq), max(dp, dq));
 }
 
 // Separating-axis test of the triangle against cell c (coordinates relative to its corner).
@@ -96,75 +117,91 @@ bool roma_vox_overlaps(roma_vox_triangle t, ivec3 cell)
     vec3 o = vec3(cell);
     vec3 a = t.g0 - o, b = t.g1 - o, c = t.g2 - o;
     vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
-    if (any(greaterThan(lo, vec3(ROMA_VOX_BOX))) || any(lessThan(hi, vec3(0.0))))
-        return false;
-    vec3 e0 = b - a, e1 = c - b, e2 = a - c;
-    if (roma_vox_separated(cross(e0, e1), a, b, c))
-        return false;
-    // Box axis x edge, written out (cross(unit_i, e)).
-    if (roma_vox_separated(vec3(0.0, -e0.z, e0.y), a, b, c) ||
-        roma_vox_separated(vec3(0.0, -e1.z, e1.y), a, b, c) ||
-        roma_vox_separated(vec3(0.0, -e2.z, e2.y), a, b, c) ||
-        roma_vox_separated(vec3(e0.z, 0.0, -e0.x), a, b, c) ||
-        roma_vox_separated(vec3(e1.z, 0.0, -e1.x), a, b, c) ||
-        roma_vox_separated(vec3(e2.z, 0.0, -e2.x), a, b, c) ||
-        roma_vox_separated(vec3(-e0.y, e0.x, 0.0), a, b, c) ||
-        roma_vox_separated(vec3(-e1.y, e1.x, 0.0), a, b, c) ||
-        roma_vox_separated(vec3(-e2.y, e2.x, 0.0), a, b, c))
-        return false;
-    return true;
+    bool apart = any(greaterThan(lo, vec3(ROMA_VOX_BOX))) || any(lessThan(hi, vec3(0.0)));
+    // The plane: the corners project to one value up to rounding; use the range of all three.
+    float na = dot(t.n, a), nb = dot(t.n, b), nc = dot(t.n, c);
+    apart = apart || roma_vox_apart(t.n, min(na, min(nb, nc)), max(na, max(nb, nc)));
+    // Box axis x edge (cross(unit_i, e)): e0 = b - a leaves a and c, e1 = c - b leaves a
+    // and b, e2 = a - c leaves a and b as the distinct projections.
+    apart = apart || roma_vox_apart2(vec3(0.0, -t.e0.z, t.e0.y), a, c) ||
+            roma_vox_apart2(vec3(0.0, -t.e1.z, t.e1.y), a, b) || roma_vox_apart2(vec3(0.0, -t.e2.z, t.e2.y), a, b);
+    apart = apart || roma_vox_apart2(vec3(t.e0.z, 0.0, -t.e0.x), a, c) ||
+            roma_vox_apart2(vec3(t.e1.z, 0.0, -t.e1.x), a, b) || roma_vox_apart2(vec3(t.e2.z, 0.0, -t.e2.x), a, b);
+    apart = apart || roma_vox_apart2(vec3(-t.e0.y, t.e0.x, 0.0), a, c) ||
+            roma_vox_apart2(vec3(-t.e1.y, t.e1.x, 0.0), a, b) || roma_vox_apart2(vec3(-t.e2.y, t.e2.x, 0.0), a, b);
+    return !apart;
 }
 
 // Tests the cells of column (iu, iv) that the triangle's plane can reach and marks
 // the overlapped ones.
 void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
 {
-    RomaVoxWords bom = RomaVoxWords(pc.bom);
-    float na = t.n[t.a], nu = t.n[t.u], nv = t.n[t.v];
     float plane = dot(t.n, t.g0);
     // Plane depth at the column's four corners: the cells between (plus one either
     // side, for float error) are the only candidates.
-    float d00 = (plane - nu * float(iu) - nv * float(iv)) / na;
-    float d10 = (plane - nu * float(iu + 1) - nv * float(iv)) / na;
-    float d01 = (plane - nu * float(iu) - nv * float(iv + 1)) / na;
-    float d11 = (plane - nu * float(iu + 1) - nv * float(iv + 1)) / na;
+    float d00 = (plane - t.n.x * float(iu) - t.n.y * float(iv)) / t.n.z;
+    float d10 = (plane - t.n.x * float(iu + 1) - t.n.y * float(iv)) / t.n.z;
+    float d01 = (plane - t.n.x * float(iu) - t.n.y * float(iv + 1)) / t.n.z;
+    float d11 = (plane - t.n.x * float(iu + 1) - t.n.y * float(iv + 1)) / t.n.z;
     float dmin = min(min(d00, d10), min(d01, d11)), dmax = max(max(d00, d10), max(d01, d11));
-    float lo_a = float(t.clo[t.a]), hi_a = float(t.chi[t.a]);
+    float lo_a = float(t.clo.z), hi_a = float(t.chi.z);
     int k0 = int(clamp(floor(dmin) - 1.0, lo_a, hi_a));
     int k1 = int(clamp(floor(dmax) + 1.0, lo_a, hi_a));
     if (!(dmin == dmin) || !(dmax == dmax)) {  // NaN: test the whole range
-        k0 = t.clo[t.a];
-        k1 = t.chi[t.a];
+        k0 = t.clo.z;
+        k1 = t.chi.z;
     }
-    ivec3 cell;
-    cell[t.u] = iu;
-    cell[t.v] = iv;
     if (t.a == 2u) {
-        // One texel: gather the bits per word, one atomic per word.
+        // Column frame = world: one texel, the bits gathered per word, one atomic per word.
         uint base = (uint(iv) * uint(res) + uint(iu)) * words;
         uint mask = 0u;
         int word = k0 >> 5;
         for (int k = k0; k <= k1; ++k) {
             if ((k >> 5) != word) {
                 if (mask != 0u)
-                    atomicOr(bom.w[base + uint(word)], mask);
+                    atomicOr(bom[base + uint(word)], mask);
                 mask = 0u;
                 word = k >> 5;
             }
-            cell.z = k;
-            if (roma_vox_overlaps(t, cell))
+            if (roma_vox_overlaps(t, ivec3(iu, iv, k)))
                 mask |= 1u << uint(k & 31);
         }
         if (mask != 0u)
-            atomicOr(bom.w[base + uint(word)], mask);
+            atomicOr(bom[base + uint(word)], mask);
     } else {
+        // World cell of column-frame cell (iu, iv, k): a = 0 -> (k, iu, iv); a = 1 -> (iv, k, iu).
         for (int k = k0; k <= k1; ++k) {
-            cell[t.a] = k;
-            if (roma_vox_overlaps(t, cell))
-                atomicOr(bom.w[(uint(cell.y) * uint(res) + uint(cell.x)) * words + uint(cell.z >> 5)],
-                         1u << uint(cell.z & 31));
+            if (!roma_vox_overlaps(t, ivec3(iu, iv, k)))
+                continue;
+            ivec3 c = t.a == 0u ? ivec3(k, iu, iv) : ivec3(iv, k, iu);
+            atomicOr(bom[(uint(c.y) * uint(res) + uint(c.x)) * words + uint(c.z >> 5)], 1u << uint(c.z & 31));
         }
     }
+}
+
+// Small triangles: every cell of the bounding box, walked in world order with z
+// innermost, so that each texel gets one atomic per word whatever the dominant axis.
+void roma_vox_box(roma_vox_triangle t, int res, uint words)
+{
+    ivec3 lo = roma_vox_from_columns(t.clo, t.a), hi = roma_vox_from_columns(t.chi, t.a);
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+            uint base = (uint(y) * uint(res) + uint(x)) * words;
+            uint mask = 0u;
+            int word = lo.z >> 5;
+            for (int z = lo.z; z <= hi.z; ++z) {
+                if ((z >> 5) != word) {
+                    if (mask != 0u)
+                        atomicOr(bom[base + uint(word)], mask);
+                    mask = 0u;
+                    word = z >> 5;
+                }
+                if (roma_vox_overlaps(t, roma_vox_to_columns(ivec3(x, y, z), t.a)))
+                    mask |= 1u << uint(z & 31);
+            }
+            if (mask != 0u)
+                atomicOr(bom[base + uint(word)], mask);
+        }
 }
 
 // Columns [u0, u1] x [v0, v1] of the footprint.
@@ -180,10 +217,10 @@ void roma_vox_tile(roma_vox_triangle t, uint tile, int res, uint words)
 {
     uvec2 cols = roma_vox_columns(t);
     uint tiles_u = (cols.x + ROMA_VOXELIZE_TILE - 1u) / ROMA_VOXELIZE_TILE;
-    int u0 = t.clo[t.u] + int((tile % tiles_u) * ROMA_VOXELIZE_TILE);
-    int v0 = t.clo[t.v] + int((tile / tiles_u) * ROMA_VOXELIZE_TILE);
-    roma_vox_columns_range(t, u0, min(u0 + int(ROMA_VOXELIZE_TILE) - 1, t.chi[t.u]),
-                           v0, min(v0 + int(ROMA_VOXELIZE_TILE) - 1, t.chi[t.v]), res, words);
+    int u0 = t.clo.x + int((tile % tiles_u) * ROMA_VOXELIZE_TILE);
+    int v0 = t.clo.y + int((tile / tiles_u) * ROMA_VOXELIZE_TILE);
+    roma_vox_columns_range(t, u0, min(u0 + int(ROMA_VOXELIZE_TILE) - 1, t.chi.x),
+                           v0, min(v0 + int(ROMA_VOXELIZE_TILE) - 1, t.chi.y), res, words);
 }
 
 #endif // ROMA_VOXELIZE_GLSL

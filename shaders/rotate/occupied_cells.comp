@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // Lists the occupied BOM cells for the scatter rotation: one invocation per BOM word.
 // Grows the scatter's indirect dispatch; when the list is full, enables the gather.
 #include "roma_rotate.glsl"
@@ -8,23 +10,25 @@ layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
 
 void main()
 {
-    RomaParams params = RomaParams(pc.params);
-    uint res = params.grid.dims.x, words = params.grid.dims.y;
+    uint res = grid.dims.x, words = grid.dims.y;
     uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
               + gl_LocalInvocationID.x;
     if (id >= res * res * words)
         return;
-    uint word = RomaWords(pc.bom).w[id];
+    uint word = bom[id];
     if (word == 0u)
         return;
-    RomaRotateCells list = RomaRotateCells(pc.cells);
     uint n = uint(bitCount(word));
     uint capacity = pc.config.x;
-    uint first = atomicAdd(list.header.scatter.w, n);
+    // One atomic per subgroup: the lanes' places follow from a prefix sum of their counts.
+    uint total = subgroupAdd(n), before = subgroupExclusiveAdd(n), base = 0u;
+    if (subgroupElect())
+        base = atomicAdd(list_header.scatter.w, total);
+    uint first = subgroupBroadcastFirst(base) + before;
     if (first + n > capacity) {
         // Overflow: the gather rebuilds every map (the scatter skips an incomplete list).
-        atomicMax(list.header.gather.x, pc.config.y);
-        atomicMax(list.header.gather.y, pc.config.z);
+        atomicMax(list_header.gather.x, pc.config.y);
+        atomicMax(list_header.gather.y, pc.config.z);
         return;
     }
     uint texel = id / words, w = id - texel * words;
@@ -32,7 +36,7 @@ void main()
     for (uint i = 0u; i < n; ++i) {
         int b = findLSB(word);
         word &= word - 1u;
-        list.cells[first + i] = xy | ((w * 32u + uint(b)) << 16u);
+        cells[first + i] = xy | ((w * 32u + uint(b)) << 16u);
     }
-    atomicMax(list.header.scatter.x, (first + n + ROMA_ROTATE_WORKGROUP_SIZE - 1u) / ROMA_ROTATE_WORKGROUP_SIZE);
+    atomicMax(list_header.scatter.x, (first + n + ROMA_ROTATE_WORKGROUP_SIZE - 1u) / ROMA_ROTATE_WORKGROUP_SIZE);
 }

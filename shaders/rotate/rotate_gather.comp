@@ -10,10 +10,7 @@ layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
 
 void main()
 {
-    RomaParams params = RomaParams(pc.params);
-    RomaWords bom = RomaWords(pc.bom);
-    RomaWordsOut maps = RomaWordsOut(pc.maps);
-    uint res = params.grid.dims.x, words = params.grid.dims.y, map_count = params.grid.dims.w;
+    uint res = grid.dims.x, words = grid.dims.y, map_count = grid.dims.w;
     // 2D dispatch: more than 65535 groups are needed at RES 256 or A >= 8.
     uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
               + gl_LocalInvocationID.x;
@@ -23,7 +20,7 @@ void main()
     uint k = id / per_map, r = id - k * per_map;
     uint texel = r / words, w = r - texel * words;
     uint x = texel % res, y = texel / res;
-    roma_map_frame f = params.maps[k];
+    roma_map_frame f = frames[k];
     float fres = float(res);
     uint out_word = 0u;
     for (uint i = 0u; i < 32u; ++i) {
@@ -34,10 +31,10 @@ void main()
             vec3 b = roma_rotate_sample(f, x, y, w * 32u + i, h);
             if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0 && b.x < fres && b.y < fres && b.z < fres) {
                 uvec3 c = uvec3(floor(b));
-                uint word = bom.w[(c.y * res + c.x) * words + (c.z >> 5)];
+                uint word = bom[(c.y * res + c.x) * words + (c.z >> 5)];
                 out_word |= ((word >> (c.z & 31u)) & 1u) << i;
             }
         }
     }
-    maps.w[id] = out_word;
+    maps[id] = out_word;
 }

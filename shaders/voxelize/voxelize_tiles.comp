@@ -8,13 +8,11 @@ layout(local_size_x = ROMA_VOXELIZE_WORKGROUP_SIZE) in;
 
 void main()
 {
-    RomaVoxQueue queue = RomaVoxQueue(pc.queue);
     uint item = gl_GlobalInvocationID.x;
-    if (item >= min(queue.header.dispatch.w, pc.config.y))
+    if (item >= min(queue_header.dispatch.w, pc.config.y))
         return;
-    uvec2 work = queue.items[item];
-    roma_grid_params grid = RomaVoxParams(pc.params).grid;
-    int res = int(grid.dims.x);
+    uvec2 work = queue_items[item];
+    int res = int(pc.grid.dims.x);
     roma_vox_triangle t = roma_vox_load(work.x, res);
-    roma_vox_tile(t, work.y, res, grid.dims.y);
+    roma_vox_tile(t, work.y, res, pc.grid.dims.y);
 }

@@ -8,16 +8,33 @@ struct roma_bom_voxelizer {
     uint32_t resolution;
     uint32_t capacity; /* tile items the queue holds */
     roma_buffer queue; /* roma_voxelize_queue header + capacity uvec2 items */
-    roma_compute_pipeline triangles, tiles;
+    VkBuffer bom;
+    VkDeviceSize bom_bytes;
+    roma_compute_pipeline triangles, tiles; /* one set layout, the same bindings */
+    roma_descriptor_set set;
 };
 
-roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, roma_bom_voxelizer **out)
+static const VkDescriptorType binding_types[ROMA_VOXELIZE_BINDINGS] = {
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+};
+
+roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, VkBuffer positions, VkBuffer indices,
+                                      VkBuffer bom, VkDeviceSize bom_bytes, roma_bom_voxelizer **out)
 {
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     *out = NULL;
     if (!ctx)
         return ROMA_ERROR_INVALID_ARGUMENT;
+    if (!positions || !indices || !bom)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelizer_create: positions, indices and bom are required");
+    const VkDeviceSize need = (VkDeviceSize)resolution * resolution * resolution / 8;
+    if (bom_bytes < need || bom_bytes % 4 != 0)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelizer_create: bom_bytes %llu (need a multiple of 4, at least %llu)",
+                         (unsigned long long)bom_bytes, (unsigned long long)need);
     if (resolution < 32 || resolution > ROMA_MAX_RESOLUTION || resolution % 32 != 0)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_bom_voxelizer_create: resolution %u is not a multiple of 32 in [32, %u]",
@@ -27,6 +44,8 @@ roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, ro
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_bom_voxelizer_create: out of memory");
     v->ctx = ctx;
     v->resolution = resolution;
+    v->bom = bom;
+    v->bom_bytes = bom_bytes;
     /* Four tiles per column of one face of the grid: room for every large triangle of
      * typical scenes (a grid-wide wall is (RES/8)^2 tiles); the rest go inline. */
     v->capacity = 4 * resolution * resolution;
@@ -35,9 +54,18 @@ roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, ro
                                            VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        ROMA_MEMORY_DEVICE, &v->queue);
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "voxelize.comp", 0, sizeof(roma_voxelize_push), &v->triangles);
+        r = roma_compute_pipeline_create_typed(ctx, "voxelize.comp", binding_types, ROMA_VOXELIZE_BINDINGS,
+                                               sizeof(roma_voxelize_push), &v->triangles);
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "voxelize_tiles.comp", 0, sizeof(roma_voxelize_push), &v->tiles);
+        r = roma_compute_pipeline_create_typed(ctx, "voxelize_tiles.comp", binding_types, ROMA_VOXELIZE_BINDINGS,
+                                               sizeof(roma_voxelize_push), &v->tiles);
+    if (r == ROMA_SUCCESS)
+        r = roma_descriptor_set_create(ctx, &v->triangles, binding_types, ROMA_VOXELIZE_BINDINGS, &v->set);
+    if (r == ROMA_SUCCESS) {
+        const VkBuffer buffers[ROMA_VOXELIZE_BINDINGS] = {positions, indices, bom, v->queue.buffer};
+        for (uint32_t b = 0; b < ROMA_VOXELIZE_BINDINGS; ++b)
+            roma_descriptor_write_buffer(ctx, &v->set, b, binding_types[b], buffers[b]);
+    }
     if (r != ROMA_SUCCESS) {
         roma_bom_voxelizer_destroy(v);
         return r;
@@ -50,37 +78,26 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *v)
 {
     if (!v)
         return;
+    roma_descriptor_set_destroy(v->ctx, &v->set);
     roma_compute_pipeline_destroy(v->ctx, &v->tiles);
     roma_compute_pipeline_destroy(v->ctx, &v->triangles);
     roma_buffer_destroy(v->ctx, &v->queue);
     free(v);
 }
 
-roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_voxelize_push *push_in,
-                                     VkBuffer bom_buffer, VkDeviceSize bom_bytes, uint32_t resolution)
+roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
+                                     uint32_t triangles)
 {
     if (!v)
         return ROMA_ERROR_INVALID_ARGUMENT;
     roma_context *ctx = v->ctx;
-    if (!cmd || !push_in || !bom_buffer)
+    if (!cmd || !grid)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_bom_voxelize_record: cmd and grid are required");
+    if (grid->dims[0] != v->resolution || grid->dims[1] != v->resolution / 32)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_bom_voxelize_record: cmd, push and bom_buffer are required");
-    if (resolution != v->resolution)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_bom_voxelize_record: resolution %u, the voxelizer was made for %u", resolution,
-                         v->resolution);
-    const VkDeviceSize need = (VkDeviceSize)resolution * resolution * resolution / 8;
-    if (bom_bytes < need || bom_bytes % 4 != 0)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_bom_voxelize_record: bom_bytes %llu (need a multiple of 4, at least %llu)",
-                         (unsigned long long)bom_bytes, (unsigned long long)need);
-    const uint32_t triangles = push_in->config[0];
-    if (triangles && (!push_in->positions || !push_in->indices || !push_in->bom || !push_in->params))
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_bom_voxelize_record: a buffer address is zero");
-    roma_voxelize_push push = *push_in;
-    push.queue = v->queue.address;
-    push.config[1] = v->capacity;
+                         "roma_bom_voxelize_record: grid of RES %u (%u words), the voxelizer was made for %u",
+                         grid->dims[0], grid->dims[1], v->resolution);
+    roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->capacity, 0, 0}};
 
     /* WAR/WAW against the previous build (voxelization, rotation, downloads, the
      * indirect read of the queue) and geometry written by transfers or compute. */
@@ -90,13 +107,14 @@ roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    vkCmdFillBuffer(cmd, bom_buffer, 0, bom_bytes, 0);
+    vkCmdFillBuffer(cmd, v->bom, 0, v->bom_bytes, 0);
     const uint32_t header[4] = {0, 1, 1, 0}; /* no workgroups yet, y = z = 1, no items */
     vkCmdUpdateBuffer(cmd, v->queue.buffer, 0, sizeof header, header);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     if (triangles) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.layout, 0, 1, &v->set.set, 0, NULL);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.pipeline);
         vkCmdPushConstants(cmd, v->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
         roma_cmd_dispatch_linear(cmd, triangles, ROMA_VOXELIZE_WORKGROUP_SIZE);
@@ -104,8 +122,8 @@ roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd,
                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                                     VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+        /* Same set layout and push range: the set and constants stay bound. */
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->tiles.pipeline);
-        vkCmdPushConstants(cmd, v->tiles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
         vkCmdDispatchIndirect(cmd, v->queue.buffer, 0);
     }
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,

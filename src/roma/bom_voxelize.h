@@ -24,8 +24,13 @@
 
 typedef struct roma_bom_voxelizer roma_bom_voxelizer;
 
-/* The tile queue is sized for resolution (queue_capacity items, 8 bytes each). */
-roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, roma_bom_voxelizer **out);
+/* The voxelizer binds its buffers once (descriptors: on CPU devices they are much cheaper
+ * than buffer-address loads): positions (float4 per vertex) and indices (uint x3 per
+ * triangle) as storage buffers, bom (STORAGE and TRANSFER_DST usage, bom_bytes >=
+ * RES^3 / 8). They must outlive the voxelizer. The tile queue is its own, sized for
+ * resolution. */
+roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, VkBuffer positions, VkBuffer indices,
+                                      VkBuffer bom, VkDeviceSize bom_bytes, roma_bom_voxelizer **out);
 /* Accepts NULL. The caller makes sure no recorded use is still executing. */
 void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
 
@@ -37,11 +42,10 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
  *  3. voxelize.comp over triangle_count triangles, a barrier, voxelize_tiles.comp
  *     (vkCmdDispatchIndirect from the queue);
  *  4. a barrier making the BOM visible to compute-shader reads/writes and transfer reads.
- * push->positions, indices, bom and params are buffer device addresses (as in
- * roma_bom_raster_record); push->queue and config.y are filled in here; config.x is
- * the triangle count (0: clear only). bom_buffer is the buffer behind push->bom, at
- * least RES^3 / 8 bytes. resolution must be the one the voxelizer was created for. */
-roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_voxelize_push *push,
-                                     VkBuffer bom_buffer, VkDeviceSize bom_bytes, uint32_t resolution);
+ * grid is this frame's placement (dims.x must be the voxelizer's RES, dims.y RES / 32);
+ * it travels in push constants. triangle_count 0 clears only. Indices must be in range
+ * for positions (not checked on the GPU). */
+roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
+                                     uint32_t triangle_count);
 
 #endif /* ROMA_BOM_VOXELIZE_H */

@@ -70,6 +70,12 @@ static roma_result upload_positions(roma_map *map, const float *positions)
     return ROMA_SUCCESS;
 }
 
+/* Rotation bindings: the parameters as a uniform buffer (every invocation of a workgroup
+ * reads the same frame; uniform loads are the cheapest on every device). */
+static const VkDescriptorType rotate_types[ROMA_ROTATE_BINDINGS] = {
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
+
 roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, const roma_scene *scene,
                             roma_map **out)
 {
@@ -132,9 +138,10 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     const uint64_t texel_words = (uint64_t)map->res * map->res * map->words;
-    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count, storage, ROMA_MEMORY_UPLOAD, &map->positions);
+    const VkBufferUsageFlags geometry = storage;
+    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count, geometry, ROMA_MEMORY_UPLOAD, &map->positions);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage, ROMA_MEMORY_UPLOAD, &map->indices);
+        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, geometry, ROMA_MEMORY_UPLOAD, &map->indices);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4 * texel_words, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->bom);
@@ -143,8 +150,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                ROMA_MEMORY_DEVICE, &map->maps);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, sizeof(roma_grid_params) + sizeof(roma_map_frame) * map->map_count,
-                               storage, ROMA_MEMORY_UPLOAD, &map->params);
+        r = roma_buffer_create(ctx, ROMA_PARAMS_BLOCK_BYTES, storage | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               ROMA_MEMORY_UPLOAD, &map->params);
     /* The scatter rotation's cell list: 1/16 of the grid's cells (scenes occupy a few
      * percent); a fuller grid is rotated by the gather instead. */
     map->cell_capacity = (uint32_t)(texel_words * 32 / 16);
@@ -153,14 +160,28 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                ROMA_MEMORY_DEVICE, &map->cells);
     if (r == ROMA_SUCCESS)
-        r = desc.bom_mode == ROMA_BOM_EXACT ? roma_bom_voxelizer_create(ctx, map->res, &map->voxelizer)
-                                            : roma_bom_raster_create(ctx, &map->raster);
+        r = desc.bom_mode == ROMA_BOM_EXACT
+                ? roma_bom_voxelizer_create(ctx, map->res, map->positions.buffer, map->indices.buffer,
+                                            map->bom.buffer, map->bom.size, &map->voxelizer)
+                : roma_bom_raster_create(ctx, &map->raster);
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "occupied_cells.comp", 0, sizeof(roma_rotate_push), &map->occupied_cells);
+        r = roma_compute_pipeline_create_typed(ctx, "occupied_cells.comp", rotate_types, ROMA_ROTATE_BINDINGS,
+                                               sizeof(roma_rotate_push), &map->occupied_cells);
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "rotate_scatter.comp", 0, sizeof(roma_rotate_push), &map->rotate_scatter);
+        r = roma_compute_pipeline_create_typed(ctx, "rotate_scatter.comp", rotate_types, ROMA_ROTATE_BINDINGS,
+                                               sizeof(roma_rotate_push), &map->rotate_scatter);
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "rotate_gather.comp", 0, sizeof(roma_rotate_push), &map->rotate_gather);
+        r = roma_compute_pipeline_create_typed(ctx, "rotate_gather.comp", rotate_types, ROMA_ROTATE_BINDINGS,
+                                               sizeof(roma_rotate_push), &map->rotate_gather);
+    if (r == ROMA_SUCCESS) {
+        /* The three rotation pipelines have the same bindings: one set serves them all. */
+        const VkDescriptorType *types = rotate_types;
+        r = roma_descriptor_set_create(ctx, &map->occupied_cells, types, ROMA_ROTATE_BINDINGS, &map->rotate_set);
+        const VkBuffer buffers[ROMA_ROTATE_BINDINGS] = {map->bom.buffer, map->maps.buffer, map->cells.buffer,
+                                                        map->params.buffer};
+        for (uint32_t b = 0; r == ROMA_SUCCESS && b < ROMA_ROTATE_BINDINGS; ++b)
+            roma_descriptor_write_buffer(ctx, &map->rotate_set, b, types[b], buffers[b]);
+    }
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create(ctx, "trace.comp", 0, sizeof(roma_trace_push), &map->trace);
     if (r == ROMA_SUCCESS) {
@@ -181,6 +202,7 @@ void roma_map_destroy(roma_map *map)
         return;
     roma_context *ctx = map->ctx;
     roma_compute_pipeline_destroy(ctx, &map->trace);
+    roma_descriptor_set_destroy(ctx, &map->rotate_set);
     roma_compute_pipeline_destroy(ctx, &map->rotate_gather);
     roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
     roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
@@ -270,13 +292,7 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd)
                                    ROMA_ROTATE_WORKGROUP_SIZE;
     const uint32_t gather_x = gather_groups < 65535u ? (uint32_t)gather_groups : 65535u;
     const uint32_t gather_y = (uint32_t)((gather_groups + gather_x - 1) / gather_x);
-    roma_rotate_push push = {
-        .bom = map->bom.address,
-        .maps = map->maps.address,
-        .params = map->params.address,
-        .cells = map->cells.address,
-        .config = {map->cell_capacity, gather_x, gather_y, 0},
-    };
+    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, 0}};
     /* WAR against earlier readers of the maps and the list (traces, downloads, the
      * previous build's indirect dispatches). */
     roma_cmd_memory_barrier(cmd,
@@ -290,6 +306,9 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd)
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    /* One set layout and push range for the three pipelines: bound once. */
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->occupied_cells.layout, 0, 1,
+                            &map->rotate_set.set, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->occupied_cells.pipeline);
     vkCmdPushConstants(cmd, map->occupied_cells.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     roma_cmd_dispatch_linear(cmd, words, ROMA_ROTATE_WORKGROUP_SIZE);
@@ -298,16 +317,30 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd)
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                                 VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate_scatter.pipeline);
-    vkCmdPushConstants(cmd, map->rotate_scatter.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, scatter));
     /* Zero workgroups unless the list overflowed (then the scatter did nothing). */
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate_gather.pipeline);
-    vkCmdPushConstants(cmd, map->rotate_gather.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, gather));
 }
 
-roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
-                                  roma_gpu_timer *timer)
+/* The BOM: exact compute voxelization or one of the raster modes. */
+static roma_result record_bom(roma_map *map, VkCommandBuffer cmd)
+{
+    if (map->voxelizer)
+        return roma_bom_voxelize_record(map->voxelizer, cmd, &map->grid, map->triangle_count);
+    roma_bom_push bom_push = {
+        .positions = map->positions.address,
+        .indices = map->indices.address,
+        .bom = map->bom.address,
+        .params = map->params.address,
+        .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
+                   map->triangle_count, map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
+    };
+    return roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
+}
+
+roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
+                                  roma_gpu_timer *timer, uint32_t steps)
 {
     if (!map || !cmd)
         return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
@@ -320,40 +353,30 @@ roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma
     if (r != ROMA_SUCCESS)
         return r;
 
-    uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
-    if (map->voxelizer) {
-        roma_voxelize_push vox_push = {
-            .positions = map->positions.address,
-            .indices = map->indices.address,
-            .bom = map->bom.address,
-            .params = map->params.address,
-            .config = {map->triangle_count, 0, 0, 0},
-        };
-        r = roma_bom_voxelize_record(map->voxelizer, cmd, &vox_push, map->bom.buffer, map->bom.size, map->res);
-    } else {
-        roma_bom_push bom_push = {
-            .positions = map->positions.address,
-            .indices = map->indices.address,
-            .bom = map->bom.address,
-            .params = map->params.address,
-            .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
-                       map->triangle_count,
-                       map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
-        };
-        r = roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
+    if (steps & ROMA_MAP_STEP_VOXELIZE) {
+        uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
+        r = record_bom(map, cmd);
+        roma_gpu_timer_end(timer, cmd, scope);
+        if (r != ROMA_SUCCESS)
+            return r;
     }
-    roma_gpu_timer_end(timer, cmd, scope);
-    if (r != ROMA_SUCCESS)
-        return r;
-
-    scope = roma_gpu_timer_begin(timer, cmd, "rotate");
-    record_rotation(map, cmd);
-    roma_gpu_timer_end(timer, cmd, scope);
+    if (steps & ROMA_MAP_STEP_ROTATE) {
+        uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rotate");
+        record_rotation(map, cmd);
+        roma_gpu_timer_end(timer, cmd, scope);
+    }
     /* Maps feed traces (compute) and downloads (transfer). */
     compute_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-    map->built = 1;
+    if (steps & ROMA_MAP_STEP_ROTATE)
+        map->built = 1;
     return ROMA_SUCCESS;
+}
+
+roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame,
+                                  roma_gpu_timer *timer)
+{
+    return roma_map_record_steps(map, cmd, frame, timer, ROMA_MAP_STEP_VOXELIZE | ROMA_MAP_STEP_ROTATE);
 }
 
 roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame, roma_gpu_timer *timer)
@@ -551,3 +574,4 @@ roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *gri
     *frames = map->frames;
     return ROMA_SUCCESS;
 }
+_Static_assert(ROMA_PARAMS_BLOCK_BYTES == sizeof(roma_grid_params) + ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR * sizeof(roma_map_frame), "the uniform block of roma_rotate.glsl");

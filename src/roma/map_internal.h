@@ -27,10 +27,19 @@ struct roma_map {
     struct roma_bom_raster *raster;         /* raster modes only */
     struct roma_bom_voxelizer *voxelizer;   /* ROMA_BOM_EXACT */
     roma_compute_pipeline occupied_cells, rotate_scatter, rotate_gather, trace;
+    roma_descriptor_set rotate_set; /* bom, maps, cells, params: shared by the rotation pipelines */
     roma_grid_params grid;          /* host copies of this frame's parameters */
     roma_map_frame *frames;
     int built;
 };
+
+/* roma_map_record_build in parts, so that the benchmark can time each step on devices
+ * whose timestamps do not cover compute work (a step alone leaves the other's buffer as
+ * it was). */
+#define ROMA_MAP_STEP_VOXELIZE 1u
+#define ROMA_MAP_STEP_ROTATE 2u
+roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame,
+                                  roma_gpu_timer *timer, uint32_t steps);
 
 /* This frame's parameters, for the C mirror in tests. */
 roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid,

@@ -8,21 +8,31 @@ roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_n
                                          uint32_t storage_buffer_count, uint32_t push_size,
                                          roma_compute_pipeline *out)
 {
+    VkDescriptorType types[MAX_STORAGE_BUFFERS];
+    for (uint32_t i = 0; i < storage_buffer_count && i < MAX_STORAGE_BUFFERS; ++i)
+        types[i] = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return roma_compute_pipeline_create_typed(ctx, module_name, types, storage_buffer_count, push_size, out);
+}
+
+roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *module_name,
+                                               const VkDescriptorType *types, uint32_t binding_count,
+                                               uint32_t push_size, roma_compute_pipeline *out)
+{
     memset(out, 0, sizeof *out);
-    if (storage_buffer_count > MAX_STORAGE_BUFFERS)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many storage buffers for %s", module_name);
+    if (binding_count > MAX_STORAGE_BUFFERS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors for %s", module_name);
 
     VkDescriptorSetLayoutBinding bindings[MAX_STORAGE_BUFFERS];
-    for (uint32_t i = 0; i < storage_buffer_count; ++i)
+    for (uint32_t i = 0; i < binding_count; ++i)
         bindings[i] = (VkDescriptorSetLayoutBinding){
             .binding = i,
-            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+            .descriptorType = types[i],
             .descriptorCount = 1,
             .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
         };
     VkDescriptorSetLayoutCreateInfo set_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-        .bindingCount = storage_buffer_count,
+        .bindingCount = binding_count,
         .pBindings = bindings,
     };
     roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &set_info, NULL, &out->set_layout),

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roma_shared.h"
 #include "vulkan/vk_internal.h"
 
 static int contains_ignore_case(const char *haystack, const char *needle)
@@ -59,6 +60,20 @@ roma_result roma_check_device_support(const roma_context *ctx, VkPhysicalDevice 
     if (missing)
         return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE, "%s lacks the feature %s",
                          props.deviceName, missing);
+    /* The occupied-cell list aggregates its atomics per subgroup (occupied_cells.comp). */
+    VkPhysicalDeviceSubgroupProperties subgroup = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 props2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &subgroup};
+    vkGetPhysicalDeviceProperties2(pd, &props2);
+    const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+                                       VK_SUBGROUP_FEATURE_BALLOT_BIT;
+    if ((subgroup.supportedOperations & ops) != ops || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
+        return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
+                         "%s lacks subgroup arithmetic and ballot operations in compute shaders", props.deviceName);
+    /* The rotation reads every map's frame from one uniform block (roma_rotate.glsl). */
+    if (props.limits.maxUniformBufferRange < ROMA_PARAMS_BLOCK_BYTES)
+        return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
+                         "%s: maxUniformBufferRange %u is below the %u bytes libroma's parameters need",
+                         props.deviceName, props.limits.maxUniformBufferRange, (unsigned)ROMA_PARAMS_BLOCK_BYTES);
     if (out_has_geometry_shader)
         *out_has_geometry_shader = features.features.geometryShader != VK_FALSE;
     return ROMA_SUCCESS;

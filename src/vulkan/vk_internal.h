@@ -107,7 +107,30 @@ typedef struct roma_compute_pipeline {
 roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_name,
                                          uint32_t storage_buffer_count, uint32_t push_size,
                                          roma_compute_pipeline *out);
+/* The same with binding i of type types[i] (storage, uniform, texel buffers). */
+roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *module_name,
+                                               const VkDescriptorType *types, uint32_t binding_count,
+                                               uint32_t push_size, roma_compute_pipeline *out);
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);
+
+/* --- descriptor sets (descriptors.c): one set for a pipeline's layout, from a pool of its
+ * own, written once when the buffers it names are created (never while in use). --- */
+typedef struct roma_descriptor_set {
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+} roma_descriptor_set;
+
+roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
+                                       const VkDescriptorType *types, uint32_t binding_count,
+                                       roma_descriptor_set *out);
+void roma_descriptor_set_destroy(roma_context *ctx, roma_descriptor_set *set);
+/* A whole buffer (storage or uniform) or a buffer view (texel buffers) at binding. */
+void roma_descriptor_write_buffer(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
+                                  VkDescriptorType type, VkBuffer buffer);
+void roma_descriptor_write_view(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
+                                VkDescriptorType type, VkBufferView view);
+/* A texel-buffer view of a whole buffer (usage must include the texel-buffer bit). */
+roma_result roma_buffer_view_create(roma_context *ctx, VkBuffer buffer, VkFormat format, VkBufferView *out);
 
 /* --- shader modules and graphics pipelines (graphics_pipeline.c) --- */
 roma_result roma_shader_module_create(roma_context *ctx, const char *module_name, VkShaderModule *out);

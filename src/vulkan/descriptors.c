@@ -1,0 +1,91 @@
+/* Descriptor sets for the passes that bind their buffers instead of reaching them by
+ * address: on some devices (CPU implementations in particular) descriptor-based and
+ * texel-buffer loads are much cheaper than buffer-device-address loads. */
+#include <string.h>
+
+#include "vulkan/vk_internal.h"
+
+#define MAX_BINDINGS 16
+
+roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
+                                       const VkDescriptorType *types, uint32_t binding_count,
+                                       roma_descriptor_set *out)
+{
+    memset(out, 0, sizeof *out);
+    if (binding_count == 0 || binding_count > MAX_BINDINGS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_descriptor_set_create: %u bindings",
+                         binding_count);
+    VkDescriptorPoolSize sizes[MAX_BINDINGS];
+    for (uint32_t i = 0; i < binding_count; ++i)
+        sizes[i] = (VkDescriptorPoolSize){types[i], 1};
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = 1,
+        .poolSizeCount = binding_count,
+        .pPoolSizes = sizes,
+    };
+    roma_result r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &out->pool),
+                                  "vkCreateDescriptorPool");
+    if (r == ROMA_SUCCESS) {
+        VkDescriptorSetAllocateInfo alloc = {
+            .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+            .descriptorPool = out->pool,
+            .descriptorSetCount = 1,
+            .pSetLayouts = &pipeline->set_layout,
+        };
+        r = roma_vk_check(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, &out->set), "vkAllocateDescriptorSets");
+    }
+    if (r != ROMA_SUCCESS)
+        roma_descriptor_set_destroy(ctx, out);
+    return r;
+}
+
+void roma_descriptor_set_destroy(roma_context *ctx, roma_descriptor_set *set)
+{
+    if (!ctx || !set)
+        return;
+    if (set->pool)
+        vkDestroyDescriptorPool(ctx->device, set->pool, NULL); /* frees the set */
+    memset(set, 0, sizeof *set);
+}
+
+void roma_descriptor_write_buffer(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
+                                  VkDescriptorType type, VkBuffer buffer)
+{
+    VkDescriptorBufferInfo info = {buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet write = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+        .dstSet = set->set,
+        .dstBinding = binding,
+        .descriptorCount = 1,
+        .descriptorType = type,
+        .pBufferInfo = &info,
+    };
+    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
+void roma_descriptor_write_view(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
+                                VkDescriptorType type, VkBufferView view)
+{
+    VkWriteDescriptorSet write = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+        .dstSet = set->set,
+        .dstBinding = binding,
+        .descriptorCount = 1,
+        .descriptorType = type,
+        .pTexelBufferView = &view,
+    };
+    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
+roma_result roma_buffer_view_create(roma_context *ctx, VkBuffer buffer, VkFormat format, VkBufferView *out)
+{
+    VkBufferViewCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+        .buffer = buffer,
+        .format = format,
+        .offset = 0,
+        .range = VK_WHOLE_SIZE,
+    };
+    return roma_vk_check(ctx, vkCreateBufferView(ctx->device, &info, NULL, out), "vkCreateBufferView");
+}

@@ -143,7 +143,7 @@ static void run(roma_context *ctx)
         }
         roma_ao_pass_inputs in = {
             .gbuffer_pixels = roma_gbuffer_pixels_address(gb), .width = W, .height = H,
-            .maps_address = info.maps_address, .params_address = info.params_address,
+            .trace_set = info.trace_set,
             .offset = offset, .radius = RADIUS, .spp = SPP, .frame = f, .seed = SEED,
             .accum = accum.address,
         };

@@ -116,9 +116,19 @@ typedef struct roma_map_info {
     float trace_cell;          /* grid_cell * sqrt(3): the longest edge a rotated cell can have;
                                   the unit of ray-origin offsets (see roma_offset_origin) */
     uint64_t bom_bytes, maps_bytes, params_bytes, geometry_bytes;
-    /* For roma_trace.glsl in the caller's shaders (valid until the map is destroyed): */
-    VkDeviceAddress maps_address;   /* RomaWords */
-    VkDeviceAddress params_address; /* RomaParams */
+    /* For roma_trace.glsl in the caller's shaders (valid until the map is destroyed).
+     * By address (roma_use_addresses): */
+    VkDeviceAddress maps_address;
+    VkDeviceAddress params_address;
+    /* Through descriptors (roma_trace_descriptors.glsl): the maps as a uniform texel
+     * buffer (maps_view, R32_UINT) and the parameters as a uniform buffer, or the set
+     * libroma wrote for them, for a pipeline layout whose set ROMA_TRACE_SET is
+     * trace_set_layout (or defined identically). The set is never rewritten. */
+    VkBuffer maps_buffer;
+    VkBuffer params_buffer;
+    VkBufferView maps_view;
+    VkDescriptorSet trace_set;
+    VkDescriptorSetLayout trace_set_layout;
 } roma_map_info;
 
 roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);

@@ -5,7 +5,10 @@
 #ifndef ROMA_LIGHTS_GLSL
 #define ROMA_LIGHTS_GLSL
 
-#include "roma_trace.glsl"
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+#include "roma_trace_descriptors.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
@@ -14,7 +17,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ro
 // 1 when the segment origin -> target is free between tmin and `shorten`
 // (world units) before the target: a point light next to a surface must not be
 // hidden by that surface's cells. tmin skips the cells right at the origin.
-bool roma_segment_visible(RomaParams params, RomaWords maps, vec3 origin, vec3 target, float shorten,
+bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
                           float tmin, uint max_steps)
 {
     vec3 v = target - origin;
@@ -22,7 +25,7 @@ bool roma_segment_visible(RomaParams params, RomaWords maps, vec3 origin, vec3 t
     float tmax = d - shorten;
     if (!(tmax > tmin))
         return true;
-    roma_hit h = roma_trace_unsnapped(params, maps, origin, v, tmin, tmax, false, max_steps);
+    roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);
     return (h.info & ROMA_HIT) == 0u;
 }
 

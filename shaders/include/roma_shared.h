@@ -154,11 +154,20 @@ ROMA_STRUCT_BEGIN(roma_rotate_cells)
     ROMA_UVEC4(gather);   /* x, y: the gather's workgroups when the list overflowed (else 0), z: 1 */
 ROMA_STRUCT_END(roma_rotate_cells)
 
+/* Tracing through descriptors (roma_trace_descriptors.glsl): set ROMA_TRACE_SET, the maps
+ * as a uniform texel buffer (R32_UINT) and the parameters as a uniform block of
+ * ROMA_PARAMS_BLOCK_BYTES. */
+#define ROMA_TRACE_BINDING_MAPS 0
+#define ROMA_TRACE_BINDING_PARAMS 1
+#define ROMA_TRACE_BINDINGS 2
+/* trace_staged.comp adds the map's staging buffers to that set. */
+#define ROMA_TRACE_BINDING_RAYS 2
+#define ROMA_TRACE_BINDING_HITS 3
+#define ROMA_TRACE_STAGED_BINDINGS 4
+
 /* Batch trace: one invocation per ray. */
 #define ROMA_TRACE_WORKGROUP_SIZE 64
 ROMA_STRUCT_BEGIN(roma_trace_push)
-    ROMA_U64(maps);
-    ROMA_U64(params);
     ROMA_U64(rays);
     ROMA_U64(hits);
     ROMA_UVEC4(config);   /* x: roma_trace_mode, y: max steps, z: ray count */
@@ -213,8 +222,6 @@ ROMA_STRUCT_END(roma_gbuffer_pixel)
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
-    ROMA_U64(maps);       /* RomaWords */
-    ROMA_U64(params);     /* RomaParams */
     ROMA_U64(accum);      /* width*height uint: unoccluded samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */
@@ -253,8 +260,6 @@ ROMA_STRUCT_END(roma_gpu_emitter)
 
 ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_U64(pixels);     /* roma_gbuffer_pixel */
-    ROMA_U64(maps);
-    ROMA_U64(params);
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(accum);      /* vec4 per pixel: irradiance summed over frames, added to */
     ROMA_U64(pad_);
@@ -264,8 +269,6 @@ ROMA_STRUCT_END(roma_punctual_push)
 
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(pixels);
-    ROMA_U64(maps);
-    ROMA_U64(params);
     ROMA_U64(emitters);   /* roma_gpu_emitter */
     ROMA_U64(cdf);        /* float per emitter */
     ROMA_U64(accum);      /* vec4 per pixel: irradiance estimates summed over samples, added to */
@@ -276,8 +279,6 @@ ROMA_STRUCT_END(roma_soft_shadows_push)
 
 ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_U64(pixels);
-    ROMA_U64(maps);
-    ROMA_U64(params);
     ROMA_U64(positions);  /* vec4 per light */
     ROMA_U64(accum);      /* uvec2 per pixel: visible, tested (summed over frames, added to) */
     ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
@@ -298,8 +299,6 @@ ROMA_STRUCT_END(roma_rsm_view)
 
 ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_U64(pixels);
-    ROMA_U64(maps);
-    ROMA_U64(params);
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(views);      /* roma_rsm_view */
     ROMA_U64(accum);      /* vec4 per pixel: bounce radiance L(y) summed over samples, added to */

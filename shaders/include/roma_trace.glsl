@@ -1,11 +1,19 @@
 // libroma: tracing a Ray-aligned Occupancy Map Array from GLSL.
 //
 // Include from your own shaders (GL_GOOGLE_include_directive, with libroma's
-// shaders/include on the include path). Everything is reached through buffer
-// device addresses that roma_map_get_info() reports:
-//     RomaParams params = RomaParams(info.params_address);
-//     RomaWords  maps   = RomaWords(info.maps_address);
-//     roma_hit h = roma_trace_snapped(params, maps, origin, dir, tmin, tmax, true);
+// shaders/include on the include path). The trace functions read the maps and their
+// parameters through three fetch functions; choose how they reach the buffers:
+//  - by buffer device address (the default): call roma_use_addresses() once, with the
+//    two addresses roma_map_get_info() reports, before tracing:
+//        roma_use_addresses(pc.roma_params, pc.roma_maps);   // uvec2 each
+//        roma_hit h = roma_trace_snapped(origin, dir, tmin, tmax, true);
+//  - through descriptors (faster on devices where address-based loads are slow):
+//    include roma_trace_descriptors.glsl instead, which binds the maps as a uniform
+//    texel buffer and the parameters as a uniform buffer (roma_map_info names both);
+//  - your own: #define ROMA_TRACE_FETCH and define, before including this file,
+//        uint roma_fetch_word(uint index);        // word index of the maps buffer
+//        roma_grid_params roma_fetch_grid();
+//        roma_map_frame roma_fetch_frame(uint k);
 // Conventions are those of include/roma/map.h: t is a world-space distance
 // along normalize(dir); closest-hit t is the entry of the first occupied cell.
 // The C mirror in src/roma/cpu_mirror.c evaluates the same float expressions
@@ -13,18 +21,32 @@
 #ifndef ROMA_TRACE_GLSL
 #define ROMA_TRACE_GLSL
 
-#extension GL_EXT_buffer_reference : require
-#extension GL_EXT_buffer_reference_uvec2 : enable
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : enable
 
 #include "roma_float.glsl"
 #include "roma_shared.h"
 
+#ifndef ROMA_TRACE_FETCH
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : enable
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaWords { uint w[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaParams {
     roma_grid_params grid;
     roma_map_frame maps[];
 };
+RomaParams roma_params_ref_;
+RomaWords roma_maps_ref_;
+
+// The buffers the trace functions read (addresses from roma_map_info, as uvec2).
+void roma_use_addresses(uvec2 params_address, uvec2 maps_address)
+{
+    roma_params_ref_ = RomaParams(params_address);
+    roma_maps_ref_ = RomaWords(maps_address);
+}
+uint roma_fetch_word(uint index) { return roma_maps_ref_.w[index]; }
+roma_grid_params roma_fetch_grid() { return roma_params_ref_.grid; }
+roma_map_frame roma_fetch_frame(uint k) { return roma_params_ref_.maps[k]; }
+#endif
 
 struct roma_ray {
     vec3 origin;
@@ -120,9 +142,9 @@ vec3 roma_to_map_rows(vec4 r0, vec4 r1, vec4 r2, vec3 p)
 }
 
 // World position -> map cell coordinates of frame f (see roma_shared.h).
-vec3 roma_to_map(RomaParams params, roma_map_frame f, vec3 p)
+vec3 roma_to_map(roma_grid_params grid, roma_map_frame f, vec3 p)
 {
-    precise vec3 r = p - params.grid.origin.xyz;
+    precise vec3 r = p - grid.origin.xyz;
     return roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, r);
 }
 
@@ -154,18 +176,18 @@ uint roma_texel_base(uint k, uint x, uint y, uint res, uint words)
 }
 
 // First occupied cell in [c_lo, c_hi] of a texel, scanning up (dir_sign > 0) or down; -1 if none.
-int roma_first_cell(RomaWords maps, uint base, int c_lo, int c_hi, bool upward)
+int roma_first_cell(uint base, int c_lo, int c_hi, bool upward)
 {
     uint w_lo = uint(c_lo) >> 5, w_hi = uint(c_hi) >> 5;
     if (upward) {
         for (uint w = w_lo; w <= w_hi; ++w) {
-            uint bits = maps.w[base + w] & roma_range_mask(c_lo, c_hi, w);
+            uint bits = roma_fetch_word(base + w) & roma_range_mask(c_lo, c_hi, w);
             if (bits != 0u)
                 return int(w) * 32 + findLSB(bits);
         }
     } else {
         for (uint w = w_hi + 1u; w-- > w_lo;) {
-            uint bits = maps.w[base + w] & roma_range_mask(c_lo, c_hi, w);
+            uint bits = roma_fetch_word(base + w) & roma_range_mask(c_lo, c_hi, w);
             if (bits != 0u)
                 return int(w) * 32 + findMSB(bits);
         }
@@ -181,41 +203,41 @@ bool roma_ray_range_valid(vec3 origin, float tmin, float tmax)
 
 // Start of both queries: the unit direction, its map and fold, and the miss that
 // is returned unless a hit is found. False for rays that are not traced at all.
-bool roma_trace_begin(RomaParams params, vec3 origin, vec3 dir, float tmin, float tmax, out vec3 dn,
+bool roma_trace_begin(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax, out vec3 dn,
                       out uint k, out bool folded, out roma_hit miss)
 {
     folded = false;
     bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
-    k = valid ? roma_select_map_unit(dn, params.grid.dims.z, folded) : 0u;
+    k = valid ? roma_select_map_unit(dn, grid.dims.z, folded) : 0u;
     miss = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
     return valid;
 }
 
 // Snapped query: the ray follows the candidate of its stratum (or its opposite).
-roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3 dir, float tmin,
-                            float tmax, bool closest)
+roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
 {
-    uint res = params.grid.dims.x, words = params.grid.dims.y;
+    roma_grid_params grid = roma_fetch_grid();
+    uint res = grid.dims.x, words = grid.dims.y;
     vec3 dn;
     uint k;
     bool folded;
     roma_hit hit;
-    if (!roma_trace_begin(params, origin, dir, tmin, tmax, dn, k, folded, hit))
+    if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
-    // Only the fields a snapped query needs: a frame is 144 bytes.
-    precise vec3 r = origin - params.grid.origin.xyz;
-    vec3 m = roma_to_map_rows(params.maps[k].to_map_0, params.maps[k].to_map_1, params.maps[k].to_map_2, r);
+    roma_map_frame f = roma_fetch_frame(k);
+    precise vec3 r = origin - grid.origin.xyz;
+    vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, r);
     // Finite first (an origin ~1e38 away overflows): the range test must not meet a NaN.
     if (!roma_all_finite(m) || !(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
         return hit;
-    float inv_cz = params.maps[k].cell.w, cz = params.maps[k].dir.w;
+    float inv_cz = f.cell.w, cz = f.dir.w;
     precise float lo = folded ? m.z - tmax * inv_cz : m.z + tmin * inv_cz;
     precise float hi = folded ? m.z - tmin * inv_cz : m.z + tmax * inv_cz;
     int c_lo, c_hi;
     if (!roma_cell_range(lo, hi, res, c_lo, c_hi))
         return hit;
     uint base = roma_texel_base(k, uint(m.x), uint(m.y), res, words);
-    int c = roma_first_cell(maps, base, c_lo, c_hi, !folded);
+    int c = roma_first_cell(base, c_lo, c_hi, !folded);
     if (c < 0)
         return hit;
     hit.info |= ROMA_HIT;
@@ -228,22 +250,22 @@ roma_hit roma_trace_snapped(RomaParams params, RomaWords maps, vec3 origin, vec3
 
 // Un-snapped query: the exact direction walked through the selected map's texels
 // (2D DDA in the map's xy plane), at most max_steps texels.
-roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, vec3 dir, float tmin,
-                              float tmax, bool closest, uint max_steps)
+roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest, uint max_steps)
 {
-    uint res = params.grid.dims.x, words = params.grid.dims.y;
+    roma_grid_params grid = roma_fetch_grid();
+    uint res = grid.dims.x, words = grid.dims.y;
     vec3 dn;
     uint k;
     bool folded;
     roma_hit hit;
-    if (!roma_trace_begin(params, origin, dir, tmin, tmax, dn, k, folded, hit))
+    if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
-    roma_map_frame f = params.maps[k];
+    roma_map_frame f = roma_fetch_frame(k);
     precise vec3 dm = vec3(
         (f.to_map_0.x * dn.x + f.to_map_0.y * dn.y) + f.to_map_0.z * dn.z,
         (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
         (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
-    vec3 m0 = roma_to_map(params, f, origin);
+    vec3 m0 = roma_to_map(grid, f, origin);
     if (!roma_all_finite(m0))
         return hit; // an origin so far out that its map coordinates overflow
     float fres = float(res);
@@ -281,7 +303,7 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
         int c_lo, c_hi;
         if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi)) {
             uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
-            int c = roma_first_cell(maps, base, c_lo, c_hi, dm.z >= 0.0);
+            int c = roma_first_cell(base, c_lo, c_hi, dm.z >= 0.0);
             if (c >= 0) {
                 hit.info |= ROMA_HIT;
                 if (closest) {
@@ -307,9 +329,9 @@ roma_hit roma_trace_unsnapped(RomaParams params, RomaWords maps, vec3 origin, ve
 
 // Origin offset along the surface normal by `cells` trace cells (sqrt(3) BOM cells
 // each, the longest edge of a rotated cell); the paper's default is 1.5.
-vec3 roma_offset_origin(RomaParams params, vec3 p, vec3 n, float cells)
+vec3 roma_offset_origin(vec3 p, vec3 n, float cells)
 {
-    return p + n * (cells * 1.7320508 * params.grid.origin.w);
+    return p + n * (cells * 1.7320508 * roma_fetch_grid().origin.w);
 }
 
 #endif // ROMA_TRACE_GLSL

@@ -1,9 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 // Ambient occlusion from the G-buffer: one invocation per pixel, spp snapped
 // any-hit rays through the ROMA maps; adds the unoccluded count to accum so
 // that frames accumulate (the caller clears it before frame 0).
-#include "roma_trace.glsl"
+#include "roma_trace_descriptors.glsl"
 #include "roma_sampling.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
@@ -26,8 +28,6 @@ void main()
     // Background: the caller writes AO 1 there.
     if (roma_is_inf(g.position_t.w))
         return;
-    RomaParams params = RomaParams(pc.params);
-    RomaWords maps = RomaWords(pc.maps);
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
     uint seed = pc.config2.x, open = 0u;
@@ -39,7 +39,7 @@ void main()
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
             continue;
-        roma_hit h = roma_trace_snapped(params, maps, origin, dir, pc.ray.z, pc.ray.y, false);
+        roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
         open += (h.info & ROMA_HIT) == 0u ? 1u : 0u;
     }
     if (open != 0u)

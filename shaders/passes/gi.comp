@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 // One-bounce diffuse GI: per pixel, spp cosine-weighted bounce rays (the
 // reference's dimensions 5 and 6, sample frame * spp + k) traced as snapped
 // closest-hit ROMA queries. The hit point is looked up in the reflective shadow
@@ -62,8 +64,6 @@ void main()
     roma_gbuffer_pixel g = RomaGbufferPixels(gi.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
-    RomaParams params = RomaParams(gi.params);
-    RomaWords maps = RomaWords(gi.maps);
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     vec3 origin = g.position_t.xyz + ng * gi.ray.x;
     vec3 acc = vec3(0.0);
@@ -73,11 +73,11 @@ void main()
                                                                  roma_random(seed, pixel, s, DIM_GI_BOUNCE + 1u)));
         if (dot(dir, ng) <= 0.0)
             continue;
-        roma_hit h = roma_trace_snapped(params, maps, origin, dir, gi.ray.y, 1.0 / 0.0, true);
+        roma_hit h = roma_trace_snapped(origin, dir, gi.ray.y, 1.0 / 0.0, true);
         if ((h.info & ROMA_HIT) == 0u)
             continue;
         // A snapped ray travels along its candidate direction (reversed when folded).
-        vec3 cand = params.maps[(h.info >> 8) & 0xffu].dir.xyz * ((h.info & 0x10000u) != 0u ? -1.0 : 1.0);
+        vec3 cand = roma_fetch_frame((h.info >> 8) & 0xffu).dir.xyz * ((h.info & 0x10000u) != 0u ? -1.0 : 1.0);
         acc += rsm_radiance(origin + cand * h.t);
     }
     RomaVec4Accum(gi.accum).v[pixel] += vec4(acc, 0.0);

@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 // Visibility of many point lights (the constant-time intersection paper's use):
 // per pixel, lights tested per frame are all of them (exact count) or k of
 // them starting at a random light (stochastic, accumulated over frames). A
@@ -31,8 +33,6 @@ void main()
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
-    RomaParams params = RomaParams(pc.params);
-    RomaWords maps = RomaWords(pc.maps);
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
@@ -46,7 +46,7 @@ void main()
         uint i = first + j;
         i = i >= light_count ? i - light_count : i;
         vec3 lp = RomaPositions(pc.positions).p[i].xyz;
-        bool lit = dot(n, lp - p) > 0.0 && roma_segment_visible(params, maps, origin, lp, offset, pc.ray.y, max_steps);
+        bool lit = dot(n, lp - p) > 0.0 && roma_segment_visible(origin, lp, offset, pc.ray.y, max_steps);
         visible += lit ? 1u : 0u;
         if (write_mask) {
             bits |= lit ? 1u << (i & 31u) : 0u;

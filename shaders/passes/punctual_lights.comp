@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 // Direct light from point, spot and directional lights: per pixel and light,
 // one un-snapped shadow ray through the ROMA maps; the irradiance is added to
 // accum so that frames (new jitter each) average out the voxelization.
@@ -22,8 +24,6 @@ void main()
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
-    RomaParams params = RomaParams(pc.params);
-    RomaWords maps = RomaWords(pc.maps);
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
@@ -36,10 +36,10 @@ void main()
             continue;
         bool visible;
         if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-            roma_hit h = roma_trace_unsnapped(params, maps, origin, l, pc.ray.y, 1.0 / 0.0, false, max_steps);
+            roma_hit h = roma_trace_unsnapped(origin, l, pc.ray.y, 1.0 / 0.0, false, max_steps);
             visible = (h.info & ROMA_HIT) == 0u;
         } else {
-            visible = roma_segment_visible(params, maps, origin, light.position_type.xyz, offset, pc.ray.y, max_steps);
+            visible = roma_segment_visible(origin, light.position_type.xyz, offset, pc.ray.y, max_steps);
         }
         if (visible)
             E += roma_bounded_irradiance(f, light.color_intensity.rgb);

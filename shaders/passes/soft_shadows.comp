@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 // Direct light from area lights (emissive triangles): spp light samples per
 // pixel, drawn exactly as the reference draws them (dimensions 2-4, sample
 // frame * spp + k), each with an un-snapped shadow ray of bounded steps.
@@ -42,8 +44,6 @@ void main()
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
-    RomaParams params = RomaParams(pc.params);
-    RomaWords maps = RomaWords(pc.maps);
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
@@ -67,7 +67,7 @@ void main()
         // surface, so that segments arriving at a grazing angle do not run
         // through the cells of the emitter or of a surface just behind it.
         vec3 toward_p = dot(e.normal.xyz, w) < 0.0 ? e.normal.xyz : -e.normal.xyz;
-        if (!roma_segment_visible(params, maps, origin, y + toward_p * offset, 0.0, pc.ray.y, max_steps))
+        if (!roma_segment_visible(origin, y + toward_p * offset, 0.0, pc.ray.y, max_steps))
             continue;
         float g = min(cos_x * cos_y / (d2 * e.v0_pdf.w), ROMA_MAX_IRRADIANCE);
         acc += roma_bounded_irradiance(g, e.emission.rgb);

@@ -22,7 +22,7 @@ roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
     if (!pass)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_pass_create: out of memory");
     pass->ctx = ctx;
-    roma_result r = roma_pixel_pass_create(ctx, "ao.comp", sizeof(roma_ao_push), &pass->pass);
+    roma_result r = roma_pixel_pass_create(ctx, "ao.comp", sizeof(roma_ao_push), 1, &pass->pass);
     if (r != ROMA_SUCCESS) {
         roma_ao_pass_destroy(pass);
         return r;
@@ -43,7 +43,7 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
 {
     if (!pass || !cmd || !in)
         return ROMA_ERROR_INVALID_ARGUMENT;
-    if (!in->gbuffer_pixels || !in->maps_address || !in->params_address || !in->accum)
+    if (!in->gbuffer_pixels || !in->trace_set || !in->accum)
         return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_pass_record: G-buffer, map and accumulation addresses are required");
     if (!(in->offset >= 0.0f) || !isfinite(in->offset) || !(in->tmin >= 0.0f) || !isfinite(in->tmin))
@@ -52,12 +52,10 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         return ROMA_SUCCESS;
     roma_ao_push push = {
         .pixels = in->gbuffer_pixels,
-        .maps = in->maps_address,
-        .params = in->params_address,
         .accum = in->accum,
         .config = {in->width, in->height, in->spp, in->frame},
         .config2 = {in->seed, 0, 0, 0},
         .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, 0.0f},
     };
-    return roma_pixel_pass_record(&pass->pass, cmd, in->width, in->height, &push);
+    return roma_pixel_pass_record(&pass->pass, cmd, in->width, in->height, in->trace_set, &push);
 }

@@ -19,8 +19,7 @@ typedef struct roma_ao_pass roma_ao_pass;
 typedef struct roma_ao_pass_inputs {
     VkDeviceAddress gbuffer_pixels; /* width * height roma_gbuffer_pixel */
     uint32_t width, height;
-    VkDeviceAddress maps_address;   /* roma_map_info of a built map */
-    VkDeviceAddress params_address;
+    VkDescriptorSet trace_set;      /* roma_map_info.trace_set of a built map */
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */

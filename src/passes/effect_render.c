@@ -93,13 +93,13 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO))
         r = roma_ao_pass_create(ctx, &R->ao);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS))
-        r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), &R->punctual);
+        r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), 1, &R->punctual);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS))
-        r = roma_pixel_pass_create(ctx, "soft_shadows.comp", sizeof(roma_soft_shadows_push), &R->soft);
+        r = roma_pixel_pass_create(ctx, "soft_shadows.comp", sizeof(roma_soft_shadows_push), 1, &R->soft);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS))
-        r = roma_pixel_pass_create(ctx, "many_lights.comp", sizeof(roma_many_lights_push), &R->many);
+        r = roma_pixel_pass_create(ctx, "many_lights.comp", sizeof(roma_many_lights_push), 1, &R->many);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_GI))
-        r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), &R->gi);
+        r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), 1, &R->gi);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM)) {
         r = roma_rsm_views_plan(R->lights.lights.mapped, R->lights.light_count, R->rsm_size, R->near_plane,
                                 &ctx->logger, &R->rsm_views);
@@ -198,7 +198,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         case ROMA_PASS_AO: {
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels, .width = d->width, .height = d->height,
-                .maps_address = m->maps_address, .params_address = m->params_address, .offset = offset,
+                .trace_set = m->trace_set, .offset = offset,
                 .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell,.spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].address,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
@@ -206,21 +206,21 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         }
         case ROMA_PASS_PUNCTUAL_LIGHTS: {
             roma_punctual_push push = {
-                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .pixels = pixels,
                 .lights = R->lights.lights.address, .accum = R->accum[p].address,
                 .config = {d->width, d->height, R->lights.light_count, steps}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record(&R->punctual, cmd, d->width, d->height, &push);
+            r = roma_pixel_pass_record(&R->punctual, cmd, d->width, d->height, m->trace_set, &push);
             break;
         }
         case ROMA_PASS_SOFT_SHADOWS: {
             roma_soft_shadows_push push = {
-                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .pixels = pixels,
                 .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record(&R->soft, cmd, d->width, d->height, &push);
+            r = roma_pixel_pass_record(&R->soft, cmd, d->width, d->height, m->trace_set, &push);
             break;
         }
         case ROMA_PASS_MANY_LIGHTS: {
@@ -228,22 +228,22 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             uint32_t tested = d->lights_per_frame && d->lights_per_frame < n ? d->lights_per_frame : n;
             int last = f + 1 == (d->frames ? d->frames : 1);
             roma_many_lights_push push = {
-                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .pixels = pixels,
                 .positions = R->lights.positions.address, .accum = R->accum[p].address,
                 .mask = last ? R->mask.address : 0, .config = {d->width, d->height, n, lights_steps},
                 .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record(&R->many, cmd, d->width, d->height, &push);
+            r = roma_pixel_pass_record(&R->many, cmd, d->width, d->height, m->trace_set, &push);
             break;
         }
         case ROMA_PASS_GI: {
             roma_gi_push push = {
-                .pixels = pixels, .maps = m->maps_address, .params = m->params_address,
+                .pixels = pixels,
                 .lights = R->lights.lights.address, .views = R->views_buffer.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->rsm_views.count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
             };
-            r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, &push);
+            r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, m->trace_set, &push);
             break;
         }
         default:

@@ -4,15 +4,18 @@
 
 #include "roma_shared.h"
 
-roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, roma_pixel_pass *out)
+roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
+                                   roma_pixel_pass *out)
 {
     memset(out, 0, sizeof *out);
-    roma_result r = roma_compute_pipeline_create(ctx, module, 0, push_size, &out->pipeline);
+    roma_result r = roma_compute_pipeline_create_typed(ctx, module, roma_trace_binding_types,
+                                                       traces ? ROMA_TRACE_BINDINGS : 0, push_size, &out->pipeline);
     if (r != ROMA_SUCCESS)
         return r;
     out->ctx = ctx;
     out->name = module;
     out->push_size = push_size;
+    out->traces = traces;
     return ROMA_SUCCESS;
 }
 
@@ -24,9 +27,9 @@ void roma_pixel_pass_destroy(roma_pixel_pass *pass)
 }
 
 roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
-                                   const void *push)
+                                   VkDescriptorSet trace_set, const void *push)
 {
-    if (!pass->ctx || !cmd || !push)
+    if (!pass->ctx || !cmd || !push || (pass->traces && !trace_set))
         return ROMA_ERROR_INVALID_ARGUMENT;
     uint32_t gx = (width + ROMA_PIXEL_WORKGROUP_X - 1) / ROMA_PIXEL_WORKGROUP_X;
     uint32_t gy = (height + ROMA_PIXEL_WORKGROUP_Y - 1) / ROMA_PIXEL_WORKGROUP_Y;
@@ -40,6 +43,9 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
+    if (pass->traces)
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.layout, 0, 1, &trace_set, 0,
+                                NULL);
     vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, push);
     vkCmdDispatch(cmd, gx, gy, 1);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

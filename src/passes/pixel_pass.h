@@ -1,5 +1,6 @@
-/* A compute pass with one invocation per pixel (8 x 8 workgroups) whose whole
- * input is a push-constant block of buffer addresses: AO and the light passes.
+/* A compute pass with one invocation per pixel (8 x 8 workgroups) whose input is a
+ * push-constant block of buffer addresses and, for the passes that trace, the map's
+ * trace set (roma_trace_descriptors.glsl) at set 0: AO, the light passes, GI.
  * Recording makes earlier writes of the G-buffer (fragment/compute), the ROMA
  * build (compute) and clears (transfer) visible to it, and its own writes
  * visible to later compute passes, transfers and the host. */
@@ -12,17 +13,21 @@ typedef struct roma_pixel_pass {
     roma_context *ctx;
     const char *name;
     uint32_t push_size;
+    int traces;
     roma_compute_pipeline pipeline;
 } roma_pixel_pass;
 
-/* module: embedded shader name ("ao.comp"). On failure *out is zeroed. */
-roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size,
+/* module: embedded shader name ("ao.comp"); traces: the shader includes
+ * roma_trace_descriptors.glsl. On failure *out is zeroed. */
+roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out);
 /* Accepts a zeroed pass. */
 void roma_pixel_pass_destroy(roma_pixel_pass *pass);
 
 /* Rejects an empty image and one needing more than 65535 workgroups per axis. */
+/* trace_set: roma_map_info.trace_set of the map traced (VK_NULL_HANDLE for passes that
+ * do not trace). */
 roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
-                                   const void *push);
+                                   VkDescriptorSet trace_set, const void *push);
 
 #endif /* ROMA_PASSES_PIXEL_PASS_H */

@@ -70,6 +70,24 @@ static roma_result upload_positions(roma_map *map, const float *positions)
     return ROMA_SUCCESS;
 }
 
+static const VkDescriptorType staged_types[ROMA_TRACE_STAGED_BINDINGS] = {
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+    VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER};
+
+/* The batch-trace pipeline of `mode` (staged: roma_map_trace's own buffers), made on
+ * first use. */
+static roma_result make_trace_pipeline(roma_map *map, int staged, roma_trace_mode mode)
+{
+    roma_compute_pipeline *p = staged ? &map->trace_staged[mode] : &map->trace[mode];
+    if (p->pipeline)
+        return ROMA_SUCCESS;
+    const uint32_t constant = (uint32_t)mode;
+    return roma_compute_pipeline_create_spec(map->ctx, staged ? "trace_staged.comp" : "trace.comp",
+                                             staged ? staged_types : roma_trace_binding_types,
+                                             staged ? ROMA_TRACE_STAGED_BINDINGS : ROMA_TRACE_BINDINGS,
+                                             sizeof(roma_trace_push), &constant, 1, p);
+}
+
 /* Rotation bindings: the parameters as a uniform buffer (every invocation of a workgroup
  * reads the same frame; uniform loads are the cheapest on every device). */
 static const VkDescriptorType rotate_types[ROMA_ROTATE_BINDINGS] = {
@@ -112,6 +130,14 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     if (bounds != ROMA_SUCCESS)
         return bounds;
 
+    /* Passes read the maps as a texel buffer (roma_trace_descriptors.glsl). */
+    const uint64_t map_words = (uint64_t)desc.resolution * desc.resolution * (desc.resolution / 32) *
+                               desc.angular * desc.angular;
+    if (map_words > ctx->properties.limits.maxTexelBufferElements)
+        return roma_fail(log, ROMA_ERROR_UNSUPPORTED,
+                         "roma_map_create: RES %u with %u x %u maps needs %llu words, more than this device's "
+                         "maxTexelBufferElements (%u)", desc.resolution, desc.angular, desc.angular,
+                         (unsigned long long)map_words, ctx->properties.limits.maxTexelBufferElements);
     roma_map *map = calloc(1, sizeof *map);
     uint32_t *indices = malloc(sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
     roma_map_frame *frames = calloc((size_t)desc.angular * desc.angular, sizeof *frames);
@@ -147,7 +173,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->bom);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4 * texel_words * map->map_count,
-                               storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                   VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                ROMA_MEMORY_DEVICE, &map->maps);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, ROMA_PARAMS_BLOCK_BYTES, storage | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -183,7 +210,25 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
             roma_descriptor_write_buffer(ctx, &map->rotate_set, b, types[b], buffers[b]);
     }
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_create(ctx, "trace.comp", 0, sizeof(roma_trace_push), &map->trace);
+        r = make_trace_pipeline(map, 0, ROMA_TRACE_SNAPPED_ANY);
+    if (r == ROMA_SUCCESS)
+        r = make_trace_pipeline(map, 1, ROMA_TRACE_SNAPPED_ANY);
+    if (r == ROMA_SUCCESS)
+        r = roma_descriptor_set_create(ctx, &map->trace_staged[0], staged_types, ROMA_TRACE_STAGED_BINDINGS,
+                                       &map->staged_set);
+    /* The set every tracing pass binds (roma_trace_descriptors.glsl), written once. */
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_view_create(ctx, map->maps.buffer, VK_FORMAT_R32_UINT, &map->maps_view);
+    if (r == ROMA_SUCCESS)
+        r = roma_descriptor_set_create(ctx, &map->trace[0], roma_trace_binding_types, ROMA_TRACE_BINDINGS,
+                                       &map->trace_set);
+    for (int i = 0; i < 2 && r == ROMA_SUCCESS; ++i) {
+        roma_descriptor_set *set = i == 0 ? &map->trace_set : &map->staged_set;
+        roma_descriptor_write_view(ctx, set, ROMA_TRACE_BINDING_MAPS,
+                                   roma_trace_binding_types[ROMA_TRACE_BINDING_MAPS], map->maps_view);
+        roma_descriptor_write_buffer(ctx, set, ROMA_TRACE_BINDING_PARAMS,
+                                     roma_trace_binding_types[ROMA_TRACE_BINDING_PARAMS], map->params.buffer);
+    }
     if (r == ROMA_SUCCESS) {
         memcpy(map->indices.mapped, indices, 12ull * sv.triangle_count);
         r = upload_positions(map, sv.positions);
@@ -201,8 +246,18 @@ void roma_map_destroy(roma_map *map)
     if (!map)
         return;
     roma_context *ctx = map->ctx;
-    roma_compute_pipeline_destroy(ctx, &map->trace);
+    for (int m = 0; m < 4; ++m) {
+        roma_compute_pipeline_destroy(ctx, &map->trace[m]);
+        roma_compute_pipeline_destroy(ctx, &map->trace_staged[m]);
+    }
     roma_descriptor_set_destroy(ctx, &map->rotate_set);
+    roma_descriptor_set_destroy(ctx, &map->trace_set);
+    roma_descriptor_set_destroy(ctx, &map->staged_set);
+    for (int i = 0; i < 2; ++i)
+        if (map->staging_views[i])
+            vkDestroyBufferView(ctx->device, map->staging_views[i], NULL);
+    if (map->maps_view)
+        vkDestroyBufferView(ctx->device, map->maps_view, NULL);
     roma_compute_pipeline_destroy(ctx, &map->rotate_gather);
     roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
     roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
@@ -416,6 +471,11 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->geometry_bytes = map->positions.size + map->indices.size;
     out->maps_address = map->maps.address;
     out->params_address = map->params.address;
+    out->maps_buffer = map->maps.buffer;
+    out->params_buffer = map->params.buffer;
+    out->maps_view = map->maps_view;
+    out->trace_set = map->trace_set.set;
+    out->trace_set_layout = map->trace[0].set_layout;
     return ROMA_SUCCESS;
 }
 
@@ -459,15 +519,18 @@ roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma
     if (r != ROMA_SUCCESS || desc->ray_count == 0)
         return r;
     roma_trace_push push = {
-        .maps = map->maps.address,
-        .params = map->params.address,
         .rays = desc->rays,
         .hits = desc->hits,
         .config = {(uint32_t)desc->mode, desc->max_steps ? desc->max_steps : 8u, desc->ray_count, 0},
     };
+    r = make_trace_pipeline(map, 0, desc->mode);
+    if (r != ROMA_SUCCESS)
+        return r;
+    const roma_compute_pipeline *pipe = &map->trace[desc->mode];
     uint32_t scope = roma_gpu_timer_begin(timer, cmd, "trace");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->trace.pipeline);
-    vkCmdPushConstants(cmd, map->trace.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout, 0, 1, &map->trace_set.set, 0, NULL);
+    vkCmdPushConstants(cmd, pipe->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     roma_cmd_dispatch_linear(cmd, desc->ray_count, ROMA_TRACE_WORKGROUP_SIZE);
     roma_gpu_timer_end(timer, cmd, scope);
     return ROMA_SUCCESS;
@@ -479,8 +542,60 @@ static roma_result ensure_staging(roma_map *map, roma_buffer *b, VkDeviceSize si
     if (b->buffer && b->size >= size)
         return ROMA_SUCCESS;
     roma_buffer_destroy(map->ctx, b);
-    return roma_buffer_create(map->ctx, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                              VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, kind, b);
+    return roma_buffer_create(map->ctx, size,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                  VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
+                              kind, b);
+}
+
+/* Texel views of the staging buffers in the staged set (rays: two RGBA32F texels each,
+ * hits: one RG32UI texel each). No recorded use is pending: roma_map_trace waits for
+ * its submissions. */
+static roma_result bind_staging(roma_map *map)
+{
+    roma_context *ctx = map->ctx;
+    for (int i = 0; i < 2; ++i)
+        if (map->staging_views[i]) {
+            vkDestroyBufferView(ctx->device, map->staging_views[i], NULL);
+            map->staging_views[i] = VK_NULL_HANDLE;
+        }
+    roma_result r = roma_buffer_view_create(ctx, map->ray_staging.buffer, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                            &map->staging_views[0]);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_view_create(ctx, map->hit_staging.buffer, VK_FORMAT_R32G32_UINT, &map->staging_views[1]);
+    if (r == ROMA_SUCCESS) {
+        roma_descriptor_write_view(ctx, &map->staged_set, ROMA_TRACE_BINDING_RAYS,
+                                   VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, map->staging_views[0]);
+        roma_descriptor_write_view(ctx, &map->staged_set, ROMA_TRACE_BINDING_HITS,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, map->staging_views[1]);
+    }
+    return r;
+}
+
+roma_result roma_map_record_trace_staged(roma_map *map, VkCommandBuffer cmd, roma_trace_mode mode,
+                                         uint32_t max_steps, uint32_t ray_count, roma_gpu_timer *timer)
+{
+    if (!map || !cmd)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    roma_result r = check_trace(map, mode, ray_count, timer, "roma_map_trace");
+    if (r != ROMA_SUCCESS || ray_count == 0)
+        return r;
+    if ((VkDeviceSize)ray_count * sizeof(roma_ray) > map->ray_staging.size ||
+        (VkDeviceSize)ray_count * sizeof(roma_hit) > map->hit_staging.size)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_trace: %u rays exceed the staging buffers",
+                         ray_count);
+    r = make_trace_pipeline(map, 1, mode);
+    if (r != ROMA_SUCCESS)
+        return r;
+    const roma_compute_pipeline *pipe = &map->trace_staged[mode];
+    roma_trace_push push = {.config = {(uint32_t)mode, max_steps ? max_steps : 8u, ray_count, 0}};
+    uint32_t scope = roma_gpu_timer_begin(timer, cmd, "trace");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout, 0, 1, &map->staged_set.set, 0, NULL);
+    vkCmdPushConstants(cmd, pipe->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    roma_cmd_dispatch_linear(cmd, ray_count, ROMA_TRACE_WORKGROUP_SIZE);
+    roma_gpu_timer_end(timer, cmd, scope);
+    return ROMA_SUCCESS;
 }
 
 roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps, const roma_ray *rays,
@@ -493,9 +608,14 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
     roma_result r = check_trace(map, mode, ray_count, timer, "roma_map_trace");
     if (r != ROMA_SUCCESS || ray_count == 0)
         return r;
+    const VkBuffer old_rays = map->ray_staging.buffer, old_hits = map->hit_staging.buffer;
     r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
     if (r == ROMA_SUCCESS)
         r = ensure_staging(map, &map->hit_staging, sizeof(roma_hit) * (VkDeviceSize)ray_count, ROMA_MEMORY_READBACK);
+    /* Grown: the staged set names the new buffers (no recorded use is pending: this
+     * call and the last one both waited for their submissions). */
+    if (r == ROMA_SUCCESS && (map->ray_staging.buffer != old_rays || map->hit_staging.buffer != old_hits))
+        r = bind_staging(map);
     if (r != ROMA_SUCCESS) {
         /* Keep nothing this call grew: the staging buffers are only a cache. */
         roma_buffer_destroy(map->ctx, &map->ray_staging);
@@ -507,10 +627,8 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
     r = roma_begin_one_shot(map->ctx, &cmd);
     if (r != ROMA_SUCCESS)
         return r;
-    roma_trace_desc desc = {.mode = mode, .max_steps = max_steps, .rays = map->ray_staging.address,
-                            .hits = map->hit_staging.address, .ray_count = ray_count};
     roma_gpu_timer_reset(timer, cmd);
-    r = roma_map_record_trace(map, cmd, &desc, timer);
+    r = roma_map_record_trace_staged(map, cmd, mode, max_steps, ray_count, timer);
     compute_barrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     roma_result s = roma_submit_one_shot(map->ctx, cmd);
     if (r == ROMA_SUCCESS)

@@ -26,8 +26,16 @@ struct roma_map {
     uint32_t cell_capacity;
     struct roma_bom_raster *raster;         /* raster modes only */
     struct roma_bom_voxelizer *voxelizer;   /* ROMA_BOM_EXACT */
-    roma_compute_pipeline occupied_cells, rotate_scatter, rotate_gather, trace;
+    roma_compute_pipeline occupied_cells, rotate_scatter, rotate_gather;
+    /* Batch traces, one pipeline per roma_trace_mode (specialization constant); mode 0
+     * is made with the map (its set layouts are the ones of trace_set and staged_set),
+     * the others on first use. */
+    roma_compute_pipeline trace[4], trace_staged[4];
     roma_descriptor_set rotate_set; /* bom, maps, cells, params: shared by the rotation pipelines */
+    VkBufferView maps_view;         /* R32_UINT texel view of maps */
+    roma_descriptor_set trace_set;  /* roma_trace_descriptors.glsl: maps_view, params */
+    roma_descriptor_set staged_set; /* trace set + ray and hit staging (rewritten when they grow) */
+    VkBufferView staging_views[2];  /* rays (RGBA32F), hits (RG32UI) */
     roma_grid_params grid;          /* host copies of this frame's parameters */
     roma_map_frame *frames;
     int built;
@@ -40,6 +48,11 @@ struct roma_map {
 #define ROMA_MAP_STEP_ROTATE 2u
 roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame,
                                   roma_gpu_timer *timer, uint32_t steps);
+
+/* Records a trace of the rays already in the map's staging buffers (roma_map_trace
+ * fills them) into cmd: for roma_map_trace and for timing the trace alone. */
+roma_result roma_map_record_trace_staged(roma_map *map, VkCommandBuffer cmd, roma_trace_mode mode,
+                                         uint32_t max_steps, uint32_t ray_count, roma_gpu_timer *timer);
 
 /* This frame's parameters, for the C mirror in tests. */
 roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid,

@@ -18,6 +18,14 @@ roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *mo
                                                const VkDescriptorType *types, uint32_t binding_count,
                                                uint32_t push_size, roma_compute_pipeline *out)
 {
+    return roma_compute_pipeline_create_spec(ctx, module_name, types, binding_count, push_size, NULL, 0, out);
+}
+
+roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *module_name,
+                                              const VkDescriptorType *types, uint32_t binding_count,
+                                              uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
+                                              roma_compute_pipeline *out)
+{
     memset(out, 0, sizeof *out);
     if (binding_count > MAX_STORAGE_BUFFERS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors for %s", module_name);
@@ -52,13 +60,19 @@ roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *mo
     VkShaderModule shader = VK_NULL_HANDLE;
     if (r == ROMA_SUCCESS)
         r = roma_shader_module_create(ctx, module_name, &shader);
+    VkSpecializationMapEntry entries[MAX_STORAGE_BUFFERS];
+    for (uint32_t i = 0; i < constant_count && i < MAX_STORAGE_BUFFERS; ++i)
+        entries[i] = (VkSpecializationMapEntry){i, i * 4, 4};
+    VkSpecializationInfo spec = {constant_count < MAX_STORAGE_BUFFERS ? constant_count : MAX_STORAGE_BUFFERS,
+                                 entries, 4 * (size_t)constant_count, constants};
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo info = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
             .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                       .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                       .module = shader,
-                      .pName = "main"},
+                      .pName = "main",
+                      .pSpecializationInfo = constant_count ? &spec : NULL},
             .layout = out->layout,
         };
         r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &out->pipeline),

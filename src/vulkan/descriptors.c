@@ -7,6 +7,9 @@
 
 #define MAX_BINDINGS 16
 
+const VkDescriptorType roma_trace_binding_types[2] = {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+                                                      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
+
 roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
                                        const VkDescriptorType *types, uint32_t binding_count,
                                        roma_descriptor_set *out)

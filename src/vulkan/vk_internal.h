@@ -111,7 +111,18 @@ roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_n
 roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *module_name,
                                                const VkDescriptorType *types, uint32_t binding_count,
                                                uint32_t push_size, roma_compute_pipeline *out);
+/* The same with specialization constants 0..constant_count-1 (uint32 each): a branch on
+ * a constant is compiled out, where a branch on a push constant costs both sides on
+ * devices that run shaders as predicated SIMD (CPU implementations). */
+roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *module_name,
+                                              const VkDescriptorType *types, uint32_t binding_count,
+                                              uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
+                                              roma_compute_pipeline *out);
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);
+
+/* The bindings of roma_trace_descriptors.glsl (set 0 of every pass that traces a map):
+ * the maps as a uniform texel buffer, the parameters as a uniform buffer. */
+extern const VkDescriptorType roma_trace_binding_types[2];
 
 /* --- descriptor sets (descriptors.c): one set for a pipeline's layout, from a pool of its
  * own, written once when the buffers it names are created (never while in use). --- */

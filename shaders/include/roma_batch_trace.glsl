@@ -1,0 +1,30 @@
+// Batch traces (trace/trace.comp, trace/trace_staged.comp): one ray per invocation,
+// whichever way the rays and hits are reached.
+#ifndef ROMA_BATCH_TRACE_GLSL
+#define ROMA_BATCH_TRACE_GLSL
+
+#include "roma_trace_descriptors.glsl"
+
+layout(local_size_x = ROMA_TRACE_WORKGROUP_SIZE) in;
+
+layout(push_constant) uniform Push { roma_trace_push pc; };
+
+// The roma_trace_mode, a specialization constant: one pipeline per mode, so that the
+// code of the other query is compiled out.
+layout(constant_id = 0) const uint ROMA_TRACE_MODE = 0u;
+
+// The ray this invocation traces, or false past the batch.
+bool roma_batch_index(out uint i)
+{
+    i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_TRACE_WORKGROUP_SIZE + gl_LocalInvocationID.x;
+    return i < pc.config.z;
+}
+
+roma_hit roma_batch_trace(roma_ray ray)
+{
+    const bool closest = (ROMA_TRACE_MODE & 1u) != 0u;
+    return ROMA_TRACE_MODE < 2u ? roma_trace_snapped(ray.origin, ray.dir, ray.tmin, ray.tmax, closest)
+                     : roma_trace_unsnapped(ray.origin, ray.dir, ray.tmin, ray.tmax, closest, pc.config.y);
+}
+
+#endif // ROMA_BATCH_TRACE_GLSL

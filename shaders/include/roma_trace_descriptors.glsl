@@ -1,0 +1,33 @@
+// libroma: roma_trace.glsl with the maps and their parameters bound as descriptors,
+// for shaders that prefer descriptors to buffer addresses (on some devices, CPU
+// implementations among them, address-based loads are several times slower).
+//
+// Set ROMA_TRACE_SET (define it before including; default 0):
+//   binding 0: the maps, a uniform texel buffer of VK_FORMAT_R32_UINT
+//              (roma_map_info.maps_view), read with texelFetch;
+//   binding 1: the parameters, a uniform buffer (roma_map_info.params_buffer).
+// roma_map_info.trace_set is such a set, written for the map, with layout
+// roma_map_info.trace_set_layout.
+#ifndef ROMA_TRACE_DESCRIPTORS_GLSL
+#define ROMA_TRACE_DESCRIPTORS_GLSL
+
+#ifndef ROMA_TRACE_SET
+#define ROMA_TRACE_SET 0
+#endif
+
+#include "roma_shared.h"
+
+layout(set = ROMA_TRACE_SET, binding = ROMA_TRACE_BINDING_MAPS) uniform usamplerBuffer roma_trace_maps;
+layout(std140, set = ROMA_TRACE_SET, binding = ROMA_TRACE_BINDING_PARAMS) uniform RomaTraceParams {
+    roma_grid_params grid;
+    roma_map_frame frames[ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
+} roma_trace_params;
+
+#define ROMA_TRACE_FETCH
+uint roma_fetch_word(uint index) { return texelFetch(roma_trace_maps, int(index)).x; }
+roma_grid_params roma_fetch_grid() { return roma_trace_params.grid; }
+roma_map_frame roma_fetch_frame(uint k) { return roma_trace_params.frames[k]; }
+
+#include "roma_trace.glsl"
+
+#endif // ROMA_TRACE_DESCRIPTORS_GLSL

@@ -17,6 +17,7 @@
 #include "passes/scene_buffers.h"
 #include "passes/ao.h"
 #include "passes/gbuffer.h"
+#include "passes/pixel_list.h"
 #include "reference.h"
 #include "roma/context.h"
 #include "roma/map.h"
@@ -113,6 +114,8 @@ static void run(roma_context *ctx)
     }
     CHECK_RESULT(roma_scene_buffers_create(ctx, scene, &g), ROMA_SUCCESS);
     CHECK_RESULT(roma_gbuffer_create(ctx, W, H, &gb), ROMA_SUCCESS);
+    roma_pixel_list list;
+    CHECK_RESULT(roma_pixel_list_create(ctx, W, H, &list), ROMA_SUCCESS);
     CHECK_RESULT(roma_ao_pass_create(ctx, &ao), ROMA_SUCCESS);
     roma_map_desc md = {0};
     CHECK_RESULT(roma_map_create(ctx, &md, scene, &map), ROMA_SUCCESS);
@@ -139,11 +142,12 @@ static void run(roma_context *ctx)
         CHECK_RESULT(roma_begin_one_shot(ctx, &cmd), ROMA_SUCCESS);
         if (f == 0) {
             CHECK_RESULT(roma_gbuffer_record(gb, cmd, &gin), ROMA_SUCCESS);
+            CHECK_RESULT(roma_pixel_list_record(&list, cmd, roma_gbuffer_pixels_address(gb)), ROMA_SUCCESS);
             vkCmdFillBuffer(cmd, accum.buffer, 0, VK_WHOLE_SIZE, 0);
         }
         roma_ao_pass_inputs in = {
             .gbuffer_pixels = roma_gbuffer_pixels_address(gb), .width = W, .height = H,
-            .trace_set = info.trace_set,
+            .trace_set = info.trace_set, .list = &list,
             .offset = offset, .radius = RADIUS, .spp = SPP, .frame = f, .seed = SEED,
             .accum = accum.address,
         };
@@ -214,6 +218,7 @@ done:
     roma_buffer_destroy(ctx, &accum);
     roma_map_destroy(map);
     roma_ao_pass_destroy(ao);
+    roma_pixel_list_destroy(&list);
     roma_gbuffer_destroy(gb);
     roma_scene_buffers_destroy(ctx, &g);
     free(px);

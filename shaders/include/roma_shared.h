@@ -218,10 +218,25 @@ ROMA_STRUCT_END(roma_gbuffer_pixel)
 #define ROMA_PIXEL_WORKGROUP_X 8
 #define ROMA_PIXEL_WORKGROUP_Y 8
 
+/* ---- Covered-pixel list (src/passes/pixel_list.c, shaders/passes/pixel_list*.comp) ----
+ * The pixels whose G-buffer sees geometry, built once per frame; every tracing pass runs
+ * one invocation per listed pixel (indirect dispatch), so uncovered pixels cost nothing
+ * (on SIMD devices that predicate, an early return does not save a lane's work). */
+ROMA_STRUCT_BEGIN(roma_pixel_list_header)
+    ROMA_UVEC4(dispatch); /* x, y, z: workgroups of the tracing passes; w: pixels listed */
+ROMA_STRUCT_END(roma_pixel_list_header)
+ROMA_STRUCT_BEGIN(roma_pixel_list_push)
+    ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
+    ROMA_U64(list);       /* roma_pixel_list_header + width*height uint (pixel indices) */
+    ROMA_UVEC4(config);   /* x: width, y: height */
+ROMA_STRUCT_END(roma_pixel_list_push)
+
 /* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
+    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
+    ROMA_U64(list_pad_);
     ROMA_U64(accum);      /* width*height uint: unoccluded samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */
@@ -260,6 +275,8 @@ ROMA_STRUCT_END(roma_gpu_emitter)
 
 ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_U64(pixels);     /* roma_gbuffer_pixel */
+    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
+    ROMA_U64(list_pad_);
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(accum);      /* vec4 per pixel: irradiance summed over frames, added to */
     ROMA_U64(pad_);
@@ -269,6 +286,8 @@ ROMA_STRUCT_END(roma_punctual_push)
 
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(pixels);
+    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
+    ROMA_U64(list_pad_);
     ROMA_U64(emitters);   /* roma_gpu_emitter */
     ROMA_U64(cdf);        /* float per emitter */
     ROMA_U64(accum);      /* vec4 per pixel: irradiance estimates summed over samples, added to */
@@ -279,6 +298,8 @@ ROMA_STRUCT_END(roma_soft_shadows_push)
 
 ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_U64(pixels);
+    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
+    ROMA_U64(list_pad_);
     ROMA_U64(positions);  /* vec4 per light */
     ROMA_U64(accum);      /* uvec2 per pixel: visible, tested (summed over frames, added to) */
     ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
@@ -299,6 +320,8 @@ ROMA_STRUCT_END(roma_rsm_view)
 
 ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_U64(pixels);
+    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
+    ROMA_U64(list_pad_);
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(views);      /* roma_rsm_view */
     ROMA_U64(accum);      /* vec4 per pixel: bounce radiance L(y) summed over samples, added to */

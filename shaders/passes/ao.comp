@@ -7,6 +7,7 @@
 // that frames accumulate (the caller clears it before frame 0).
 #include "roma_trace_descriptors.glsl"
 #include "roma_sampling.glsl"
+#include "roma_pixel_list.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
@@ -19,11 +20,10 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
     uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
-    if (xy.x >= width || xy.y >= height)
+    uint pixel;
+    if (!roma_list_pixel(pc.list, pixel))
         return;
-    uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaAoPixels(pc.pixels).p[pixel];
     // Background: the caller writes AO 1 there.
     if (roma_is_inf(g.position_t.w))

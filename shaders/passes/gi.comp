@@ -13,6 +13,7 @@
 #include "roma_camera.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
+#include "roma_pixel_list.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
@@ -55,12 +56,11 @@ vec3 rsm_radiance(vec3 h)
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
     uint width = gi.config.x, height = gi.config.y, spp = gi.config.z, frame = gi.config.w;
     uint seed = gi.config2.x;
-    if (xy.x >= width || xy.y >= height)
+    uint pixel;
+    if (!roma_list_pixel(gi.list, pixel))
         return;
-    uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(gi.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;

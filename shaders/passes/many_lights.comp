@@ -10,6 +10,7 @@
 // accum; with a mask address, also writes the bit of every visible light.
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
+#include "roma_pixel_list.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
@@ -23,13 +24,12 @@ const uint DIM_MANY_LIGHTS = 10u;
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
     uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
     uint seed = pc.config2.x, frame = pc.config2.y, tested = min(pc.config2.z, light_count);
     uint mask_words = pc.config2.w;
-    if (xy.x >= width || xy.y >= height || light_count == 0u)
+    uint pixel;
+    if (!roma_list_pixel(pc.list, pixel) || light_count == 0u)
         return;
-    uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;

@@ -6,6 +6,7 @@
 // one un-snapped shadow ray through the ROMA maps; the irradiance is added to
 // accum so that frames (new jitter each) average out the voxelization.
 #include "roma_lights.glsl"
+#include "roma_pixel_list.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
@@ -16,11 +17,10 @@ layout(push_constant) uniform Push { roma_punctual_push pc; };
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
     uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
-    if (xy.x >= width || xy.y >= height)
+    uint pixel;
+    if (!roma_list_pixel(pc.list, pixel))
         return;
-    uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;

@@ -8,6 +8,7 @@
 // The irradiance estimates are added to accum (divide by spp * frames).
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
+#include "roma_pixel_list.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
@@ -35,12 +36,11 @@ uint pick_emitter(uint count, float u)
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
     uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
     uint seed = pc.config2.x, emitter_count = pc.config2.y, max_steps = pc.config2.z;
-    if (xy.x >= width || xy.y >= height || emitter_count == 0u)
+    uint pixel;
+    if (!roma_list_pixel(pc.list, pixel) || emitter_count == 0u)
         return;
-    uint pixel = xy.y * width + xy.x;
     roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
     if (roma_is_inf(g.position_t.w))
         return;

@@ -43,7 +43,7 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
 {
     if (!pass || !cmd || !in)
         return ROMA_ERROR_INVALID_ARGUMENT;
-    if (!in->gbuffer_pixels || !in->trace_set || !in->accum)
+    if (!in->gbuffer_pixels || !in->trace_set || !in->accum || !in->list)
         return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_pass_record: G-buffer, map and accumulation addresses are required");
     if (!(in->offset >= 0.0f) || !isfinite(in->offset) || !(in->tmin >= 0.0f) || !isfinite(in->tmin))
@@ -52,10 +52,11 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         return ROMA_SUCCESS;
     roma_ao_push push = {
         .pixels = in->gbuffer_pixels,
+        .list = in->list->buffer.address,
         .accum = in->accum,
         .config = {in->width, in->height, in->spp, in->frame},
         .config2 = {in->seed, 0, 0, 0},
         .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, 0.0f},
     };
-    return roma_pixel_pass_record(&pass->pass, cmd, in->width, in->height, in->trace_set, &push);
+    return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->trace_set, &push);
 }

@@ -20,6 +20,7 @@ typedef struct roma_ao_pass_inputs {
     VkDeviceAddress gbuffer_pixels; /* width * height roma_gbuffer_pixel */
     uint32_t width, height;
     VkDescriptorSet trace_set;      /* roma_map_info.trace_set of a built map */
+    const struct roma_pixel_list *list; /* covered pixels of this G-buffer (recorded before) */
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */

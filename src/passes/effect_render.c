@@ -29,6 +29,7 @@ typedef struct renderer {
     roma_light_data lights;
     roma_ao_pass *ao;
     roma_pixel_pass punctual, soft, many, gi;
+    roma_pixel_list list; /* covered pixels of the current G-buffer, for every tracing pass */
     roma_gbuffer *rsm[ROMA_MAX_RSM_VIEWS];
     roma_rsm_views rsm_views;
     uint32_t rsm_size;
@@ -80,6 +81,8 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         r = roma_gbuffer_create(ctx, d->width, d->height, &R->gbuffer);
     if (r == ROMA_SUCCESS)
         r = roma_gpu_timer_create(ctx, 2 * ROMA_PASS_COUNT, &R->timer);
+    if (r == ROMA_SUCCESS)
+        r = roma_pixel_list_create(ctx, d->width, d->height, &R->list);
     for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
         roma_map_desc md = {.resolution = R->plan.maps[i].resolution, .angular = R->plan.maps[i].angular};
         r = roma_map_create(ctx, &md, scene, &R->maps[i]);
@@ -154,6 +157,7 @@ static void destroy_resources(renderer *R)
     roma_pixel_pass_destroy(&R->soft);
     roma_pixel_pass_destroy(&R->many);
     roma_pixel_pass_destroy(&R->gi);
+    roma_pixel_list_destroy(&R->list);
     for (uint32_t v = 0; v < ROMA_MAX_RSM_VIEWS; ++v)
         roma_gbuffer_destroy(R->rsm[v]);
     roma_buffer_destroy(ctx, &R->views_buffer);
@@ -198,7 +202,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         case ROMA_PASS_AO: {
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels, .width = d->width, .height = d->height,
-                .trace_set = m->trace_set, .offset = offset,
+                .trace_set = m->trace_set, .list = &R->list, .offset = offset,
                 .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell,.spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].address,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
@@ -206,21 +210,21 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         }
         case ROMA_PASS_PUNCTUAL_LIGHTS: {
             roma_punctual_push push = {
-                .pixels = pixels,
+                .pixels = pixels, .list = R->list.buffer.address,
                 .lights = R->lights.lights.address, .accum = R->accum[p].address,
                 .config = {d->width, d->height, R->lights.light_count, steps}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record(&R->punctual, cmd, d->width, d->height, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m->trace_set, &push);
             break;
         }
         case ROMA_PASS_SOFT_SHADOWS: {
             roma_soft_shadows_push push = {
-                .pixels = pixels,
+                .pixels = pixels, .list = R->list.buffer.address,
                 .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record(&R->soft, cmd, d->width, d->height, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m->trace_set, &push);
             break;
         }
         case ROMA_PASS_MANY_LIGHTS: {
@@ -228,22 +232,22 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             uint32_t tested = d->lights_per_frame && d->lights_per_frame < n ? d->lights_per_frame : n;
             int last = f + 1 == (d->frames ? d->frames : 1);
             roma_many_lights_push push = {
-                .pixels = pixels,
+                .pixels = pixels, .list = R->list.buffer.address,
                 .positions = R->lights.positions.address, .accum = R->accum[p].address,
                 .mask = last ? R->mask.address : 0, .config = {d->width, d->height, n, lights_steps},
                 .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record(&R->many, cmd, d->width, d->height, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m->trace_set, &push);
             break;
         }
         case ROMA_PASS_GI: {
             roma_gi_push push = {
-                .pixels = pixels,
+                .pixels = pixels, .list = R->list.buffer.address,
                 .lights = R->lights.lights.address, .views = R->views_buffer.address,
                 .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->rsm_views.count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
             };
-            r = roma_pixel_pass_record(&R->gi, cmd, d->width, d->height, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m->trace_set, &push);
             break;
         }
         default:
@@ -316,6 +320,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             }
             scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
             r = roma_gbuffer_record(gbuffer, cmd, &gin);
+            if (r == ROMA_SUCCESS)
+                r = roma_pixel_list_record(&R->list, cmd, roma_gbuffer_pixels_address(gbuffer));
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
             /* Accumulators start at zero; the interactive mode resolves each frame alone. */
             for (int p = 0; p < ROMA_PASS_COUNT; ++p)

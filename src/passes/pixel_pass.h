@@ -7,6 +7,7 @@
 #ifndef ROMA_PASSES_PIXEL_PASS_H
 #define ROMA_PASSES_PIXEL_PASS_H
 
+#include "passes/pixel_list.h"
 #include "vulkan/vk_internal.h"
 
 typedef struct roma_pixel_pass {
@@ -29,5 +30,11 @@ void roma_pixel_pass_destroy(roma_pixel_pass *pass);
  * do not trace). */
 roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
                                    VkDescriptorSet trace_set, const void *push);
+
+/* The same over the covered pixels of `list` (recorded before for this frame's
+ * G-buffer): an indirect dispatch; the push block's `list` field must hold the list's
+ * address. */
+roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
+                                        VkDescriptorSet trace_set, const void *push);
 
 #endif /* ROMA_PASSES_PIXEL_PASS_H */

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "accuracy.h"
+#include "frame.h"
 #include "app_common.h"
 #include "reference.h"
 #include "roma/map.h"
@@ -17,12 +18,15 @@
 
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
-    "                  [--csv FILE] [--small] [--accuracy [--ao-radius R]]\n"
+    "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R] [--accuracy]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
     "  (RES 128, A 4: snapped any-hit, snapped closest-hit; A 8: un-snapped 8 steps) and by\n"
-    "  Embree (rtcOccluded, rtcIntersect) on the same rays. --small: a quick smoke run.\n"
+    "  Embree (rtcOccluded, rtcIntersect) on the same rays. Frame: a dynamic AO frame of the\n"
+    "  default camera at --size (default 1920x1080), ROMA (build + AO over the covered pixels,\n"
+    "  RES 128, A 4) against Embree (BVH rebuild + AO at the same points and samples), 1 and\n"
+    "  4 spp. --small: a quick smoke run.\n"
     "  --accuracy: instead, what accuracy costs in time: AO rendered by ROMA for every RES x A\n"
     "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
     "  frame and error against Embree on the same samples.\n";
@@ -139,6 +143,7 @@ int main(int argc, char **argv)
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
     int res_n = 3, ang_n = 3, accuracy = 0, small = 0;
     float ao_radius = 0.0f;
+    uint32_t frame_w = 1920, frame_h = 1080;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0) {
@@ -146,11 +151,19 @@ int main(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--small") == 0) {
             rays_n = 100000, runs = 3, res_n = parse_list("64", res_list, 4), ang_n = parse_list("2,4", ang_list, 4);
+            frame_w = 160, frame_h = 120;
             small = 1;
         } else if (strcmp(a, "--accuracy") == 0) {
             accuracy = 1;
         } else if (v && strcmp(a, "--ao-radius") == 0) {
             ao_radius = strtof(v, NULL), ++i;
+        } else if (v && strcmp(a, "--size") == 0) {
+            if (sscanf(v, "%ux%u", &frame_w, &frame_h) != 2 || frame_w == 0 || frame_h == 0 || frame_w > 16384 ||
+                frame_h > 16384) {
+                fprintf(stderr, "roma-bench: --size %s: expected WxH, each 1..16384\n", v);
+                return 2;
+            }
+            ++i;
         } else if (v && strcmp(a, "--scene") == 0) scene_arg = v, ++i;
         else if (v && strcmp(a, "--rays") == 0) rays_n = (uint32_t)strtoul(v, NULL, 10), ++i;
         else if (v && strcmp(a, "--runs") == 0) runs = (uint32_t)strtoul(v, NULL, 10), ++i;
@@ -341,6 +354,12 @@ int main(int argc, char **argv)
     }
     roma_buffer_destroy(ctx, &ray_buf);
     roma_buffer_destroy(ctx, &hit_buf);
+    {
+        roma_bench_frame_desc fd = {.width = frame_w, .height = frame_h, .resolution = 128, .angular = 4,
+                                    .runs = runs, .radius = ao_radius};
+        if (roma_bench_frame(ctx, scene, &fd, csv) != 0)
+            status = 1;
+    }
 done:
     if (csv)
         fclose(csv);

@@ -176,21 +176,16 @@ uint roma_texel_base(uint k, uint x, uint y, uint res, uint words)
 }
 
 // First occupied cell in [c_lo, c_hi] of a texel, scanning up (dir_sign > 0) or down; -1 if none.
+// One loop for both directions: on devices that run both sides of a branch (predicated
+// SIMD), two loops would cost twice.
 int roma_first_cell(uint base, int c_lo, int c_hi, bool upward)
 {
     uint w_lo = uint(c_lo) >> 5, w_hi = uint(c_hi) >> 5;
-    if (upward) {
-        for (uint w = w_lo; w <= w_hi; ++w) {
-            uint bits = roma_fetch_word(base + w) & roma_range_mask(c_lo, c_hi, w);
-            if (bits != 0u)
-                return int(w) * 32 + findLSB(bits);
-        }
-    } else {
-        for (uint w = w_hi + 1u; w-- > w_lo;) {
-            uint bits = roma_fetch_word(base + w) & roma_range_mask(c_lo, c_hi, w);
-            if (bits != 0u)
-                return int(w) * 32 + findMSB(bits);
-        }
+    for (uint i = 0u; i <= w_hi - w_lo; ++i) {
+        uint w = upward ? w_lo + i : w_hi - i;
+        uint bits = roma_fetch_word(base + w) & roma_range_mask(c_lo, c_hi, w);
+        if (bits != 0u)
+            return int(w) * 32 + (upward ? findLSB(bits) : findMSB(bits));
     }
     return -1;
 }

@@ -224,8 +224,8 @@ int main(int argc, char **argv)
     /* Generation. */
     int cpu_device = info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
     if (cpu_device)
-        printf("note: CPU Vulkan device: its timestamp queries do not cover compute work, so the host-observed\n"
-               "      columns (submit to fence, inputs already on the device) are the ones to read\n");
+        printf("note: CPU Vulkan device: the ratios use the host-observed columns (submit to fence, inputs\n"
+               "      already on the device); lavapipe's timestamps have been seen not to cover compute work\n");
     printf("\n| RES | A | maps | voxelize ms (host) | rotate ms (host) | build ms (host) | BOM ms (timestamps) "
            "| rotate ms (timestamps) | maps MiB |\n|---|---|---|---|---|---|---|---|---|\n");
     double *samples = malloc(sizeof(double) * runs * 5);

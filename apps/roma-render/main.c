@@ -31,6 +31,7 @@ static const char *usage =
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
     "  --skip C                    ROMA shadow rays skip their first C trace cells (default 1)\n"
     "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.6)\n"
+    "  --offset C                  ROMA rays start C trace cells off the surface (default 1.5)\n"
     "  --lights-per-frame K        ROMA lights: test K random lights per pixel and frame\n"
     "                              (stochastic, accumulated) instead of all (default: all)\n"
     "  --spp N                     samples per pixel for ao, area lights and gi (default 64)\n"
@@ -54,6 +55,7 @@ typedef struct options {
     uint32_t width, height, effects, spp, frames, lights, seed, threads, res, angular;
     uint32_t shadow_angular, max_steps, lights_per_frame;
     float skip, ao_skip; /* < 0: unset (library default) */
+    float offset;        /* 0: unset (library default) */
     float ao_radius;
     int quiet;
 } options;
@@ -147,7 +149,11 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--shadow-angular") == 0) ok = parse_u32(v, 1, 16, &o->shadow_angular);
         else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps);
         else if (strcmp(a, "--lights-per-frame") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame);
-        else if (strcmp(a, "--skip") == 0 || strcmp(a, "--ao-skip") == 0) {
+        else if (strcmp(a, "--offset") == 0) {
+            char *end;
+            o->offset = strtof(v, &end);
+            ok = end != v && !*end && o->offset > 0.0f && o->offset <= 64.0f;
+        } else if (strcmp(a, "--skip") == 0 || strcmp(a, "--ao-skip") == 0) {
             char *end;
             float c = strtof(v, &end);
             ok = end != v && !*end && c >= 0.0f && c <= 64.0f;
@@ -314,6 +320,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         roma_json_int(&j, "max_steps", o->max_steps);
         roma_json_number(&j, "skip_cells", o->skip < 0.0f ? 1.0f : o->skip);
         roma_json_number(&j, "ao_skip_cells", o->ao_skip < 0.0f ? 1.6f : o->ao_skip);
+        roma_json_number(&j, "offset_cells", o->offset > 0.0f ? o->offset : ROMA_DEFAULT_OFFSET_CELLS);
         roma_json_int(&j, "lights_per_frame", o->lights_per_frame ? o->lights_per_frame : o->lights);
     }
     roma_json_begin_object(&j, "camera");
@@ -443,6 +450,7 @@ int main(int argc, char **argv)
                 /* The library takes 0 as its default and a negative value as none. */
                 .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
                 .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,
+                .offset_cells = o.offset,
                 .many_light_positions = light_positions,
             };
             roma_effect_images images;

@@ -56,11 +56,18 @@ for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.g
   IFS='|' read -r name scene extra <<<"$spec"
   # shellcheck disable=SC2086
   ref "$name" "$scene" ao $extra
-  for skip in 0 0.5 1 1.5 2; do
+  for skip in 0 1 1.5 1.6 1.75 2; do
     # shellcheck disable=SC2086
     roma "$name" "skip$skip" "$scene" ao --ao-skip $skip $extra
     printf "%-8s ao-skip %-4s " "$name" "$skip"
     row "$name" "skip$skip" ao
+  done
+  # The origin offset at the default skip.
+  for offset in 1.75 2; do
+    # shellcheck disable=SC2086
+    roma "$name" "offset$offset" "$scene" ao --offset $offset $extra
+    printf "%-8s offset  %-4s " "$name" "$offset"
+    row "$name" "offset$offset" ao
   done
 done
 

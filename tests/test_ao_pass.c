@@ -146,10 +146,10 @@ static void run(roma_context *ctx)
             vkCmdFillBuffer(cmd, accum.buffer, 0, VK_WHOLE_SIZE, 0);
         }
         roma_ao_pass_inputs in = {
-            .gbuffer_pixels = roma_gbuffer_pixels_address(gb), .width = W, .height = H,
-            .trace_set = info.trace_set, .list = &list,
+            .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = W, .height = H,
+            .map = &info, .list = &list,
             .offset = offset, .radius = RADIUS, .spp = SPP, .frame = f, .seed = SEED,
-            .accum = accum.address,
+            .accum = accum.buffer,
         };
         CHECK_RESULT(roma_ao_pass_record(ao, cmd, &in), ROMA_SUCCESS);
         /* The accumulation buffer is read by the host after the wait. */

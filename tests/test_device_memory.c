@@ -85,13 +85,18 @@ int main(void)
     CHECK(in_use(ctx) == base);
     roma_test_context_finish(ctx);
 
-    /* Budgets in 64-byte steps up to just short of what a second map takes, on top
-     * of a first map that stays alive (so that memory in use never starts at zero,
-     * where a double release would hide): creation, the first build and the first
-     * trace fail in turn at every allocation, and each failure gives back exactly
-     * what its call took. */
+    /* Budgets up to just short of what a second map takes, on top of a first map that
+     * stays alive (so that memory in use never starts at zero, where a double release
+     * would hide): creation, the first build and the first trace fail in turn at every
+     * allocation, and each failure gives back exactly what its call took. Each budget
+     * is the last one plus what its refused allocation asked for (the message names
+     * the bytes asked for and those in use), so the next run fails one allocation
+     * later. */
     int refused = 0, created = 0, steps = 0;
-    for (uint64_t extra = 0; extra < map_bytes; extra += 64, ++steps) {
+    uint64_t extra = 0;
+    while (extra < map_bytes) {
+        ++steps;
+        uint64_t next = map_bytes;
         roma_context *c = budget_context(base + map_bytes + extra, &log);
         roma_map *ballast = NULL;
         if (!c || roma_map_create(c, &small, scene, &ballast) != ROMA_SUCCESS || !map_works(ballast)) {
@@ -119,11 +124,24 @@ int main(void)
             CHECK(m == NULL);
             CHECK(log.errors == 1 && strstr(log.last, "budget") != NULL);
         }
+        unsigned long long asked = 0, limit = 0, used = 0;
+        const char *colon = strchr(log.last, ':');
+        if (colon && sscanf(colon + 1, " %llu more bytes of device memory would exceed the context's budget of %llu "
+                            "(%llu in use)", &asked, &limit, &used) == 3) {
+            CHECK(limit == base + map_bytes + extra);
+            next = used + asked - (base + map_bytes);
+            CHECK(next > extra);
+        } else {
+            CHECK(!"the refusal names the bytes asked for and those in use");
+        }
         CHECK(in_use(c) == before);
         CHECK(map_works(ballast)); /* the context and its other objects carry on */
         roma_map_destroy(ballast);
         CHECK(in_use(c) == base);
         roma_test_context_finish(c);
+        if (next <= extra)
+            break;
+        extra = next;
     }
     printf("%d budgets below a second map's %llu bytes: %d refused at creation, %d at the first build or trace\n",
            steps, (unsigned long long)map_bytes, refused, created);

@@ -161,9 +161,9 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
     for (int si = 0; si < 2; ++si) {
         const uint32_t spp = spps[si];
         roma_ao_pass_inputs in = {
-            .gbuffer_pixels = roma_gbuffer_pixels_address(gb), .width = w, .height = h, .trace_set = mi.trace_set,
+            .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = w, .height = h, .map = &mi,
             .list = &list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
-            .tmin = 1.6f * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.address,
+            .tmin = 1.6f * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.buffer,
         };
         double ref_mean = 0.0;
         for (uint32_t k = 0; k < runs; ++k) {

@@ -233,11 +233,14 @@ ROMA_STRUCT_END(roma_pixel_list_push)
 
 /* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
+/* Bindings of set 0 after the trace set's two (storage buffers): the G-buffer, the
+ * covered-pixel list and the accumulator (width*height uint: unoccluded samples, added
+ * to). On CPU devices address-based loads cost several times more. */
+#define ROMA_AO_BINDING_PIXELS 2
+#define ROMA_AO_BINDING_LIST 3
+#define ROMA_AO_BINDING_ACCUM 4
+#define ROMA_AO_BINDINGS 5
 ROMA_STRUCT_BEGIN(roma_ao_push)
-    ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
-    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
-    ROMA_U64(list_pad_);
-    ROMA_U64(accum);      /* width*height uint: unoccluded samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world) */

@@ -1,33 +1,34 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_buffer_reference : require
-#extension GL_EXT_buffer_reference_uvec2 : require
-// Ambient occlusion from the G-buffer: one invocation per pixel, spp snapped
-// any-hit rays through the ROMA maps; adds the unoccluded count to accum so
-// that frames accumulate (the caller clears it before frame 0).
+// Ambient occlusion from the G-buffer: one invocation per covered pixel (indirect
+// dispatch over the pixel list), spp snapped any-hit rays through the ROMA maps; adds the
+// unoccluded count to accum so that frames accumulate (the caller clears it before
+// frame 0). Every buffer is bound (set 0: the trace set's two bindings, then these).
 #include "roma_trace_descriptors.glsl"
 #include "roma_sampling.glsl"
-#include "roma_pixel_list.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaAoPixels {
-    roma_gbuffer_pixel p[];
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_AO_BINDING_PIXELS) readonly buffer RomaAoPixels {
+    roma_gbuffer_pixel gbuffer[];
 };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaAoAccum { uint n[]; };
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_AO_BINDING_LIST) readonly buffer RomaAoList {
+    roma_pixel_list_header list_header;
+    uint list_pixels[];
+};
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_AO_BINDING_ACCUM) buffer RomaAoAccum { uint accum[]; };
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
 
 void main()
 {
-    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
-    uint pixel;
-    if (!roma_list_pixel(pc.list, pixel))
+    uint spp = pc.config.z, frame = pc.config.w;
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (ROMA_PIXEL_WORKGROUP_X * ROMA_PIXEL_WORKGROUP_Y)
+             + gl_LocalInvocationIndex;
+    if (i >= list_header.dispatch.w)
         return;
-    roma_gbuffer_pixel g = RomaAoPixels(pc.pixels).p[pixel];
-    // Background: the caller writes AO 1 there.
-    if (roma_is_inf(g.position_t.w))
-        return;
+    uint pixel = list_pixels[i];
+    roma_gbuffer_pixel g = gbuffer[pixel];
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
     uint seed = pc.config2.x, open = 0u;
@@ -43,5 +44,5 @@ void main()
         open += (h.info & ROMA_HIT) == 0u ? 1u : 0u;
     }
     if (open != 0u)
-        RomaAoAccum(pc.accum).n[pixel] += open;
+        accum[pixel] += open;
 }

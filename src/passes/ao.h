@@ -13,29 +13,35 @@
 #include <vulkan/vulkan.h>
 
 #include "roma/context.h"
+#include "roma/map.h"
 
 typedef struct roma_ao_pass roma_ao_pass;
 
 typedef struct roma_ao_pass_inputs {
-    VkDeviceAddress gbuffer_pixels; /* width * height roma_gbuffer_pixel */
+    VkBuffer gbuffer_pixels;        /* width * height roma_gbuffer_pixel */
     uint32_t width, height;
-    VkDescriptorSet trace_set;      /* roma_map_info.trace_set of a built map */
+    const roma_map_info *map;       /* of a built map: its maps view and parameters buffer */
     const struct roma_pixel_list *list; /* covered pixels of this G-buffer (recorded before) */
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */
     uint32_t spp, frame, seed;
     /* width * height uint32_t, added to; clear it (vkCmdFillBuffer) before frame 0. */
-    VkDeviceAddress accum;
+    VkBuffer accum;
 } roma_ao_pass_inputs;
 
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out);
 /* Accepts NULL. */
 void roma_ao_pass_destroy(roma_ao_pass *pass);
 
-/* Records the pass into cmd (outside any rendering). Makes earlier compute and
+/* Records the pass into cmd (outside any rendering). The buffers are bound through a
+ * descriptor set made for each distinct combination of map, G-buffer, list and
+ * accumulator (at most ROMA_AO_PASS_MAX_SETS per pass; sets are never rewritten, so
+ * recordings in flight stay valid). Makes earlier compute and
  * fragment writes (G-buffer) and transfer writes (the clear) visible first; the
  * accumulation buffer is then visible to compute and transfer reads. */
+#define ROMA_AO_PASS_MAX_SETS 8
+
 roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const roma_ao_pass_inputs *in);
 
 #endif /* ROMA_PASSES_AO_H */

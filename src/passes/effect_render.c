@@ -182,7 +182,7 @@ static double scope_ms(roma_gpu_timer *timer, const char *name)
 
 /* Records the planned tracing passes of frame f. */
 static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, const roma_map_info *info,
-                                 VkDeviceAddress pixels, uint32_t scopes[ROMA_PASS_COUNT])
+                                 VkDeviceAddress pixels, VkBuffer pixels_buffer, uint32_t scopes[ROMA_PASS_COUNT])
 {
     const roma_effect_render_desc *d = R->desc;
     const roma_effect_plan *plan = &R->plan;
@@ -201,9 +201,9 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         switch ((roma_pass_kind)p) {
         case ROMA_PASS_AO: {
             roma_ao_pass_inputs in = {
-                .gbuffer_pixels = pixels, .width = d->width, .height = d->height,
-                .trace_set = m->trace_set, .list = &R->list, .offset = offset,
-                .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell,.spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].address,
+                .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height,
+                .map = m, .list = &R->list, .offset = offset,
+                .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].buffer,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
@@ -339,7 +339,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_RSM]);
         }
         if (r == ROMA_SUCCESS)
-            r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_address(gbuffer), scopes);
+            r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_address(gbuffer),
+                              roma_gbuffer_pixels_buffer(gbuffer), scopes);
         if (r == ROMA_SUCCESS && R->interactive)
             r = record_denoise(R, cmd, f, f + 1 == frames);
         roma_result sr = roma_submit_one_shot(ctx, cmd);

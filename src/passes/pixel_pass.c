@@ -29,15 +29,22 @@ static void record_out_barrier(VkCommandBuffer cmd)
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out)
 {
+    return roma_pixel_pass_create_bound(ctx, module, push_size, roma_trace_binding_types,
+                                        traces ? ROMA_TRACE_BINDINGS : 0, out);
+}
+
+roma_result roma_pixel_pass_create_bound(roma_context *ctx, const char *module, uint32_t push_size,
+                                         const VkDescriptorType *types, uint32_t binding_count,
+                                         roma_pixel_pass *out)
+{
     memset(out, 0, sizeof *out);
-    roma_result r = roma_compute_pipeline_create_typed(ctx, module, roma_trace_binding_types,
-                                                       traces ? ROMA_TRACE_BINDINGS : 0, push_size, &out->pipeline);
+    roma_result r = roma_compute_pipeline_create_typed(ctx, module, types, binding_count, push_size, &out->pipeline);
     if (r != ROMA_SUCCESS)
         return r;
     out->ctx = ctx;
     out->name = module;
     out->push_size = push_size;
-    out->traces = traces;
+    out->binding_count = binding_count;
     return ROMA_SUCCESS;
 }
 
@@ -51,7 +58,7 @@ void roma_pixel_pass_destroy(roma_pixel_pass *pass)
 roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
                                    VkDescriptorSet trace_set, const void *push)
 {
-    if (!pass->ctx || !cmd || !push || (pass->traces && !trace_set))
+    if (!pass->ctx || !cmd || !push || (pass->binding_count && !trace_set))
         return ROMA_ERROR_INVALID_ARGUMENT;
     uint32_t gx = (width + ROMA_PIXEL_WORKGROUP_X - 1) / ROMA_PIXEL_WORKGROUP_X;
     uint32_t gy = (height + ROMA_PIXEL_WORKGROUP_Y - 1) / ROMA_PIXEL_WORKGROUP_Y;
@@ -60,7 +67,7 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
                          pass->name, width, height);
     record_in_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
-    if (pass->traces)
+    if (pass->binding_count)
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.layout, 0, 1, &trace_set, 0,
                                 NULL);
     vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, push);
@@ -72,11 +79,11 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
 roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
                                         VkDescriptorSet trace_set, const void *push)
 {
-    if (!pass->ctx || !cmd || !push || !list || !list->buffer.buffer || (pass->traces && !trace_set))
+    if (!pass->ctx || !cmd || !push || !list || !list->buffer.buffer || (pass->binding_count && !trace_set))
         return ROMA_ERROR_INVALID_ARGUMENT;
     record_in_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
-    if (pass->traces)
+    if (pass->binding_count)
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.layout, 0, 1, &trace_set, 0,
                                 NULL);
     vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, push);

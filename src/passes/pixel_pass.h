@@ -14,7 +14,7 @@ typedef struct roma_pixel_pass {
     roma_context *ctx;
     const char *name;
     uint32_t push_size;
-    int traces;
+    uint32_t binding_count; /* descriptor bindings of set 0 (0: the pass binds no set) */
     roma_compute_pipeline pipeline;
 } roma_pixel_pass;
 
@@ -22,6 +22,11 @@ typedef struct roma_pixel_pass {
  * roma_trace_descriptors.glsl. On failure *out is zeroed. */
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out);
+/* The same with set 0 of binding_count bindings of the given types (the first two the trace
+ * set's when the shader traces); the set passed at record time must match. */
+roma_result roma_pixel_pass_create_bound(roma_context *ctx, const char *module, uint32_t push_size,
+                                         const VkDescriptorType *types, uint32_t binding_count,
+                                         roma_pixel_pass *out);
 /* Accepts a zeroed pass. */
 void roma_pixel_pass_destroy(roma_pixel_pass *pass);
 

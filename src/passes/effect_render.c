@@ -26,6 +26,7 @@ typedef struct renderer {
     roma_denoiser denoiser;
     int interactive;
     roma_map *maps[ROMA_PASS_COUNT];
+    roma_gpu_timer *build_timers[ROMA_PASS_COUNT]; /* one per map: its "bom" and "rotate" scopes */
     roma_light_data lights;
     roma_ao_pass *ao;
     roma_pixel_pass punctual, soft, many, gi;
@@ -86,6 +87,8 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
         roma_map_desc md = {.resolution = R->plan.maps[i].resolution, .angular = R->plan.maps[i].angular};
         r = roma_map_create(ctx, &md, scene, &R->maps[i]);
+        if (r == ROMA_SUCCESS)
+            r = roma_gpu_timer_create(ctx, 2, &R->build_timers[i]);
     }
     const int lit = roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
                     roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM) ||
@@ -151,6 +154,7 @@ static void destroy_resources(renderer *R)
     for (int p = 0; p < ROMA_PASS_COUNT; ++p) {
         roma_buffer_destroy(ctx, &R->accum[p]);
         roma_map_destroy(R->maps[p]);
+        roma_gpu_timer_destroy(R->build_timers[p]);
     }
     roma_buffer_destroy(ctx, &R->mask);
     roma_pixel_pass_destroy(&R->punctual);
@@ -295,20 +299,20 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
     };
     roma_result r = ROMA_SUCCESS;
     for (uint32_t f = 0; f < frames && r == ROMA_SUCCESS; ++f) {
-        /* Every array the plan needs, once per frame, each with new jitter. */
-        roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1};
-        for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
-            r = roma_map_build(R->maps[i], &frame, R->timer);
-            if (r == ROMA_SUCCESS)
-                r = roma_map_get_info(R->maps[i], &stats->map_info[i]);
-            stats->build_ms[i] += scope_ms(R->timer, "bom") + scope_ms(R->timer, "rotate");
-        }
+        /* One submission a frame: every array the plan needs (each with new jitter), the
+         * G-buffer when it changes, the passes. */
         VkCommandBuffer cmd;
-        if (r == ROMA_SUCCESS)
-            r = roma_begin_one_shot(ctx, &cmd);
+        r = roma_begin_one_shot(ctx, &cmd);
         if (r != ROMA_SUCCESS)
             break;
         roma_gpu_timer_reset(R->timer, cmd);
+        roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1};
+        for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
+            roma_gpu_timer_reset(R->build_timers[i], cmd);
+            r = roma_map_record_build(R->maps[i], cmd, &frame, R->build_timers[i]);
+            if (r == ROMA_SUCCESS)
+                r = roma_map_get_info(R->maps[i], &stats->map_info[i]);
+        }
         uint32_t scopes[ROMA_PASS_COUNT];
         roma_gbuffer *gbuffer = R->interactive && f % 2 ? R->gbuffer_previous : R->gbuffer;
         if (R->interactive || f == 0) {
@@ -346,6 +350,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
         roma_result sr = roma_submit_one_shot(ctx, cmd);
         if (r == ROMA_SUCCESS)
             r = sr;
+        for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i)
+            stats->build_ms[i] += scope_ms(R->build_timers[i], "bom") + scope_ms(R->build_timers[i], "rotate");
         for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
             if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p))
                 stats->pass_ms[p] += scope_ms(R->timer, roma_pass_name((roma_pass_kind)p));

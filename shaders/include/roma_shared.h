@@ -218,6 +218,14 @@ ROMA_STRUCT_END(roma_gbuffer_pixel)
 #define ROMA_PIXEL_WORKGROUP_X 8
 #define ROMA_PIXEL_WORKGROUP_Y 8
 
+/* Every tracing pass binds set 0: the trace set's two bindings, then (storage buffers)
+ * the G-buffer, the covered-pixel list and the pass's accumulator (one element per pixel,
+ * added to). On CPU devices address-based loads cost several times more. */
+#define ROMA_PIXEL_BINDING_GBUFFER 2
+#define ROMA_PIXEL_BINDING_LIST 3
+#define ROMA_PIXEL_BINDING_ACCUM 4
+#define ROMA_PIXEL_BINDINGS 5
+
 /* ---- Covered-pixel list (src/passes/pixel_list.c, shaders/passes/pixel_list*.comp) ----
  * The pixels whose G-buffer sees geometry, built once per frame; every tracing pass runs
  * one invocation per listed pixel (indirect dispatch), so uncovered pixels cost nothing
@@ -233,13 +241,6 @@ ROMA_STRUCT_END(roma_pixel_list_push)
 
 /* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
-/* Bindings of set 0 after the trace set's two (storage buffers): the G-buffer, the
- * covered-pixel list and the accumulator (width*height uint: unoccluded samples, added
- * to). On CPU devices address-based loads cost several times more. */
-#define ROMA_AO_BINDING_PIXELS 2
-#define ROMA_AO_BINDING_LIST 3
-#define ROMA_AO_BINDING_ACCUM 4
-#define ROMA_AO_BINDINGS 5
 ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */
@@ -277,34 +278,22 @@ ROMA_STRUCT_BEGIN(roma_gpu_emitter)
 ROMA_STRUCT_END(roma_gpu_emitter)
 
 ROMA_STRUCT_BEGIN(roma_punctual_push)
-    ROMA_U64(pixels);     /* roma_gbuffer_pixel */
-    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
-    ROMA_U64(list_pad_);
     ROMA_U64(lights);     /* roma_gpu_light */
-    ROMA_U64(accum);      /* vec4 per pixel: irradiance summed over frames, added to */
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_punctual_push)
 
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
-    ROMA_U64(pixels);
-    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
-    ROMA_U64(list_pad_);
     ROMA_U64(emitters);   /* roma_gpu_emitter */
     ROMA_U64(cdf);        /* float per emitter */
-    ROMA_U64(accum);      /* vec4 per pixel: irradiance estimates summed over samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_soft_shadows_push)
 
 ROMA_STRUCT_BEGIN(roma_many_lights_push)
-    ROMA_U64(pixels);
-    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
-    ROMA_U64(list_pad_);
     ROMA_U64(positions);  /* vec4 per light */
-    ROMA_U64(accum);      /* uvec2 per pixel: visible, tested (summed over frames, added to) */
     ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
@@ -322,12 +311,8 @@ ROMA_STRUCT_BEGIN(roma_rsm_view)
 ROMA_STRUCT_END(roma_rsm_view)
 
 ROMA_STRUCT_BEGIN(roma_gi_push)
-    ROMA_U64(pixels);
-    ROMA_U64(list);       /* roma_pixel_list of the covered pixels */
-    ROMA_U64(list_pad_);
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(views);      /* roma_rsm_view */
-    ROMA_U64(accum);      /* vec4 per pixel: bounce radiance L(y) summed over samples, added to */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: view count */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units) */

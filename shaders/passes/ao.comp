@@ -4,31 +4,22 @@
 // dispatch over the pixel list), spp snapped any-hit rays through the ROMA maps; adds the
 // unoccluded count to accum so that frames accumulate (the caller clears it before
 // frame 0). Every buffer is bound (set 0: the trace set's two bindings, then these).
-#include "roma_trace_descriptors.glsl"
+#include "roma_pixel_bindings.glsl"
 #include "roma_sampling.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
-layout(std430, set = ROMA_TRACE_SET, binding = ROMA_AO_BINDING_PIXELS) readonly buffer RomaAoPixels {
-    roma_gbuffer_pixel gbuffer[];
-};
-layout(std430, set = ROMA_TRACE_SET, binding = ROMA_AO_BINDING_LIST) readonly buffer RomaAoList {
-    roma_pixel_list_header list_header;
-    uint list_pixels[];
-};
-layout(std430, set = ROMA_TRACE_SET, binding = ROMA_AO_BINDING_ACCUM) buffer RomaAoAccum { uint accum[]; };
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaAoAccum { uint accum[]; };
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
 
 void main()
 {
     uint spp = pc.config.z, frame = pc.config.w;
-    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (ROMA_PIXEL_WORKGROUP_X * ROMA_PIXEL_WORKGROUP_Y)
-             + gl_LocalInvocationIndex;
-    if (i >= list_header.dispatch.w)
+    uint pixel;
+    if (!roma_bound_pixel(pixel))
         return;
-    uint pixel = list_pixels[i];
-    roma_gbuffer_pixel g = gbuffer[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer[pixel];
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
     uint seed = pc.config2.x, open = 0u;

@@ -13,13 +13,13 @@
 #include "roma_camera.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
-#include "roma_pixel_list.glsl"
+#include "roma_pixel_bindings.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaLights { roma_gpu_light l[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaViews { roma_rsm_view v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer RomaVec4Accum { vec4 v[]; };
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { vec4 accum[]; };
 
 layout(push_constant) uniform Push { roma_gi_push gi; };
 
@@ -59,9 +59,9 @@ void main()
     uint width = gi.config.x, height = gi.config.y, spp = gi.config.z, frame = gi.config.w;
     uint seed = gi.config2.x;
     uint pixel;
-    if (!roma_list_pixel(gi.list, pixel))
+    if (!roma_bound_pixel(pixel))
         return;
-    roma_gbuffer_pixel g = RomaGbufferPixels(gi.pixels).p[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
@@ -80,5 +80,5 @@ void main()
         vec3 cand = roma_fetch_frame((h.info >> 8) & 0xffu).dir.xyz * ((h.info & 0x10000u) != 0u ? -1.0 : 1.0);
         acc += rsm_radiance(origin + cand * h.t);
     }
-    RomaVec4Accum(gi.accum).v[pixel] += vec4(acc, 0.0);
+    accum[pixel] += vec4(acc, 0.0);
 }

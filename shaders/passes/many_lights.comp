@@ -10,12 +10,12 @@
 // accum; with a mask address, also writes the bit of every visible light.
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
-#include "roma_pixel_list.glsl"
+#include "roma_pixel_bindings.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaPositions { vec4 p[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) buffer RomaUvec2Accum { uvec2 v[]; };
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { uvec2 accum[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaMask { uint w[]; };
 
 layout(push_constant) uniform Push { roma_many_lights_push pc; };
@@ -28,9 +28,9 @@ void main()
     uint seed = pc.config2.x, frame = pc.config2.y, tested = min(pc.config2.z, light_count);
     uint mask_words = pc.config2.w;
     uint pixel;
-    if (!roma_list_pixel(pc.list, pixel) || light_count == 0u)
+    if (!roma_bound_pixel(pixel) || light_count == 0u)
         return;
-    roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
@@ -56,5 +56,5 @@ void main()
             }
         }
     }
-    RomaUvec2Accum(pc.accum).v[pixel] += uvec2(visible, tested);
+    accum[pixel] += uvec2(visible, tested);
 }

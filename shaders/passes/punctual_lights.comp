@@ -6,12 +6,12 @@
 // one un-snapped shadow ray through the ROMA maps; the irradiance is added to
 // accum so that frames (new jitter each) average out the voxelization.
 #include "roma_lights.glsl"
-#include "roma_pixel_list.glsl"
+#include "roma_pixel_bindings.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaLights { roma_gpu_light l[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer RomaVec4Accum { vec4 v[]; };
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { vec4 accum[]; };
 
 layout(push_constant) uniform Push { roma_punctual_push pc; };
 
@@ -19,9 +19,9 @@ void main()
 {
     uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
     uint pixel;
-    if (!roma_list_pixel(pc.list, pixel))
+    if (!roma_bound_pixel(pixel))
         return;
-    roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
@@ -44,5 +44,5 @@ void main()
         if (visible)
             E += roma_bounded_irradiance(f, light.color_intensity.rgb);
     }
-    RomaVec4Accum(pc.accum).v[pixel] += vec4(E, 0.0);
+    accum[pixel] += vec4(E, 0.0);
 }

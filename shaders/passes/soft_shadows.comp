@@ -8,13 +8,13 @@
 // The irradiance estimates are added to accum (divide by spp * frames).
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
-#include "roma_pixel_list.glsl"
+#include "roma_pixel_bindings.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaEmitters { roma_gpu_emitter e[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer RomaVec4Accum { vec4 v[]; };
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { vec4 accum[]; };
 
 layout(push_constant) uniform Push { roma_soft_shadows_push pc; };
 
@@ -39,9 +39,9 @@ void main()
     uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
     uint seed = pc.config2.x, emitter_count = pc.config2.y, max_steps = pc.config2.z;
     uint pixel;
-    if (!roma_list_pixel(pc.list, pixel) || emitter_count == 0u)
+    if (!roma_bound_pixel(pixel) || emitter_count == 0u)
         return;
-    roma_gbuffer_pixel g = RomaGbufferPixels(pc.pixels).p[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer[pixel];
     if (roma_is_inf(g.position_t.w))
         return;
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
@@ -72,5 +72,5 @@ void main()
         float g = min(cos_x * cos_y / (d2 * e.v0_pdf.w), ROMA_MAX_IRRADIANCE);
         acc += roma_bounded_irradiance(g, e.emission.rgb);
     }
-    RomaVec4Accum(pc.accum).v[pixel] += vec4(acc, 0.0);
+    accum[pixel] += vec4(acc, 0.0);
 }

@@ -36,12 +36,9 @@ void roma_ao_pass_destroy(roma_ao_pass *pass);
 
 /* Records the pass into cmd (outside any rendering). The buffers are bound through a
  * descriptor set made for each distinct combination of map, G-buffer, list and
- * accumulator (at most ROMA_AO_PASS_MAX_SETS per pass; sets are never rewritten, so
- * recordings in flight stay valid). Makes earlier compute and
+ * accumulator (at most ROMA_PIXEL_PASS_MAX_SETS per pass, passes/pixel_pass.h). Makes earlier compute and
  * fragment writes (G-buffer) and transfer writes (the clear) visible first; the
  * accumulation buffer is then visible to compute and transfer reads. */
-#define ROMA_AO_PASS_MAX_SETS 8
-
 roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const roma_ao_pass_inputs *in);
 
 #endif /* ROMA_PASSES_AO_H */

@@ -65,7 +65,7 @@ roma_result roma_denoiser_record(roma_denoiser *dn, VkCommandBuffer cmd, const r
             .pixels = in->pixels, .a = in->accum[e][0], .b = in->accum[e][1], .dst = dn->current[e].address,
             .config = {w, h, (uint32_t)e, in->many_light_count}, .scale = {1.0f / (float)in->spp, 0, 0, 0},
         };
-        r = roma_pixel_pass_record(&dn->resolve, cmd, w, h, VK_NULL_HANDLE, &rp);
+        r = roma_pixel_pass_record(&dn->resolve, cmd, w, h, &rp);
         roma_temporal_push tp = {
             .current = dn->current[e].address, .history = dn->history[e][(f + 1) % 2].address,
             .dst = dn->history[e][f % 2].address, .pixels = in->pixels, .previous = in->previous_pixels,
@@ -75,7 +75,7 @@ roma_result roma_denoiser_record(roma_denoiser *dn, VkCommandBuffer cmd, const r
             .test = {4.0f * in->footprint, 0.9f, 0, 0},
         };
         if (r == ROMA_SUCCESS)
-            r = roma_pixel_pass_record(&dn->temporal, cmd, w, h, VK_NULL_HANDLE, &tp);
+            r = roma_pixel_pass_record(&dn->temporal, cmd, w, h, &tp);
         if (!in->filter || r != ROMA_SUCCESS)
             continue;
         VkDeviceAddress src = dn->history[e][f % 2].address;
@@ -84,7 +84,7 @@ roma_result roma_denoiser_record(roma_denoiser *dn, VkCommandBuffer cmd, const r
             roma_atrous_push ap = {.src = src, .dst = dn->filtered[e][k].address, .pixels = in->pixels,
                                    .config = {w, h, 1u << it, 0},
                                    .edge = {in->footprint, 32.0f, in->value_sigma, 0}};
-            r = roma_pixel_pass_record(&dn->atrous, cmd, w, h, VK_NULL_HANDLE, &ap);
+            r = roma_pixel_pass_record(&dn->atrous, cmd, w, h, &ap);
             src = dn->filtered[e][k].address;
         }
         if (in->filter_iterations == 0) {

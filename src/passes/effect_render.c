@@ -186,7 +186,7 @@ static double scope_ms(roma_gpu_timer *timer, const char *name)
 
 /* Records the planned tracing passes of frame f. */
 static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, const roma_map_info *info,
-                                 VkDeviceAddress pixels, VkBuffer pixels_buffer, uint32_t scopes[ROMA_PASS_COUNT])
+                                 VkBuffer pixels_buffer, uint32_t scopes[ROMA_PASS_COUNT])
 {
     const roma_effect_render_desc *d = R->desc;
     const roma_effect_plan *plan = &R->plan;
@@ -205,30 +205,28 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         switch ((roma_pass_kind)p) {
         case ROMA_PASS_AO: {
             roma_ao_pass_inputs in = {
-                .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height,
-                .map = m, .list = &R->list, .offset = offset,
-                .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f, .seed = d->seed, .accum = R->accum[p].buffer,
+                .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
+                .offset = offset, .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f,
+                .seed = d->seed, .accum = R->accum[p].buffer,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
         }
         case ROMA_PASS_PUNCTUAL_LIGHTS: {
             roma_punctual_push push = {
-                .pixels = pixels, .list = R->list.buffer.address,
-                .lights = R->lights.lights.address, .accum = R->accum[p].address,
-                .config = {d->width, d->height, R->lights.light_count, steps}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
+                .lights = R->lights.lights.address, .config = {d->width, d->height, R->lights.light_count, steps},
+                .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_SOFT_SHADOWS: {
             roma_soft_shadows_push push = {
-                .pixels = pixels, .list = R->list.buffer.address,
                 .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
-                .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
+                .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_MANY_LIGHTS: {
@@ -236,22 +234,20 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             uint32_t tested = d->lights_per_frame && d->lights_per_frame < n ? d->lights_per_frame : n;
             int last = f + 1 == (d->frames ? d->frames : 1);
             roma_many_lights_push push = {
-                .pixels = pixels, .list = R->list.buffer.address,
-                .positions = R->lights.positions.address, .accum = R->accum[p].address,
-                .mask = last ? R->mask.address : 0, .config = {d->width, d->height, n, lights_steps},
+                .positions = R->lights.positions.address, .mask = last ? R->mask.address : 0,
+                .config = {d->width, d->height, n, lights_steps},
                 .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_GI: {
             roma_gi_push push = {
-                .pixels = pixels, .list = R->list.buffer.address,
                 .lights = R->lights.lights.address, .views = R->views_buffer.address,
-                .accum = R->accum[p].address, .config = {d->width, d->height, spp, f},
+                .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->rsm_views.count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
             };
-            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m->trace_set, &push);
+            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         default:
@@ -343,8 +339,7 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_RSM]);
         }
         if (r == ROMA_SUCCESS)
-            r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_address(gbuffer),
-                              roma_gbuffer_pixels_buffer(gbuffer), scopes);
+            r = record_passes(R, cmd, f, stats->map_info, roma_gbuffer_pixels_buffer(gbuffer), scopes);
         if (r == ROMA_SUCCESS && R->interactive)
             r = record_denoise(R, cmd, f, f + 1 == frames);
         roma_result sr = roma_submit_one_shot(ctx, cmd);

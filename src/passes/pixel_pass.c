@@ -26,39 +26,71 @@ static void record_out_barrier(VkCommandBuffer cmd)
                                 VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
 }
 
+static const VkDescriptorType pixel_types[ROMA_PIXEL_BINDINGS] = {
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out)
 {
-    return roma_pixel_pass_create_bound(ctx, module, push_size, roma_trace_binding_types,
-                                        traces ? ROMA_TRACE_BINDINGS : 0, out);
-}
-
-roma_result roma_pixel_pass_create_bound(roma_context *ctx, const char *module, uint32_t push_size,
-                                         const VkDescriptorType *types, uint32_t binding_count,
-                                         roma_pixel_pass *out)
-{
     memset(out, 0, sizeof *out);
-    roma_result r = roma_compute_pipeline_create_typed(ctx, module, types, binding_count, push_size, &out->pipeline);
+    const uint32_t bindings = traces ? ROMA_PIXEL_BINDINGS : 0;
+    roma_result r = roma_compute_pipeline_create_typed(ctx, module, pixel_types, bindings, push_size, &out->pipeline);
     if (r != ROMA_SUCCESS)
         return r;
     out->ctx = ctx;
     out->name = module;
     out->push_size = push_size;
-    out->binding_count = binding_count;
+    out->binding_count = bindings;
     return ROMA_SUCCESS;
 }
 
 void roma_pixel_pass_destroy(roma_pixel_pass *pass)
 {
-    if (pass->ctx)
+    if (pass->ctx) {
+        for (uint32_t i = 0; i < pass->set_count; ++i)
+            roma_descriptor_set_destroy(pass->ctx, &pass->sets[i].set);
         roma_compute_pipeline_destroy(pass->ctx, &pass->pipeline);
+    }
     memset(pass, 0, sizeof *pass);
 }
 
-roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
-                                   VkDescriptorSet trace_set, const void *push)
+/* The set of these buffers: found, or made and written once. */
+static roma_result pass_set(roma_pixel_pass *pass, const roma_pixel_binding *key_in, VkDescriptorSet *out)
 {
-    if (!pass->ctx || !cmd || !push || (pass->binding_count && !trace_set))
+    for (uint32_t i = 0; i < pass->set_count; ++i) {
+        const roma_pixel_binding *b = &pass->sets[i];
+        if (b->maps == key_in->maps && b->params == key_in->params && b->gbuffer == key_in->gbuffer &&
+            b->list == key_in->list && b->accum == key_in->accum) {
+            *out = b->set.set;
+            return ROMA_SUCCESS;
+        }
+    }
+    if (pass->set_count == ROMA_PIXEL_PASS_MAX_SETS)
+        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: recorded with more than %d combinations of map, G-buffer and buffers", pass->name,
+                         ROMA_PIXEL_PASS_MAX_SETS);
+    roma_context *ctx = pass->ctx;
+    roma_pixel_binding key = *key_in;
+    roma_result r = roma_descriptor_set_create(ctx, &pass->pipeline, pixel_types, ROMA_PIXEL_BINDINGS, &key.set);
+    if (r != ROMA_SUCCESS)
+        return r;
+    roma_descriptor_write_view(ctx, &key.set, ROMA_TRACE_BINDING_MAPS, pixel_types[ROMA_TRACE_BINDING_MAPS], key.maps);
+    roma_descriptor_write_buffer(ctx, &key.set, ROMA_TRACE_BINDING_PARAMS, pixel_types[ROMA_TRACE_BINDING_PARAMS],
+                                 key.params);
+    const VkBuffer buffers[3] = {key.gbuffer, key.list, key.accum};
+    for (uint32_t b = 0; b < 3; ++b)
+        roma_descriptor_write_buffer(ctx, &key.set, ROMA_PIXEL_BINDING_GBUFFER + b,
+                                     pixel_types[ROMA_PIXEL_BINDING_GBUFFER + b], buffers[b]);
+    pass->sets[pass->set_count++] = key;
+    *out = key.set.set;
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
+                                   const void *push)
+{
+    if (!pass->ctx || !cmd || !push || pass->binding_count)
         return ROMA_ERROR_INVALID_ARGUMENT;
     uint32_t gx = (width + ROMA_PIXEL_WORKGROUP_X - 1) / ROMA_PIXEL_WORKGROUP_X;
     uint32_t gy = (height + ROMA_PIXEL_WORKGROUP_Y - 1) / ROMA_PIXEL_WORKGROUP_Y;
@@ -67,9 +99,6 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
                          pass->name, width, height);
     record_in_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
-    if (pass->binding_count)
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.layout, 0, 1, &trace_set, 0,
-                                NULL);
     vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, push);
     vkCmdDispatch(cmd, gx, gy, 1);
     record_out_barrier(cmd);
@@ -77,15 +106,22 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
 }
 
 roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
-                                        VkDescriptorSet trace_set, const void *push)
+                                        const roma_map_info *map, VkBuffer gbuffer, VkBuffer accum,
+                                        const void *push)
 {
-    if (!pass->ctx || !cmd || !push || !list || !list->buffer.buffer || (pass->binding_count && !trace_set))
-        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (!pass->ctx || !cmd || !push || !list || !list->buffer.buffer || !pass->binding_count || !map ||
+        !map->maps_view || !gbuffer || !accum)
+        return pass->ctx ? roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                                     "%s: list, map, G-buffer and accumulator are required", pass->name)
+                         : ROMA_ERROR_INVALID_ARGUMENT;
+    const roma_pixel_binding key = {map->maps_view, map->params_buffer, gbuffer, list->buffer.buffer, accum, {0}};
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    roma_result r = pass_set(pass, &key, &set);
+    if (r != ROMA_SUCCESS)
+        return r;
     record_in_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.pipeline);
-    if (pass->binding_count)
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.layout, 0, 1, &trace_set, 0,
-                                NULL);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline.layout, 0, 1, &set, 0, NULL);
     vkCmdPushConstants(cmd, pass->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, push);
     vkCmdDispatchIndirect(cmd, list->buffer.buffer, 0);
     record_out_barrier(cmd);

@@ -1,6 +1,9 @@
 /* A compute pass with one invocation per pixel (8 x 8 workgroups) whose input is a
- * push-constant block of buffer addresses and, for the passes that trace, the map's
- * trace set (roma_trace_descriptors.glsl) at set 0: AO, the light passes, GI.
+ * push-constant block and, for the passes that trace (AO, the light passes, GI), set 0
+ * with the map's maps and parameters (roma_trace_descriptors.glsl), the G-buffer, the
+ * covered-pixel list and the pass's accumulator (roma_pixel_bindings.glsl). One set is made
+ * for each combination of those buffers a pass is recorded with (at most
+ * ROMA_PIXEL_PASS_MAX_SETS) and never rewritten, so recordings in flight stay valid.
  * Recording makes earlier writes of the G-buffer (fragment/compute), the ROMA
  * build (compute) and clears (transfer) visible to it, and its own writes
  * visible to later compute passes, transfers and the host. */
@@ -8,7 +11,17 @@
 #define ROMA_PASSES_PIXEL_PASS_H
 
 #include "passes/pixel_list.h"
+#include "roma/map.h"
 #include "vulkan/vk_internal.h"
+
+#define ROMA_PIXEL_PASS_MAX_SETS 8
+
+/* The buffers of one set of a tracing pass. */
+typedef struct roma_pixel_binding {
+    VkBufferView maps;
+    VkBuffer params, gbuffer, list, accum;
+    roma_descriptor_set set;
+} roma_pixel_binding;
 
 typedef struct roma_pixel_pass {
     roma_context *ctx;
@@ -16,30 +29,27 @@ typedef struct roma_pixel_pass {
     uint32_t push_size;
     uint32_t binding_count; /* descriptor bindings of set 0 (0: the pass binds no set) */
     roma_compute_pipeline pipeline;
+    roma_pixel_binding sets[ROMA_PIXEL_PASS_MAX_SETS];
+    uint32_t set_count;
 } roma_pixel_pass;
 
 /* module: embedded shader name ("ao.comp"); traces: the shader includes
- * roma_trace_descriptors.glsl. On failure *out is zeroed. */
+ * roma_pixel_bindings.glsl. On failure *out is zeroed. */
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out);
-/* The same with set 0 of binding_count bindings of the given types (the first two the trace
- * set's when the shader traces); the set passed at record time must match. */
-roma_result roma_pixel_pass_create_bound(roma_context *ctx, const char *module, uint32_t push_size,
-                                         const VkDescriptorType *types, uint32_t binding_count,
-                                         roma_pixel_pass *out);
 /* Accepts a zeroed pass. */
 void roma_pixel_pass_destroy(roma_pixel_pass *pass);
 
 /* Rejects an empty image and one needing more than 65535 workgroups per axis. */
-/* trace_set: roma_map_info.trace_set of the map traced (VK_NULL_HANDLE for passes that
- * do not trace). */
+/* A full-screen dispatch of a pass that does not trace. */
 roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, uint32_t width, uint32_t height,
-                                   VkDescriptorSet trace_set, const void *push);
+                                   const void *push);
 
-/* The same over the covered pixels of `list` (recorded before for this frame's
- * G-buffer): an indirect dispatch; the push block's `list` field must hold the list's
- * address. */
+/* A tracing pass over the covered pixels of `list` (recorded before for this frame's
+ * G-buffer, the buffer `gbuffer`): an indirect dispatch. map: the info of a built map;
+ * accum: the pass's accumulator. */
 roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
-                                        VkDescriptorSet trace_set, const void *push);
+                                        const roma_map_info *map, VkBuffer gbuffer, VkBuffer accum,
+                                        const void *push);
 
 #endif /* ROMA_PASSES_PIXEL_PASS_H */

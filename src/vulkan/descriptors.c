@@ -52,33 +52,33 @@ void roma_descriptor_set_destroy(roma_context *ctx, roma_descriptor_set *set)
     memset(set, 0, sizeof *set);
 }
 
-void roma_descriptor_write_buffer(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
-                                  VkDescriptorType type, VkBuffer buffer)
+/* One descriptor at binding: a buffer range or a texel-buffer view. */
+static void write_one(roma_context *ctx, roma_descriptor_set *set, uint32_t binding, VkDescriptorType type,
+                      const VkDescriptorBufferInfo *buffer, const VkBufferView *view)
 {
-    VkDescriptorBufferInfo info = {buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = set->set,
         .dstBinding = binding,
         .descriptorCount = 1,
         .descriptorType = type,
-        .pBufferInfo = &info,
+        .pBufferInfo = buffer,
+        .pTexelBufferView = view,
     };
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+}
+
+void roma_descriptor_write_buffer(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
+                                  VkDescriptorType type, VkBuffer buffer)
+{
+    VkDescriptorBufferInfo info = {buffer, 0, VK_WHOLE_SIZE};
+    write_one(ctx, set, binding, type, &info, NULL);
 }
 
 void roma_descriptor_write_view(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,
                                 VkDescriptorType type, VkBufferView view)
 {
-    VkWriteDescriptorSet write = {
-        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-        .dstSet = set->set,
-        .dstBinding = binding,
-        .descriptorCount = 1,
-        .descriptorType = type,
-        .pTexelBufferView = &view,
-    };
-    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+    write_one(ctx, set, binding, type, NULL, &view);
 }
 
 roma_result roma_buffer_view_create(roma_context *ctx, VkBuffer buffer, VkFormat format, VkBufferView *out)

@@ -16,7 +16,8 @@ roma_result roma_context_self_test(roma_context *ctx, double *out_gpu_ms)
     roma_compute_pipeline pipe;
     roma_buffer buffer = {0};
     roma_gpu_timer *timer = NULL;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
+    roma_descriptor_set set = {0};
+    const VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     roma_result r = roma_compute_pipeline_create(ctx, "fill_u32.comp", 1, sizeof(roma_fill_push), &pipe);
     if (r != ROMA_SUCCESS)
         return r;
@@ -24,37 +25,10 @@ roma_result roma_context_self_test(roma_context *ctx, double *out_gpu_ms)
                            ROMA_MEMORY_READBACK, &buffer);
     if (r == ROMA_SUCCESS)
         r = roma_gpu_timer_create(ctx, 1, &timer);
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    if (r == ROMA_SUCCESS)
+        r = roma_descriptor_set_create(ctx, &pipe, &type, 1, &set);
     if (r == ROMA_SUCCESS) {
-        VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
-        VkDescriptorPoolCreateInfo pool_info = {
-            .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-            .maxSets = 1,
-            .poolSizeCount = 1,
-            .pPoolSizes = &size,
-        };
-        r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &pool), "vkCreateDescriptorPool");
-    }
-    if (r == ROMA_SUCCESS) {
-        VkDescriptorSetAllocateInfo alloc = {
-            .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-            .descriptorPool = pool,
-            .descriptorSetCount = 1,
-            .pSetLayouts = &pipe.set_layout,
-        };
-        r = roma_vk_check(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, &set), "vkAllocateDescriptorSets");
-    }
-    if (r == ROMA_SUCCESS) {
-        VkDescriptorBufferInfo info = {buffer.buffer, 0, VK_WHOLE_SIZE};
-        VkWriteDescriptorSet write = {
-            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-            .dstSet = set,
-            .dstBinding = ROMA_FILL_BINDING_OUTPUT,
-            .descriptorCount = 1,
-            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-            .pBufferInfo = &info,
-        };
-        vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+        roma_descriptor_write_buffer(ctx, &set, ROMA_FILL_BINDING_OUTPUT, type, buffer.buffer);
         memset(buffer.mapped, 0xff, SELF_TEST_COUNT * sizeof(uint32_t));
     }
     VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -65,7 +39,7 @@ roma_result roma_context_self_test(roma_context *ctx, double *out_gpu_ms)
         roma_gpu_timer_reset(timer, cmd);
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "self_test_fill");
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout, 0, 1, &set, 0, NULL);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.layout, 0, 1, &set.set, 0, NULL);
         vkCmdPushConstants(cmd, pipe.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
         vkCmdDispatch(cmd, (SELF_TEST_COUNT + ROMA_FILL_WORKGROUP_SIZE - 1) / ROMA_FILL_WORKGROUP_SIZE, 1, 1);
         roma_gpu_timer_end(timer, cmd, scope);
@@ -89,8 +63,7 @@ roma_result roma_context_self_test(roma_context *ctx, double *out_gpu_ms)
         if (r == ROMA_SUCCESS && out_gpu_ms)
             *out_gpu_ms = timing.milliseconds;
     }
-    if (pool)
-        vkDestroyDescriptorPool(ctx->device, pool, NULL);
+    roma_descriptor_set_destroy(ctx, &set);
     roma_gpu_timer_destroy(timer);
     roma_buffer_destroy(ctx, &buffer);
     roma_compute_pipeline_destroy(ctx, &pipe);

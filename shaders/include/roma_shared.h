@@ -170,6 +170,8 @@ ROMA_STRUCT_END(roma_rotate_cells)
 ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_U64(rays);
     ROMA_U64(hits);
+    ROMA_U64(params);     /* trace.comp: the map by address (roma_use_addresses) */
+    ROMA_U64(maps);
     ROMA_UVEC4(config);   /* x: roma_trace_mode, y: max steps, z: ray count */
 ROMA_STRUCT_END(roma_trace_push)
 

@@ -82,10 +82,10 @@ static roma_result make_trace_pipeline(roma_map *map, int staged, roma_trace_mod
     if (p->pipeline)
         return ROMA_SUCCESS;
     const uint32_t constant = (uint32_t)mode;
-    return roma_compute_pipeline_create_spec(map->ctx, staged ? "trace_staged.comp" : "trace.comp",
-                                             staged ? staged_types : roma_trace_binding_types,
-                                             staged ? ROMA_TRACE_STAGED_BINDINGS : ROMA_TRACE_BINDINGS,
-                                             sizeof(roma_trace_push), &constant, 1, p);
+    /* trace.comp reaches everything by address: no set. */
+    return roma_compute_pipeline_create_spec(map->ctx, staged ? "trace_staged.comp" : "trace.comp", staged_types,
+                                             staged ? ROMA_TRACE_STAGED_BINDINGS : 0, sizeof(roma_trace_push),
+                                             &constant, 1, p);
 }
 
 /* Rotation bindings: the parameters as a uniform buffer (every invocation of a workgroup
@@ -210,8 +210,6 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
             roma_descriptor_write_buffer(ctx, &map->rotate_set, b, types[b], buffers[b]);
     }
     if (r == ROMA_SUCCESS)
-        r = make_trace_pipeline(map, 0, ROMA_TRACE_SNAPPED_ANY);
-    if (r == ROMA_SUCCESS)
         r = make_trace_pipeline(map, 1, ROMA_TRACE_SNAPPED_ANY);
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_set_create(ctx, &map->trace_staged[0], staged_types, ROMA_TRACE_STAGED_BINDINGS,
@@ -220,8 +218,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     if (r == ROMA_SUCCESS)
         r = roma_buffer_view_create(ctx, map->maps.buffer, VK_FORMAT_R32_UINT, &map->maps_view);
     if (r == ROMA_SUCCESS)
-        r = roma_descriptor_set_create(ctx, &map->trace[0], roma_trace_binding_types, ROMA_TRACE_BINDINGS,
-                                       &map->trace_set);
+        r = roma_descriptor_set_create_with_layout(ctx, roma_trace_binding_types, ROMA_TRACE_BINDINGS,
+                                                   &map->trace_set);
     for (int i = 0; i < 2 && r == ROMA_SUCCESS; ++i) {
         roma_descriptor_set *set = i == 0 ? &map->trace_set : &map->staged_set;
         roma_descriptor_write_view(ctx, set, ROMA_TRACE_BINDING_MAPS,
@@ -475,7 +473,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->params_buffer = map->params.buffer;
     out->maps_view = map->maps_view;
     out->trace_set = map->trace_set.set;
-    out->trace_set_layout = map->trace[0].set_layout;
+    out->trace_set_layout = map->trace_set.layout;
     return ROMA_SUCCESS;
 }
 
@@ -521,6 +519,8 @@ roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma
     roma_trace_push push = {
         .rays = desc->rays,
         .hits = desc->hits,
+        .params = map->params.address,
+        .maps = map->maps.address,
         .config = {(uint32_t)desc->mode, desc->max_steps ? desc->max_steps : 8u, desc->ray_count, 0},
     };
     r = make_trace_pipeline(map, 0, desc->mode);
@@ -529,7 +529,6 @@ roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma
     const roma_compute_pipeline *pipe = &map->trace[desc->mode];
     uint32_t scope = roma_gpu_timer_begin(timer, cmd, "trace");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout, 0, 1, &map->trace_set.set, 0, NULL);
     vkCmdPushConstants(cmd, pipe->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     roma_cmd_dispatch_linear(cmd, desc->ray_count, ROMA_TRACE_WORKGROUP_SIZE);
     roma_gpu_timer_end(timer, cmd, scope);

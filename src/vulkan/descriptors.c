@@ -10,11 +10,47 @@
 const VkDescriptorType roma_trace_binding_types[2] = {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                                                       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
 
+static roma_result set_create(roma_context *ctx, VkDescriptorSetLayout layout, const VkDescriptorType *types,
+                              uint32_t binding_count, roma_descriptor_set *out);
+
 roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
                                        const VkDescriptorType *types, uint32_t binding_count,
                                        roma_descriptor_set *out)
 {
     memset(out, 0, sizeof *out);
+    roma_result r = set_create(ctx, pipeline->set_layout, types, binding_count, out);
+    if (r != ROMA_SUCCESS)
+        roma_descriptor_set_destroy(ctx, out);
+    return r;
+}
+
+roma_result roma_descriptor_set_create_with_layout(roma_context *ctx, const VkDescriptorType *types,
+                                                   uint32_t binding_count, roma_descriptor_set *out)
+{
+    memset(out, 0, sizeof *out);
+    if (binding_count == 0 || binding_count > MAX_BINDINGS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_descriptor_set_create: %u bindings",
+                         binding_count);
+    VkDescriptorSetLayoutBinding bindings[MAX_BINDINGS];
+    for (uint32_t i = 0; i < binding_count; ++i)
+        bindings[i] = (VkDescriptorSetLayoutBinding){i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL};
+    VkDescriptorSetLayoutCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .bindingCount = binding_count,
+        .pBindings = bindings,
+    };
+    roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &info, NULL, &out->layout),
+                                  "vkCreateDescriptorSetLayout");
+    if (r == ROMA_SUCCESS)
+        r = set_create(ctx, out->layout, types, binding_count, out);
+    if (r != ROMA_SUCCESS)
+        roma_descriptor_set_destroy(ctx, out);
+    return r;
+}
+
+static roma_result set_create(roma_context *ctx, VkDescriptorSetLayout layout, const VkDescriptorType *types,
+                              uint32_t binding_count, roma_descriptor_set *out)
+{
     if (binding_count == 0 || binding_count > MAX_BINDINGS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_descriptor_set_create: %u bindings",
                          binding_count);
@@ -34,12 +70,10 @@ roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pip
             .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
             .descriptorPool = out->pool,
             .descriptorSetCount = 1,
-            .pSetLayouts = &pipeline->set_layout,
+            .pSetLayouts = &layout,
         };
         r = roma_vk_check(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, &out->set), "vkAllocateDescriptorSets");
     }
-    if (r != ROMA_SUCCESS)
-        roma_descriptor_set_destroy(ctx, out);
     return r;
 }
 
@@ -49,6 +83,8 @@ void roma_descriptor_set_destroy(roma_context *ctx, roma_descriptor_set *set)
         return;
     if (set->pool)
         vkDestroyDescriptorPool(ctx->device, set->pool, NULL); /* frees the set */
+    if (set->layout)
+        vkDestroyDescriptorSetLayout(ctx->device, set->layout, NULL);
     memset(set, 0, sizeof *set);
 }
 

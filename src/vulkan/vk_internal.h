@@ -129,11 +129,16 @@ extern const VkDescriptorType roma_trace_binding_types[2];
 typedef struct roma_descriptor_set {
     VkDescriptorPool pool;
     VkDescriptorSet set;
+    VkDescriptorSetLayout layout; /* only for sets made with a layout of their own */
 } roma_descriptor_set;
 
 roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
                                        const VkDescriptorType *types, uint32_t binding_count,
                                        roma_descriptor_set *out);
+/* The same with a layout of its own (compute stage, binding i of type types[i]), for sets
+ * that several pipelines, the caller's among them, bind. */
+roma_result roma_descriptor_set_create_with_layout(roma_context *ctx, const VkDescriptorType *types,
+                                                   uint32_t binding_count, roma_descriptor_set *out);
 void roma_descriptor_set_destroy(roma_context *ctx, roma_descriptor_set *set);
 /* A whole buffer (storage or uniform) or a buffer view (texel buffers) at binding. */
 void roma_descriptor_write_buffer(roma_context *ctx, roma_descriptor_set *set, uint32_t binding,

@@ -10,13 +10,12 @@
 
 #include "app_common.h"
 #include "passes/ao.h"
+#include "passes/effect_render.h"
 #include "passes/gbuffer.h"
 #include "passes/pixel_list.h"
 #include "passes/scene_buffers.h"
 #include "reference.h"
 #include "roma/map.h"
-#include "roma/map_internal.h"
-#include "roma/sampling.h"
 #include "vulkan/vk_internal.h"
 
 #define SEED 7u
@@ -27,7 +26,7 @@ typedef struct ao_job {
     const roma_gbuffer_pixel *px;
     const uint32_t *covered;
     uint32_t count, spp, thread, threads;
-    float radius, offset;
+    float radius;
     double sum;
 } ao_job;
 
@@ -51,7 +50,7 @@ static double embree_ao_ms(const roma_ref *ref, const roma_gbuffer_pixel *px, co
     pthread_t tid[64];
     double t0 = roma_app_now_ms();
     for (uint32_t t = 0; t < threads; ++t) {
-        jobs[t] = (ao_job){ref, px, covered, count, spp, t, threads, radius, 0.0f, 0.0};
+        jobs[t] = (ao_job){ref, px, covered, count, spp, t, threads, radius, 0.0};
         pthread_create(&tid[t], NULL, ao_worker, &jobs[t]);
     }
     double sum = 0.0;
@@ -80,10 +79,15 @@ static double roma_frame_ms(roma_context *ctx, roma_map *map, roma_ao_pass *ao, 
         vkCmdFillBuffer(cmd, accum->buffer, 0, VK_WHOLE_SIZE, 0);
         r = roma_ao_pass_record(ao, cmd, in);
     }
+    return roma_bench_submit_ms(ctx, cmd, r);
+}
+
+double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result recorded)
+{
     double t0 = roma_app_now_ms();
     roma_result s = roma_submit_one_shot(ctx, cmd);
     double ms = roma_app_now_ms() - t0;
-    return r == ROMA_SUCCESS && s == ROMA_SUCCESS ? ms : NAN;
+    return recorded == ROMA_SUCCESS && s == ROMA_SUCCESS ? ms : NAN;
 }
 
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, FILE *csv)
@@ -163,7 +167,7 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
         roma_ao_pass_inputs in = {
             .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = w, .height = h, .map = &mi,
             .list = &list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
-            .tmin = 1.6f * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.buffer,
+            .tmin = ROMA_DEFAULT_AO_SKIP_CELLS * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.buffer,
         };
         double ref_mean = 0.0;
         for (uint32_t k = 0; k < runs; ++k) {

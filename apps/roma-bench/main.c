@@ -66,14 +66,10 @@ static double host_trace_ms(roma_context *ctx, roma_map *map, roma_trace_mode mo
     if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
         return NAN;
     roma_trace_desc desc = {.mode = mode, .max_steps = 8, .rays = rays, .hits = hits, .ray_count = n};
-    if (staged)
-        roma_map_record_trace_staged(map, cmd, mode, 8, n, NULL);
-    else
-        roma_map_record_trace(map, cmd, &desc, NULL);
-    double t0 = roma_app_now_ms();
-    roma_result r = roma_submit_one_shot(ctx, cmd);
-    double ms = roma_app_now_ms() - t0;
-    return r == ROMA_SUCCESS ? ms : NAN;
+    /* A failed recording times nothing (NAN), not an empty submission. */
+    roma_result r = staged ? roma_map_record_trace_staged(map, cmd, mode, 8, n, NULL)
+                           : roma_map_record_trace(map, cmd, &desc, NULL);
+    return roma_bench_submit_ms(ctx, cmd, r);
 }
 
 /* Host-observed time of recording `steps` of a build (roma_map_record_steps) into a
@@ -83,11 +79,7 @@ static double host_build_ms(roma_context *ctx, roma_map *map, const roma_map_fra
     VkCommandBuffer cmd;
     if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
         return NAN;
-    roma_result r = roma_map_record_steps(map, cmd, frame, NULL, steps);
-    double t0 = roma_app_now_ms();
-    roma_result s = roma_submit_one_shot(ctx, cmd);
-    double ms = roma_app_now_ms() - t0;
-    return r == ROMA_SUCCESS && s == ROMA_SUCCESS ? ms : NAN;
+    return roma_bench_submit_ms(ctx, cmd, roma_map_record_steps(map, cmd, frame, NULL, steps));
 }
 
 /* AO rays from the surface points the camera sees, repeated until n rays. */

@@ -319,7 +319,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
         roma_json_int(&j, "max_steps", o->max_steps);
         roma_json_number(&j, "skip_cells", o->skip < 0.0f ? 1.0f : o->skip);
-        roma_json_number(&j, "ao_skip_cells", o->ao_skip < 0.0f ? 1.6f : o->ao_skip);
+        roma_json_number(&j, "ao_skip_cells", o->ao_skip < 0.0f ? ROMA_DEFAULT_AO_SKIP_CELLS : o->ao_skip);
         roma_json_number(&j, "offset_cells", o->offset > 0.0f ? o->offset : ROMA_DEFAULT_OFFSET_CELLS);
         roma_json_int(&j, "lights_per_frame", o->lights_per_frame ? o->lights_per_frame : o->lights);
     }

@@ -5,8 +5,12 @@
 // Lists the pixels whose G-buffer sees geometry (t finite), one invocation per pixel;
 // one atomic per subgroup. The order of the list does not matter: every pass writes
 // only its own pixel.
-#include "roma_lights.glsl"
+#include "roma_float.glsl"
 #include "roma_pixel_list.glsl"
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaListGbuffer {
+    roma_gbuffer_pixel p[];
+};
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
@@ -19,7 +23,7 @@ void main()
     if (xy.x >= width || xy.y >= height)
         return;
     uint pixel = xy.y * width + xy.x;
-    bool covered = !roma_is_inf(RomaGbufferPixels(pc.pixels).p[pixel].position_t.w);
+    bool covered = !roma_is_inf(RomaListGbuffer(pc.pixels).p[pixel].position_t.w);
     uint n = covered ? 1u : 0u;
     uint total = subgroupAdd(n), before = subgroupExclusiveAdd(n), base = 0u;
     RomaPixelList list = RomaPixelList(pc.list);

@@ -194,7 +194,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     const uint32_t spp = d->spp ? d->spp : 1, steps = d->max_steps ? d->max_steps : 8;
     const uint32_t lights_steps = d->lights_max_steps ? d->lights_max_steps : 16;
     const float skip_cells = d->skip_cells < 0.0f ? 0.0f : d->skip_cells > 0.0f ? d->skip_cells : 1.0f;
-    const float ao_skip = d->ao_skip_cells < 0.0f ? 0.0f : d->ao_skip_cells > 0.0f ? d->ao_skip_cells : 1.6f;
+    const float ao_skip = d->ao_skip_cells < 0.0f ? 0.0f : d->ao_skip_cells > 0.0f ? d->ao_skip_cells : ROMA_DEFAULT_AO_SKIP_CELLS;
     roma_result r = ROMA_SUCCESS;
     for (int p = ROMA_PASS_AO; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p) {
         if (!roma_effect_plan_runs(plan, (roma_pass_kind)p) || plan->pass_map[p] < 0)

@@ -26,6 +26,10 @@
 #include "roma/map.h"
 #include "roma_shared.h"
 
+/* AO and GI rays skip their first 1.6 trace cells: with the exact BOM the value that keeps
+ * the worst of the three converged AO scenes lowest (docs/accuracy.md). */
+#define ROMA_DEFAULT_AO_SKIP_CELLS 1.6f
+
 typedef struct roma_effect_render_desc {
     roma_camera camera;
     uint32_t width, height;
@@ -36,7 +40,8 @@ typedef struct roma_effect_render_desc {
     float ao_radius;                   /* <= 0: unbounded */
     float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
     float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = 1, negative = none */
-    float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = 1.6, negative = none */
+    float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
+                                          negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */

@@ -29,22 +29,7 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
     memset(out, 0, sizeof *out);
     if (binding_count > MAX_STORAGE_BUFFERS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors for %s", module_name);
-
-    VkDescriptorSetLayoutBinding bindings[MAX_STORAGE_BUFFERS];
-    for (uint32_t i = 0; i < binding_count; ++i)
-        bindings[i] = (VkDescriptorSetLayoutBinding){
-            .binding = i,
-            .descriptorType = types[i],
-            .descriptorCount = 1,
-            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
-        };
-    VkDescriptorSetLayoutCreateInfo set_info = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-        .bindingCount = binding_count,
-        .pBindings = bindings,
-    };
-    roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &set_info, NULL, &out->set_layout),
-                                  "vkCreateDescriptorSetLayout");
+    roma_result r = roma_descriptor_layout_create(ctx, types, binding_count, &out->set_layout);
     VkPushConstantRange push = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = push_size};
     if (r == ROMA_SUCCESS) {
         VkPipelineLayoutCreateInfo layout_info = {

@@ -13,6 +13,25 @@ const VkDescriptorType roma_trace_binding_types[2] = {VK_DESCRIPTOR_TYPE_UNIFORM
 static roma_result set_create(roma_context *ctx, VkDescriptorSetLayout layout, const VkDescriptorType *types,
                               uint32_t binding_count, roma_descriptor_set *out);
 
+roma_result roma_descriptor_layout_create(roma_context *ctx, const VkDescriptorType *types, uint32_t binding_count,
+                                          VkDescriptorSetLayout *out)
+{
+    *out = VK_NULL_HANDLE;
+    if (binding_count > MAX_BINDINGS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "descriptor set layout: %u bindings",
+                         binding_count);
+    VkDescriptorSetLayoutBinding bindings[MAX_BINDINGS];
+    for (uint32_t i = 0; i < binding_count; ++i)
+        bindings[i] = (VkDescriptorSetLayoutBinding){i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL};
+    VkDescriptorSetLayoutCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .bindingCount = binding_count,
+        .pBindings = bindings,
+    };
+    return roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &info, NULL, out),
+                         "vkCreateDescriptorSetLayout");
+}
+
 roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
                                        const VkDescriptorType *types, uint32_t binding_count,
                                        roma_descriptor_set *out)
@@ -28,19 +47,9 @@ roma_result roma_descriptor_set_create_with_layout(roma_context *ctx, const VkDe
                                                    uint32_t binding_count, roma_descriptor_set *out)
 {
     memset(out, 0, sizeof *out);
-    if (binding_count == 0 || binding_count > MAX_BINDINGS)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_descriptor_set_create: %u bindings",
-                         binding_count);
-    VkDescriptorSetLayoutBinding bindings[MAX_BINDINGS];
-    for (uint32_t i = 0; i < binding_count; ++i)
-        bindings[i] = (VkDescriptorSetLayoutBinding){i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL};
-    VkDescriptorSetLayoutCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-        .bindingCount = binding_count,
-        .pBindings = bindings,
-    };
-    roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &info, NULL, &out->layout),
-                                  "vkCreateDescriptorSetLayout");
+    if (binding_count == 0)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_descriptor_set_create: no bindings");
+    roma_result r = roma_descriptor_layout_create(ctx, types, binding_count, &out->layout);
     if (r == ROMA_SUCCESS)
         r = set_create(ctx, out->layout, types, binding_count, out);
     if (r != ROMA_SUCCESS)

@@ -132,6 +132,9 @@ typedef struct roma_descriptor_set {
     VkDescriptorSetLayout layout; /* only for sets made with a layout of their own */
 } roma_descriptor_set;
 
+/* A compute-stage set layout with binding i of type types[i] (at most 16). */
+roma_result roma_descriptor_layout_create(roma_context *ctx, const VkDescriptorType *types, uint32_t binding_count,
+                                          VkDescriptorSetLayout *out);
 roma_result roma_descriptor_set_create(roma_context *ctx, const roma_compute_pipeline *pipeline,
                                        const VkDescriptorType *types, uint32_t binding_count,
                                        roma_descriptor_set *out);

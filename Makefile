@@ -52,7 +52,8 @@ test-fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DROMA_FUZZ=ON -DROMA_BUILD_APPS=OFF \
 	    -DCMAKE_BUILD_TYPE=RelWithDebInfo
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene
-	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz
+	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz || \
+	    { grep -E 'ERROR: libFuzzer|SUMMARY|Test unit written|^Base64' Testing/Temporary/LastTest.log; exit 1; }
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(OUT)

@@ -278,7 +278,7 @@ static void test_effects(roma_scene *scene)
 static void test_gltf(void)
 {
     roma_test_log log;
-    roma_gltf_desc desc = {roma_test_logger(&log)};
+    roma_gltf_desc desc = {.logger = roma_test_logger(&log)};
     char dir[512];
     roma_test_tmp_path("", dir, sizeof dir);
     roma_scene *s = SENTINEL;

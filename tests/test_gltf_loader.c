@@ -111,7 +111,7 @@ static roma_result load_case(const char *name, const void *data, size_t n, int *
     roma_test_tmp_path(name, path, sizeof path);
     write_file(path, data, n);
     roma_test_log log, mlog;
-    roma_gltf_desc desc = {roma_test_logger(&log)};
+    roma_gltf_desc desc = {.logger = roma_test_logger(&log)};
     roma_scene *s = SENTINEL, *m = SENTINEL;
     roma_result r = roma_scene_load_gltf(path, &desc, &s);
     desc.logger = roma_test_logger(&mlog);
@@ -332,7 +332,7 @@ static void test_good(void)
     int bad_cuts = 0;
     for (size_t n = 0; n < glb_len; ++n) {
         int errors = 0;
-        roma_gltf_desc desc = {{count_errors, &errors}};
+        roma_gltf_desc desc = {.logger = {count_errors, &errors}};
         roma_scene *t = SENTINEL;
         roma_result r = roma_scene_load_gltf_memory(glb, n, NULL, &desc, &t);
         if (r != ROMA_ERROR_PARSE || t != NULL || errors != 1) {
@@ -392,7 +392,7 @@ static void test_good(void)
     roma_scene_destroy(s);
     s = SENTINEL;
     roma_test_log log;
-    roma_gltf_desc desc = {roma_test_logger(&log)};
+    roma_gltf_desc desc = {.logger = roma_test_logger(&log)};
     CHECK_RESULT(roma_scene_load_gltf_memory(ext, strlen(ext), NULL, &desc, &s), ROMA_ERROR_FILE_NOT_FOUND);
     CHECK(s == NULL && log.errors == 1);
     snprintf(buffer, sizeof buffer, "{\"byteLength\":%zu,\"uri\":\"missing.bin\"}", sizeof good_bin);
@@ -554,7 +554,7 @@ static void test_corpus(void)
     size_t len = strlen(doc);
     for (size_t n = 0; n < len; ++n) {
         int errors = 0;
-        roma_gltf_desc desc = {{count_errors, &errors}};
+        roma_gltf_desc desc = {.logger = {count_errors, &errors}};
         roma_scene *t = SENTINEL;
         roma_result r = roma_scene_load_gltf_memory(doc, n, NULL, &desc, &t);
         if (r != ROMA_ERROR_PARSE || t != NULL || errors != 1) {
@@ -674,7 +674,7 @@ static void test_corpus(void)
     /* Missing file and bad arguments. */
     char path[1024];
     roma_test_log log;
-    roma_gltf_desc desc = {roma_test_logger(&log)};
+    roma_gltf_desc desc = {.logger = roma_test_logger(&log)};
     s = SENTINEL;
     CHECK_RESULT(roma_scene_load_gltf(roma_test_tmp_path("does_not_exist.glb", path, sizeof path), &desc, &s),
                  ROMA_ERROR_FILE_NOT_FOUND);
@@ -691,9 +691,52 @@ static void test_corpus(void)
     CHECK(s == NULL);
 }
 
+/* A few bytes of glTF can describe gigabytes: accessors without data, and
+ * instances of one mesh. Both are refused before anything is allocated. */
+static void test_size_limits(void)
+{
+    /* One zero accessor of 2^23 + 1 elements used twice (POSITION and NORMAL):
+     * more than 2^24 zero elements in all. */
+    char *json = subst(tri_json, "\"attributes\":{\"POSITION\":0},\"indices\":1}",
+                       "\"attributes\":{\"POSITION\":2,\"NORMAL\":2}}");
+    char *json2 = subst(json, "\"type\":\"SCALAR\"}]",
+                        "\"type\":\"SCALAR\"},{\"componentType\":5126,\"count\":8388609,\"type\":\"VEC3\"}]");
+    char *uri = data_uri(&tri_bin, sizeof tri_bin);
+    char *doc = printf_doc(json2, uri);
+    expect_code("zero_accessor_twice.gltf", doc, strlen(doc), ROMA_ERROR_INVALID_SCENE);
+    free(doc), free(uri), free(json2), free(json);
+
+    /* Two instances of the one-triangle mesh: 6 vertices, 2 triangles. */
+    doc = tri_doc("\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}]",
+                  "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"mesh\":0}]", NULL);
+    struct {
+        uint32_t max_vertices, max_triangles;
+        roma_result expect;
+    } limits[] = {{5, 0, ROMA_ERROR_UNSUPPORTED}, {0, 1, ROMA_ERROR_UNSUPPORTED}, {6, 2, ROMA_SUCCESS}};
+    for (int i = 0; i < 3; ++i) {
+        int errors = 0;
+        roma_gltf_desc desc = {.logger = {count_errors, &errors},
+                               .max_vertices = limits[i].max_vertices,
+                               .max_triangles = limits[i].max_triangles};
+        roma_scene *s = SENTINEL;
+        roma_result r = roma_scene_load_gltf_memory(doc, strlen(doc), NULL, &desc, &s);
+        CHECK_RESULT(r, limits[i].expect);
+        if (r == ROMA_SUCCESS) {
+            roma_scene_view v;
+            roma_scene_get_view(s, &v);
+            CHECK(v.triangle_count == 2 && v.vertex_count == 6 && errors == 0);
+            roma_scene_destroy(s);
+        } else {
+            CHECK(s == NULL && errors == 1);
+        }
+    }
+    free(doc);
+}
+
 int main(void)
 {
     test_good();
     test_corpus();
+    test_size_limits();
     return roma_test_finish("test_gltf_loader");
 }

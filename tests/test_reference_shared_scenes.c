@@ -172,7 +172,7 @@ int main(void)
             continue;
         }
         roma_test_log log;
-        roma_gltf_desc desc = {roma_test_logger(&log)};
+        roma_gltf_desc desc = {.logger = roma_test_logger(&log)};
         roma_scene *scene = NULL;
         roma_result r = roma_scene_load_gltf(path, &desc, &scene);
         if (r != ROMA_SUCCESS || !scene) {

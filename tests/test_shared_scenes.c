@@ -30,7 +30,7 @@ static const expected models[] = {
 static void check_model(const expected *e, const char *path)
 {
     roma_test_log log;
-    roma_gltf_desc desc = {roma_test_logger(&log)};
+    roma_gltf_desc desc = {.logger = roma_test_logger(&log)};
     roma_scene *s = NULL;
     roma_result r = roma_scene_load_gltf(path, &desc, &s);
     if (r != ROMA_SUCCESS || !s) {

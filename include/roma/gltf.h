@@ -19,6 +19,7 @@
 #define ROMA_GLTF_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "roma/scene.h"
 
@@ -28,7 +29,16 @@ extern "C" {
 
 typedef struct roma_gltf_desc {
     roma_logger logger;
+    /* Limits on the flattened scene, checked before anything is allocated for it
+     * (instancing and accessors without data can make a few hundred bytes of
+     * glTF describe gigabytes): a file over either is ROMA_ERROR_UNSUPPORTED.
+     * 0 = ROMA_GLTF_DEFAULT_MAX_VERTICES / ROMA_GLTF_DEFAULT_MAX_TRIANGLES. */
+    uint32_t max_vertices;
+    uint32_t max_triangles;
 } roma_gltf_desc;
+
+#define ROMA_GLTF_DEFAULT_MAX_VERTICES (1u << 25)
+#define ROMA_GLTF_DEFAULT_MAX_TRIANGLES (1u << 25)
 
 /* path ends in .gltf or .glb (detected from content, not the name). desc may be NULL. */
 roma_result roma_scene_load_gltf(const char *path, const roma_gltf_desc *desc,

@@ -250,7 +250,10 @@ struct Range {
 
 class Loader {
 public:
-    Loader(const roma_logger *log, std::string file) : log_(log), file_(std::move(file)) {}
+    Loader(const roma_logger *log, std::string file, uint32_t max_vertices, uint32_t max_triangles)
+        : log_(log), file_(std::move(file)), max_vertices_(max_vertices), max_triangles_(max_triangles)
+    {
+    }
 
     [[noreturn]] ROMA_PRINTF(3, 4) void fail(roma_result code, const char *fmt, ...)
     {
@@ -275,6 +278,8 @@ public:
 private:
     const roma_logger *log_;
     std::string file_;
+    uint32_t max_vertices_, max_triangles_;
+    uint64_t zero_elements_ = 0; /* read from accessors without a buffer view, every use counted */
     tinygltf::Model m_;
 
     std::vector<Mat4> world_;
@@ -535,10 +540,13 @@ Accessor Loader::accessor(int index, const std::string &what, int type, unsigned
     uint64_t elem = (uint64_t)r.csize * (uint64_t)r.ncomp;
     if (a.bufferView < 0) {
         /* Spec: no buffer view means zeros. Nothing bounds the count by real
-         * data then, so refuse absurd ones instead of allocating for them. */
-        if (a.count > (1u << 24))
-            fail(ROMA_ERROR_INVALID_SCENE, "accessor %d (%s): %zu elements without a buffer view", index, w,
-                 a.count);
+         * data then, and many uses of one such accessor add up, so the file
+         * gets 2^24 of these elements in all instead of allocating for more. */
+        zero_elements_ += a.count;
+        if (zero_elements_ > (1u << 24))
+            fail(ROMA_ERROR_INVALID_SCENE,
+                 "accessor %d (%s): %zu elements without a buffer view, more than 2^24 such elements in all",
+                 index, w, a.count);
         return r;
     }
     if ((size_t)a.bufferView >= m_.bufferViews.size())
@@ -835,6 +843,11 @@ void Loader::add_primitive(int node, int mesh, size_t pi)
                  out->count, P.count);
         return true;
     };
+    size_t vertex_total = pos_.size() / 3;
+    if (P.count > max_vertices_ - vertex_total)
+        fail(ROMA_ERROR_UNSUPPORTED,
+             "%s adds %zu vertices to %zu: more than %u in the flattened scene (roma_gltf_desc.max_vertices)",
+             label.c_str(), P.count, vertex_total, max_vertices_);
     Accessor N, J, W;
     bool has_n = attr("NORMAL", TINYGLTF_TYPE_VEC3, C_FLOAT, &N);
 
@@ -854,10 +867,21 @@ void Loader::add_primitive(int node, int mesh, size_t pi)
         }
     }
 
-    /* Index list, then triangles (strips and fans converted). */
+    /* Index list, then triangles (strips and fans converted); the triangle
+     * limit is checked before either is allocated. */
+    auto check_triangles = [&](size_t indices) {
+        size_t adds = mode == TINYGLTF_MODE_TRIANGLES ? indices / 3 : indices > 2 ? indices - 2 : 0;
+        size_t total = idx_.size() / 3;
+        if (adds > max_triangles_ - total)
+            fail(ROMA_ERROR_UNSUPPORTED,
+                 "%s adds %zu triangles to %zu: more than %u in the flattened scene "
+                 "(roma_gltf_desc.max_triangles)",
+                 label.c_str(), adds, total, max_triangles_);
+    };
     std::vector<uint32_t> list;
     if (prim.indices >= 0) {
         Accessor I = accessor(prim.indices, "indices of " + label, TINYGLTF_TYPE_SCALAR, C_UBYTE | C_USHORT | C_UINT);
+        check_triangles(I.count);
         list.resize(I.count);
         for (size_t i = 0; i < I.count; ++i) {
             list[i] = I.get_uint(i);
@@ -866,8 +890,7 @@ void Loader::add_primitive(int node, int mesh, size_t pi)
                      label.c_str(), list[i], i, P.count);
         }
     } else {
-        if (P.count > UINT32_MAX)
-            fail(ROMA_ERROR_UNSUPPORTED, "%s: too many vertices", label.c_str());
+        check_triangles(P.count);
         list.resize(P.count);
         for (size_t i = 0; i < P.count; ++i)
             list[i] = (uint32_t)i;
@@ -889,9 +912,7 @@ void Loader::add_primitive(int node, int mesh, size_t pi)
     if (tris.empty())
         return;
 
-    size_t base = pos_.size() / 3;
-    if (base + P.count > UINT32_MAX || idx_.size() / 3 + tris.size() / 3 > UINT32_MAX)
-        fail(ROMA_ERROR_UNSUPPORTED, "more than 2^32 vertices or triangles in the flattened scene");
+    size_t base = pos_.size() / 3; /* the limits above keep every index within 32 bits */
     const Mat4 &w = world_[(size_t)node];
     uint32_t skin_first = skinned ? skin_first_[(size_t)nd.skin] : 0;
     uint32_t skin_joints = skinned ? (uint32_t)m_.skins[(size_t)nd.skin].joints.size() : 0;
@@ -1216,8 +1237,10 @@ roma_result load_guarded(const unsigned char *data, size_t size, const char *bas
                          const roma_gltf_desc *desc, roma_scene **out)
 {
     const roma_logger *log = desc ? &desc->logger : nullptr;
+    uint32_t max_vertices = desc && desc->max_vertices ? desc->max_vertices : ROMA_GLTF_DEFAULT_MAX_VERTICES;
+    uint32_t max_triangles = desc && desc->max_triangles ? desc->max_triangles : ROMA_GLTF_DEFAULT_MAX_TRIANGLES;
     try {
-        Loader loader(log, label);
+        Loader loader(log, label, max_vertices, max_triangles);
         return loader.load(data, size, base_dir, out);
     } catch (const Failure &f) {
         return f.code;

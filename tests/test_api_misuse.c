@@ -467,7 +467,6 @@ static void test_map(gpu *g, roma_context *same_device, roma_context *other_devi
     CHECK(hit0.t == -1.0f && hit0.info == 0xdeadu);
     CHECK_RESULT(roma_map_download_bom(NULL, &word0, 1), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK(word0 == 0xdeadu);
-    CHECK_RESULT(roma_map_update_positions(NULL, &ray0.origin[0], 1), ROMA_ERROR_INVALID_ARGUMENT);
     roma_map_destroy(NULL);
 
     map = NULL;
@@ -570,13 +569,41 @@ static void test_map(gpu *g, roma_context *same_device, roma_context *other_devi
     /* Positions. */
     roma_scene_view sv;
     CHECK_RESULT(roma_scene_get_view(scene, &sv), ROMA_SUCCESS);
-    FAILS(roma_map_update_positions(map, NULL, sv.vertex_count), ROMA_ERROR_INVALID_ARGUMENT, &log, "positions");
-    FAILS(roma_map_update_positions(map, sv.positions, 0), ROMA_ERROR_INVALID_ARGUMENT, &log, "vertices");
-    FAILS(roma_map_update_positions(map, sv.positions, UINT32_MAX), ROMA_ERROR_INVALID_ARGUMENT, &log, "vertices");
+    roma_map_frame_desc fp = frame;
+    fp.positions = sv.positions;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "vertices"); /* count 0 */
+    fp.vertex_count = UINT32_MAX;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "vertices");
+    fp.vertex_count = sv.vertex_count;
+    fp.gpu_positions = 16;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "both");
+    fp.positions = NULL;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "volume");
+    roma_box box = {{0, 0, 0}, {1, 1, 1}};
+    fp.volume = &box;
+    fp.gpu_position_stride = 6;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "stride");
+    fp.gpu_position_stride = 0;
+    fp.gpu_positions = 18;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "aligned");
+    fp.gpu_positions = 0;
+    box.max[1] = -1.0f;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "volume");
+    box.max[1] = NAN;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "volume");
+    fp.volume = NULL;
+    fp.slot = 2;
+    FAILS(roma_map_build(map, &fp, NULL), ROMA_ERROR_INVALID_ARGUMENT, &log, "slot");
+    roma_map_desc too_many_slots = {.frames_in_flight = ROMA_MAX_FRAMES_IN_FLIGHT + 1, .logger = roma_test_logger(&log)};
+    roma_map *no_map = NULL;
+    FAILS(roma_map_create(g->ctx, &too_many_slots, scene, &no_map), ROMA_ERROR_INVALID_ARGUMENT, &log,
+          "frames_in_flight");
+    CHECK(no_map == NULL);
 
     /* After all that the map builds, traces and downloads as before. */
-    CHECK_RESULT(roma_map_update_positions(map, sv.positions, sv.vertex_count), ROMA_SUCCESS);
-    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    fp = frame;
+    fp.positions = sv.positions, fp.vertex_count = sv.vertex_count, fp.slot = 1;
+    CHECK_RESULT(roma_map_build(map, &fp, NULL), ROMA_SUCCESS);
     CHECK(traces_walls(map));
     CHECK_RESULT(roma_map_download_bom(map, words, bom_words), ROMA_SUCCESS);
     CHECK(popcount_words(words, bom_words) > 0);

@@ -94,8 +94,9 @@ int main(void)
     float *moved = malloc(sizeof(float) * 3 * sv.vertex_count);
     for (uint32_t i = 0; i < 3 * sv.vertex_count; ++i)
         moved[i] = sv.positions[i] + (i % 3 == 0 ? 10.0f : 0.0f);
-    CHECK_RESULT(roma_map_update_positions(map, moved, sv.vertex_count), ROMA_SUCCESS);
-    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    roma_map_frame_desc move = frame;
+    move.positions = moved, move.vertex_count = sv.vertex_count;
+    CHECK_RESULT(roma_map_build(map, &move, NULL), ROMA_SUCCESS);
     roma_map_get_info(map, &info);
     CHECK_NEAR(info.grid_origin[0], origin_before[0] + 10.0f, 1e-4);
     CHECK_NEAR(info.grid_origin[1], origin_before[1], 1e-6);
@@ -114,10 +115,12 @@ int main(void)
     CHECK(hit_inside.info & ROMA_HIT_FLAG);
 
     /* Bad updates are refused and leave the map as it was. */
-    CHECK_RESULT(roma_map_update_positions(map, moved, sv.vertex_count - 1), ROMA_ERROR_INVALID_ARGUMENT);
+    move.vertex_count = sv.vertex_count - 1;
+    CHECK_RESULT(roma_map_build(map, &move, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    move.vertex_count = sv.vertex_count;
     moved[4] = NAN;
-    CHECK_RESULT(roma_map_update_positions(map, moved, sv.vertex_count), ROMA_ERROR_INVALID_SCENE);
-    CHECK_RESULT(roma_map_update_positions(NULL, moved, sv.vertex_count), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_map_build(map, &move, NULL), ROMA_ERROR_INVALID_SCENE);
+    CHECK_RESULT(roma_map_build(NULL, &move, NULL), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
     CHECK_RESULT(roma_map_trace(map, ROMA_TRACE_SNAPPED_ANY, 0, &inside, 1, &hit_inside, NULL), ROMA_SUCCESS);
     CHECK(hit_inside.info & ROMA_HIT_FLAG);

@@ -825,7 +825,8 @@ static void check_supported_range(roma_context *ctx)
         float *huge = malloc(sizeof(float) * 3 * m->vertices);
         for (uint32_t v = 0; v < 3 * m->vertices; ++v)
             huge[v] = m->pos[v] * 0x1p127f;
-        CHECK_RESULT(roma_map_update_positions(f.map, huge, m->vertices), ROMA_ERROR_INVALID_SCENE);
+        CHECK_RESULT(roma_map_build(f.map, &(roma_map_frame_desc){.positions = huge, .vertex_count = m->vertices}, NULL),
+                     ROMA_ERROR_INVALID_SCENE);
         free(huge);
         CHECK_RESULT(roma_map_build(f.map, &(roma_map_frame_desc){0}, NULL), ROMA_SUCCESS);
         CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_SNAPPED_CLOSEST, 0, rays, ROOM_RAYS, after, NULL), ROMA_SUCCESS);

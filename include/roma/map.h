@@ -64,44 +64,77 @@ typedef enum roma_bom_mode {
     ROMA_BOM_CONSERVATIVE
 } roma_bom_mode;
 
+#define ROMA_MAX_FRAMES_IN_FLIGHT 8
+
 typedef struct roma_map_desc {
-    uint32_t resolution;      /* RES in {32, 64, 128, 256}; 0 = 128 */
-    uint32_t angular;         /* A in [1, 16]: A x A maps; 0 = 4 */
+    uint32_t resolution;       /* RES in {32, 64, 128, 256}; 0 = 128 */
+    uint32_t angular;          /* A in [1, 16]: A x A maps; 0 = 4 */
     roma_bom_mode bom_mode;
-    float margin_cells;       /* padding of the grid cube around the scene, in cells; 0 = 1 */
-    roma_logger logger;       /* 0 = the context's */
+    float margin_cells;        /* padding of the grid cube around the traced volume, in cells; 0 = 1 */
+    uint32_t frames_in_flight; /* frame slots for host-written positions, [1, 8]; 0 = 2 */
+    roma_logger logger;        /* 0 = the context's */
 } roma_map_desc;
 
-/* Geometry is uploaded here (positions and indices); call again when it moves.
- * Supported scenes: the grid cube around the scene must lie within +-8.5e37 world
- * units on every axis and its cells be at least 1e-35 across (at RES 32, scenes at
- * least ~3e-34 wide; at most ~1.6e38 wide when centred on the origin); others are
- * refused with ROMA_ERROR_INVALID_SCENE, as is an update that would move the scene
- * out of that range (the map then keeps its positions). */
+/* The scene's topology (indices) and first positions are uploaded here: the one call
+ * of a map that submits to the context's queue and waits (not a per-frame call).
+ * Supported volumes: the grid cube around the traced volume (the scene's bounds or
+ * roma_map_frame_desc.volume) must lie within +-8.5e37 world units on every axis and
+ * its cells be at least 1e-35 across (at RES 32, volumes at least ~3e-34 wide; at most
+ * ~1.6e38 wide when centred on the origin); others are refused with
+ * ROMA_ERROR_INVALID_SCENE. */
 roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                             const roma_scene *scene, roma_map **out_map);
 /* Accepts NULL. The caller makes sure no submitted work still uses the map (the
  * blocking convenience calls below always finish theirs). */
 void roma_map_destroy(roma_map *map);
 
-/* Replaces the vertex positions (same vertex count as the scene), for animation.
- * Positions live in host-visible memory that the next build reads: the call waits
- * for the context's queue to go idle before writing them. */
-roma_result roma_map_update_positions(roma_map *map, const float *positions, uint32_t vertex_count);
+/* An axis-aligned box in world space. */
+typedef struct roma_box {
+    float min[3], max[3];
+} roma_box;
 
 typedef struct roma_map_frame_desc {
     uint32_t frame;        /* frame counter: drives the jitter */
     uint32_t seed;
     int jitter_grid;       /* sub-cell offset of the grid origin per frame */
     int jitter_directions; /* candidates jittered inside their strata (else stratum centres) */
+    /* The engine's frame slot, in [0, frames_in_flight): host data of this build goes to
+     * storage of this slot. The caller makes sure the GPU finished the last command
+     * buffer recorded with the same slot (its own per-frame fence) before recording. */
+    uint32_t slot;
+    /* The box the grid is fitted to (plus margin_cells); geometry outside it is not
+     * traced. NULL: the bounds of the last host positions (the scene's at first). */
+    const roma_box *volume;
+    /* New vertex positions for this build (the map's vertex count, vertex_count must
+     * equal it), from either:
+     *  - host memory: 3 floats per vertex, copied at record time into the slot's
+     *    staging and from there by the GPU (vkCmdCopyBuffer);
+     *  - the caller's GPU memory (a skinning or animation pass): 3 floats at
+     *    gpu_positions + i * gpu_position_stride (bytes, multiple of 4, 0 = 12), read
+     *    by a compute pass; volume is then required (the host cannot see the bounds).
+     * Neither: the positions of the previous build stay. */
+    const float *positions;
+    VkDeviceAddress gpu_positions;
+    uint32_t gpu_position_stride;
+    uint32_t vertex_count;
 } roma_map_frame_desc;
 
-/* Records BOM clear + voxelization + rotation into cmd (a command buffer of the
- * context's queue family, outside a render pass). timer may be NULL; otherwise
- * scopes "bom" and "rotate" are added (every timer passed to a map must come from
- * a context on the map's VkDevice: ROMA_ERROR_INVALID_ARGUMENT otherwise). The parameters of the frame are written
- * to a host-visible buffer at record time: do not record two builds of the same
- * map into command buffers in flight at once. */
+/* Records the build of this frame into cmd (a command buffer of the context's queue
+ * family, outside a render pass): the frame parameters (vkCmdUpdateBuffer: they travel
+ * in the command buffer, so builds may be recorded for any number of frames in
+ * flight), new positions if given, BOM clear + voxelization + rotation. It never
+ * submits or waits. Synchronisation it records itself:
+ *  - first, a barrier after every earlier command of the queue (ALL_COMMANDS): earlier
+ *    reads of the map (traces from any stage, downloads) finish before it is rewritten,
+ *    and earlier writes of gpu_positions (transfer or shader stages) are visible;
+ *  - last, a barrier making the maps and parameters visible to every later command
+ *    (ALL_COMMANDS, MEMORY_READ): a caller tracing from a fragment or compute shader
+ *    afterwards, in this command buffer or a later one on this queue, needs no barrier
+ *    of its own. (On another queue: the caller's semaphore and queue transfer.)
+ * timer may be NULL; otherwise scopes "bom" and "rotate" are added (every timer passed
+ * to a map must come from a context on the map's VkDevice: ROMA_ERROR_INVALID_ARGUMENT
+ * otherwise). A failed call records nothing the map depends on and keeps the previous
+ * positions. */
 roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
                                   const roma_map_frame_desc *frame, roma_gpu_timer *timer);
 

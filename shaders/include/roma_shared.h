@@ -167,6 +167,15 @@ ROMA_STRUCT_END(roma_rotate_cells)
 
 /* Batch trace: one invocation per ray. */
 #define ROMA_TRACE_WORKGROUP_SIZE 64
+/* voxelize/gather_positions.comp: vertex positions from the caller's GPU memory
+ * (3 floats at src + i * stride) into the map's float4 positions. */
+#define ROMA_GATHER_WORKGROUP_SIZE 64
+ROMA_STRUCT_BEGIN(roma_gather_positions_push)
+    ROMA_U64(src);
+    ROMA_U64(dst);
+    ROMA_UVEC4(config);   /* x: vertex count, y: stride in 4-byte words */
+ROMA_STRUCT_END(roma_gather_positions_push)
+
 ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_U64(rays);
     ROMA_U64(hits);

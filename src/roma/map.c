@@ -57,17 +57,46 @@ static roma_result check_bounds(const roma_logger *log, const float bmin[3], con
                      "units", fn, res, ROMA_GRID_MIN_CELL);
 }
 
-static roma_result upload_positions(roma_map *map, const float *positions)
+/* Host positions into the staging buffer of `slot` (made on first use), as float4. */
+static roma_result stage_positions(roma_map *map, uint32_t slot, const float *positions)
 {
-    float *dst = map->positions.mapped;
+    roma_buffer *staging = &map->position_staging[slot];
+    if (!staging->buffer) {
+        roma_result r = roma_buffer_create(map->ctx, 16ull * map->vertex_count, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                           ROMA_MEMORY_UPLOAD, staging);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
+    float *dst = staging->mapped;
     for (uint32_t v = 0; v < map->vertex_count; ++v) {
         dst[4 * v + 0] = positions[3 * v + 0];
         dst[4 * v + 1] = positions[3 * v + 1];
         dst[4 * v + 2] = positions[3 * v + 2];
         dst[4 * v + 3] = 1.0f;
     }
-    scene_bounds(positions, map->indices_host, map->triangle_count, map->scene_min, map->scene_max);
     return ROMA_SUCCESS;
+}
+
+static void record_copy_staged(roma_map *map, VkCommandBuffer cmd, uint32_t slot)
+{
+    VkBufferCopy copy = {0, 0, 16ull * map->vertex_count};
+    vkCmdCopyBuffer(cmd, map->position_staging[slot].buffer, map->positions.buffer, 1, &copy);
+}
+
+/* The scene's first positions, before any build: staged in slot 0 and copied with a
+ * submission this call waits for, so slot 0 is free again when it returns. */
+static roma_result upload_initial_positions(roma_map *map, const float *positions)
+{
+    roma_result r = stage_positions(map, 0, positions);
+    VkCommandBuffer cmd;
+    if (r == ROMA_SUCCESS)
+        r = roma_begin_one_shot(map->ctx, &cmd);
+    if (r != ROMA_SUCCESS)
+        return r;
+    record_copy_staged(map, cmd, 0);
+    r = roma_submit_one_shot(map->ctx, cmd);
+    scene_bounds(positions, map->indices_host, map->triangle_count, map->scene_min, map->scene_max);
+    return r;
 }
 
 static const VkDescriptorType staged_types[ROMA_TRACE_STAGED_BINDINGS] = {
@@ -119,6 +148,11 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                          ROMA_MAX_ANGULAR);
     if ((unsigned)desc.bom_mode > ROMA_BOM_CONSERVATIVE)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: unknown bom_mode %d", (int)desc.bom_mode);
+    if (desc.frames_in_flight == 0)
+        desc.frames_in_flight = 2;
+    if (desc.frames_in_flight > ROMA_MAX_FRAMES_IN_FLIGHT)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: frames_in_flight %u is outside [1, %u]",
+                         desc.frames_in_flight, ROMA_MAX_FRAMES_IN_FLIGHT);
     if (!(desc.margin_cells >= 0.5f) || desc.margin_cells > desc.resolution / 8.0f)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map_create: margin_cells %g must be in [0.5, RES/8] (jitter needs half a cell)",
@@ -156,6 +190,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     map->map_count = desc.angular * desc.angular;
     map->bom_mode = desc.bom_mode;
     map->margin_cells = desc.margin_cells;
+    map->frames_in_flight = desc.frames_in_flight;
     map->vertex_count = sv.vertex_count;
     map->triangle_count = sv.triangle_count;
     map->indices_host = indices;
@@ -164,10 +199,10 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     const uint64_t texel_words = (uint64_t)map->res * map->res * map->words;
-    const VkBufferUsageFlags geometry = storage;
-    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count, geometry, ROMA_MEMORY_UPLOAD, &map->positions);
+    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       ROMA_MEMORY_DEVICE, &map->positions);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, geometry, ROMA_MEMORY_UPLOAD, &map->indices);
+        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage, ROMA_MEMORY_UPLOAD, &map->indices);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4 * texel_words, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->bom);
@@ -177,8 +212,9 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                ROMA_MEMORY_DEVICE, &map->maps);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, ROMA_PARAMS_BLOCK_BYTES, storage | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                               ROMA_MEMORY_UPLOAD, &map->params);
+        r = roma_buffer_create(ctx, ROMA_PARAMS_BLOCK_BYTES,
+                               storage | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               ROMA_MEMORY_DEVICE, &map->params);
     /* The scatter rotation's cell list: 1/16 of the grid's cells (scenes occupy a few
      * percent); a fuller grid is rotated by the gather instead. */
     map->cell_capacity = (uint32_t)(texel_words * 32 / 16);
@@ -191,6 +227,9 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                 ? roma_bom_voxelizer_create(ctx, map->res, map->positions.buffer, map->indices.buffer,
                                             map->bom.buffer, map->bom.size, &map->voxelizer)
                 : roma_bom_raster_create(ctx, &map->raster);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "gather_positions.comp", 0, sizeof(roma_gather_positions_push),
+                                         &map->gather_positions);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "occupied_cells.comp", rotate_types, ROMA_ROTATE_BINDINGS,
                                                sizeof(roma_rotate_push), &map->occupied_cells);
@@ -229,7 +268,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     }
     if (r == ROMA_SUCCESS) {
         memcpy(map->indices.mapped, indices, 12ull * sv.triangle_count);
-        r = upload_positions(map, sv.positions);
+        r = upload_initial_positions(map, sv.positions);
     }
     if (r != ROMA_SUCCESS) {
         roma_map_destroy(map);
@@ -259,6 +298,9 @@ void roma_map_destroy(roma_map *map)
     roma_compute_pipeline_destroy(ctx, &map->rotate_gather);
     roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
     roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
+    roma_compute_pipeline_destroy(ctx, &map->gather_positions);
+    for (uint32_t i = 0; i < ROMA_MAX_FRAMES_IN_FLIGHT; ++i)
+        roma_buffer_destroy(ctx, &map->position_staging[i]);
     roma_bom_raster_destroy(map->raster);
     roma_bom_voxelizer_destroy(map->voxelizer);
     roma_buffer_destroy(ctx, &map->cells);
@@ -274,48 +316,96 @@ void roma_map_destroy(roma_map *map)
     free(map);
 }
 
-roma_result roma_map_update_positions(roma_map *map, const float *positions, uint32_t vertex_count)
-{
-    if (!map || !positions)
-        return roma_fail(map ? &map->logger : NULL, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_map_update_positions: %s is NULL", map ? "positions" : "map");
-    if (vertex_count != map->vertex_count)
-        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_map_update_positions: %u vertices given, the map was made with %u",
-                         vertex_count, map->vertex_count);
-    for (uint64_t i = 0; i < 3ull * vertex_count; ++i)
-        if (!isfinite(positions[i]))
-            return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE,
-                             "roma_map_update_positions: vertex %llu is not finite",
-                             (unsigned long long)(i / 3));
-    float bmin[3], bmax[3];
-    scene_bounds(positions, map->indices_host, map->triangle_count, bmin, bmax);
-    roma_result r = check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells,
-                                 "roma_map_update_positions");
-    if (r != ROMA_SUCCESS)
-        return r;
-    /* The previous build may still read the buffer. */
-    vkQueueWaitIdle(map->ctx->queue);
-    return upload_positions(map, positions);
-}
-
-/* Grid placement and candidate frames for this frame, into the params buffer. */
-static roma_result write_frame_params(roma_map *map, const roma_map_frame_desc *frame)
+/* Grid placement and candidate frames of this frame (host copies; the build records
+ * them into the params buffer). The bounds were checked by the caller. */
+static void compute_frame_params(roma_map *map, const roma_map_frame_desc *frame, const float bmin[3],
+                                 const float bmax[3])
 {
     float jitter[3] = {0.0f, 0.0f, 0.0f};
     if (frame->jitter_grid)
         for (int i = 0; i < 3; ++i)
             jitter[i] = roma_random(frame->seed, 0x67726964u /* 'grid' */, frame->frame, (uint32_t)i) - 0.5f;
-    if (!roma_compute_grid(map->scene_min, map->scene_max, map->res, map->angular, map->margin_cells,
-                           jitter, &map->grid))
-        return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE, "roma_map: the scene bounds are empty or not finite");
+    roma_compute_grid(bmin, bmax, map->res, map->angular, map->margin_cells, jitter, &map->grid);
     float dirs[3 * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
     roma_candidate_directions(map->angular, frame->seed, frame->frame, frame->jitter_directions, dirs);
     for (uint32_t k = 0; k < map->map_count; ++k)
         roma_compute_map_frame(&map->grid, dirs + 3 * k, &map->frames[k]);
-    memcpy(map->params.mapped, &map->grid, sizeof map->grid);
-    memcpy((char *)map->params.mapped + sizeof map->grid, map->frames, sizeof(roma_map_frame) * map->map_count);
-    return ROMA_SUCCESS;
+}
+
+/* The parameters travel in the command buffer (at most 36,912 bytes, under
+ * vkCmdUpdateBuffer's 65,536): no host-visible copy can be overwritten while an
+ * earlier frame still reads it. */
+static void record_frame_params(roma_map *map, VkCommandBuffer cmd)
+{
+    unsigned char block[ROMA_PARAMS_BLOCK_BYTES];
+    size_t bytes = sizeof map->grid + sizeof(roma_map_frame) * map->map_count;
+    memcpy(block, &map->grid, sizeof map->grid);
+    memcpy(block + sizeof map->grid, map->frames, sizeof(roma_map_frame) * map->map_count);
+    vkCmdUpdateBuffer(cmd, map->params.buffer, 0, bytes, block);
+}
+
+/* Everything about a frame's geometry that can fail, checked before anything is
+ * recorded or changed: bmin and bmax receive the box the grid is fitted to. */
+static roma_result check_frame(roma_map *map, const roma_map_frame_desc *f, float bmin[3], float bmax[3])
+{
+    const char *fn = "roma_map_record_build";
+    if (f->slot >= map->frames_in_flight)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: slot %u, the map has %u frames in flight",
+                         fn, f->slot, map->frames_in_flight);
+    if (f->positions && f->gpu_positions)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: positions and gpu_positions are both set; give one", fn);
+    if ((f->positions || f->gpu_positions) && f->vertex_count != map->vertex_count)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: %u vertices given, the map was made with %u", fn, f->vertex_count, map->vertex_count);
+    if (f->gpu_positions) {
+        uint32_t stride = f->gpu_position_stride ? f->gpu_position_stride : 12u;
+        if (stride < 12u || stride % 4u)
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                             "%s: gpu_position_stride %u must be a multiple of 4 and at least 12", fn, stride);
+        if (f->gpu_positions % 4u)
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: gpu_positions is not 4-byte aligned", fn);
+        if (!f->volume)
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                             "%s: gpu_positions needs a volume (the host cannot see their bounds)", fn);
+    }
+    if (f->positions)
+        for (uint64_t i = 0; i < 3ull * map->vertex_count; ++i)
+            if (!isfinite(f->positions[i]))
+                return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE, "%s: vertex %llu is not finite", fn,
+                                 (unsigned long long)(i / 3));
+    if (f->volume) {
+        memcpy(bmin, f->volume->min, sizeof(float) * 3);
+        memcpy(bmax, f->volume->max, sizeof(float) * 3);
+        for (int a = 0; a < 3; ++a)
+            if (!(bmin[a] <= bmax[a]))
+                return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                                 "%s: volume min (%g, %g, %g) is not below max (%g, %g, %g)", fn, (double)bmin[0],
+                                 (double)bmin[1], (double)bmin[2], (double)bmax[0], (double)bmax[1],
+                                 (double)bmax[2]);
+    } else if (f->positions) {
+        scene_bounds(f->positions, map->indices_host, map->triangle_count, bmin, bmax);
+    } else {
+        memcpy(bmin, map->scene_min, sizeof(float) * 3);
+        memcpy(bmax, map->scene_max, sizeof(float) * 3);
+    }
+    return check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells, fn);
+}
+
+/* New positions of this frame into the map's positions buffer (after the opening
+ * barrier of the build). */
+static void record_positions(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *f)
+{
+    if (f->positions) {
+        record_copy_staged(map, cmd, f->slot);
+    } else if (f->gpu_positions) {
+        uint32_t stride = f->gpu_position_stride ? f->gpu_position_stride : 12u;
+        roma_gather_positions_push push = {
+            .src = f->gpu_positions, .dst = map->positions.address, .config = {map->vertex_count, stride / 4u, 0, 0}};
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->gather_positions.pipeline);
+        vkCmdPushConstants(cmd, map->gather_positions.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        roma_cmd_dispatch_linear(cmd, map->vertex_count, ROMA_GATHER_WORKGROUP_SIZE);
+    }
 }
 
 /* Compute-shader writes of libroma's passes made visible to the next consumer. */
@@ -402,9 +492,32 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     if (r != ROMA_SUCCESS)
         return r;
     roma_map_frame_desc frame = frame_in ? *frame_in : (roma_map_frame_desc){0};
-    r = write_frame_params(map, &frame);
+    float bmin[3], bmax[3];
+    r = check_frame(map, &frame, bmin, bmax);
+    if (r == ROMA_SUCCESS && frame.positions)
+        r = stage_positions(map, frame.slot, frame.positions);
     if (r != ROMA_SUCCESS)
         return r;
+    if (frame.positions && frame.volume) /* later frames without a volume fit these bounds */
+        scene_bounds(frame.positions, map->indices_host, map->triangle_count, map->scene_min, map->scene_max);
+    else if (frame.positions)
+        for (int a = 0; a < 3; ++a)
+            map->scene_min[a] = bmin[a], map->scene_max[a] = bmax[a];
+    compute_frame_params(map, &frame, bmin, bmax);
+
+    /* Everything earlier on the queue (traces of the previous frame from any stage,
+     * downloads, the caller's writes of gpu_positions) before this build writes. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    record_frame_params(map, cmd);
+    record_positions(map, cmd, &frame);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                                VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_UNIFORM_READ_BIT);
 
     if (steps & ROMA_MAP_STEP_VOXELIZE) {
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
@@ -418,9 +531,11 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
         record_rotation(map, cmd);
         roma_gpu_timer_end(timer, cmd, scope);
     }
-    /* Maps feed traces (compute) and downloads (transfer). */
-    compute_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    /* Maps and parameters readable by any later command: traces from any stage,
+     * downloads. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
     if (steps & ROMA_MAP_STEP_ROTATE)
         map->built = 1;
     return ROMA_SUCCESS;

@@ -15,12 +15,17 @@ struct roma_map {
     uint32_t res, words, angular, map_count;
     roma_bom_mode bom_mode;
     float margin_cells;
+    uint32_t frames_in_flight;
     uint32_t vertex_count, triangle_count;
     uint32_t *indices_host;
-    float scene_min[3], scene_max[3];
-    roma_buffer positions, indices; /* float4 per vertex, uint3 per triangle (host-visible) */
+    float scene_min[3], scene_max[3]; /* bounds of the last host positions */
+    roma_buffer positions;          /* float4 per vertex (device-local; written by copies and gathers) */
+    roma_buffer indices;            /* uint3 per triangle (host-visible, written once) */
+    roma_buffer position_staging[ROMA_MAX_FRAMES_IN_FLIGHT]; /* per slot, made on first use */
     roma_buffer bom, maps;          /* device-local words */
-    roma_buffer params;             /* roma_grid_params + map_count roma_map_frame (host-visible) */
+    roma_buffer params;             /* roma_grid_params + map_count roma_map_frame (device-local,
+                                       written by vkCmdUpdateBuffer in each build) */
+    roma_compute_pipeline gather_positions;
     roma_buffer ray_staging, hit_staging; /* roma_map_trace only */
     roma_buffer cells;              /* occupied-cell list of the scatter rotation (device) */
     uint32_t cell_capacity;

@@ -38,7 +38,10 @@ typedef enum roma_context_flags {
      * creation fails with ROMA_ERROR_MISSING_FEATURE if the layer is absent. */
     ROMA_CONTEXT_VALIDATION = 1u << 0,
     /* Never pick a CPU implementation (lavapipe). */
-    ROMA_CONTEXT_REQUIRE_GPU = 1u << 1
+    ROMA_CONTEXT_REQUIRE_GPU = 1u << 1,
+    /* Validation with synchronization validation (hazards between commands, across
+     * submissions); implies ROMA_CONTEXT_VALIDATION. Own device only. */
+    ROMA_CONTEXT_SYNC_VALIDATION = 1u << 2
 } roma_context_flags;
 
 typedef struct roma_external_device {
@@ -77,6 +80,11 @@ typedef struct roma_context_info {
     uint64_t device_memory_in_use; /* bytes libroma's objects on this context hold now */
     uint64_t device_memory_budget; /* desc.device_memory_budget (0 = none) */
     uint64_t max_allocation_size;  /* the device's largest single allocation */
+    /* vkQueueSubmit and waits (fence, queue idle) libroma made on the context's queue
+     * since creation: the blocking convenience calls and object creation make them;
+     * record calls never do. */
+    uint64_t queue_submits;
+    uint64_t queue_waits;
 } roma_context_info;
 
 roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);

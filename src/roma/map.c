@@ -461,7 +461,10 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd)
                                 VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate_scatter.pipeline);
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, scatter));
-    /* Zero workgroups unless the list overflowed (then the scatter did nothing). */
+    /* Zero workgroups unless the list overflowed (then the scatter did nothing). The
+     * barrier is for the cases the GPU cannot know apart in advance: both write the maps. */
+    compute_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->rotate_gather.pipeline);
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, gather));
 }

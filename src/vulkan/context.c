@@ -87,9 +87,21 @@ static roma_result create_instance(roma_context *ctx)
         .apiVersion = VK_API_VERSION_1_3,
     };
     VkDebugUtilsMessengerCreateInfoEXT debug = messenger_info(ctx);
+    const VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = &sync,
+    };
+    /* The messenger info also covers instance create/destroy; the sync feature before it. */
+    const void *chain = ctx->validation_enabled ? &debug : NULL;
+    if (ctx->validation_enabled && (ctx->flags & ROMA_CONTEXT_SYNC_VALIDATION)) {
+        features.pNext = &debug;
+        chain = &features;
+    }
     VkInstanceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pNext = ctx->validation_enabled ? &debug : NULL, /* also covers create/destroy */
+        .pNext = chain,
         .pApplicationInfo = &app,
         .enabledLayerCount = ctx->validation_enabled ? 1u : 0u,
         .ppEnabledLayerNames = layers,
@@ -204,7 +216,7 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     roma_context_desc defaults = {0};
     if (!desc)
         desc = &defaults;
-    const uint32_t known_flags = ROMA_CONTEXT_VALIDATION | ROMA_CONTEXT_REQUIRE_GPU;
+    const uint32_t known_flags = ROMA_CONTEXT_VALIDATION | ROMA_CONTEXT_REQUIRE_GPU | ROMA_CONTEXT_SYNC_VALIDATION;
     if (desc->flags & ~known_flags)
         return roma_fail(&desc->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_context_create: unknown flags 0x%x", desc->flags & ~known_flags);
@@ -222,7 +234,7 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     } else {
         ctx->owns_device = 1;
         ctx->validation_enabled =
-            (desc->flags & ROMA_CONTEXT_VALIDATION) || env_flag("ROMA_VALIDATION");
+            (desc->flags & (ROMA_CONTEXT_VALIDATION | ROMA_CONTEXT_SYNC_VALIDATION)) || env_flag("ROMA_VALIDATION");
         const char *name = desc->device_name ? desc->device_name : getenv("ROMA_DEVICE");
         roma_device_choice choice = {0};
         r = create_instance(ctx);
@@ -306,6 +318,8 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
     out->max_allocation_size = ctx->max_allocation_size;
     out->validation_enabled = ctx->validation_enabled;
     out->owns_device = ctx->owns_device;
+    out->queue_submits = ctx->queue_submits;
+    out->queue_waits = ctx->queue_waits;
     return ROMA_SUCCESS;
 }
 

@@ -26,6 +26,7 @@ struct roma_context {
     uint64_t memory_budget;           /* desc.device_memory_budget; 0 = none */
     uint64_t memory_in_use;           /* bytes of every vkAllocateMemory libroma made */
     int has_geometry_shader;
+    uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
     /* For the context's own blocking submissions (uploads, readbacks, self-test). */
     VkCommandPool command_pool;
     VkFence fence;

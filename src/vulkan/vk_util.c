@@ -220,7 +220,9 @@ roma_result roma_submit_one_shot(roma_context *ctx, VkCommandBuffer cmd)
             .pCommandBuffers = &cmd,
         };
         r = roma_vk_check(ctx, vkQueueSubmit(ctx->queue, 1, &submit, ctx->fence), "vkQueueSubmit");
+        ++ctx->queue_submits;
         if (r == ROMA_SUCCESS) {
+            ++ctx->queue_waits;
             r = roma_vk_check(ctx, vkWaitForFences(ctx->device, 1, &ctx->fence, VK_TRUE, UINT64_MAX),
                               "vkWaitForFences");
             vkResetFences(ctx->device, 1, &ctx->fence);

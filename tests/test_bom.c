@@ -17,8 +17,8 @@
 #include <string.h>
 
 #include "harness.h"
-#include "roma/bom_raster.h"
-#include "roma/bom_voxelize.h"
+#include "voxelize/bom_raster.h"
+#include "voxelize/bom_voxelize.h"
 #include "roma/context.h"
 #include "roma/gltf.h"
 #include "roma/map.h"
@@ -131,7 +131,7 @@ typedef struct variant {
     uint32_t mode; /* ROMA_BOM_MODE_* (raster modes) */
     uint32_t flags;
     const char *name;
-    int compute;   /* the compute voxelizer (src/roma/bom_voxelize.h) instead of the raster */
+    int compute;   /* the compute voxelizer (src/voxelize/bom_voxelize.h) instead of the raster */
 } variant;
 
 #define VARIANTS 5

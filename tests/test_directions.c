@@ -3,7 +3,7 @@
 #include <math.h>
 
 #include "harness.h"
-#include "roma/directions.h"
+#include "rotate/directions.h"
 #include "roma/sampling.h"
 
 static float angle_between(const float a[3], const float b[3])

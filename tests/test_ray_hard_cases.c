@@ -19,10 +19,10 @@
 
 #include "harness.h"
 #include "reference.h"
-#include "roma/cpu_mirror.h"
-#include "roma/directions.h"
+#include "trace/cpu_mirror.h"
+#include "rotate/directions.h"
 #include "roma/map.h"
-#include "roma/map_internal.h"
+#include "map/map_internal.h"
 #include "roma/sampling.h"
 
 /* --- scenes --- */

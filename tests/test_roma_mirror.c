@@ -6,10 +6,10 @@
 #include <string.h>
 
 #include "harness.h"
-#include "roma/cpu_mirror.h"
+#include "trace/cpu_mirror.h"
 #include "roma/gltf.h"
 #include "roma/map.h"
-#include "roma/map_internal.h"
+#include "map/map_internal.h"
 #include "roma/sampling.h"
 
 static void make_rays(const roma_map_info *info, uint32_t n, uint32_t seed, roma_ray *rays)

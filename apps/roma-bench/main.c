@@ -13,7 +13,7 @@
 #include "reference.h"
 #include "roma/map.h"
 #include "roma/roma.h"
-#include "roma/map_internal.h"
+#include "map/map_internal.h"
 #include "vulkan/vk_internal.h"
 
 static const char *usage =

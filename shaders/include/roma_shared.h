@@ -90,7 +90,7 @@ ROMA_STRUCT_BEGIN(roma_bom_push)
     ROMA_U64(bom);        /* RES*RES*words uint */
     ROMA_U64(params);     /* roma_grid_params */
     ROMA_UVEC4(config);   /* x: projection axis 0/1/2, y: roma_bom_mode, z: triangle count,
-                             w: flags (bit 0: conservative rasterization, see src/roma/bom_raster.h) */
+                             w: flags (bit 0: conservative rasterization, see src/voxelize/bom_raster.h) */
 ROMA_STRUCT_END(roma_bom_push)
 
 /* roma_bom_push.config.y: which draws a triangle takes part in. */
@@ -100,7 +100,7 @@ ROMA_STRUCT_END(roma_bom_push)
  * stage, exact pixel/triangle overlap in the fragment stage). */
 #define ROMA_BOM_FLAG_CONSERVATIVE 1u
 
-/* BOM voxelization in compute (src/roma/bom_voxelize.h): exact triangle/cell overlap.
+/* BOM voxelization in compute (src/voxelize/bom_voxelize.h): exact triangle/cell overlap.
  * voxelize.comp runs one invocation per triangle; a triangle whose footprint along its
  * dominant axis spans more than ROMA_VOXELIZE_INLINE_COLUMNS columns is split into
  * tiles of ROMA_VOXELIZE_TILE x ROMA_VOXELIZE_TILE columns, queued and processed by

@@ -16,7 +16,7 @@
 //        roma_map_frame roma_fetch_frame(uint k);
 // Conventions are those of include/roma/map.h: t is a world-space distance
 // along normalize(dir); closest-hit t is the entry of the first occupied cell.
-// The C mirror in src/roma/cpu_mirror.c evaluates the same float expressions
+// The C mirror in src/trace/cpu_mirror.c evaluates the same float expressions
 // (marked precise here) so that results match bit for bit.
 #ifndef ROMA_TRACE_GLSL
 #define ROMA_TRACE_GLSL

@@ -3,7 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "roma/directions.h"
+#include "rotate/directions.h"
 
 static void cross3(const float a[3], const float b[3], float out[3])
 {

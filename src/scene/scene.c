@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "roma/directions.h"
+#include "rotate/directions.h"
 #include "util/log.h"
 
 struct roma_scene {

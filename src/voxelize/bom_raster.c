@@ -1,4 +1,4 @@
-#include "roma/bom_raster.h"
+#include "voxelize/bom_raster.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,8 +1,8 @@
-#include "roma/cpu_mirror.h"
+#include "trace/cpu_mirror.h"
 
 #include <math.h>
 
-#include "roma/directions.h"
+#include "rotate/directions.h"
 
 void roma_cpu_rotate(const roma_grid_params *grid, const roma_map_frame *frames,
                      const uint32_t *bom, uint32_t *maps)

@@ -1,4 +1,4 @@
-#include "roma/directions.h"
+#include "rotate/directions.h"
 
 #include <float.h>
 #include <math.h>

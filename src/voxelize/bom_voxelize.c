@@ -1,4 +1,4 @@
-#include "roma/bom_voxelize.h"
+#include "voxelize/bom_voxelize.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "roma/bom_raster.h"
-#include "roma/bom_voxelize.h"
-#include "roma/directions.h"
-#include "roma/map_internal.h"
-#include "roma/map_params.h"
+#include "voxelize/bom_raster.h"
+#include "voxelize/bom_voxelize.h"
+#include "rotate/directions.h"
+#include "map/map_internal.h"
+#include "rotate/map_params.h"
 #include "roma/sampling.h"
 
 static int valid_resolution(uint32_t r)

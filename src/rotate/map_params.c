@@ -1,4 +1,4 @@
-#include "roma/map_params.h"
+#include "rotate/map_params.h"
 
 #include <math.h>
 #include <string.h>

@@ -341,8 +341,11 @@ static void test_context(gpu *g, roma_context *logged, roma_test_log *log)
     roma_context *c = SENTINEL;
     FAILS(roma_context_create(&desc, &c), ROMA_ERROR_INVALID_ARGUMENT, &own, "flags");
     CHECK(c == NULL);
+    roma_device_requirements req;
+    roma_get_device_requirements(&req);
     roma_external_device ext = {roma_context_instance(g->ctx), roma_context_physical_device(g->ctx),
-                                roma_context_device(g->ctx), roma_context_queue_family(g->ctx), VK_NULL_HANDLE};
+                                roma_context_device(g->ctx), roma_context_queue_family(g->ctx), VK_NULL_HANDLE,
+                                &req.features};
     roma_context_desc ext_desc = {.external = &ext, .logger = desc.logger};
     c = SENTINEL;
     FAILS(roma_context_create(&ext_desc, &c), ROMA_ERROR_INVALID_ARGUMENT, &own, "queue");
@@ -642,8 +645,11 @@ int main(void)
         /* A second context on the same device with a recording logger (messages of
          * context-level calls), and one on a device of its own (foreign timers). */
         roma_test_log log;
+        roma_device_requirements req;
+        roma_get_device_requirements(&req);
         roma_external_device ext = {roma_context_instance(g.ctx), roma_context_physical_device(g.ctx),
-                                    g.device, roma_context_queue_family(g.ctx), roma_context_queue(g.ctx)};
+                                    g.device, roma_context_queue_family(g.ctx), roma_context_queue(g.ctx),
+                                    &req.features};
         roma_context_desc desc = {.external = &ext, .logger = roma_test_logger(&log)};
         roma_context *logged = NULL;
         CHECK_RESULT(roma_context_create(&desc, &logged), ROMA_SUCCESS);

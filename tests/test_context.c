@@ -6,6 +6,113 @@
 #include "harness.h"
 #include "roma/context.h"
 
+/* Allocation callbacks that count what is live: libroma must route the instance, the
+ * device and every object through them, and free all of it. A header before each block
+ * keeps its size and the offset back to the malloc'd pointer. */
+typedef struct alloc_count {
+    long live, total;
+} alloc_count;
+
+static void *VKAPI_CALL count_alloc(void *user, size_t size, size_t align, VkSystemAllocationScope scope)
+{
+    (void)scope;
+    if (align < 16)
+        align = 16;
+    unsigned char *raw = malloc(size + align + 16);
+    if (!raw)
+        return NULL;
+    unsigned char *p = raw + 16;
+    p += (align - (uintptr_t)p % align) % align;
+    size_t off = (size_t)(p - raw);
+    memcpy(p - 16, &size, sizeof size);
+    memcpy(p - 8, &off, sizeof off);
+    ((alloc_count *)user)->live++, ((alloc_count *)user)->total++;
+    return p;
+}
+
+static void VKAPI_CALL count_free(void *user, void *mem)
+{
+    if (!mem)
+        return;
+    size_t off;
+    memcpy(&off, (unsigned char *)mem - 8, sizeof off);
+    free((unsigned char *)mem - off);
+    ((alloc_count *)user)->live--;
+}
+
+static void *VKAPI_CALL count_realloc(void *user, void *old, size_t size, size_t align, VkSystemAllocationScope scope)
+{
+    if (!old)
+        return count_alloc(user, size, align, scope);
+    if (size == 0) {
+        count_free(user, old);
+        return NULL;
+    }
+    void *p = count_alloc(user, size, align, scope);
+    if (p) {
+        size_t old_size;
+        memcpy(&old_size, (unsigned char *)old - 16, sizeof old_size);
+        memcpy(p, old, old_size < size ? old_size : size);
+        count_free(user, old);
+    }
+    return p;
+}
+
+/* A device on the context's physical device made the way an engine might forget to:
+ * without bufferDeviceAddress. libroma must refuse it by name, not fail later with
+ * validation errors. */
+static void test_missing_feature(roma_context *ctx)
+{
+    roma_device_requirements req;
+    roma_get_device_requirements(&req);
+    req.features12.bufferDeviceAddress = VK_FALSE;
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                     .queueFamilyIndex = roma_context_queue_family(ctx),
+                                     .queueCount = 1,
+                                     .pQueuePriorities = &priority};
+    VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                               .pNext = &req.features,
+                               .queueCreateInfoCount = 1,
+                               .pQueueCreateInfos = &queue};
+    VkDevice device = VK_NULL_HANDLE;
+    CHECK(vkCreateDevice(roma_context_physical_device(ctx), &info, NULL, &device) == VK_SUCCESS);
+    if (!device)
+        return;
+    VkQueue q;
+    vkGetDeviceQueue(device, roma_context_queue_family(ctx), 0, &q);
+    roma_external_device ext = {roma_context_instance(ctx), roma_context_physical_device(ctx), device,
+                                roma_context_queue_family(ctx), q, &req.features};
+    roma_test_log log;
+    roma_context_desc desc = {.external = &ext, .logger = roma_test_logger(&log)};
+    roma_context *c = (roma_context *)1;
+    CHECK_RESULT(roma_context_create(&desc, &c), ROMA_ERROR_MISSING_FEATURE);
+    CHECK(c == NULL && log.errors == 1 && strstr(log.last, "bufferDeviceAddress") != NULL);
+    /* The same device, the features not said: refused as a bad argument. */
+    ext.enabled_features = NULL;
+    CHECK_RESULT(roma_context_create(&desc, &c), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(c == NULL && strstr(log.last, "enabled_features") != NULL);
+    vkDestroyDevice(device, NULL);
+}
+
+/* Own device with allocation callbacks: used, and everything given back. */
+static void test_allocation_callbacks(void)
+{
+    alloc_count count = {0, 0};
+    VkAllocationCallbacks callbacks = {.pUserData = &count,
+                                       .pfnAllocation = count_alloc,
+                                       .pfnReallocation = count_realloc,
+                                       .pfnFree = count_free};
+    roma_context_desc desc = {.flags = ROMA_CONTEXT_VALIDATION, .allocation_callbacks = &callbacks};
+    roma_context *c = NULL;
+    CHECK_RESULT(roma_context_create(&desc, &c), ROMA_SUCCESS);
+    CHECK_RESULT(roma_context_self_test(c, NULL), ROMA_SUCCESS);
+    long during = count.total;
+    roma_context_destroy(c);
+    printf("allocation callbacks: %ld allocations, %ld live after destroy\n", during, count.live);
+    CHECK(during > 0 && count.live == 0);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -56,6 +163,11 @@ int main(void)
         .queue_family_index = roma_context_queue_family(ctx),
         .queue = roma_context_queue(ctx),
     };
+    roma_device_requirements req;
+    roma_get_device_requirements(&req);
+    CHECK(req.api_version == VK_API_VERSION_1_3 && req.features.pNext == &req.features12 &&
+          req.features12.pNext == &req.features13 && req.features12.bufferDeviceAddress);
+    ext.enabled_features = &req.features;
     roma_context_desc ext_desc = {.external = &ext};
     roma_context *adopted = NULL;
     CHECK_RESULT(roma_context_create(&ext_desc, &adopted), ROMA_SUCCESS);
@@ -72,6 +184,8 @@ int main(void)
     CHECK_RESULT(roma_context_create(&ext_desc, &adopted), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK(adopted == NULL);
 
+    test_missing_feature(ctx);
+    test_allocation_callbacks();
     roma_test_context_finish(ctx);
     roma_context_destroy(NULL);
     return roma_test_finish("test_context");

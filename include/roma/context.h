@@ -6,12 +6,23 @@
  *    CPU implementation such as Mesa lavapipe;
  *  - external device: desc.external holds the caller's instance, physical
  *    device, device and a queue with graphics + compute. They must outlive the
- *    context, and the device must have been created with Vulkan 1.3 and the
- *    features listed under "Requirements" enabled.
+ *    context. The device must have been created with what
+ *    roma_get_device_requirements lists, and external.enabled_features says what
+ *    was enabled: a missing feature is refused by name (ROMA_ERROR_MISSING_FEATURE).
  *
- * Requirements: Vulkan 1.3 with dynamicRendering, synchronization2,
- * hostQueryReset, bufferDeviceAddress, fragmentStoresAndAtomics, and timestamp
- * queries on the chosen queue family.
+ * Requirements (roma_get_device_requirements): Vulkan 1.3 with dynamicRendering,
+ * synchronization2, hostQueryReset, bufferDeviceAddress, fragmentStoresAndAtomics;
+ * no device extension; a queue family with graphics, compute and timestamps; subgroup
+ * arithmetic and ballot in compute shaders; maxUniformBufferRange >= 36,912 bytes.
+ * geometryShader is optional (the raster BOM modes use it when enabled).
+ *
+ * Threads and queues: a context and everything made from it (maps, timers) is used
+ * by one thread at a time (lock around it otherwise); objects of different contexts
+ * are independent. Record calls only write into the command buffer they are given
+ * (externally synchronised by the caller, as Vulkan requires). libroma submits to the
+ * context's queue only in object creation and in the blocking convenience calls
+ * (roma_map_build, roma_map_trace, downloads, the self-test): on the caller's queue,
+ * the caller must not submit to it from another thread during those calls.
  *
  * Environment (read once in roma_context_create, only where the desc is silent):
  *   ROMA_DEVICE=<substring>   choose the physical device by name
@@ -50,13 +61,35 @@ typedef struct roma_external_device {
     VkDevice device;
     uint32_t queue_family_index; /* must support graphics, compute and timestamps */
     VkQueue queue;
+    /* The features the device was created with: the VkDeviceCreateInfo pNext chain's
+     * VkPhysicalDeviceFeatures2 (followed through pNext: Vulkan11/12/13Features and the
+     * single-feature structs are read). Required. */
+    const VkPhysicalDeviceFeatures2 *enabled_features;
 } roma_external_device;
+
+/* What libroma needs of a device, for an engine that creates its own. The features
+ * form a chain inside the struct (features.pNext -> features12 -> features13): use
+ * it in place, or OR its VK_TRUE fields into the engine's own chain. */
+typedef struct roma_device_requirements {
+    uint32_t api_version; /* VK_API_VERSION_1_3: the instance's apiVersion and the device's */
+    VkPhysicalDeviceFeatures2 features;
+    VkPhysicalDeviceVulkan12Features features12;
+    VkPhysicalDeviceVulkan13Features features13;
+    uint32_t extension_count;      /* device extensions to enable: none today */
+    const char *const *extensions;
+    VkQueueFlags queue_flags;      /* the queue's family: GRAPHICS | COMPUTE, timestampValidBits > 0 */
+} roma_device_requirements;
+
+void roma_get_device_requirements(roma_device_requirements *out);
 
 typedef struct roma_context_desc {
     uint32_t flags;                       /* roma_context_flags; unknown bits are rejected */
     const char *device_name;              /* substring of the device name; NULL = ROMA_DEVICE or auto */
     const roma_external_device *external; /* NULL = libroma creates its own device */
     roma_logger logger;
+    /* Used for every Vulkan object libroma creates (and, own device, for the instance
+     * and device); NULL = the driver's. Must outlive the context. */
+    const VkAllocationCallbacks *allocation_callbacks;
     /* Bytes of device memory (every vkAllocateMemory: device-local and staging) that
      * objects on this context may hold together; 0 = no limit but the device's.
      * Any call that would pass it (a create, a first build, a trace that needs larger

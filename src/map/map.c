@@ -292,9 +292,9 @@ void roma_map_destroy(roma_map *map)
     roma_descriptor_set_destroy(ctx, &map->staged_set);
     for (int i = 0; i < 2; ++i)
         if (map->staging_views[i])
-            vkDestroyBufferView(ctx->device, map->staging_views[i], NULL);
+            vkDestroyBufferView(ctx->device, map->staging_views[i], ctx->allocator);
     if (map->maps_view)
-        vkDestroyBufferView(ctx->device, map->maps_view, NULL);
+        vkDestroyBufferView(ctx->device, map->maps_view, ctx->allocator);
     roma_compute_pipeline_destroy(ctx, &map->rotate_gather);
     roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
     roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
@@ -673,7 +673,7 @@ static roma_result bind_staging(roma_map *map)
     roma_context *ctx = map->ctx;
     for (int i = 0; i < 2; ++i)
         if (map->staging_views[i]) {
-            vkDestroyBufferView(ctx->device, map->staging_views[i], NULL);
+            vkDestroyBufferView(ctx->device, map->staging_views[i], ctx->allocator);
             map->staging_views[i] = VK_NULL_HANDLE;
         }
     roma_result r = roma_buffer_view_create(ctx, map->ray_staging.buffer, VK_FORMAT_R32G32B32A32_SFLOAT,

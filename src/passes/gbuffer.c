@@ -52,9 +52,9 @@ static roma_result create_pipelines(roma_gbuffer *g)
     if (res == ROMA_SUCCESS)
         res = roma_graphics_pipeline_create(ctx, &shade_pass, &g->shade_pipeline);
     if (vert)
-        vkDestroyShaderModule(ctx->device, vert, NULL);
+        vkDestroyShaderModule(ctx->device, vert, ctx->allocator);
     if (frag)
-        vkDestroyShaderModule(ctx->device, frag, NULL);
+        vkDestroyShaderModule(ctx->device, frag, ctx->allocator);
     return res;
 }
 
@@ -74,7 +74,7 @@ static roma_result create_depth(roma_gbuffer *g)
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
-    roma_result res = roma_vk_check(ctx, vkCreateImage(ctx->device, &info, NULL, &g->depth), "vkCreateImage");
+    roma_result res = roma_vk_check(ctx, vkCreateImage(ctx->device, &info, ctx->allocator, &g->depth), "vkCreateImage");
     if (res != ROMA_SUCCESS)
         return res;
     VkMemoryRequirements req;
@@ -99,7 +99,7 @@ static roma_result create_depth(roma_gbuffer *g)
     if (res != ROMA_SUCCESS)
         return res;
     g->depth_bytes = req.size;
-    res = roma_vk_check(ctx, vkAllocateMemory(ctx->device, &alloc, NULL, &g->depth_memory), "vkAllocateMemory");
+    res = roma_vk_check(ctx, vkAllocateMemory(ctx->device, &alloc, ctx->allocator, &g->depth_memory), "vkAllocateMemory");
     if (res == ROMA_SUCCESS)
         res = roma_vk_check(ctx, vkBindImageMemory(ctx->device, g->depth, g->depth_memory, 0),
                             "vkBindImageMemory");
@@ -111,7 +111,7 @@ static roma_result create_depth(roma_gbuffer *g)
             .format = ROMA_GBUFFER_DEPTH_FORMAT,
             .subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1},
         };
-        res = roma_vk_check(ctx, vkCreateImageView(ctx->device, &view, NULL, &g->depth_view), "vkCreateImageView");
+        res = roma_vk_check(ctx, vkCreateImageView(ctx->device, &view, ctx->allocator, &g->depth_view), "vkCreateImageView");
     }
     return res;
 }
@@ -162,18 +162,18 @@ void roma_gbuffer_destroy(roma_gbuffer *g)
     roma_buffer_destroy(g->ctx, &g->pixels);
     roma_buffer_destroy(g->ctx, &g->params);
     if (g->depth_view)
-        vkDestroyImageView(dev, g->depth_view, NULL);
+        vkDestroyImageView(dev, g->depth_view, g->ctx->allocator);
     if (g->depth)
-        vkDestroyImage(dev, g->depth, NULL);
+        vkDestroyImage(dev, g->depth, g->ctx->allocator);
     if (g->depth_memory)
-        vkFreeMemory(dev, g->depth_memory, NULL);
+        vkFreeMemory(dev, g->depth_memory, g->ctx->allocator);
     roma_device_memory_release(g->ctx, g->depth_bytes);
     if (g->shade_pipeline)
-        vkDestroyPipeline(dev, g->shade_pipeline, NULL);
+        vkDestroyPipeline(dev, g->shade_pipeline, g->ctx->allocator);
     if (g->depth_pipeline)
-        vkDestroyPipeline(dev, g->depth_pipeline, NULL);
+        vkDestroyPipeline(dev, g->depth_pipeline, g->ctx->allocator);
     if (g->layout)
-        vkDestroyPipelineLayout(dev, g->layout, NULL);
+        vkDestroyPipelineLayout(dev, g->layout, g->ctx->allocator);
     free(g);
 }
 

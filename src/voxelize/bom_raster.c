@@ -31,9 +31,9 @@ static roma_result create_pipeline(roma_bom_raster *r)
     if (res == ROMA_SUCCESS)
         res = roma_graphics_pipeline_create(ctx, &desc, &r->pipeline);
     if (vert)
-        vkDestroyShaderModule(ctx->device, vert, NULL);
+        vkDestroyShaderModule(ctx->device, vert, ctx->allocator);
     if (frag)
-        vkDestroyShaderModule(ctx->device, frag, NULL);
+        vkDestroyShaderModule(ctx->device, frag, ctx->allocator);
     return res;
 }
 
@@ -62,9 +62,9 @@ void roma_bom_raster_destroy(roma_bom_raster *r)
     if (!r)
         return;
     if (r->pipeline)
-        vkDestroyPipeline(r->ctx->device, r->pipeline, NULL);
+        vkDestroyPipeline(r->ctx->device, r->pipeline, r->ctx->allocator);
     if (r->layout)
-        vkDestroyPipelineLayout(r->ctx->device, r->layout, NULL);
+        vkDestroyPipelineLayout(r->ctx->device, r->layout, r->ctx->allocator);
     free(r);
 }
 

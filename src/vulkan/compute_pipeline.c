@@ -39,7 +39,7 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
             .pushConstantRangeCount = push_size ? 1u : 0u,
             .pPushConstantRanges = &push,
         };
-        r = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, NULL, &out->layout),
+        r = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, ctx->allocator, &out->layout),
                           "vkCreatePipelineLayout");
     }
     VkShaderModule shader = VK_NULL_HANDLE;
@@ -60,11 +60,11 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                       .pSpecializationInfo = constant_count ? &spec : NULL},
             .layout = out->layout,
         };
-        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &out->pipeline),
+        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->allocator, &out->pipeline),
                           "vkCreateComputePipelines");
     }
     if (shader)
-        vkDestroyShaderModule(ctx->device, shader, NULL);
+        vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
     if (r != ROMA_SUCCESS)
         roma_compute_pipeline_destroy(ctx, out);
     return r;
@@ -75,10 +75,10 @@ void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *p)
     if (!ctx || !p)
         return;
     if (p->pipeline)
-        vkDestroyPipeline(ctx->device, p->pipeline, NULL);
+        vkDestroyPipeline(ctx->device, p->pipeline, ctx->allocator);
     if (p->layout)
-        vkDestroyPipelineLayout(ctx->device, p->layout, NULL);
+        vkDestroyPipelineLayout(ctx->device, p->layout, ctx->allocator);
     if (p->set_layout)
-        vkDestroyDescriptorSetLayout(ctx->device, p->set_layout, NULL);
+        vkDestroyDescriptorSetLayout(ctx->device, p->set_layout, ctx->allocator);
     memset(p, 0, sizeof *p);
 }

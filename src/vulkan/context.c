@@ -108,7 +108,7 @@ static roma_result create_instance(roma_context *ctx)
         .enabledExtensionCount = ctx->validation_enabled ? 1u : 0u,
         .ppEnabledExtensionNames = extensions,
     };
-    VkResult vr = vkCreateInstance(&info, NULL, &ctx->instance);
+    VkResult vr = vkCreateInstance(&info, ctx->allocator, &ctx->instance);
     if (vr == VK_ERROR_INCOMPATIBLE_DRIVER || vr == VK_ERROR_INITIALIZATION_FAILED)
         return roma_fail(&ctx->logger, ROMA_ERROR_NO_VULKAN,
                          "vkCreateInstance failed (%s): no usable Vulkan driver is installed "
@@ -124,10 +124,35 @@ static roma_result create_instance(roma_context *ctx)
         if (!create_messenger)
             return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
                              "vkCreateDebugUtilsMessengerEXT is unavailable");
-        r = roma_vk_check(ctx, create_messenger(ctx->instance, &debug, NULL, &ctx->messenger),
+        r = roma_vk_check(ctx, create_messenger(ctx->instance, &debug, ctx->allocator, &ctx->messenger),
                           "vkCreateDebugUtilsMessengerEXT");
     }
     return r;
+}
+
+void roma_get_device_requirements(roma_device_requirements *out)
+{
+    if (!out)
+        return;
+    memset(out, 0, sizeof *out);
+    out->api_version = VK_API_VERSION_1_3;
+    out->features13 = (VkPhysicalDeviceVulkan13Features){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .dynamicRendering = VK_TRUE,
+        .synchronization2 = VK_TRUE,
+    };
+    out->features12 = (VkPhysicalDeviceVulkan12Features){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .pNext = &out->features13,
+        .hostQueryReset = VK_TRUE,
+        .bufferDeviceAddress = VK_TRUE,
+    };
+    out->features = (VkPhysicalDeviceFeatures2){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+        .pNext = &out->features12,
+        .features = {.fragmentStoresAndAtomics = VK_TRUE},
+    };
+    out->queue_flags = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
 }
 
 static roma_result create_device(roma_context *ctx)
@@ -139,36 +164,72 @@ static roma_result create_device(roma_context *ctx)
         .queueCount = 1,
         .pQueuePriorities = &priority,
     };
-    VkPhysicalDeviceVulkan13Features f13 = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
-        .dynamicRendering = VK_TRUE,
-        .synchronization2 = VK_TRUE,
-    };
-    VkPhysicalDeviceVulkan12Features f12 = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-        .pNext = &f13,
-        .hostQueryReset = VK_TRUE,
-        .bufferDeviceAddress = VK_TRUE,
-    };
-    VkPhysicalDeviceFeatures2 features = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
-        .pNext = &f12,
-        .features = {.fragmentStoresAndAtomics = VK_TRUE,
-                     .geometryShader = ctx->has_geometry_shader ? VK_TRUE : VK_FALSE},
-    };
+    roma_device_requirements req;
+    roma_get_device_requirements(&req);
+    req.features.features.geometryShader = ctx->has_geometry_shader ? VK_TRUE : VK_FALSE;
     VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-        .pNext = &features,
+        .pNext = &req.features,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue,
+        .enabledExtensionCount = req.extension_count,
+        .ppEnabledExtensionNames = req.extensions,
     };
-    VkResult vr = vkCreateDevice(ctx->physical_device, &info, NULL, &ctx->device);
+    VkResult vr = vkCreateDevice(ctx->physical_device, &info, ctx->allocator, &ctx->device);
     if (vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY, "vkCreateDevice: out of device memory");
     roma_result r = roma_vk_check(ctx, vr, "vkCreateDevice");
     if (r == ROMA_SUCCESS)
         vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
     return r;
+}
+
+/* The features a caller's device was created with, gathered from its pNext chain
+ * (the Vulkan 1.2/1.3 structs or the single-feature structs they absorbed). */
+typedef struct enabled_features {
+    VkBool32 dynamic_rendering, synchronization2, host_query_reset, buffer_device_address;
+    VkBool32 fragment_stores_and_atomics, geometry_shader;
+} enabled_features;
+
+static enabled_features read_enabled(const VkPhysicalDeviceFeatures2 *chain)
+{
+    enabled_features e = {0};
+    e.fragment_stores_and_atomics = chain->features.fragmentStoresAndAtomics;
+    e.geometry_shader = chain->features.geometryShader;
+    for (const VkBaseInStructure *s = chain->pNext; s; s = s->pNext) {
+        switch (s->sType) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: {
+            const VkPhysicalDeviceVulkan12Features *f = (const void *)s;
+            e.host_query_reset |= f->hostQueryReset;
+            e.buffer_device_address |= f->bufferDeviceAddress;
+            break;
+        }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+            const VkPhysicalDeviceVulkan13Features *f = (const void *)s;
+            e.dynamic_rendering |= f->dynamicRendering;
+            e.synchronization2 |= f->synchronization2;
+            break;
+        }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_HOST_QUERY_RESET_FEATURES:
+            e.host_query_reset |= ((const VkPhysicalDeviceHostQueryResetFeatures *)(const void *)s)->hostQueryReset;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES:
+            e.buffer_device_address |=
+                ((const VkPhysicalDeviceBufferDeviceAddressFeatures *)(const void *)s)->bufferDeviceAddress;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+            e.dynamic_rendering |=
+                ((const VkPhysicalDeviceDynamicRenderingFeatures *)(const void *)s)->dynamicRendering;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+            e.synchronization2 |=
+                ((const VkPhysicalDeviceSynchronization2Features *)(const void *)s)->synchronization2;
+            break;
+        default:
+            break;
+        }
+    }
+    return e;
 }
 
 static roma_result create_submit_objects(roma_context *ctx)
@@ -178,12 +239,12 @@ static roma_result create_submit_objects(roma_context *ctx)
         .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
         .queueFamilyIndex = ctx->queue_family,
     };
-    roma_result r = roma_vk_check(ctx, vkCreateCommandPool(ctx->device, &pool, NULL, &ctx->command_pool),
+    roma_result r = roma_vk_check(ctx, vkCreateCommandPool(ctx->device, &pool, ctx->allocator, &ctx->command_pool),
                                   "vkCreateCommandPool");
     if (r != ROMA_SUCCESS)
         return r;
     VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    return roma_vk_check(ctx, vkCreateFence(ctx->device, &fence, NULL, &ctx->fence), "vkCreateFence");
+    return roma_vk_check(ctx, vkCreateFence(ctx->device, &fence, ctx->allocator, &ctx->fence), "vkCreateFence");
 }
 
 static roma_result adopt_external(roma_context *ctx, const roma_external_device *ext)
@@ -203,8 +264,35 @@ static roma_result adopt_external(roma_context *ctx, const roma_external_device 
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "external queue family %u does not exist (the device has %u)",
                          ext->queue_family_index, family_count);
-    /* The caller created the device: libroma can only check what the hardware offers. */
-    return roma_check_device_support(ctx, ext->physical_device, &ctx->has_geometry_shader);
+    VkQueueFamilyProperties families[64];
+    uint32_t listed = family_count < 64 ? family_count : 64;
+    vkGetPhysicalDeviceQueueFamilyProperties(ext->physical_device, &listed, families);
+    const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if (ext->queue_family_index < listed && ((families[ext->queue_family_index].queueFlags & need) != need ||
+                                             families[ext->queue_family_index].timestampValidBits == 0))
+        return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
+                         "external queue family %u lacks graphics, compute or timestamps", ext->queue_family_index);
+    if (!ext->enabled_features || ext->enabled_features->sType != VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_context_desc.external.enabled_features must point to the VkPhysicalDeviceFeatures2 "
+                         "the device was created with (roma_get_device_requirements lists what to enable)");
+    roma_result r = roma_check_device_support(ctx, ext->physical_device, NULL);
+    if (r != ROMA_SUCCESS)
+        return r;
+    /* Offered is not enabled: what the caller enabled decides. */
+    enabled_features e = read_enabled(ext->enabled_features);
+    const char *missing = !e.dynamic_rendering             ? "dynamicRendering"
+                          : !e.synchronization2            ? "synchronization2"
+                          : !e.host_query_reset            ? "hostQueryReset"
+                          : !e.buffer_device_address       ? "bufferDeviceAddress"
+                          : !e.fragment_stores_and_atomics ? "fragmentStoresAndAtomics"
+                                                           : NULL;
+    if (missing)
+        return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE,
+                         "the caller's device was created without %s, which libroma needs "
+                         "(roma_get_device_requirements)", missing);
+    ctx->has_geometry_shader = e.geometry_shader != VK_FALSE;
+    return ROMA_SUCCESS;
 }
 
 roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context)
@@ -225,6 +313,7 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         return roma_fail(&desc->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_context_create: out of memory");
     ctx->logger = desc->logger;
     ctx->flags = desc->flags;
+    ctx->allocator = desc->allocation_callbacks;
     ctx->memory_budget = desc->device_memory_budget;
     atomic_init(&ctx->validation_errors, 0u);
 
@@ -281,22 +370,22 @@ void roma_context_destroy(roma_context *ctx)
         else if (ctx->queue)
             vkQueueWaitIdle(ctx->queue);
         if (ctx->fence)
-            vkDestroyFence(ctx->device, ctx->fence, NULL);
+            vkDestroyFence(ctx->device, ctx->fence, ctx->allocator);
         if (ctx->command_pool)
-            vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);
+            vkDestroyCommandPool(ctx->device, ctx->command_pool, ctx->allocator);
     }
     if (ctx->owns_device) {
         if (ctx->device)
-            vkDestroyDevice(ctx->device, NULL);
+            vkDestroyDevice(ctx->device, ctx->allocator);
         if (ctx->messenger) {
             PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger =
                 (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
                     ctx->instance, "vkDestroyDebugUtilsMessengerEXT");
             if (destroy_messenger)
-                destroy_messenger(ctx->instance, ctx->messenger, NULL);
+                destroy_messenger(ctx->instance, ctx->messenger, ctx->allocator);
         }
         if (ctx->instance)
-            vkDestroyInstance(ctx->instance, NULL);
+            vkDestroyInstance(ctx->instance, ctx->allocator);
     }
     free(ctx);
 }

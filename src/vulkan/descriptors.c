@@ -28,7 +28,7 @@ roma_result roma_descriptor_layout_create(roma_context *ctx, const VkDescriptorT
         .bindingCount = binding_count,
         .pBindings = bindings,
     };
-    return roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &info, NULL, out),
+    return roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &info, ctx->allocator, out),
                          "vkCreateDescriptorSetLayout");
 }
 
@@ -72,7 +72,7 @@ static roma_result set_create(roma_context *ctx, VkDescriptorSetLayout layout, c
         .poolSizeCount = binding_count,
         .pPoolSizes = sizes,
     };
-    roma_result r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, NULL, &out->pool),
+    roma_result r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, ctx->allocator, &out->pool),
                                   "vkCreateDescriptorPool");
     if (r == ROMA_SUCCESS) {
         VkDescriptorSetAllocateInfo alloc = {
@@ -91,9 +91,9 @@ void roma_descriptor_set_destroy(roma_context *ctx, roma_descriptor_set *set)
     if (!ctx || !set)
         return;
     if (set->pool)
-        vkDestroyDescriptorPool(ctx->device, set->pool, NULL); /* frees the set */
+        vkDestroyDescriptorPool(ctx->device, set->pool, ctx->allocator); /* frees the set */
     if (set->layout)
-        vkDestroyDescriptorSetLayout(ctx->device, set->layout, NULL);
+        vkDestroyDescriptorSetLayout(ctx->device, set->layout, ctx->allocator);
     memset(set, 0, sizeof *set);
 }
 
@@ -135,5 +135,5 @@ roma_result roma_buffer_view_create(roma_context *ctx, VkBuffer buffer, VkFormat
         .offset = 0,
         .range = VK_WHOLE_SIZE,
     };
-    return roma_vk_check(ctx, vkCreateBufferView(ctx->device, &info, NULL, out), "vkCreateBufferView");
+    return roma_vk_check(ctx, vkCreateBufferView(ctx->device, &info, ctx->allocator, out), "vkCreateBufferView");
 }

@@ -52,7 +52,7 @@ roma_result roma_gpu_timer_create(roma_context *ctx, uint32_t max_scopes, roma_g
         .queryType = VK_QUERY_TYPE_TIMESTAMP,
         .queryCount = 2 * max_scopes,
     };
-    roma_result r = roma_vk_check(ctx, vkCreateQueryPool(ctx->device, &info, NULL, &t->pool), "vkCreateQueryPool");
+    roma_result r = roma_vk_check(ctx, vkCreateQueryPool(ctx->device, &info, ctx->allocator, &t->pool), "vkCreateQueryPool");
     if (r != ROMA_SUCCESS) {
         roma_gpu_timer_destroy(t);
         return r;
@@ -73,7 +73,7 @@ void roma_gpu_timer_destroy(roma_gpu_timer *t)
     if (!t)
         return;
     if (t->pool)
-        vkDestroyQueryPool(t->ctx->device, t->pool, NULL);
+        vkDestroyQueryPool(t->ctx->device, t->pool, t->ctx->allocator);
     free(t->names);
     free(t->open);
     free(t);

@@ -16,7 +16,7 @@ roma_result roma_shader_module_create(roma_context *ctx, const char *name, VkSha
         .codeSize = m->size,
         .pCode = m->code,
     };
-    return roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &info, NULL, out), "vkCreateShaderModule");
+    return roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &info, ctx->allocator, out), "vkCreateShaderModule");
 }
 
 roma_result roma_push_layout_create(roma_context *ctx, VkShaderStageFlags stages, uint32_t push_size,
@@ -28,7 +28,7 @@ roma_result roma_push_layout_create(roma_context *ctx, VkShaderStageFlags stages
         .pushConstantRangeCount = push_size ? 1u : 0u,
         .pPushConstantRanges = &push,
     };
-    return roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &info, NULL, out), "vkCreatePipelineLayout");
+    return roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &info, ctx->allocator, out), "vkCreatePipelineLayout");
 }
 
 roma_result roma_graphics_pipeline_create(roma_context *ctx, const roma_graphics_pipeline_desc *d, VkPipeline *out)
@@ -95,6 +95,6 @@ roma_result roma_graphics_pipeline_create(roma_context *ctx, const roma_graphics
         .pDynamicState = &dynamic,
         .layout = d->layout,
     };
-    return roma_vk_check(ctx, vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, out),
+    return roma_vk_check(ctx, vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->allocator, out),
                          d->label ? d->label : "vkCreateGraphicsPipelines");
 }

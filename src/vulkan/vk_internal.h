@@ -18,6 +18,7 @@ struct roma_context {
     VkDebugUtilsMessengerEXT messenger;
     VkPhysicalDevice physical_device;
     VkDevice device;
+    const VkAllocationCallbacks *allocator; /* desc.allocation_callbacks */
     uint32_t queue_family;
     VkQueue queue;
     VkPhysicalDeviceProperties properties;

@@ -83,7 +83,7 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
         .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
-    roma_result r = roma_vk_check(ctx, vkCreateBuffer(ctx->device, &info, NULL, &out->buffer), "vkCreateBuffer");
+    roma_result r = roma_vk_check(ctx, vkCreateBuffer(ctx->device, &info, ctx->allocator, &out->buffer), "vkCreateBuffer");
     if (r != ROMA_SUCCESS)
         return r;
     VkMemoryRequirements req;
@@ -123,7 +123,7 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
         return r;
     }
     out->allocated = req.size;
-    VkResult vr = vkAllocateMemory(ctx->device, &alloc, NULL, &out->memory);
+    VkResult vr = vkAllocateMemory(ctx->device, &alloc, ctx->allocator, &out->memory);
     if (vr == VK_SUCCESS)
         vr = vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0);
     if (vr == VK_SUCCESS && kind != ROMA_MEMORY_DEVICE)
@@ -148,9 +148,9 @@ void roma_buffer_destroy(roma_context *ctx, roma_buffer *b)
     if (!ctx || !b)
         return;
     if (b->buffer)
-        vkDestroyBuffer(ctx->device, b->buffer, NULL);
+        vkDestroyBuffer(ctx->device, b->buffer, ctx->allocator);
     if (b->memory)
-        vkFreeMemory(ctx->device, b->memory, NULL); /* unmaps implicitly */
+        vkFreeMemory(ctx->device, b->memory, ctx->allocator); /* unmaps implicitly */
     roma_device_memory_release(ctx, b->allocated);
     memset(b, 0, sizeof *b);
 }

@@ -9,6 +9,7 @@
 
 #include "accuracy.h"
 #include "frame.h"
+#include "record_cost.h"
 #include "app_common.h"
 #include "reference.h"
 #include "roma/map.h"
@@ -254,6 +255,9 @@ int main(int argc, char **argv)
             }
             roma_map_destroy(map);
         }
+
+    if (roma_bench_record_cost(ctx, scene, runs, csv) != 0)
+        fprintf(stderr, "roma-bench: the record-cost section failed\n");
 
     /* Tracing: the same rays for everyone. */
     roma_ray *rays = malloc(sizeof(roma_ray) * (size_t)rays_n);

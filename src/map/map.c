@@ -57,8 +57,12 @@ static roma_result check_bounds(const roma_logger *log, const float bmin[3], con
                      "units", fn, res, ROMA_GRID_MIN_CELL);
 }
 
-/* Host positions into the staging buffer of `slot` (made on first use), as float4. */
-static roma_result stage_positions(roma_map *map, uint32_t slot, const float *positions)
+/* Host positions into the staging buffer of `slot` (made on first use), as float4, in
+ * one pass that also refuses non-finite values and takes the bounds of the vertices
+ * (the host's whole per-frame cost for new positions). Nothing reads the staging
+ * before a build records its copy, so a refused call leaves nothing behind. */
+static roma_result stage_positions(roma_map *map, uint32_t slot, const float *positions, float bmin[3],
+                                   float bmax[3])
 {
     roma_buffer *staging = &map->position_staging[slot];
     if (!staging->buffer) {
@@ -67,13 +71,28 @@ static roma_result stage_positions(roma_map *map, uint32_t slot, const float *po
         if (r != ROMA_SUCCESS)
             return r;
     }
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     float *dst = staging->mapped;
+    int finite = 1;
     for (uint32_t v = 0; v < map->vertex_count; ++v) {
-        dst[4 * v + 0] = positions[3 * v + 0];
-        dst[4 * v + 1] = positions[3 * v + 1];
-        dst[4 * v + 2] = positions[3 * v + 2];
+        for (int a = 0; a < 3; ++a) {
+            float x = positions[3 * v + a];
+            finite &= x - x == 0.0f; /* false for NaN and infinities, without a branch */
+            lo[a] = x < lo[a] ? x : lo[a];
+            hi[a] = x > hi[a] ? x : hi[a];
+            dst[4 * v + a] = x;
+        }
         dst[4 * v + 3] = 1.0f;
     }
+    if (!finite) {
+        uint64_t i = 0;
+        while (isfinite(positions[i]))
+            ++i;
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE, "roma_map_record_build: vertex %llu is not finite",
+                         (unsigned long long)(i / 3));
+    }
+    memcpy(bmin, lo, sizeof lo);
+    memcpy(bmax, hi, sizeof hi);
     return ROMA_SUCCESS;
 }
 
@@ -87,7 +106,8 @@ static void record_copy_staged(roma_map *map, VkCommandBuffer cmd, uint32_t slot
  * submission this call waits for, so slot 0 is free again when it returns. */
 static roma_result upload_initial_positions(roma_map *map, const float *positions)
 {
-    roma_result r = stage_positions(map, 0, positions);
+    float bmin[3], bmax[3];
+    roma_result r = stage_positions(map, 0, positions, bmin, bmax);
     VkCommandBuffer cmd;
     if (r == ROMA_SUCCESS)
         r = roma_begin_one_shot(map->ctx, &cmd);
@@ -344,9 +364,8 @@ static void record_frame_params(roma_map *map, VkCommandBuffer cmd)
     vkCmdUpdateBuffer(cmd, map->params.buffer, 0, bytes, block);
 }
 
-/* Everything about a frame's geometry that can fail, checked before anything is
- * recorded or changed: bmin and bmax receive the box the grid is fitted to. */
-static roma_result check_frame(roma_map *map, const roma_map_frame_desc *f, float bmin[3], float bmax[3])
+/* The frame's arguments, checked before anything is recorded or changed. */
+static roma_result check_frame(roma_map *map, const roma_map_frame_desc *f)
 {
     const char *fn = "roma_map_record_build";
     if (f->slot >= map->frames_in_flight)
@@ -369,27 +388,14 @@ static roma_result check_frame(roma_map *map, const roma_map_frame_desc *f, floa
             return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                              "%s: gpu_positions needs a volume (the host cannot see their bounds)", fn);
     }
-    if (f->positions)
-        for (uint64_t i = 0; i < 3ull * map->vertex_count; ++i)
-            if (!isfinite(f->positions[i]))
-                return roma_fail(&map->logger, ROMA_ERROR_INVALID_SCENE, "%s: vertex %llu is not finite", fn,
-                                 (unsigned long long)(i / 3));
-    if (f->volume) {
-        memcpy(bmin, f->volume->min, sizeof(float) * 3);
-        memcpy(bmax, f->volume->max, sizeof(float) * 3);
+    if (f->volume)
         for (int a = 0; a < 3; ++a)
-            if (!(bmin[a] <= bmax[a]))
+            if (!(f->volume->min[a] <= f->volume->max[a]))
                 return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                                 "%s: volume min (%g, %g, %g) is not below max (%g, %g, %g)", fn, (double)bmin[0],
-                                 (double)bmin[1], (double)bmin[2], (double)bmax[0], (double)bmax[1],
-                                 (double)bmax[2]);
-    } else if (f->positions) {
-        scene_bounds(f->positions, map->indices_host, map->triangle_count, bmin, bmax);
-    } else {
-        memcpy(bmin, map->scene_min, sizeof(float) * 3);
-        memcpy(bmax, map->scene_max, sizeof(float) * 3);
-    }
-    return check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells, fn);
+                                 "%s: volume min (%g, %g, %g) is not below max (%g, %g, %g)", fn,
+                                 (double)f->volume->min[0], (double)f->volume->min[1], (double)f->volume->min[2],
+                                 (double)f->volume->max[0], (double)f->volume->max[1], (double)f->volume->max[2]);
+    return ROMA_SUCCESS;
 }
 
 /* New positions of this frame into the map's positions buffer (after the opening
@@ -495,18 +501,23 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     if (r != ROMA_SUCCESS)
         return r;
     roma_map_frame_desc frame = frame_in ? *frame_in : (roma_map_frame_desc){0};
-    float bmin[3], bmax[3];
-    r = check_frame(map, &frame, bmin, bmax);
+    /* The box the grid is fitted to: the volume, else the bounds of new host positions,
+     * else those of the last ones. */
+    float pmin[3], pmax[3];
+    r = check_frame(map, &frame);
     if (r == ROMA_SUCCESS && frame.positions)
-        r = stage_positions(map, frame.slot, frame.positions);
+        r = stage_positions(map, frame.slot, frame.positions, pmin, pmax);
     if (r != ROMA_SUCCESS)
         return r;
-    if (frame.positions && frame.volume) /* later frames without a volume fit these bounds */
-        scene_bounds(frame.positions, map->indices_host, map->triangle_count, map->scene_min, map->scene_max);
-    else if (frame.positions)
-        for (int a = 0; a < 3; ++a)
-            map->scene_min[a] = bmin[a], map->scene_max[a] = bmax[a];
+    const float *bmin = frame.volume ? frame.volume->min : frame.positions ? pmin : map->scene_min;
+    const float *bmax = frame.volume ? frame.volume->max : frame.positions ? pmax : map->scene_max;
+    r = check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells, "roma_map_record_build");
+    if (r != ROMA_SUCCESS)
+        return r;
     compute_frame_params(map, &frame, bmin, bmax);
+    if (frame.positions) /* later frames without a volume fit these bounds */
+        for (int a = 0; a < 3; ++a)
+            map->scene_min[a] = pmin[a], map->scene_max[a] = pmax[a];
 
     /* Everything earlier on the queue (traces of the previous frame from any stage,
      * downloads, the caller's writes of gpu_positions) before this build writes. */

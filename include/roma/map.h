@@ -20,7 +20,7 @@
  * that box extent / RES, between 1 and sqrt(3) times the BOM cell size
  * (1 for axis-aligned candidates, sqrt(3) at worst for cube diagonals).
  *
- * Tracing (see shaders/include/roma_trace.glsl, the same code engines include):
+ * Tracing (roma/trace.glsl, the same code engines include):
  *  - snapped: the ray direction is replaced by its candidate; any-hit and
  *    closest-hit are one texel fetch plus bit masks, O(1);
  *  - un-snapped: the exact direction is walked through the selected map's texels
@@ -45,6 +45,7 @@
 
 #include "roma/context.h"
 #include "roma/scene.h"
+#include "roma/trace_types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -149,11 +150,11 @@ typedef struct roma_map_info {
     float trace_cell;          /* grid_cell * sqrt(3): the longest edge a rotated cell can have;
                                   the unit of ray-origin offsets (see roma_offset_origin) */
     uint64_t bom_bytes, maps_bytes, params_bytes, geometry_bytes;
-    /* For roma_trace.glsl in the caller's shaders (valid until the map is destroyed).
+    /* For roma/trace.glsl in the caller's shaders (valid until the map is destroyed).
      * By address (roma_use_addresses): */
     VkDeviceAddress maps_address;
     VkDeviceAddress params_address;
-    /* Through descriptors (roma_trace_descriptors.glsl): the maps as a uniform texel
+    /* Through descriptors (roma/trace_descriptors.glsl): the maps as a uniform texel
      * buffer (maps_view, R32_UINT) and the parameters as a uniform buffer, or the set
      * libroma wrote for them, for a pipeline layout whose set ROMA_TRACE_SET is
      * trace_set_layout (or defined identically). The set is never rewritten. */
@@ -171,7 +172,7 @@ roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]
 
 /* --- Queries --- */
 
-/* Matches struct roma_ray in roma_trace.glsl (std430, 32 bytes).
+/* Matches struct roma_ray in roma/trace.glsl (std430, 32 bytes).
  * Defined for every bit pattern (docs/robustness.md):
  *  - dir need not be unit: any finite non-zero vector, however large or small, traces
  *    as its unit vector (d and d * 2^k give the same bits while no component crosses
@@ -190,14 +191,12 @@ typedef struct roma_ray {
     float tmax;            /* INFINITY allowed */
 } roma_ray;
 
-/* Matches struct roma_hit in roma_trace.glsl (8 bytes). */
+/* Matches struct roma_hit in roma/trace.glsl (8 bytes). */
 typedef struct roma_hit {
     float t;               /* closest-hit distance (world units), INFINITY on a miss or for any-hit */
-    uint32_t info;         /* bit 0: hit; bits 8..15: map index used; bit 16: ray was folded (d.z < 0) */
+    uint32_t info;         /* ROMA_HIT_FLAG, ROMA_HIT_MAP(info), ROMA_HIT_FOLDED (roma/trace_types.h) */
 } roma_hit;
 
-#define ROMA_HIT_FLAG 1u
-#define ROMA_HIT_MAP(info) (((info) >> 8) & 0xffu)
 
 typedef enum roma_trace_mode {
     ROMA_TRACE_SNAPPED_ANY = 0,

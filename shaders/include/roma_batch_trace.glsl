@@ -1,10 +1,11 @@
 // Batch traces (trace/trace.comp, trace/trace_staged.comp): one ray per invocation,
-// whichever way the rays, hits and maps are reached (include roma_trace_descriptors.glsl
-// first for descriptors; otherwise roma_trace.glsl reaches the maps by address).
+// whichever way the rays, hits and maps are reached (include roma/trace_descriptors.glsl
+// first for descriptors; otherwise roma/trace.glsl reaches the maps by address).
 #ifndef ROMA_BATCH_TRACE_GLSL
 #define ROMA_BATCH_TRACE_GLSL
 
-#include "roma_trace.glsl"
+#include "roma_shared.h"
+#include "roma/trace.glsl"
 
 layout(local_size_x = ROMA_TRACE_WORKGROUP_SIZE) in;
 

@@ -8,7 +8,8 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 
-#include "roma_trace_descriptors.glsl"
+#include "roma_shared.h"
+#include "roma/trace_descriptors.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
@@ -26,7 +27,7 @@ bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
     if (!(tmax > tmin))
         return true;
     roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);
-    return (h.info & ROMA_HIT) == 0u;
+    return (h.info & ROMA_HIT_FLAG) == 0u;
 }
 
 // Unshadowed irradiance factor of a punctual light at p (scale * cos, 0 when

@@ -4,7 +4,8 @@
 #ifndef ROMA_PIXEL_BINDINGS_GLSL
 #define ROMA_PIXEL_BINDINGS_GLSL
 
-#include "roma_trace_descriptors.glsl"
+#include "roma_shared.h"
+#include "roma/trace_descriptors.glsl"
 
 layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_GBUFFER) readonly buffer RomaBoundGbuffer {
     roma_gbuffer_pixel roma_gbuffer[];

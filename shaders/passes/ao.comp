@@ -32,7 +32,7 @@ void main()
         if (below <= 0.0)
             continue;
         roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
-        open += (h.info & ROMA_HIT) == 0u ? 1u : 0u;
+        open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;
     }
     if (open != 0u)
         accum[pixel] += open;

@@ -74,7 +74,7 @@ void main()
         if (dot(dir, ng) <= 0.0)
             continue;
         roma_hit h = roma_trace_snapped(origin, dir, gi.ray.y, 1.0 / 0.0, true);
-        if ((h.info & ROMA_HIT) == 0u)
+        if ((h.info & ROMA_HIT_FLAG) == 0u)
             continue;
         // A snapped ray travels along its candidate direction (reversed when folded).
         vec3 cand = roma_fetch_frame((h.info >> 8) & 0xffu).dir.xyz * ((h.info & 0x10000u) != 0u ? -1.0 : 1.0);

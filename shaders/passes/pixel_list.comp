@@ -5,7 +5,7 @@
 // Lists the pixels whose G-buffer sees geometry (t finite), one invocation per pixel;
 // one atomic per subgroup. The order of the list does not matter: every pass writes
 // only its own pixel.
-#include "roma_float.glsl"
+#include "roma/trace_float.glsl"
 #include "roma_pixel_list.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaListGbuffer {

@@ -37,7 +37,7 @@ void main()
         bool visible;
         if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
             roma_hit h = roma_trace_unsnapped(origin, l, pc.ray.y, 1.0 / 0.0, false, max_steps);
-            visible = (h.info & ROMA_HIT) == 0u;
+            visible = (h.info & ROMA_HIT_FLAG) == 0u;
         } else {
             visible = roma_segment_visible(origin, light.position_type.xyz, offset, pc.ray.y, max_steps);
         }

@@ -3,7 +3,7 @@
 // Batch trace of the map's own staging buffers (roma_map_trace), bound as texel
 // buffers: on CPU devices texel fetches and image stores cost a fraction of
 // storage-buffer or address-based loads and stores.
-#include "roma_trace_descriptors.glsl"
+#include "roma/trace_descriptors.glsl"
 #include "roma_batch_trace.glsl"
 
 // Ray i: texels 2i (origin, tmin) and 2i + 1 (dir, tmax).

@@ -184,7 +184,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     if (bounds != ROMA_SUCCESS)
         return bounds;
 
-    /* Passes read the maps as a texel buffer (roma_trace_descriptors.glsl). */
+    /* Passes read the maps as a texel buffer (roma/trace_descriptors.glsl). */
     const uint64_t map_words = (uint64_t)desc.resolution * desc.resolution * (desc.resolution / 32) *
                                desc.angular * desc.angular;
     if (map_words > ctx->properties.limits.maxTexelBufferElements)
@@ -273,7 +273,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_set_create(ctx, &map->trace_staged[0], staged_types, ROMA_TRACE_STAGED_BINDINGS,
                                        &map->staged_set);
-    /* The set every tracing pass binds (roma_trace_descriptors.glsl), written once. */
+    /* The set every tracing pass binds (roma/trace_descriptors.glsl), written once. */
     if (r == ROMA_SUCCESS)
         r = roma_buffer_view_create(ctx, map->maps.buffer, VK_FORMAT_R32_UINT, &map->maps_view);
     if (r == ROMA_SUCCESS)

@@ -38,7 +38,7 @@ struct roma_map {
     roma_compute_pipeline trace[4], trace_staged[4];
     roma_descriptor_set rotate_set; /* bom, maps, cells, params: shared by the rotation pipelines */
     VkBufferView maps_view;         /* R32_UINT texel view of maps */
-    roma_descriptor_set trace_set;  /* roma_trace_descriptors.glsl: maps_view, params */
+    roma_descriptor_set trace_set;  /* roma/trace_descriptors.glsl: maps_view, params */
     roma_descriptor_set staged_set; /* trace set + ray and hit staging (rewritten when they grow) */
     VkBufferView staging_views[2];  /* rays (RGBA32F), hits (RG32UI) */
     roma_grid_params grid;          /* host copies of this frame's parameters */

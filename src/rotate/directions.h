@@ -1,6 +1,6 @@
 /* Candidate directions of the ray-aligned maps: equal-area concentric mapping
  * between the unit square and the hemisphere z >= 0, stratified A x A.
- * shaders/include/roma_trace.glsl mirrors roma_direction_to_map. */
+ * include/roma/trace.glsl mirrors roma_direction_to_map. */
 #ifndef ROMA_DIRECTIONS_H
 #define ROMA_DIRECTIONS_H
 

@@ -1,5 +1,5 @@
 /* Plain C mirror of the GPU rotation and trace (shaders/rotate/rotate_gather.comp, which the scatter rotation matches bit for bit, and
- * shaders/include/roma_trace.glsl): same parameters, same float expressions in
+ * include/roma/trace.glsl): same parameters, same float expressions in
  * the same order, so tests can check the GPU bit for bit on a downloaded BOM. */
 #ifndef ROMA_CPU_MIRROR_H
 #define ROMA_CPU_MIRROR_H

@@ -122,7 +122,7 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               roma_compute_pipeline *out);
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);
 
-/* The bindings of roma_trace_descriptors.glsl (set 0 of every pass that traces a map):
+/* The bindings of roma/trace_descriptors.glsl (set 0 of every pass that traces a map):
  * the maps as a uniform texel buffer, the parameters as a uniform buffer. */
 extern const VkDescriptorType roma_trace_binding_types[2];
 

@@ -1,14 +1,14 @@
 // libroma: tracing a Ray-aligned Occupancy Map Array from GLSL.
 //
-// Include from your own shaders (GL_GOOGLE_include_directive, with libroma's
-// shaders/include on the include path). The trace functions read the maps and their
+// Include from your own shaders as "roma/trace.glsl" (GL_GOOGLE_include_directive, with
+// libroma's include directory on the include path, the one that holds roma/map.h). The trace functions read the maps and their
 // parameters through three fetch functions; choose how they reach the buffers:
 //  - by buffer device address (the default): call roma_use_addresses() once, with the
 //    two addresses roma_map_get_info() reports, before tracing:
 //        roma_use_addresses(pc.roma_params, pc.roma_maps);   // uvec2 each
 //        roma_hit h = roma_trace_snapped(origin, dir, tmin, tmax, true);
 //  - through descriptors (faster on devices where address-based loads are slow):
-//    include roma_trace_descriptors.glsl instead, which binds the maps as a uniform
+//    include roma/trace_descriptors.glsl instead, which binds the maps as a uniform
 //    texel buffer and the parameters as a uniform buffer (roma_map_info names both);
 //  - your own: #define ROMA_TRACE_FETCH and define, before including this file,
 //        uint roma_fetch_word(uint index);        // word index of the maps buffer
@@ -23,8 +23,8 @@
 
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : enable
 
-#include "roma_float.glsl"
-#include "roma_shared.h"
+#include "roma/trace_float.glsl"
+#include "roma/trace_types.h"
 
 #ifndef ROMA_TRACE_FETCH
 #extension GL_EXT_buffer_reference : require
@@ -57,11 +57,10 @@ struct roma_ray {
 
 struct roma_hit {
     float t;
-    uint info; // bit 0 hit, bits 8..15 map index, bit 16 folded
+    uint info; // ROMA_HIT_FLAG, ROMA_HIT_MAP(info), ROMA_HIT_FOLDED (roma/trace_types.h)
 };
 
 const float ROMA_PI = 3.14159265358979323846;
-const uint ROMA_HIT = 1u;
 
 // Equal-area concentric mapping, hemisphere (z >= 0) -> unit square.
 vec2 roma_hemisphere_to_square(vec3 d)
@@ -141,7 +140,7 @@ vec3 roma_to_map_rows(vec4 r0, vec4 r1, vec4 r2, vec3 p)
     return vec3(x, y, z);
 }
 
-// World position -> map cell coordinates of frame f (see roma_shared.h).
+// World position -> map cell coordinates of frame f (roma/trace_types.h).
 vec3 roma_to_map(roma_grid_params grid, roma_map_frame f, vec3 p)
 {
     precise vec3 r = p - grid.origin.xyz;
@@ -204,7 +203,7 @@ bool roma_trace_begin(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, 
     folded = false;
     bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
     k = valid ? roma_select_map_unit(dn, grid.dims.z, folded) : 0u;
-    miss = roma_hit(1.0 / 0.0, (k << 8) | (folded ? 0x10000u : 0u));
+    miss = roma_hit(1.0 / 0.0, (k << 8) | (folded ? ROMA_HIT_FOLDED : 0u));
     return valid;
 }
 
@@ -235,7 +234,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     int c = roma_first_cell(base, c_lo, c_hi, !folded);
     if (c < 0)
         return hit;
-    hit.info |= ROMA_HIT;
+    hit.info |= ROMA_HIT_FLAG;
     if (closest) {
         precise float t = folded ? (m.z - float(c + 1)) * cz : (float(c) - m.z) * cz;
         hit.t = max(t, tmin);
@@ -300,7 +299,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
             uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
             int c = roma_first_cell(base, c_lo, c_hi, dm.z >= 0.0);
             if (c >= 0) {
-                hit.info |= ROMA_HIT;
+                hit.info |= ROMA_HIT_FLAG;
                 if (closest) {
                     precise float tc = dm.z > 0.0 ? (float(c) - m0.z) / dm.z
                                      : dm.z < 0.0 ? (float(c + 1) - m0.z) / dm.z : t_cur;

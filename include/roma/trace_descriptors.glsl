@@ -1,4 +1,4 @@
-// libroma: roma_trace.glsl with the maps and their parameters bound as descriptors,
+// libroma: roma/trace.glsl with the maps and their parameters bound as descriptors,
 // for shaders that prefer descriptors to buffer addresses (on some devices, CPU
 // implementations among them, address-based loads are several times slower).
 //
@@ -15,7 +15,7 @@
 #define ROMA_TRACE_SET 0
 #endif
 
-#include "roma_shared.h"
+#include "roma/trace_types.h"
 
 layout(set = ROMA_TRACE_SET, binding = ROMA_TRACE_BINDING_MAPS) uniform usamplerBuffer roma_trace_maps;
 layout(std140, set = ROMA_TRACE_SET, binding = ROMA_TRACE_BINDING_PARAMS) uniform RomaTraceParams {
@@ -28,6 +28,6 @@ uint roma_fetch_word(uint index) { return texelFetch(roma_trace_maps, int(index)
 roma_grid_params roma_fetch_grid() { return roma_trace_params.grid; }
 roma_map_frame roma_fetch_frame(uint k) { return roma_trace_params.frames[k]; }
 
-#include "roma_trace.glsl"
+#include "roma/trace.glsl"
 
 #endif // ROMA_TRACE_DESCRIPTORS_GLSL

@@ -7,6 +7,7 @@
 #include "roma/context.h"
 #include "roma/effects.h"
 #include "roma/image.h"
+#include "roma/map.h"
 #include "roma/result.h"
 #include "roma/sampling.h"
 #include "roma/scene.h"

@@ -1,0 +1,512 @@
+/* An engine that links libroma, written against the installed headers only.
+ *
+ * It owns its Vulkan instance and device (created with roma_get_device_requirements),
+ * keeps two frames in flight, and every frame records into its own command buffer:
+ *   1. its own animation pass (animate.comp): the scene's rest positions, with a rigid
+ *      box moved along x, written into its own GPU buffer;
+ *   2. roma_map_record_build, reading those positions by address (gpu_positions);
+ *   3. its own tracing pass (probe.comp, including roma/trace.glsl) over probe rays
+ *      whose answers are known from the box's pose that frame.
+ * The answers come back a frame later, when the slot's fence is waited on.
+ *
+ *   example-engine [--frames N] [--validation]
+ *
+ * --validation turns on the Khronos validation layer with synchronization validation;
+ * any message fails the run. Prints resident memory and libroma's device memory at
+ * frame 100 and at the end (the soak figures). Exit code 0 when every probe answer is
+ * right and no validation message was seen. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "roma/roma.h"
+
+#define SLOTS 2
+#define PROBES 24
+#define MAX_STEPS 256u
+
+typedef struct engine {
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice physical;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t family;
+    unsigned validation_messages;
+} engine;
+
+typedef struct buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped; /* host-visible buffers only */
+    VkDeviceAddress address;
+} buffer;
+
+typedef struct probe_ray {
+    float origin[4];    /* w: tmax */
+    float direction[4];
+} probe_ray;
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                 VkDebugUtilsMessageTypeFlagsEXT types,
+                                                 const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)severity, (void)types;
+    ((engine *)user)->validation_messages++;
+    fprintf(stderr, "validation: %s\n", data->pMessage);
+    return VK_FALSE;
+}
+
+static void log_to_stderr(roma_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level >= ROMA_LOG_WARNING)
+        fprintf(stderr, "libroma %s: %s\n", roma_log_level_string(level), message);
+}
+
+static int create_instance(engine *e, int validation)
+{
+    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                             .pApplicationName = "example-engine",
+                             .apiVersion = VK_API_VERSION_1_3};
+    const char *layer = "VK_LAYER_KHRONOS_validation";
+    const char *extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    VkDebugUtilsMessengerCreateInfoEXT messenger = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT,
+        .pfnUserCallback = on_message,
+        .pUserData = e};
+    const VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features = {.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+                                        .pNext = &messenger,
+                                        .enabledValidationFeatureCount = 1,
+                                        .pEnabledValidationFeatures = &sync};
+    VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                                 .pNext = validation ? &features : NULL,
+                                 .pApplicationInfo = &app,
+                                 .enabledLayerCount = validation ? 1u : 0u,
+                                 .ppEnabledLayerNames = &layer,
+                                 .enabledExtensionCount = validation ? 1u : 0u,
+                                 .ppEnabledExtensionNames = &extension};
+    if (vkCreateInstance(&info, NULL, &e->instance) != VK_SUCCESS) {
+        fprintf(stderr, "example-engine: vkCreateInstance failed%s\n",
+                validation ? " (is vulkan-validationlayers installed?)" : "");
+        return 0;
+    }
+    if (validation) {
+        PFN_vkCreateDebugUtilsMessengerEXT create =
+            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(e->instance, "vkCreateDebugUtilsMessengerEXT");
+        if (!create || create(e->instance, &messenger, NULL, &e->messenger) != VK_SUCCESS)
+            return 0;
+    }
+    return 1;
+}
+
+/* The first Vulkan 1.3 device with a graphics + compute queue that has timestamps, created
+ * with exactly what libroma lists. */
+static int create_device(engine *e, roma_device_requirements *req)
+{
+    uint32_t count = 8;
+    VkPhysicalDevice devices[8];
+    if (vkEnumeratePhysicalDevices(e->instance, &count, devices) < 0)
+        return 0;
+    roma_get_device_requirements(req);
+    for (uint32_t d = 0; d < count && !e->physical; ++d) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(devices[d], &props);
+        if (props.apiVersion < req->api_version)
+            continue;
+        uint32_t families = 16;
+        VkQueueFamilyProperties fp[16];
+        vkGetPhysicalDeviceQueueFamilyProperties(devices[d], &families, fp);
+        for (uint32_t f = 0; f < families && !e->physical; ++f)
+            if ((fp[f].queueFlags & req->queue_flags) == req->queue_flags && fp[f].timestampValidBits) {
+                e->physical = devices[d];
+                e->family = f;
+            }
+    }
+    if (!e->physical) {
+        fprintf(stderr, "example-engine: no Vulkan 1.3 device with a graphics + compute queue\n");
+        return 0;
+    }
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                     .queueFamilyIndex = e->family,
+                                     .queueCount = 1,
+                                     .pQueuePriorities = &priority};
+    VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                               .pNext = &req->features,
+                               .queueCreateInfoCount = 1,
+                               .pQueueCreateInfos = &queue,
+                               .enabledExtensionCount = req->extension_count,
+                               .ppEnabledExtensionNames = req->extensions};
+    if (vkCreateDevice(e->physical, &info, NULL, &e->device) != VK_SUCCESS)
+        return 0;
+    vkGetDeviceQueue(e->device, e->family, 0, &e->queue);
+    return 1;
+}
+
+static int buffer_create(const engine *e, VkDeviceSize size, int host_visible, buffer *out)
+{
+    memset(out, 0, sizeof *out);
+    VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                               .size = size,
+                               .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT};
+    if (vkCreateBuffer(e->device, &info, NULL, &out->buffer) != VK_SUCCESS)
+        return 0;
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(e->device, out->buffer, &req);
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(e->physical, &props);
+    VkMemoryPropertyFlags want = host_visible
+                                     ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    uint32_t type = UINT32_MAX;
+    for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
+        if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & want) == want)
+            type = i;
+    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
+                                       .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
+    VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                  .pNext = &flags,
+                                  .allocationSize = req.size,
+                                  .memoryTypeIndex = type};
+    if (type == UINT32_MAX || vkAllocateMemory(e->device, &alloc, NULL, &out->memory) != VK_SUCCESS ||
+        vkBindBufferMemory(e->device, out->buffer, out->memory, 0) != VK_SUCCESS)
+        return 0;
+    if (host_visible && vkMapMemory(e->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped) != VK_SUCCESS)
+        return 0;
+    VkBufferDeviceAddressInfo at = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = out->buffer};
+    out->address = vkGetBufferDeviceAddress(e->device, &at);
+    return 1;
+}
+
+static void buffer_destroy(const engine *e, buffer *b)
+{
+    if (b->buffer)
+        vkDestroyBuffer(e->device, b->buffer, NULL);
+    if (b->memory)
+        vkFreeMemory(e->device, b->memory, NULL);
+}
+
+/* A compute pipeline from SPIR-V compiled at build time (EXAMPLE_SPV_DIR). */
+static int pipeline_create(const engine *e, const char *name, uint32_t push_size, VkPipelineLayout *layout,
+                           VkPipeline *pipeline)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", EXAMPLE_SPV_DIR, name);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "example-engine: cannot open %s\n", path);
+        return 0;
+    }
+    static uint32_t code[65536];
+    size_t bytes = fread(code, 1, sizeof code, f);
+    fclose(f);
+    VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = bytes,
+                                   .pCode = code};
+    VkShaderModule module;
+    if (vkCreateShaderModule(e->device, &mi, NULL, &module) != VK_SUCCESS)
+        return 0;
+    VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size};
+    VkPipelineLayoutCreateInfo li = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                     .pushConstantRangeCount = 1,
+                                     .pPushConstantRanges = &range};
+    VkComputePipelineCreateInfo pi = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = module,
+                  .pName = "main"}};
+    int ok = vkCreatePipelineLayout(e->device, &li, NULL, layout) == VK_SUCCESS;
+    pi.layout = *layout;
+    ok = ok && vkCreateComputePipelines(e->device, VK_NULL_HANDLE, 1, &pi, NULL, pipeline) == VK_SUCCESS;
+    vkDestroyShaderModule(e->device, module, NULL);
+    return ok;
+}
+
+/* The scene: the built-in room (x in [-1, 1], y in [0, 2], z in [-1, 2]) and a box of
+ * half-size 0.15 at (0, 1.5, 0.5), above the room's two blocks: its vertices come last. */
+#define BOX_HALF 0.15f
+static const float box_centre[3] = {0.0f, 1.5f, 0.5f};
+
+static roma_scene *make_scene(roma_logger logger, uint32_t *out_box_first)
+{
+    roma_scene *room = NULL;
+    if (roma_scene_create_builtin("cornell", &logger, &room) != ROMA_SUCCESS)
+        return NULL;
+    roma_scene_view v;
+    roma_scene_get_view(room, &v);
+    uint32_t nv = v.vertex_count + 8, nt = v.triangle_count + 12;
+    float *pos = malloc(sizeof(float) * 3 * nv);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * nt), *mat = malloc(sizeof(uint32_t) * nt);
+    roma_scene *scene = NULL;
+    if (pos && idx && mat) {
+        memcpy(pos, v.positions, sizeof(float) * 3 * v.vertex_count);
+        memcpy(idx, v.indices, sizeof(uint32_t) * 3 * v.triangle_count);
+        memcpy(mat, v.triangle_materials, sizeof(uint32_t) * v.triangle_count);
+        for (int c = 0; c < 8; ++c)
+            for (int a = 0; a < 3; ++a)
+                pos[3 * (v.vertex_count + c) + a] = box_centre[a] + ((c >> a) & 1 ? BOX_HALF : -BOX_HALF);
+        static const uint32_t faces[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                           2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+        for (int i = 0; i < 36; ++i)
+            idx[3 * v.triangle_count + i] = v.vertex_count + faces[i];
+        for (int t = 0; t < 12; ++t)
+            mat[v.triangle_count + t] = 0;
+        roma_scene_desc d = {.positions = pos, .vertex_count = nv, .indices = idx, .triangle_count = nt,
+                             .triangle_materials = mat, .materials = v.materials, .material_count = v.material_count,
+                             .lights = v.lights, .light_count = v.light_count, .name = "room with a moving box",
+                             .logger = logger};
+        if (roma_scene_create(&d, &scene) != ROMA_SUCCESS)
+            scene = NULL;
+        *out_box_first = v.vertex_count;
+    }
+    free(pos), free(idx), free(mat);
+    roma_scene_destroy(room);
+    return scene;
+}
+
+static float box_offset(uint32_t frame)
+{
+    return -0.6f + 0.3f * (float)(frame % 5);
+}
+
+/* Probe rays along -z at the box's height, from the front wall, x across the room. */
+static void make_probes(probe_ray *rays)
+{
+    for (int i = 0; i < PROBES; ++i) {
+        float x = -0.92f + 1.84f * (float)i / (PROBES - 1);
+        rays[i] = (probe_ray){{x, box_centre[1], 1.8f, 4.0f}, {0.0f, 0.0f, -1.0f, 0.0f}};
+    }
+}
+
+/* Rays through the box hit it (front face at t = 1.15, or its back face at 1.45 where the
+ * walk stepped over the front one); the others hit nothing before the back wall (t 2.8).
+ * Rays within two cells of the box's sides are not judged. */
+static int wrong_answers(const probe_ray *rays, const roma_hit *hits, float box_x, float cell)
+{
+    const float front = 1.8f - (box_centre[2] + BOX_HALF), back = front + 2.0f * BOX_HALF;
+    int wrong = 0;
+    for (int i = 0; i < PROBES; ++i) {
+        float dx = rays[i].origin[0] - box_x;
+        dx = dx < 0 ? -dx : dx;
+        int hit = (hits[i].info & ROMA_HIT_FLAG) != 0;
+        if (dx < BOX_HALF - 2.0f * cell)
+            wrong += !hit || hits[i].t < front - 4.0f * cell || hits[i].t > back + 4.0f * cell;
+        else if (dx > BOX_HALF + 2.0f * cell)
+            wrong += hit && hits[i].t < back + 4.0f * cell;
+    }
+    return wrong;
+}
+
+static long resident_kib(void)
+{
+    long pages = 0, resident = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (f) {
+        if (fscanf(f, "%ld %ld", &pages, &resident) != 2)
+            resident = 0;
+        fclose(f);
+    }
+    return resident * 4;
+}
+
+int main(int argc, char **argv)
+{
+    uint32_t frames = 12;
+    int validation = 0;
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--frames") == 0 && i + 1 < argc)
+            frames = (uint32_t)strtoul(argv[++i], NULL, 10);
+        else if (strcmp(argv[i], "--validation") == 0)
+            validation = 1;
+        else {
+            fprintf(stderr, "usage: example-engine [--frames N] [--validation]\n");
+            return 2;
+        }
+    }
+    engine e = {0};
+    roma_device_requirements req;
+    if (!create_instance(&e, validation) || !create_device(&e, &req))
+        return 1;
+
+    /* libroma on the engine's device and queue. */
+    roma_logger logger = {log_to_stderr, NULL};
+    roma_external_device ext = {e.instance, e.physical, e.device, e.family, e.queue, &req.features};
+    roma_context_desc cd = {.external = &ext, .logger = logger};
+    roma_context *ctx = NULL;
+    uint32_t box_first = 0;
+    roma_scene *scene = NULL;
+    roma_map *map = NULL;
+    int status = 1;
+    if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS || !(scene = make_scene(logger, &box_first)))
+        goto done;
+    roma_map_desc md = {.resolution = 128, .angular = 4, .frames_in_flight = SLOTS};
+    if (roma_map_create(ctx, &md, scene, &map) != ROMA_SUCCESS)
+        goto done;
+    roma_scene_view sv;
+    roma_scene_get_view(scene, &sv);
+    /* The volume libroma traces: the room, a little larger (the box stays inside it). */
+    const roma_box volume = {{-1.05f, -0.05f, -1.05f}, {1.05f, 2.05f, 2.05f}};
+
+    /* The engine's buffers, pipelines and per-slot objects. */
+    buffer rest, positions, rays[SLOTS], hits[SLOTS];
+    memset(rays, 0, sizeof rays), memset(hits, 0, sizeof hits);
+    int ok = buffer_create(&e, 12ull * sv.vertex_count, 1, &rest) &&
+             buffer_create(&e, 12ull * sv.vertex_count, 0, &positions);
+    for (int s = 0; s < SLOTS && ok; ++s)
+        ok = buffer_create(&e, sizeof(probe_ray) * PROBES, 1, &rays[s]) &&
+             buffer_create(&e, sizeof(roma_hit) * PROBES, 1, &hits[s]);
+    VkPipelineLayout animate_layout = VK_NULL_HANDLE, probe_layout = VK_NULL_HANDLE;
+    VkPipeline animate = VK_NULL_HANDLE, probe = VK_NULL_HANDLE;
+    ok = ok && pipeline_create(&e, "animate.spv", 48, &animate_layout, &animate) &&
+         pipeline_create(&e, "probe.spv", 40, &probe_layout, &probe);
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmds[SLOTS];
+    VkFence fences[SLOTS] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                  .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                  .queueFamilyIndex = e.family};
+    ok = ok && vkCreateCommandPool(e.device, &pi, NULL, &pool) == VK_SUCCESS;
+    VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                      .commandPool = pool,
+                                      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                      .commandBufferCount = SLOTS};
+    ok = ok && vkAllocateCommandBuffers(e.device, &ai, cmds) == VK_SUCCESS;
+    for (int s = 0; s < SLOTS && ok; ++s) {
+        VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, .flags = VK_FENCE_CREATE_SIGNALED_BIT};
+        ok = vkCreateFence(e.device, &fi, NULL, &fences[s]) == VK_SUCCESS;
+    }
+    if (!ok) {
+        fprintf(stderr, "example-engine: setting up the engine's objects failed\n");
+        goto cleanup;
+    }
+    memcpy(rest.mapped, sv.positions, 12ull * sv.vertex_count);
+    probe_ray probes[PROBES];
+    make_probes(probes);
+
+    roma_map_info info;
+    roma_map_get_info(map, &info);
+    uint32_t in_flight[SLOTS] = {UINT32_MAX, UINT32_MAX};
+    float cell = info.grid_cell;
+    int wrong = 0;
+    uint32_t judged = 0;
+    long rss_100 = 0;
+    uint64_t device_100 = 0;
+    for (uint32_t f = 0; f < frames + SLOTS; ++f) {
+        uint32_t s = f % SLOTS;
+        vkWaitForFences(e.device, 1, &fences[s], VK_TRUE, UINT64_MAX);
+        if (in_flight[s] != UINT32_MAX) {
+            int w = wrong_answers(probes, hits[s].mapped, box_centre[0] + box_offset(in_flight[s]), cell);
+            if (w)
+                fprintf(stderr, "frame %u: %d wrong probe answers\n", in_flight[s], w);
+            wrong += w;
+            ++judged;
+            in_flight[s] = UINT32_MAX;
+        }
+        if (f == 100) {
+            roma_context_info ci;
+            roma_context_get_info(ctx, &ci);
+            rss_100 = resident_kib(), device_100 = ci.device_memory_in_use;
+        }
+        if (f >= frames)
+            continue;
+        memcpy(rays[s].mapped, probes, sizeof probes);
+        vkResetFences(e.device, 1, &fences[s]);
+        vkResetCommandBuffer(cmds[s], 0);
+        VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+        vkBeginCommandBuffer(cmds[s], &bi);
+        /* 1. The engine's animation. libroma's build opens with a barrier after every
+         *    earlier command, so the positions need no barrier of the engine's own. */
+        struct {
+            VkDeviceAddress rest, positions;
+            uint32_t vertex_count, object_first;
+            float pad[2], offset[4];
+        } anim = {rest.address, positions.address, sv.vertex_count, box_first, {0, 0}, {box_offset(f), 0, 0, 0}};
+        vkCmdBindPipeline(cmds[s], VK_PIPELINE_BIND_POINT_COMPUTE, animate);
+        vkCmdPushConstants(cmds[s], animate_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof anim, &anim);
+        vkCmdDispatch(cmds[s], (sv.vertex_count + 63) / 64, 1, 1);
+        /* 2. libroma's build from those positions. */
+        roma_map_frame_desc fd = {.frame = f, .seed = 1, .jitter_grid = 1, .jitter_directions = 1, .slot = s,
+                                  .volume = &volume, .gpu_positions = positions.address,
+                                  .vertex_count = sv.vertex_count};
+        if (roma_map_record_build(map, cmds[s], &fd, NULL) != ROMA_SUCCESS)
+            goto cleanup;
+        /* 3. The engine's probe rays (the build ends with a barrier that makes the maps
+         *    readable by any later command). */
+        roma_map_get_info(map, &info);
+        cell = info.grid_cell;
+        struct {
+            VkDeviceAddress params, maps, rays, hits;
+            uint32_t count, max_steps;
+        } pp = {info.params_address, info.maps_address, rays[s].address, hits[s].address, PROBES, MAX_STEPS};
+        vkCmdBindPipeline(cmds[s], VK_PIPELINE_BIND_POINT_COMPUTE, probe);
+        vkCmdPushConstants(cmds[s], probe_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pp, &pp);
+        vkCmdDispatch(cmds[s], 1, 1, 1);
+        VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                    .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                    .srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT,
+                                    .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+                                    .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                                .pMemoryBarriers = &to_host};
+        vkCmdPipelineBarrier2(cmds[s], &dep);
+        vkEndCommandBuffer(cmds[s]);
+        VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
+                               .pCommandBuffers = &cmds[s]};
+        if (vkQueueSubmit(e.queue, 1, &submit, fences[s]) != VK_SUCCESS)
+            goto cleanup;
+        in_flight[s] = f;
+    }
+    roma_context_info ci;
+    roma_context_get_info(ctx, &ci);
+    printf("example-engine: %u frames, %d wrong probe answers of %u judged frames x %d rays, "
+           "%u validation messages; libroma submitted %llu times (object creation only)\n",
+           frames, wrong, judged, PROBES, e.validation_messages, (unsigned long long)ci.queue_submits);
+    if (frames > 100)
+        printf("soak: resident memory %ld KiB at frame 100, %ld KiB at the end; libroma device memory %llu B at "
+               "frame 100, %llu B at the end\n",
+               rss_100, resident_kib(), (unsigned long long)device_100, (unsigned long long)ci.device_memory_in_use);
+    status = wrong == 0 && judged == frames && e.validation_messages == 0 ? 0 : 1;
+cleanup:
+    vkDeviceWaitIdle(e.device);
+    for (int s = 0; s < SLOTS; ++s) {
+        if (fences[s])
+            vkDestroyFence(e.device, fences[s], NULL);
+        buffer_destroy(&e, &rays[s]);
+        buffer_destroy(&e, &hits[s]);
+    }
+    if (pool)
+        vkDestroyCommandPool(e.device, pool, NULL);
+    if (animate)
+        vkDestroyPipeline(e.device, animate, NULL);
+    if (probe)
+        vkDestroyPipeline(e.device, probe, NULL);
+    if (animate_layout)
+        vkDestroyPipelineLayout(e.device, animate_layout, NULL);
+    if (probe_layout)
+        vkDestroyPipelineLayout(e.device, probe_layout, NULL);
+    buffer_destroy(&e, &rest);
+    buffer_destroy(&e, &positions);
+done:
+    roma_map_destroy(map);
+    roma_scene_destroy(scene);
+    roma_context_destroy(ctx);
+    if (e.device)
+        vkDestroyDevice(e.device, NULL);
+    if (e.messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(e.instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy)
+            destroy(e.instance, e.messenger, NULL);
+    }
+    if (e.instance)
+        vkDestroyInstance(e.instance, NULL);
+    if (status == 0 && e.validation_messages)
+        status = 1;
+    return status;
+}

@@ -110,7 +110,8 @@ static void make_rays(roma_ray *rays)
 
 /* Hits on the box (its front face at t = 0.7, or its back face at 0.9 where the walk
  * stepped over the front one, ROMA's one approximation here) where the box is, misses
- * where it is not; rays within two grid cells of its sides are not judged. Returns the
+ * where it is not; rays within two trace cells (the longest edge of a rotated cell) of its
+ * sides are not judged. Returns the
  * number of wrong answers. */
 static int judge(const roma_ray *rays, const roma_hit *hits, float box_x, float cell, int box_traced)
 {
@@ -236,7 +237,7 @@ int main(void)
         vkCmdPipelineBarrier2(cmds[s], &dep);
         CHECK(vkEndCommandBuffer(cmds[s]) == VK_SUCCESS);
         CHECK_RESULT(roma_map_get_info(map, &info), ROMA_SUCCESS);
-        cells[f] = info.grid_cell;
+        cells[f] = info.trace_cell;
         VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                                .pCommandBuffers = &cmds[s]};
         CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &submit, fences[s]) == VK_SUCCESS);

@@ -285,7 +285,8 @@ static void make_probes(probe_ray *rays)
 
 /* Rays through the box hit it (front face at t = 1.15, or its back face at 1.45 where the
  * walk stepped over the front one); the others hit nothing before the back wall (t 2.8).
- * Rays within two cells of the box's sides are not judged. */
+ * `cell` is the map's trace cell (the longest edge a rotated cell can have): rays within
+ * two of them of the box's sides are not judged. */
 static int wrong_answers(const probe_ray *rays, const roma_hit *hits, float box_x, float cell)
 {
     const float front = 1.8f - (box_centre[2] + BOX_HALF), back = front + 2.0f * BOX_HALF;
@@ -298,6 +299,9 @@ static int wrong_answers(const probe_ray *rays, const roma_hit *hits, float box_
             wrong += !hit || hits[i].t < front - 4.0f * cell || hits[i].t > back + 4.0f * cell;
         else if (dx > BOX_HALF + 2.0f * cell)
             wrong += hit && hits[i].t < back + 4.0f * cell;
+        if (getenv("EXAMPLE_VERBOSE"))
+            printf("  x %.3f box %.3f: %s t %.4f (cell %.4f)\n", (double)rays[i].origin[0], (double)box_x,
+                   hit ? "hit" : "miss", (double)hits[i].t, (double)cell);
     }
     return wrong;
 }
@@ -391,7 +395,7 @@ int main(int argc, char **argv)
     roma_map_info info;
     roma_map_get_info(map, &info);
     uint32_t in_flight[SLOTS] = {UINT32_MAX, UINT32_MAX};
-    float cell = info.grid_cell;
+    float cell = info.trace_cell;
     int wrong = 0;
     uint32_t judged = 0;
     long rss_100 = 0;
@@ -439,7 +443,7 @@ int main(int argc, char **argv)
         /* 3. The engine's probe rays (the build ends with a barrier that makes the maps
          *    readable by any later command). */
         roma_map_get_info(map, &info);
-        cell = info.grid_cell;
+        cell = info.trace_cell;
         struct {
             VkDeviceAddress params, maps, rays, hits;
             uint32_t count, max_steps;

@@ -21,10 +21,13 @@ static int sentinel_storage;
 static void expect_fail(roma_result got, roma_result code, roma_test_log *log, int errors_before,
                         const char *word, const char *what, int line)
 {
+    /* One error, logged with the code the call returned; the message names the problem
+     * for the person who reads it. */
     int logged = log->errors - errors_before;
-    if (got != code || logged != 1 || !strstr(log->last, word)) {
-        fprintf(stderr, "line %d: %s gave '%s' with %d error(s), last \"%s\"; expected '%s' naming '%s'\n",
-                line, what, roma_result_string(got), logged, log->last, roma_result_string(code), word);
+    if (got != code || logged != 1 || log->last_code != code || !strstr(log->last, word)) {
+        fprintf(stderr, "line %d: %s gave '%s' with %d error(s), last \"%s\" ('%s'); expected '%s' naming '%s'\n",
+                line, what, roma_result_string(got), logged, log->last, roma_result_string(log->last_code),
+                roma_result_string(code), word);
         ++roma_test_failures;
     }
 }

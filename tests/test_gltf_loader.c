@@ -15,9 +15,9 @@ static int sentinel_storage;
 #define SENTINEL ((roma_scene *)(void *)&sentinel_storage)
 
 /* Counts errors without printing: the truncation loops make thousands. */
-static void count_errors(roma_log_level level, const char *message, void *user)
+static void count_errors(roma_log_level level, roma_result code, const char *message, void *user)
 {
-    (void)message;
+    (void)message, (void)code;
     *(int *)user += level == ROMA_LOG_ERROR;
 }
 
@@ -104,7 +104,7 @@ static size_t make_glb(unsigned char *out, const char *json, const void *bin, si
 }
 
 /* Loads `data` from a file called `name` and from memory; both must agree on
- * the code, leave NULL on failure and log exactly one error then. */
+ * the code, leave NULL on failure and log exactly one error then, with that code. */
 static roma_result load_case(const char *name, const void *data, size_t n, int *warnings, roma_scene **keep)
 {
     char path[1024];
@@ -116,7 +116,8 @@ static roma_result load_case(const char *name, const void *data, size_t n, int *
     roma_result r = roma_scene_load_gltf(path, &desc, &s);
     desc.logger = roma_test_logger(&mlog);
     roma_result rm = roma_scene_load_gltf_memory(data, n, NULL, &desc, &m);
-    int ok = r == ROMA_SUCCESS ? s && s != SENTINEL && log.errors == 0 : s == NULL && log.errors == 1;
+    int ok = r == ROMA_SUCCESS ? s && s != SENTINEL && log.errors == 0
+                               : s == NULL && log.errors == 1 && log.last_code == r && mlog.last_code == rm;
     ok = ok && rm == r && (rm == ROMA_SUCCESS ? m && m != SENTINEL : m == NULL) && mlog.errors == log.errors;
     if (!ok) {
         fprintf(stderr, "%s: file '%s' (%d errors), memory '%s' (%d errors)\n", name, roma_result_string(r),

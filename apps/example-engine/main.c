@@ -57,9 +57,9 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
     return VK_FALSE;
 }
 
-static void log_to_stderr(roma_log_level level, const char *message, void *user)
+static void log_to_stderr(roma_log_level level, roma_result code, const char *message, void *user)
 {
-    (void)user;
+    (void)user, (void)code;
     if (level >= ROMA_LOG_WARNING)
         fprintf(stderr, "libroma %s: %s\n", roma_log_level_string(level), message);
 }

@@ -27,6 +27,7 @@ typedef enum roma_result {
     ROMA_ERROR_EMPTY_SCENE,         /* no triangle with non-zero area */
     ROMA_ERROR_UNSUPPORTED,         /* e.g. a required glTF extension libroma cannot decode */
     ROMA_ERROR_NOT_READY,           /* results asked for before the GPU produced them */
+    ROMA_ERROR_VALIDATION,          /* a Vulkan validation-layer message (logged, never returned) */
     ROMA_RESULT_COUNT_
 } roma_result;
 
@@ -42,7 +43,10 @@ typedef enum roma_log_level {
 
 const char *roma_log_level_string(roma_log_level level);
 
-typedef void (*roma_log_fn)(roma_log_level level, const char *message, void *user_data);
+/* code: for an error, the roma_result the failing call returns (ROMA_ERROR_VALIDATION for
+ * a validation-layer message); ROMA_SUCCESS for debug, info and warning messages. Callers
+ * can act on the code; the message is for people. */
+typedef void (*roma_log_fn)(roma_log_level level, roma_result code, const char *message, void *user_data);
 
 /* Zero value: warnings and errors go to stderr. Set fn to route them elsewhere. */
 typedef struct roma_logger {

@@ -45,8 +45,8 @@ static roma_result rtc_error_result(enum RTCError code)
 static void on_embree_error(void *user, enum RTCError code, const char *message)
 {
     const roma_ref *ref = user;
-    roma_logf(&ref->logger, ROMA_LOG_ERROR, "Embree: %s (%s)", message ? message : "",
-              rtc_error_name(code));
+    roma_log_error(&ref->logger, rtc_error_result(code), "Embree: %s (%s)", message ? message : "",
+                   rtc_error_name(code));
 }
 
 /* Returns ROMA_SUCCESS or logs `what` with the pending device error. */
@@ -335,7 +335,7 @@ void roma_ref_occluded_batch(const roma_ref *ref, uint32_t n, const float *orgs,
     if (!ref || n == 0 || !out_hit)
         return;
     if (!orgs || !dirs) {
-        roma_logf(&ref->logger, ROMA_LOG_ERROR, "roma_ref_occluded_batch: NULL ray arrays");
+        roma_log_error(&ref->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ref_occluded_batch: NULL ray arrays");
         memset(out_hit, 0, n);
         return;
     }
@@ -349,7 +349,7 @@ void roma_ref_intersect_batch(const roma_ref *ref, uint32_t n, const float *orgs
     if (!ref || n == 0 || !out_t)
         return;
     if (!orgs || !dirs) {
-        roma_logf(&ref->logger, ROMA_LOG_ERROR, "roma_ref_intersect_batch: NULL ray arrays");
+        roma_log_error(&ref->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ref_intersect_batch: NULL ray arrays");
         for (uint32_t i = 0; i < n; ++i)
             out_t[i] = INFINITY;
         return;

@@ -261,7 +261,7 @@ public:
         va_start(args, fmt);
         std::string msg = vformat(fmt, args);
         va_end(args);
-        roma_logf(log_, ROMA_LOG_ERROR, "%s: %s", file_.c_str(), msg.c_str());
+        roma_log_error(log_, code, "%s: %s", file_.c_str(), msg.c_str());
         throw Failure{code};
     }
     ROMA_PRINTF(2, 3) void warn(const char *fmt, ...)

@@ -18,6 +18,8 @@ extern "C" {
 void roma_logf(const roma_logger *logger, roma_log_level level, const char *fmt, ...)
     ROMA_PRINTF(3, 4);
 
+/* An error message with the code the failing call will return (when they are not one line). */
+void roma_log_error(const roma_logger *logger, roma_result code, const char *fmt, ...) ROMA_PRINTF(3, 4);
 /* Logs an error and returns `result`, for one-line failure paths. */
 roma_result roma_fail(const roma_logger *logger, roma_result result, const char *fmt, ...)
     ROMA_PRINTF(3, 4);

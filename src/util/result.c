@@ -19,6 +19,7 @@ const char *roma_result_string(roma_result result)
     case ROMA_ERROR_EMPTY_SCENE: return "empty scene";
     case ROMA_ERROR_UNSUPPORTED: return "unsupported";
     case ROMA_ERROR_NOT_READY: return "not ready";
+    case ROMA_ERROR_VALIDATION: return "Vulkan validation message";
     case ROMA_RESULT_COUNT_: break;
     }
     return "unknown roma_result";

@@ -18,8 +18,11 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT) {
         level = ROMA_LOG_INFO;
     }
-    roma_logf(&ctx->logger, level, "vulkan validation: %s",
-              data && data->pMessage ? data->pMessage : "(no message)");
+    const char *text = data && data->pMessage ? data->pMessage : "(no message)";
+    if (level == ROMA_LOG_ERROR)
+        roma_log_error(&ctx->logger, ROMA_ERROR_VALIDATION, "vulkan validation: %s", text);
+    else
+        roma_logf(&ctx->logger, level, "vulkan validation: %s", text);
     return VK_FALSE;
 }
 

@@ -34,8 +34,7 @@ roma_result roma_vk_check(const roma_context *ctx, VkResult vr, const char *what
     case VK_ERROR_LAYER_NOT_PRESENT: r = ROMA_ERROR_MISSING_FEATURE; break;
     default: r = ROMA_ERROR_VULKAN; break;
     }
-    roma_logf(ctx ? &ctx->logger : NULL, ROMA_LOG_ERROR, "%s failed: %s", what, roma_vk_result_string(vr));
-    return r;
+    return roma_fail(ctx ? &ctx->logger : NULL, r, "%s failed: %s", what, roma_vk_result_string(vr));
 }
 
 static uint32_t find_memory_type(const roma_context *ctx, uint32_t type_bits, VkMemoryPropertyFlags want,

@@ -16,8 +16,9 @@
 #include "roma/scene.h"
 
 /* Silent, unless ROMA_FUZZ_VERBOSE is set (to see why a crashing input was refused). */
-static void quiet(roma_log_level level, const char *message, void *user_data)
+static void quiet(roma_log_level level, roma_result code, const char *message, void *user_data)
 {
+    (void)code;
     (void)user_data;
     if (getenv("ROMA_FUZZ_VERBOSE"))
         fprintf(stderr, "[%s] %s\n", roma_log_level_string(level), message);

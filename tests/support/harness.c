@@ -7,11 +7,11 @@
 
 int roma_test_failures = 0;
 
-static void record(roma_log_level level, const char *message, void *user)
+static void record(roma_log_level level, roma_result code, const char *message, void *user)
 {
     roma_test_log *log = user;
     if (level == ROMA_LOG_ERROR)
-        ++log->errors;
+        ++log->errors, log->last_code = code;
     if (level == ROMA_LOG_WARNING)
         ++log->warnings;
     snprintf(log->last, sizeof log->last, "%s", message);
@@ -29,10 +29,10 @@ roma_logger roma_test_logger(roma_test_log *log)
  * errors raised while a context is destroyed (objects left alive) count too. */
 static unsigned validation_errors;
 
-static void count_validation(roma_log_level level, const char *message, void *user)
+static void count_validation(roma_log_level level, roma_result code, const char *message, void *user)
 {
     (void)user;
-    if (level == ROMA_LOG_ERROR && strncmp(message, "vulkan validation:", 18) == 0)
+    if (code == ROMA_ERROR_VALIDATION)
         ++validation_errors;
     if (level >= ROMA_LOG_WARNING)
         fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);

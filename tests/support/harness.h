@@ -44,6 +44,7 @@ extern int roma_test_failures;
 typedef struct roma_test_log {
     int errors;
     int warnings;
+    roma_result last_code; /* the code the last error came with */
     char last[1024];
 } roma_test_log;
 

@@ -129,6 +129,21 @@ int main(void)
     free(after);
     free(moved);
     roma_map_destroy(map);
+
+    /* Pipelines belong to the context: a map of another RES and A, built and traced the
+     * same way, compiles none. */
+    roma_context_info ci;
+    CHECK_RESULT(roma_context_get_info(ctx, &ci), ROMA_SUCCESS);
+    uint32_t compiled = ci.pipelines_compiled;
+    roma_map *other = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 64, .angular = 2}, scene, &other), ROMA_SUCCESS);
+    CHECK_RESULT(roma_map_build(other, &frame, NULL), ROMA_SUCCESS);
+    CHECK_RESULT(roma_map_trace(other, ROMA_TRACE_SNAPPED_ANY, 0, &ray, 1, &hit, NULL), ROMA_SUCCESS);
+    CHECK_RESULT(roma_context_get_info(ctx, &ci), ROMA_SUCCESS);
+    printf("compute pipelines compiled: %u after the first map, %u after a second of RES 64, A 2\n", compiled,
+           ci.pipelines_compiled);
+    CHECK(compiled > 0 && ci.pipelines_compiled == compiled);
+    roma_map_destroy(other);
     roma_scene_destroy(scene);
     roma_test_context_finish(ctx);
     return roma_test_finish("test_map_api");

@@ -118,6 +118,9 @@ typedef struct roma_context_info {
      * record calls never do. */
     uint64_t queue_submits;
     uint64_t queue_waits;
+    /* Compute pipelines compiled so far. Every object of the context shares them: a map
+     * of another RES or A, or a second map, compiles none (kept until the context goes). */
+    uint32_t pipelines_compiled;
 } roma_context_info;
 
 roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);

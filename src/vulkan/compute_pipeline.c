@@ -1,8 +1,81 @@
+#include <stdlib.h>
 #include <string.h>
 
+#include "vulkan/shader_table.h"
 #include "vulkan/vk_internal.h"
 
 #define MAX_STORAGE_BUFFERS 16
+
+/* One compiled pipeline of the context and what it was made from. */
+typedef struct roma_shared_pipeline {
+    const char *module_name; /* a name of the embedded SPIR-V table (static storage) */
+    VkDescriptorType types[MAX_STORAGE_BUFFERS];
+    uint32_t binding_count, push_size, constant_count;
+    uint32_t constants[MAX_STORAGE_BUFFERS];
+    roma_compute_pipeline pipeline;
+} roma_shared_pipeline;
+
+static roma_shared_pipeline *find_shared(roma_context *ctx, const char *module_name, const VkDescriptorType *types,
+                                         uint32_t binding_count, uint32_t push_size, const uint32_t *constants,
+                                         uint32_t constant_count)
+{
+    for (uint32_t i = 0; i < ctx->pipeline_count; ++i) {
+        roma_shared_pipeline *p = &ctx->pipelines[i];
+        if (strcmp(p->module_name, module_name) == 0 && p->binding_count == binding_count &&
+            p->push_size == push_size && p->constant_count == constant_count &&
+            (!binding_count || memcmp(p->types, types, sizeof *types * binding_count) == 0) &&
+            (!constant_count || memcmp(p->constants, constants, 4 * (size_t)constant_count) == 0))
+            return p;
+    }
+    return NULL;
+}
+
+static void destroy_handles(roma_context *ctx, roma_compute_pipeline *p)
+{
+    if (p->pipeline)
+        vkDestroyPipeline(ctx->device, p->pipeline, ctx->allocator);
+    if (p->layout)
+        vkDestroyPipelineLayout(ctx->device, p->layout, ctx->allocator);
+    if (p->set_layout)
+        vkDestroyDescriptorSetLayout(ctx->device, p->set_layout, ctx->allocator);
+    memset(p, 0, sizeof *p);
+}
+
+/* Keeps a new pipeline in the context; on failure the caller still owns it. */
+static roma_result share(roma_context *ctx, const char *module_name, const VkDescriptorType *types,
+                         uint32_t binding_count, uint32_t push_size, const uint32_t *constants,
+                         uint32_t constant_count, const roma_compute_pipeline *pipeline)
+{
+    if (ctx->pipeline_count == ctx->pipeline_capacity) {
+        uint32_t capacity = ctx->pipeline_capacity ? 2 * ctx->pipeline_capacity : 32;
+        roma_shared_pipeline *grown = realloc(ctx->pipelines, sizeof *grown * capacity);
+        if (!grown)
+            return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "compute pipeline %s: out of memory",
+                             module_name);
+        ctx->pipelines = grown;
+        ctx->pipeline_capacity = capacity;
+    }
+    roma_shared_pipeline *p = &ctx->pipelines[ctx->pipeline_count++];
+    memset(p, 0, sizeof *p);
+    p->module_name = roma_find_spirv(module_name)->name; /* found: the shader module was made from it */
+    memcpy(p->types, types, sizeof *types * binding_count);
+    p->binding_count = binding_count;
+    p->push_size = push_size;
+    p->constant_count = constant_count;
+    if (constant_count)
+        memcpy(p->constants, constants, 4 * (size_t)constant_count);
+    p->pipeline = *pipeline;
+    return ROMA_SUCCESS;
+}
+
+void roma_shared_pipelines_destroy(roma_context *ctx)
+{
+    for (uint32_t i = 0; i < ctx->pipeline_count; ++i)
+        destroy_handles(ctx, &ctx->pipelines[i].pipeline);
+    free(ctx->pipelines);
+    ctx->pipelines = NULL;
+    ctx->pipeline_count = ctx->pipeline_capacity = 0;
+}
 
 roma_result roma_compute_pipeline_create(roma_context *ctx, const char *module_name,
                                          uint32_t storage_buffer_count, uint32_t push_size,
@@ -27,8 +100,15 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               roma_compute_pipeline *out)
 {
     memset(out, 0, sizeof *out);
-    if (binding_count > MAX_STORAGE_BUFFERS)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors for %s", module_name);
+    if (binding_count > MAX_STORAGE_BUFFERS || constant_count > MAX_STORAGE_BUFFERS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors or constants for %s",
+                         module_name);
+    const roma_shared_pipeline *known =
+        find_shared(ctx, module_name, types, binding_count, push_size, constants, constant_count);
+    if (known) {
+        *out = known->pipeline;
+        return ROMA_SUCCESS;
+    }
     roma_result r = roma_descriptor_layout_create(ctx, types, binding_count, &out->set_layout);
     VkPushConstantRange push = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = push_size};
     if (r == ROMA_SUCCESS) {
@@ -60,25 +140,21 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                       .pSpecializationInfo = constant_count ? &spec : NULL},
             .layout = out->layout,
         };
-        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->allocator, &out->pipeline),
+        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->allocator, &out->pipeline),
                           "vkCreateComputePipelines");
     }
     if (shader)
         vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
+    if (r == ROMA_SUCCESS)
+        r = share(ctx, module_name, types, binding_count, push_size, constants, constant_count, out);
     if (r != ROMA_SUCCESS)
-        roma_compute_pipeline_destroy(ctx, out);
+        destroy_handles(ctx, out);
     return r;
 }
 
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *p)
 {
-    if (!ctx || !p)
-        return;
-    if (p->pipeline)
-        vkDestroyPipeline(ctx->device, p->pipeline, ctx->allocator);
-    if (p->layout)
-        vkDestroyPipelineLayout(ctx->device, p->layout, ctx->allocator);
-    if (p->set_layout)
-        vkDestroyDescriptorSetLayout(ctx->device, p->set_layout, ctx->allocator);
-    memset(p, 0, sizeof *p);
+    (void)ctx;
+    if (p)
+        memset(p, 0, sizeof *p); /* the context keeps the pipeline for its next user */
 }

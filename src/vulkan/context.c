@@ -247,7 +247,12 @@ static roma_result create_submit_objects(roma_context *ctx)
     if (r != ROMA_SUCCESS)
         return r;
     VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    return roma_vk_check(ctx, vkCreateFence(ctx->device, &fence, ctx->allocator, &ctx->fence), "vkCreateFence");
+    r = roma_vk_check(ctx, vkCreateFence(ctx->device, &fence, ctx->allocator, &ctx->fence), "vkCreateFence");
+    VkPipelineCacheCreateInfo cache = {.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    if (r == ROMA_SUCCESS)
+        r = roma_vk_check(ctx, vkCreatePipelineCache(ctx->device, &cache, ctx->allocator, &ctx->pipeline_cache),
+                          "vkCreatePipelineCache");
+    return r;
 }
 
 static roma_result adopt_external(roma_context *ctx, const roma_external_device *ext)
@@ -372,6 +377,9 @@ void roma_context_destroy(roma_context *ctx)
             vkDeviceWaitIdle(ctx->device);
         else if (ctx->queue)
             vkQueueWaitIdle(ctx->queue);
+        roma_shared_pipelines_destroy(ctx);
+        if (ctx->pipeline_cache)
+            vkDestroyPipelineCache(ctx->device, ctx->pipeline_cache, ctx->allocator);
         if (ctx->fence)
             vkDestroyFence(ctx->device, ctx->fence, ctx->allocator);
         if (ctx->command_pool)
@@ -412,6 +420,7 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
     out->owns_device = ctx->owns_device;
     out->queue_submits = ctx->queue_submits;
     out->queue_waits = ctx->queue_waits;
+    out->pipelines_compiled = ctx->pipeline_count;
     return ROMA_SUCCESS;
 }
 

@@ -95,6 +95,6 @@ roma_result roma_graphics_pipeline_create(roma_context *ctx, const roma_graphics
         .pDynamicState = &dynamic,
         .layout = d->layout,
     };
-    return roma_vk_check(ctx, vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->allocator, out),
+    return roma_vk_check(ctx, vkCreateGraphicsPipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->allocator, out),
                          d->label ? d->label : "vkCreateGraphicsPipelines");
 }

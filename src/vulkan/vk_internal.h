@@ -28,6 +28,12 @@ struct roma_context {
     uint64_t memory_in_use;           /* bytes of every vkAllocateMemory libroma made */
     int has_geometry_shader;
     uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
+    /* Compute pipelines shared by every object of the context (compute_pipeline.c): made
+     * on first use, kept until the context is destroyed, so a map of another RES or A
+     * compiles nothing. The VkPipelineCache serves every pipeline libroma creates. */
+    struct roma_shared_pipeline *pipelines;
+    uint32_t pipeline_count, pipeline_capacity;
+    VkPipelineCache pipeline_cache;
     /* For the context's own blocking submissions (uploads, readbacks, self-test). */
     VkCommandPool command_pool;
     VkFence fence;
@@ -120,7 +126,11 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               const VkDescriptorType *types, uint32_t binding_count,
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
                                               roma_compute_pipeline *out);
+/* Pipelines are shared by the whole context (made once per module, bindings, push size
+ * and constants): destroy only forgets the caller's copy. */
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);
+/* The context's shared pipelines, at context destruction. */
+void roma_shared_pipelines_destroy(roma_context *ctx);
 
 /* The bindings of roma/trace_descriptors.glsl (set 0 of every pass that traces a map):
  * the maps as a uniform texel buffer, the parameters as a uniform buffer. */

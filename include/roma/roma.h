@@ -3,6 +3,7 @@
 #ifndef ROMA_ROMA_H
 #define ROMA_ROMA_H
 
+#include "roma/animation.h"
 #include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/effects.h"

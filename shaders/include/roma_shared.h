@@ -124,6 +124,21 @@ ROMA_STRUCT_BEGIN(roma_gather_positions_push)
     ROMA_UVEC4(config);   /* x: vertex count, y: stride in 4-byte words */
 ROMA_STRUCT_END(roma_gather_positions_push)
 
+/* animate/skin.comp (src/animate/animator.c): one invocation per vertex. */
+#define ROMA_SKIN_WORKGROUP_SIZE 64
+ROMA_STRUCT_BEGIN(roma_skin_vertex)
+    ROMA_VEC4(rest);      /* xyz: position in mesh space; w: node index (float bits) */
+    ROMA_UVEC4(joints);   /* indices into the joint rows (skin's first joint added); x = ~0u: not skinned */
+    ROMA_VEC4(weights);   /* normalised to sum 1 */
+ROMA_STRUCT_END(roma_skin_vertex)
+ROMA_STRUCT_BEGIN(roma_skin_push)
+    ROMA_U64(vertices);   /* roma_skin_vertex per vertex */
+    ROMA_U64(rows);       /* node worlds, then joint matrices: 3 vec4 rows each */
+    ROMA_U64(positions);  /* out: 3 floats per vertex */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: vertex count, y: node count (joint rows start after the nodes) */
+ROMA_STRUCT_END(roma_skin_push)
+
 ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_U64(rays);
     ROMA_U64(hits);

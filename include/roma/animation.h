@@ -1,0 +1,95 @@
+/* libroma: playing a scene's glTF animations (node animations and skins) on the GPU.
+ *
+ * A roma_animator evaluates a clip at a time on the host (keyframes -> node transforms
+ * -> joint matrices: a few hundred matrices, not vertices) and records a compute pass
+ * that skins every vertex of the scene into a positions buffer it owns (3 floats per
+ * vertex, 12-byte stride). Feed that buffer to roma_map_record_build
+ * (roma_map_frame_desc.gpu_positions) with the bounds the animator returns as the
+ * volume, and the ROMA maps follow the animation every frame; the previous frame's
+ * positions stay readable for motion vectors.
+ *
+ * Skinning follows glTF: a skinned vertex is sum_k w_k * J[joint_k] * p_rest with
+ * J = world(joint node) * inverse bind matrix (weights normalised to sum 1); any other
+ * vertex is world(its node) * p_rest. Clips loop over their duration (the last key).
+ * Morph targets are not played (the loader keeps the base mesh).
+ *
+ * Threads and queues as for the context: one thread at a time; record calls never
+ * submit or wait. The slot rules are those of roma_map_frame_desc.slot. */
+#ifndef ROMA_ANIMATION_H
+#define ROMA_ANIMATION_H
+
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#include "roma/context.h"
+#include "roma/map.h"
+#include "roma/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct roma_animator roma_animator;
+
+typedef struct roma_animator_desc {
+    uint32_t frames_in_flight; /* slots for the per-frame matrices, [1, 8]; 0 = 2 */
+    roma_logger logger;        /* 0 = the context's */
+} roma_animator_desc;
+
+/* The scene must carry animation data (roma_scene_view.animation with per-vertex
+ * arrays, as the glTF loader keeps for skinned or animated files):
+ * ROMA_ERROR_INVALID_ARGUMENT otherwise. Uploads the per-vertex skinning data and the
+ * rest pose (submits and waits once; not a per-frame call). */
+roma_result roma_animator_create(roma_context *context, const roma_scene *scene, const roma_animator_desc *desc,
+                                 roma_animator **out_animator);
+/* Accepts NULL. The caller makes sure no submitted work still uses it. */
+void roma_animator_destroy(roma_animator *animator);
+
+typedef struct roma_animator_pose {
+    uint32_t clip;   /* index of the animation, < roma_animator_info.clip_count */
+    float time;      /* seconds; wraps at the clip's duration; negative = 0 */
+} roma_animator_pose;
+
+typedef struct roma_animator_output {
+    VkDeviceAddress positions;          /* this frame's skinned positions (3 floats per vertex) */
+    VkDeviceAddress previous_positions; /* the previous record's (the rest pose before the first) */
+    VkBuffer positions_buffer, previous_positions_buffer;
+    /* Bounds every skinned vertex lies in: the union of each joint's rest-pose vertex box
+     * under its joint matrix (and each node's under its world matrix), so it holds however
+     * the weights mix. A volume for roma_map_frame_desc. */
+    roma_box bounds;
+} roma_animator_output;
+
+/* Records the skinning of `pose` into cmd (compute; a barrier after every earlier
+ * command first, so the previous frame's readers of the buffer it overwrites are done).
+ * The matrices go to the slot's storage. The written positions are visible to
+ * roma_map_record_build (which opens with its own barrier); for other readers the
+ * caller adds a barrier from compute-shader writes. */
+roma_result roma_animator_record(roma_animator *animator, VkCommandBuffer cmd, uint32_t slot,
+                                 const roma_animator_pose *pose, roma_animator_output *out);
+
+/* The same pose evaluated and skinned on the host (the GPU pass's reference, and a path
+ * for CPU callers): out_positions receives 3 floats per vertex. */
+roma_result roma_animator_pose_cpu(roma_animator *animator, const roma_animator_pose *pose, float *out_positions,
+                                   roma_box *out_bounds);
+
+typedef struct roma_animator_info {
+    uint32_t vertex_count;
+    uint32_t clip_count;
+    uint32_t joint_count;
+    uint32_t node_count;
+} roma_animator_info;
+
+roma_result roma_animator_get_info(const roma_animator *animator, roma_animator_info *out_info);
+/* Seconds of clip `clip` (its last key time). */
+roma_result roma_animator_clip_duration(const roma_animator *animator, uint32_t clip, float *out_seconds);
+
+/* Downloads the positions of the last recorded (and completed) skinning, 3 floats per
+ * vertex. Blocking; for tests and tools. */
+roma_result roma_animator_download_positions(roma_animator *animator, float *out_positions, uint32_t vertex_count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_ANIMATION_H */

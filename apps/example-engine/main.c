@@ -2,14 +2,15 @@
  *
  * It owns its Vulkan instance and device (created with roma_get_device_requirements),
  * keeps two frames in flight, and every frame records into its own command buffer:
- *   1. its own animation pass (animate.comp): the scene's rest positions, with a rigid
- *      box moved along x, written into its own GPU buffer;
- *   2. roma_map_record_build, reading those positions by address (gpu_positions);
- *   3. its own tracing pass (probe.comp, including roma/trace.glsl) over probe rays
+ *   1. libroma's skinning of an animated glTF character (roma_animator), when given;
+ *   2. its own animation pass (animate.comp): the room at rest, the skinned character
+ *      placed in it, and a rigid box moved along x, into its own GPU buffer;
+ *   3. roma_map_record_build, reading those positions by address (gpu_positions);
+ *   4. its own tracing pass (probe.comp, including roma/trace.glsl) over probe rays
  *      whose answers are known from the box's pose that frame.
  * The answers come back a frame later, when the slot's fence is waited on.
  *
- *   example-engine [--frames N] [--validation]
+ *   example-engine [--frames N] [--validation] [--character file.glb]
  *
  * --validation turns on the Khronos validation layer with synchronization validation;
  * any message fails the run. Prints resident memory and libroma's device memory at
@@ -19,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roma/gltf.h"
 #include "roma/roma.h"
 
 #define SLOTS 2
@@ -232,21 +234,39 @@ static int pipeline_create(const engine *e, const char *name, uint32_t push_size
 #define BOX_HALF 0.15f
 static const float box_centre[3] = {0.0f, 1.5f, 0.5f};
 
-static roma_scene *make_scene(roma_logger logger, uint32_t *out_box_first)
+/* The character stands in the front-left of the room, scaled to 0.9 (its feet on the
+ * floor, its head below the probe rays). */
+static const float character_placement[4] = {-0.4f, 0.0f, 1.1f, 0.9f};
+
+/* Room, then the character's vertices (placed), then the box's: the order animate.comp
+ * relies on. */
+static roma_scene *make_scene(roma_logger logger, const roma_scene *character, uint32_t *out_character_first,
+                              uint32_t *out_character_count, uint32_t *out_box_first)
 {
     roma_scene *room = NULL;
     if (roma_scene_create_builtin("cornell", &logger, &room) != ROMA_SUCCESS)
         return NULL;
-    roma_scene_view v;
+    roma_scene_view v, cv = {0};
     roma_scene_get_view(room, &v);
+    if (character)
+        roma_scene_get_view(character, &cv);
+    uint32_t room_vertices = v.vertex_count, room_triangles = v.triangle_count;
+    v.vertex_count += cv.vertex_count; /* from here on: room + character */
+    v.triangle_count += cv.triangle_count;
     uint32_t nv = v.vertex_count + 8, nt = v.triangle_count + 12;
     float *pos = malloc(sizeof(float) * 3 * nv);
     uint32_t *idx = malloc(sizeof(uint32_t) * 3 * nt), *mat = malloc(sizeof(uint32_t) * nt);
     roma_scene *scene = NULL;
     if (pos && idx && mat) {
-        memcpy(pos, v.positions, sizeof(float) * 3 * v.vertex_count);
-        memcpy(idx, v.indices, sizeof(uint32_t) * 3 * v.triangle_count);
-        memcpy(mat, v.triangle_materials, sizeof(uint32_t) * v.triangle_count);
+        memcpy(pos, v.positions, sizeof(float) * 3 * room_vertices);
+        memcpy(idx, v.indices, sizeof(uint32_t) * 3 * room_triangles);
+        memcpy(mat, v.triangle_materials, sizeof(uint32_t) * room_triangles);
+        for (uint32_t i = 0; i < 3 * cv.vertex_count; ++i)
+            pos[3 * room_vertices + i] = cv.positions[i] * character_placement[3] + character_placement[i % 3];
+        for (uint32_t i = 0; i < 3 * cv.triangle_count; ++i)
+            idx[3 * room_triangles + i] = cv.indices[i] + room_vertices;
+        for (uint32_t t = 0; t < cv.triangle_count; ++t)
+            mat[room_triangles + t] = 0;
         for (int c = 0; c < 8; ++c)
             for (int a = 0; a < 3; ++a)
                 pos[3 * (v.vertex_count + c) + a] = box_centre[a] + ((c >> a) & 1 ? BOX_HALF : -BOX_HALF);
@@ -263,6 +283,8 @@ static roma_scene *make_scene(roma_logger logger, uint32_t *out_box_first)
         if (roma_scene_create(&d, &scene) != ROMA_SUCCESS)
             scene = NULL;
         *out_box_first = v.vertex_count;
+        *out_character_first = room_vertices;
+        *out_character_count = cv.vertex_count;
     }
     free(pos), free(idx), free(mat);
     roma_scene_destroy(room);
@@ -322,13 +344,16 @@ int main(int argc, char **argv)
 {
     uint32_t frames = 12;
     int validation = 0;
+    const char *character_path = NULL;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--frames") == 0 && i + 1 < argc)
             frames = (uint32_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--validation") == 0)
             validation = 1;
+        else if (strcmp(argv[i], "--character") == 0 && i + 1 < argc)
+            character_path = argv[++i];
         else {
-            fprintf(stderr, "usage: example-engine [--frames N] [--validation]\n");
+            fprintf(stderr, "usage: example-engine [--frames N] [--validation] [--character file.glb]\n");
             return 2;
         }
     }
@@ -342,11 +367,21 @@ int main(int argc, char **argv)
     roma_external_device ext = {e.instance, e.physical, e.device, e.family, e.queue, &req.features};
     roma_context_desc cd = {.external = &ext, .logger = logger};
     roma_context *ctx = NULL;
-    uint32_t box_first = 0;
-    roma_scene *scene = NULL;
+    uint32_t box_first = 0, character_first = 0, character_count = 0;
+    roma_scene *scene = NULL, *character = NULL;
+    roma_animator *animator = NULL;
     roma_map *map = NULL;
     int status = 1;
-    if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS || !(scene = make_scene(logger, &box_first)))
+    if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS)
+        goto done;
+    if (character_path) {
+        roma_gltf_desc gd = {.logger = logger};
+        if (roma_scene_load_gltf(character_path, &gd, &character) != ROMA_SUCCESS ||
+            roma_animator_create(ctx, character, &(roma_animator_desc){.frames_in_flight = SLOTS}, &animator) !=
+                ROMA_SUCCESS)
+            goto done;
+    }
+    if (!(scene = make_scene(logger, character, &character_first, &character_count, &box_first)))
         goto done;
     roma_map_desc md = {.resolution = 128, .angular = 4, .frames_in_flight = SLOTS};
     if (roma_map_create(ctx, &md, scene, &map) != ROMA_SUCCESS)
@@ -366,7 +401,7 @@ int main(int argc, char **argv)
              buffer_create(&e, sizeof(roma_hit) * PROBES, 1, &hits[s]);
     VkPipelineLayout animate_layout = VK_NULL_HANDLE, probe_layout = VK_NULL_HANDLE;
     VkPipeline animate = VK_NULL_HANDLE, probe = VK_NULL_HANDLE;
-    ok = ok && pipeline_create(&e, "animate.spv", 48, &animate_layout, &animate) &&
+    ok = ok && pipeline_create(&e, "animate.spv", 80, &animate_layout, &animate) &&
          pipeline_create(&e, "probe.spv", 40, &probe_layout, &probe);
     VkCommandPool pool = VK_NULL_HANDLE;
     VkCommandBuffer cmds[SLOTS];
@@ -399,6 +434,7 @@ int main(int argc, char **argv)
     int wrong = 0;
     uint32_t judged = 0;
     long rss_100 = 0;
+    uint32_t outside_volume = 0;
     uint64_t device_100 = 0;
     for (uint32_t f = 0; f < frames + SLOTS; ++f) {
         uint32_t s = f % SLOTS;
@@ -424,13 +460,34 @@ int main(int argc, char **argv)
         VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
         vkBeginCommandBuffer(cmds[s], &bi);
-        /* 1. The engine's animation. libroma's build opens with a barrier after every
-         *    earlier command, so the positions need no barrier of the engine's own. */
+        /* 1. libroma skins the character; 2. the engine's animation places it and moves
+         *    the box (a compute-to-compute barrier between the two); libroma's build opens
+         *    with a barrier after every earlier command, so the positions need no other. */
+        roma_animator_output skinned = {0};
+        if (animator) {
+            roma_animator_pose pose = {0, (float)f / 30.0f};
+            if (roma_animator_record(animator, cmds[s], s, &pose, &skinned) != ROMA_SUCCESS)
+                goto cleanup;
+            VkMemoryBarrier2 skin_done = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                          .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                          .srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT,
+                                          .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                          .dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT};
+            VkDependencyInfo skin_dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                                         .pMemoryBarriers = &skin_done};
+            vkCmdPipelineBarrier2(cmds[s], &skin_dep);
+            for (int a = 0; a < 3; ++a) /* the placed character stays inside the traced volume */
+                if (skinned.bounds.min[a] * character_placement[3] + character_placement[a] < volume.min[a] ||
+                    skinned.bounds.max[a] * character_placement[3] + character_placement[a] > volume.max[a])
+                    ++outside_volume;
+        }
         struct {
-            VkDeviceAddress rest, positions;
-            uint32_t vertex_count, object_first;
-            float pad[2], offset[4];
-        } anim = {rest.address, positions.address, sv.vertex_count, box_first, {0, 0}, {box_offset(f), 0, 0, 0}};
+            VkDeviceAddress rest, positions, skinned;
+            uint32_t vertex_count, object_first, character_first, character_count;
+            float pad[2], offset[4], placement[4];
+        } anim = {rest.address, positions.address, skinned.positions, sv.vertex_count, box_first, character_first,
+                  character_count, {0, 0}, {box_offset(f), 0, 0, 0},
+                  {character_placement[0], character_placement[1], character_placement[2], character_placement[3]}};
         vkCmdBindPipeline(cmds[s], VK_PIPELINE_BIND_POINT_COMPUTE, animate);
         vkCmdPushConstants(cmds[s], animate_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof anim, &anim);
         vkCmdDispatch(cmds[s], (sv.vertex_count + 63) / 64, 1, 1);
@@ -468,14 +525,16 @@ int main(int argc, char **argv)
     }
     roma_context_info ci;
     roma_context_get_info(ctx, &ci);
-    printf("example-engine: %u frames, %d wrong probe answers of %u judged frames x %d rays, "
-           "%u validation messages; libroma submitted %llu times (object creation only)\n",
-           frames, wrong, judged, PROBES, e.validation_messages, (unsigned long long)ci.queue_submits);
+    printf("example-engine: %u frames%s, %d wrong probe answers of %u judged frames x %d rays, "
+           "%u frames with the character outside the volume, %u validation messages; libroma submitted %llu "
+           "times (object creation only)\n",
+           frames, animator ? " with an animated character" : "", wrong, judged, PROBES, outside_volume,
+           e.validation_messages, (unsigned long long)ci.queue_submits);
     if (frames > 100)
         printf("soak: resident memory %ld KiB at frame 100, %ld KiB at the end; libroma device memory %llu B at "
                "frame 100, %llu B at the end\n",
                rss_100, resident_kib(), (unsigned long long)device_100, (unsigned long long)ci.device_memory_in_use);
-    status = wrong == 0 && judged == frames && e.validation_messages == 0 ? 0 : 1;
+    status = wrong == 0 && judged == frames && outside_volume == 0 && e.validation_messages == 0 ? 0 : 1;
 cleanup:
     vkDeviceWaitIdle(e.device);
     for (int s = 0; s < SLOTS; ++s) {
@@ -498,6 +557,8 @@ cleanup:
     buffer_destroy(&e, &positions);
 done:
     roma_map_destroy(map);
+    roma_animator_destroy(animator);
+    roma_scene_destroy(character);
     roma_scene_destroy(scene);
     roma_context_destroy(ctx);
     if (e.device)

@@ -143,6 +143,39 @@ roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
 roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
                            roma_gpu_timer *timer);
 
+/* --- Objects: meshes and their instances ---
+ * Besides the scene it was made with, a map voxelizes instances of meshes added to it,
+ * each with its own transform. A moving instance costs its transform: the next build
+ * transforms the mesh's vertices on the GPU (one dispatch per dynamic instance); a
+ * static instance is transformed once, at the first build after it was added. Adding or
+ * removing changes which triangles the next build voxelizes; the host work happens in
+ * these calls and in the next roma_map_record_build, which uploads new meshes through
+ * the command buffer. Nothing here submits or waits: buffers that an added or removed
+ * instance replaces are released frames_in_flight builds later (so record at most one
+ * build of a map per frame slot, as roma_map_frame_desc.slot says).
+ * Hits do not report an object: the maps hold one occupancy bit per cell, shared by
+ * everything in it; a caller that needs the object finds it from the hit point.
+ * Transforms are row-major 3x4: world = M[0..2][0..2] * local + M[.][3]. */
+
+#define ROMA_INSTANCE_DYNAMIC 1u /* roma_instance_desc.flags: its transform may change */
+
+/* A mesh from a scene's triangles (its positions are the local frame; materials, lights
+ * and animation data are ignored). The scene may be destroyed afterwards. */
+roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, uint32_t *out_mesh);
+/* Refused (ROMA_ERROR_INVALID_ARGUMENT) while instances of it remain. */
+roma_result roma_map_remove_mesh(roma_map *map, uint32_t mesh);
+
+typedef struct roma_instance_desc {
+    uint32_t mesh;         /* from roma_map_add_mesh */
+    float transform[12];   /* row-major 3x4, local -> world; all zero = identity */
+    uint32_t flags;        /* ROMA_INSTANCE_DYNAMIC */
+} roma_instance_desc;
+
+roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc, uint32_t *out_instance);
+roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
+/* Dynamic instances only; takes effect at the next build. */
+roma_result roma_map_set_instance_transform(roma_map *map, uint32_t instance, const float transform[12]);
+
 typedef struct roma_map_info {
     uint32_t resolution, angular, map_count, words_per_texel;
     float grid_origin[3];      /* world position of BOM cell (0,0,0)'s corner, this frame */

@@ -139,6 +139,17 @@ ROMA_STRUCT_BEGIN(roma_skin_push)
     ROMA_UVEC4(config);   /* x: vertex count, y: node count (joint rows start after the nodes) */
 ROMA_STRUCT_END(roma_skin_push)
 
+/* voxelize/transform_instances.comp: one instance's mesh vertices (float4, local) into
+ * the positions buffer (float4, world) through a 3x4 transform. */
+ROMA_STRUCT_BEGIN(roma_instance_push)
+    ROMA_U64(src);
+    ROMA_U64(dst);
+    ROMA_VEC4(row0);
+    ROMA_VEC4(row1);
+    ROMA_VEC4(row2);
+    ROMA_UVEC4(config);   /* x: vertex count */
+ROMA_STRUCT_END(roma_instance_push)
+
 ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_U64(rays);
     ROMA_U64(hits);

@@ -213,13 +213,17 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     map->frames_in_flight = desc.frames_in_flight;
     map->vertex_count = sv.vertex_count;
     map->triangle_count = sv.triangle_count;
+    map->total_vertices = sv.vertex_count;
+    map->total_triangles = sv.triangle_count;
     map->indices_host = indices;
     map->frames = frames;
 
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     const uint64_t texel_words = (uint64_t)map->res * map->res * map->words;
-    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    /* TRANSFER_SRC: a new layout (instances added or removed) copies the scene's part out. */
+    roma_result r = roma_buffer_create(ctx, 16ull * sv.vertex_count,
+                                       storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                        ROMA_MEMORY_DEVICE, &map->positions);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage, ROMA_MEMORY_UPLOAD, &map->indices);
@@ -250,6 +254,9 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create(ctx, "gather_positions.comp", 0, sizeof(roma_gather_positions_push),
                                          &map->gather_positions);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create(ctx, "transform_instances.comp", 0, sizeof(roma_instance_push),
+                                         &map->transform_instances);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "occupied_cells.comp", rotate_types, ROMA_ROTATE_BINDINGS,
                                                sizeof(roma_rotate_push), &map->occupied_cells);
@@ -319,6 +326,8 @@ void roma_map_destroy(roma_map *map)
     roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
     roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
     roma_compute_pipeline_destroy(ctx, &map->gather_positions);
+    roma_compute_pipeline_destroy(ctx, &map->transform_instances);
+    roma_map_instances_release(map, 1);
     for (uint32_t i = 0; i < ROMA_MAX_FRAMES_IN_FLIGHT; ++i)
         roma_buffer_destroy(ctx, &map->position_staging[i]);
     roma_bom_raster_destroy(map->raster);
@@ -479,14 +488,14 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd)
 static roma_result record_bom(roma_map *map, VkCommandBuffer cmd)
 {
     if (map->voxelizer)
-        return roma_bom_voxelize_record(map->voxelizer, cmd, &map->grid, map->triangle_count);
+        return roma_bom_voxelize_record(map->voxelizer, cmd, &map->grid, map->total_triangles);
     roma_bom_push bom_push = {
         .positions = map->positions.address,
         .indices = map->indices.address,
         .bom = map->bom.address,
         .params = map->params.address,
         .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
-                   map->triangle_count, map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
+                   map->total_triangles, map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
     };
     return roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
 }
@@ -509,11 +518,18 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
         r = stage_positions(map, frame.slot, frame.positions, pmin, pmax);
     if (r != ROMA_SUCCESS)
         return r;
-    const float *bmin = frame.volume ? frame.volume->min : frame.positions ? pmin : map->scene_min;
-    const float *bmax = frame.volume ? frame.volume->max : frame.positions ? pmax : map->scene_max;
+    float bmin[3], bmax[3];
+    memcpy(bmin, frame.volume ? frame.volume->min : frame.positions ? pmin : map->scene_min, sizeof bmin);
+    memcpy(bmax, frame.volume ? frame.volume->max : frame.positions ? pmax : map->scene_max, sizeof bmax);
+    if (!frame.volume) /* and the instances, where they are this frame */
+        roma_map_instances_bounds(map, bmin, bmax);
     r = check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells, "roma_map_record_build");
+    roma_map_layout layout = {0};
+    if (r == ROMA_SUCCESS)
+        r = roma_map_instances_prepare(map, &layout);
     if (r != ROMA_SUCCESS)
         return r;
+    roma_map_instances_release(map, 0); /* what the build slots' earlier builds used */
     compute_frame_params(map, &frame, bmin, bmax);
     if (frame.positions) /* later frames without a volume fit these bounds */
         for (int a = 0; a < 3; ++a)
@@ -526,12 +542,19 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     record_frame_params(map, cmd);
+    roma_map_instances_record_copies(map, cmd, &layout);
+    if (layout.changed) /* the scene's positions copied into the new buffer before this frame's */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     record_positions(map, cmd, &frame);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_UNIFORM_READ_BIT);
+    roma_map_instances_record_transforms(map, cmd, layout.changed);
+    ++map->builds;
 
     if (steps & ROMA_MAP_STEP_VOXELIZE) {
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");

@@ -9,6 +9,31 @@
 struct roma_bom_raster;
 struct roma_bom_voxelizer;
 
+/* A mesh added to the map (src/map/instances.c). */
+typedef struct roma_map_mesh {
+    int live;
+    uint32_t vertex_count, triangle_count, users;
+    uint32_t *indices;            /* host copy, local vertex numbers */
+    float bmin[3], bmax[3];       /* local bounds */
+    roma_buffer local;            /* float4 per vertex (device) */
+    roma_buffer staging;          /* its upload, until the next build records the copy */
+} roma_map_mesh;
+
+typedef struct roma_map_instance {
+    int live;
+    uint32_t mesh, flags;
+    float transform[12];
+    uint32_t first_vertex;        /* where its vertices are in the positions buffer */
+} roma_map_instance;
+
+/* Buffers (or a voxelizer) replaced by a layout change, kept until the builds that may
+ * still use them have completed. */
+typedef struct roma_map_retired {
+    roma_buffer buffer;
+    struct roma_bom_voxelizer *voxelizer;
+    uint64_t release_at;          /* builds recorded */
+} roma_map_retired;
+
 struct roma_map {
     roma_context *ctx;
     roma_logger logger;
@@ -25,7 +50,18 @@ struct roma_map {
     roma_buffer bom, maps;          /* device-local words */
     roma_buffer params;             /* roma_grid_params + map_count roma_map_frame (device-local,
                                        written by vkCmdUpdateBuffer in each build) */
-    roma_compute_pipeline gather_positions;
+    roma_compute_pipeline gather_positions, transform_instances;
+    /* Objects: the positions and indices buffers hold the scene's vertices and triangles
+     * first, then every live instance's; total_* count both. */
+    roma_map_mesh *meshes;
+    uint32_t mesh_count, mesh_capacity;
+    roma_map_instance *instances;
+    uint32_t instance_count, instance_capacity;
+    uint32_t total_vertices, total_triangles;
+    int layout_dirty;             /* instances added or removed since the last build */
+    roma_map_retired *retired;
+    uint32_t retired_count, retired_capacity;
+    uint64_t builds;              /* builds recorded */
     roma_buffer ray_staging, hit_staging; /* roma_map_trace only */
     roma_buffer cells;              /* occupied-cell list of the scatter rotation (device) */
     uint32_t cell_capacity;
@@ -58,6 +94,25 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
  * fills them) into cmd: for roma_map_trace and for timing the trace alone. */
 roma_result roma_map_record_trace_staged(roma_map *map, VkCommandBuffer cmd, roma_trace_mode mode,
                                          uint32_t max_steps, uint32_t ray_count, roma_gpu_timer *timer);
+
+/* Objects in a build (src/map/instances.c). prepare: before anything is recorded, the
+ * new positions, indices and voxelizer when instances were added or removed (nothing
+ * changes on failure). record_copies: transfer commands (mesh uploads, the scene's
+ * positions into a new buffer), after the build's opening barrier. record_transforms:
+ * compute, after the barrier that follows the copies. */
+typedef struct roma_map_layout {
+    int changed;
+    roma_buffer positions, indices;
+    struct roma_bom_voxelizer *voxelizer;
+    uint32_t total_vertices, total_triangles;
+} roma_map_layout;
+roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out);
+void roma_map_instances_record_copies(roma_map *map, VkCommandBuffer cmd, roma_map_layout *layout);
+void roma_map_instances_record_transforms(roma_map *map, VkCommandBuffer cmd, int all);
+/* Grows bmin/bmax by every live instance's world bounds. */
+void roma_map_instances_bounds(const roma_map *map, float bmin[3], float bmax[3]);
+/* Releases what the builds recorded so far no longer use; at map destruction, everything. */
+void roma_map_instances_release(roma_map *map, int all);
 
 /* This frame's parameters, for the C mirror in tests. */
 roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid,

@@ -4,6 +4,7 @@
 #define ROMA_ROMA_H
 
 #include "roma/animation.h"
+#include "roma/ao_effect.h"
 #include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/effects.h"

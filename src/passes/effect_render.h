@@ -26,9 +26,10 @@
 #include "roma/map.h"
 #include "roma_shared.h"
 
-/* AO and GI rays skip their first 1.6 trace cells: with the exact BOM the value that keeps
- * the worst of the three converged AO scenes lowest (docs/accuracy.md). */
-#define ROMA_DEFAULT_AO_SKIP_CELLS 1.6f
+/* ROMA_DEFAULT_AO_SKIP_CELLS (roma/ao_effect.h): AO and GI rays skip their first 1.6 trace
+ * cells, with the exact BOM the value that keeps the worst of the three converged AO scenes
+ * lowest (docs/accuracy.md). */
+#include "roma/ao_effect.h"
 
 typedef struct roma_effect_render_desc {
     roma_camera camera;

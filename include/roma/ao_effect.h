@@ -1,0 +1,79 @@
+/* libroma: ambient occlusion from the engine's own G-buffer, recorded into the engine's
+ * command buffer (the first of the public effect passes).
+ *
+ * Inputs are the engine's images, read with texelFetch through a sampler libroma owns
+ * (nearest, so any float format works): world position (xyz; w > 0 where there is
+ * geometry), shading normal, and optionally the geometric normal (the shading normal
+ * stands in for it when absent). Output: an R32_SFLOAT storage image the engine owns,
+ * the unoccluded fraction of `samples` cosine-weighted rays per pixel, 1 where w <= 0.
+ * Rays and samples are those of the reference tracer (roma_sampling.glsl: seed, pixel
+ * index y * width + x, sample frame * samples + k), so results compare sample for sample.
+ *
+ * Synchronisation the caller records: its G-buffer writes made visible to compute-shader
+ * sampled reads, with the input images in SHADER_READ_ONLY_OPTIMAL or GENERAL, the output
+ * image in GENERAL; after the pass, compute-shader storage writes to its own readers. The
+ * map must have been built earlier in the queue (its build ends with a barrier that covers
+ * every later command). Descriptor sets come from a pool per frame slot (16 records per
+ * slot and frame), reset when a record names a slot other than the previous record's:
+ * the slot rules of roma_map_frame_desc.slot apply, and one frame's records use one slot. */
+#ifndef ROMA_AO_EFFECT_H
+#define ROMA_AO_EFFECT_H
+
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#include "roma/context.h"
+#include "roma/map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults, resolved in one place (roma_ao_settings_resolve). */
+#define ROMA_DEFAULT_AO_SAMPLES 1u
+/* AO rays start this many trace cells past their (offset) origin: the cells around a
+ * surface hold the surface itself (docs/accuracy.md measures the choice). */
+#define ROMA_DEFAULT_AO_SKIP_CELLS 1.6f
+
+typedef struct roma_ao_settings {
+    uint32_t samples;     /* rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
+    float radius;         /* ray length, world units; 0 = unbounded */
+    float offset_cells;   /* origin offset along the geometric normal, trace cells; 0 = ROMA_DEFAULT_OFFSET_CELLS */
+    float skip_cells;     /* rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
+                             negative = 0 */
+    uint32_t seed;
+    uint32_t frame;       /* new directions every frame */
+} roma_ao_settings;
+
+/* The zero value's meaning, filled in (the one place defaults are resolved).
+ * ROMA_ERROR_INVALID_ARGUMENT for NaN or infinite values or a negative radius. */
+roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
+
+typedef struct roma_ao_effect roma_ao_effect;
+
+typedef struct roma_ao_effect_desc {
+    uint32_t frames_in_flight; /* [1, 8]; 0 = 2 */
+    roma_logger logger;        /* 0 = the context's */
+} roma_ao_effect_desc;
+
+roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
+/* Accepts NULL. The caller makes sure no submitted work still uses it. */
+void roma_ao_effect_destroy(roma_ao_effect *effect);
+
+typedef struct roma_ao_images {
+    uint32_t width, height;
+    VkImageView position;         /* sampled: xyz world position, w > 0 = geometry */
+    VkImageView normal;           /* sampled: shading normal */
+    VkImageView geometric_normal; /* sampled, optional (VK_NULL_HANDLE: the shading normal) */
+    VkImageView output;           /* storage, R32_SFLOAT, layout GENERAL */
+    VkImageLayout input_layout;   /* of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
+} roma_ao_images;
+
+roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                  const roma_ao_images *images, const roma_ao_settings *settings);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_AO_EFFECT_H */

@@ -1,0 +1,49 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Ambient occlusion from an engine's G-buffer images (roma_ao_effect): per pixel, spp
+// cosine-weighted snapped any-hit rays through the map bound at set 0 (the trace set),
+// the unoccluded fraction into an R32F storage image. Samples as in passes/ao.comp and
+// the reference tracer.
+#define ROMA_TRACE_SET 0
+#include "roma_shared.h"
+#include "roma/trace_descriptors.glsl"
+#include "roma_sampling.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform sampler2D roma_ao_position;
+layout(set = 1, binding = 1) uniform sampler2D roma_ao_normal;
+layout(set = 1, binding = 2) uniform sampler2D roma_ao_geometric_normal;
+layout(set = 1, binding = 3, r32f) uniform writeonly image2D roma_ao_output;
+
+layout(push_constant) uniform Push { roma_ao_push pc; };
+
+void main()
+{
+    uvec2 xy = gl_GlobalInvocationID.xy;
+    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
+    if (xy.x >= width || xy.y >= height)
+        return;
+    ivec2 at = ivec2(xy);
+    vec4 position = texelFetch(roma_ao_position, at, 0);
+    if (!(position.w > 0.0)) {
+        imageStore(roma_ao_output, at, vec4(1.0));
+        return;
+    }
+    vec3 n = normalize(texelFetch(roma_ao_normal, at, 0).xyz);
+    vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
+    uint pixel = xy.y * width + xy.x, seed = pc.config2.x, open = 0u;
+    precise vec3 origin = position.xyz + ng * pc.ray.x;
+    for (uint k = 0u; k < spp; ++k) {
+        uint s = frame * spp + k;
+        vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, 0u),
+                                                                 roma_random(seed, pixel, s, 1u)));
+        // Below the geometric surface counts as occluded, as in the reference.
+        precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
+        if (below <= 0.0)
+            continue;
+        roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
+        open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;
+    }
+    imageStore(roma_ao_output, at, vec4(float(open) / float(max(spp, 1u))));
+}

@@ -1,0 +1,236 @@
+/* The public AO effect on an engine's G-buffer images: the built-in room seen from its
+ * camera, the G-buffer made on the host from Embree's primary hits and uploaded into
+ * RGBA32F images the test owns; roma_ao_effect writes an R32F image. Compared pixel by
+ * pixel with the reference tracer's AO at the same points with the same samples. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "reference.h"
+#include "roma/ao_effect.h"
+#include "roma/camera.h"
+#include "roma/map.h"
+
+#define W 64
+#define H 48
+#define SPP 64
+#define SEED 11
+#define RADIUS 0.5f /* the room is closed: unbounded rays would all be occluded */
+
+typedef struct image {
+    VkImage image;
+    VkImageView view;
+    VkDeviceMemory memory;
+} image;
+
+static uint32_t memory_type(VkPhysicalDevice pd, uint32_t bits, VkMemoryPropertyFlags want)
+{
+    VkPhysicalDeviceMemoryProperties p;
+    vkGetPhysicalDeviceMemoryProperties(pd, &p);
+    for (uint32_t i = 0; i < p.memoryTypeCount; ++i)
+        if ((bits & (1u << i)) && (p.memoryTypes[i].propertyFlags & want) == want)
+            return i;
+    return 0;
+}
+
+static void image_create(roma_context *ctx, VkFormat format, VkImageUsageFlags usage, image *out)
+{
+    VkDevice dev = roma_context_device(ctx);
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                            .format = format, .extent = {W, H, 1}, .mipLevels = 1, .arrayLayers = 1,
+                            .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage,
+                            .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    CHECK(vkCreateImage(dev, &ii, NULL, &out->image) == VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(dev, out->image, &req);
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                               .memoryTypeIndex = memory_type(roma_context_physical_device(ctx), req.memoryTypeBits,
+                                                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+    CHECK(vkAllocateMemory(dev, &ai, NULL, &out->memory) == VK_SUCCESS);
+    CHECK(vkBindImageMemory(dev, out->image, out->memory, 0) == VK_SUCCESS);
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
+                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
+                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    CHECK(vkCreateImageView(dev, &vi, NULL, &out->view) == VK_SUCCESS);
+}
+
+static void image_destroy(VkDevice dev, image *im)
+{
+    vkDestroyImageView(dev, im->view, NULL);
+    vkDestroyImage(dev, im->image, NULL);
+    vkFreeMemory(dev, im->memory, NULL);
+}
+
+static void layout_barrier(VkCommandBuffer cmd, VkImage img, VkImageLayout from, VkImageLayout to,
+                           VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                           VkAccessFlags2 dst_access)
+{
+    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
+                               .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access,
+                               .oldLayout = from, .newLayout = to, .image = img,
+                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                               .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                               .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    VkDependencyInfo d = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
+                          .pImageMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &d);
+}
+
+int main(void)
+{
+    roma_context *ctx = roma_test_context();
+    if (!ctx)
+        return roma_test_finish("test_ao_effect");
+    VkDevice dev = roma_context_device(ctx);
+    roma_scene *scene = NULL;
+    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
+    roma_ref *ref = NULL;
+    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    roma_map *map = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 128, .angular = 4}, scene, &map), ROMA_SUCCESS);
+    roma_ao_effect *ao = NULL;
+    CHECK_RESULT(roma_ao_effect_create(ctx, NULL, &ao), ROMA_SUCCESS);
+    if (!ref || !map || !ao)
+        return roma_test_finish("test_ao_effect");
+
+    /* The engine's G-buffer: Embree's primary hits. */
+    roma_scene_view sv;
+    roma_scene_get_view(scene, &sv);
+    roma_camera_frame cam;
+    roma_camera_make_frame(&sv.camera, W, H, &cam);
+    VkDeviceSize plane = (VkDeviceSize)W * H * 16;
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = 3 * plane + (VkDeviceSize)W * H * 4,
+                             .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    VkBuffer staging;
+    VkDeviceMemory staging_memory;
+    CHECK(vkCreateBuffer(dev, &bi, NULL, &staging) == VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev, staging, &req);
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                                .memoryTypeIndex = memory_type(roma_context_physical_device(ctx), req.memoryTypeBits,
+                                                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                   VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+    CHECK(vkAllocateMemory(dev, &mai, NULL, &staging_memory) == VK_SUCCESS);
+    CHECK(vkBindBufferMemory(dev, staging, staging_memory, 0) == VK_SUCCESS);
+    float *host = NULL;
+    CHECK(vkMapMemory(dev, staging_memory, 0, VK_WHOLE_SIZE, 0, (void **)&host) == VK_SUCCESS);
+    float *pos = host, *nrm = host + 4 * W * H, *gnrm = host + 8 * W * H, *out = host + 12 * W * H;
+    static roma_ref_hit hits[W * H];
+    static int covered[W * H];
+    for (uint32_t y = 0; y < H; ++y)
+        for (uint32_t x = 0; x < W; ++x) {
+            uint32_t p = y * W + x;
+            float o[3], d[3];
+            roma_camera_ray(&cam, (float)x + 0.5f, (float)y + 0.5f, o, d);
+            covered[p] = roma_ref_intersect(ref, o, d, 0.0f, INFINITY, &hits[p]);
+            for (int a = 0; a < 3; ++a) {
+                pos[4 * p + a] = covered[p] ? hits[p].position[a] : 0.0f;
+                nrm[4 * p + a] = covered[p] ? hits[p].shading_normal[a] : 0.0f;
+                gnrm[4 * p + a] = covered[p] ? hits[p].geometric_normal[a] : 0.0f;
+            }
+            pos[4 * p + 3] = covered[p] ? 1.0f : 0.0f;
+            nrm[4 * p + 3] = gnrm[4 * p + 3] = 0.0f;
+        }
+
+    image in[3], output;
+    for (int i = 0; i < 3; ++i)
+        image_create(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                     &in[i]);
+    image_create(ctx, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &output);
+
+    /* One command buffer: upload, build, AO, read back. */
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                  .queueFamilyIndex = roma_context_queue_family(ctx)};
+    VkCommandPool pool;
+    CHECK(vkCreateCommandPool(dev, &pi, NULL, &pool) == VK_SUCCESS);
+    VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = pool,
+                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    VkCommandBuffer cmd;
+    CHECK(vkAllocateCommandBuffers(dev, &cai, &cmd) == VK_SUCCESS);
+    VkCommandBufferBeginInfo begin = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    vkBeginCommandBuffer(cmd, &begin);
+    for (int i = 0; i < 3; ++i) {
+        layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy = {.bufferOffset = (VkDeviceSize)i * plane,
+                                  .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                  .imageExtent = {W, H, 1}};
+        vkCmdCopyBufferToImage(cmd, staging, in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
+    layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_map_frame_desc fd = {.frame = 0, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
+    CHECK_RESULT(roma_map_record_build(map, cmd, &fd, NULL), ROMA_SUCCESS);
+    roma_ao_images images = {.width = W, .height = H, .position = in[0].view, .normal = in[1].view,
+                             .geometric_normal = in[2].view, .output = output.view};
+    roma_ao_settings settings = {.samples = SPP, .radius = RADIUS, .seed = SEED};
+    CHECK_RESULT(roma_ao_effect_record(ao, cmd, 0, map, &images, &settings), ROMA_SUCCESS);
+    layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy back = {.bufferOffset = 3 * plane, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                              .imageExtent = {W, H, 1}};
+    vkCmdCopyImageToBuffer(cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
+    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                            .pMemoryBarriers = &to_host};
+    vkCmdPipelineBarrier2(cmd, &dep);
+    vkEndCommandBuffer(cmd);
+    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
+    CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
+    vkQueueWaitIdle(roma_context_queue(ctx));
+
+    /* Against the reference at the same points with the same samples. */
+    roma_map_info mi;
+    roma_map_get_info(map, &mi);
+    double err = 0.0, mean_roma = 0.0, mean_ref = 0.0;
+    uint32_t n = 0, background_ok = 1;
+    for (uint32_t p = 0; p < W * H; ++p) {
+        if (!covered[p]) {
+            background_ok &= out[p] == 1.0f;
+            continue;
+        }
+        float r = roma_ref_ao_point(ref, hits[p].position, hits[p].geometric_normal, hits[p].shading_normal, RADIUS, SPP,
+                                    SEED, p);
+        err += fabs((double)out[p] - r);
+        mean_roma += out[p], mean_ref += r;
+        ++n;
+    }
+    printf("%u covered pixels, %u spp: mean AO ROMA %.4f, Embree %.4f, mean |difference| %.4f\n", n, SPP,
+           mean_roma / n, mean_ref / n, err / n);
+    CHECK(n > W * H / 2 && background_ok);
+    /* Measured: mean |difference| 0.0707, means 0.7367 vs 0.7750 (the internal AO pass
+     * measures 0.0744 on this room at radius 0.5: test_ao_pass). */
+    CHECK(err / n <= 0.075);
+    CHECK(fabs(mean_roma - mean_ref) / n <= 0.042);
+
+    /* Bad input: refused with its code. */
+    roma_ao_images none = images;
+    none.output = VK_NULL_HANDLE;
+    CHECK_RESULT(roma_ao_effect_record(ao, cmd, 0, map, &none, &settings), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_ao_effect_record(ao, cmd, 5, map, &images, &settings), ROMA_ERROR_INVALID_ARGUMENT);
+    roma_ao_settings bad = {.radius = -1.0f}, resolved;
+    CHECK_RESULT(roma_ao_settings_resolve(&bad, &resolved), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_ao_settings_resolve(NULL, &resolved), ROMA_SUCCESS);
+    CHECK(resolved.samples == ROMA_DEFAULT_AO_SAMPLES && resolved.skip_cells == ROMA_DEFAULT_AO_SKIP_CELLS &&
+          resolved.offset_cells == ROMA_DEFAULT_OFFSET_CELLS);
+
+    vkDestroyCommandPool(dev, pool, NULL);
+    for (int i = 0; i < 3; ++i)
+        image_destroy(dev, &in[i]);
+    image_destroy(dev, &output);
+    vkDestroyBuffer(dev, staging, NULL);
+    vkFreeMemory(dev, staging_memory, NULL);
+    roma_ao_effect_destroy(ao);
+    roma_map_destroy(map);
+    roma_ref_destroy(ref);
+    roma_scene_destroy(scene);
+    roma_test_context_finish(ctx);
+    return roma_test_finish("test_ao_effect");
+}

@@ -7,7 +7,10 @@
  *      placed in it, and a rigid box moved along x, into its own GPU buffer;
  *   3. roma_map_record_build, reading those positions by address (gpu_positions);
  *   4. its own tracing pass (probe.comp, including roma/trace.glsl) over probe rays
- *      whose answers are known from the box's pose that frame.
+ *      whose answers are known from the box's pose that frame;
+ *   5. its own G-buffer of the floor seen from above (gbuffer.comp), and libroma's AO
+ *      effect on it (roma_ao_effect) into its own image: darker in a corner of the room
+ *      than in the open.
  * The answers come back a frame later, when the slot's fence is waited on.
  *
  *   example-engine [--frames N] [--validation] [--character file.glb]
@@ -26,6 +29,9 @@
 #define SLOTS 2
 #define PROBES 24
 #define MAX_STEPS 256u
+#define GB_W 64 /* the floor G-buffer: x in [-1, 1], z in [-1, 2] */
+#define GB_H 96
+#define AO_RADIUS 0.3f
 
 typedef struct engine {
     VkInstance instance;
@@ -155,7 +161,8 @@ static int buffer_create(const engine *e, VkDeviceSize size, int host_visible, b
     VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
                                .size = size,
                                .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT};
+                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT};
     if (vkCreateBuffer(e->device, &info, NULL, &out->buffer) != VK_SUCCESS)
         return 0;
     VkMemoryRequirements req;
@@ -193,9 +200,62 @@ static void buffer_destroy(const engine *e, buffer *b)
         vkFreeMemory(e->device, b->memory, NULL);
 }
 
-/* A compute pipeline from SPIR-V compiled at build time (EXAMPLE_SPV_DIR). */
-static int pipeline_create(const engine *e, const char *name, uint32_t push_size, VkPipelineLayout *layout,
-                           VkPipeline *pipeline)
+typedef struct image {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+} image;
+
+static int image_create(const engine *e, VkFormat format, VkImageUsageFlags usage, image *out)
+{
+    memset(out, 0, sizeof *out);
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                            .format = format, .extent = {GB_W, GB_H, 1}, .mipLevels = 1, .arrayLayers = 1,
+                            .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage};
+    if (vkCreateImage(e->device, &ii, NULL, &out->image) != VK_SUCCESS)
+        return 0;
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(e->device, out->image, &req);
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(e->physical, &props);
+    uint32_t type = UINT32_MAX;
+    for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
+        if (req.memoryTypeBits & (1u << i))
+            type = i;
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                               .memoryTypeIndex = type};
+    if (vkAllocateMemory(e->device, &ai, NULL, &out->memory) != VK_SUCCESS ||
+        vkBindImageMemory(e->device, out->image, out->memory, 0) != VK_SUCCESS)
+        return 0;
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
+                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
+                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    return vkCreateImageView(e->device, &vi, NULL, &out->view) == VK_SUCCESS;
+}
+
+static void image_destroy(const engine *e, image *im)
+{
+    if (im->view)
+        vkDestroyImageView(e->device, im->view, NULL);
+    if (im->image)
+        vkDestroyImage(e->device, im->image, NULL);
+    if (im->memory)
+        vkFreeMemory(e->device, im->memory, NULL);
+}
+
+static void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
+                          .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access};
+    VkDependencyInfo d = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &d);
+}
+
+/* A compute pipeline from SPIR-V compiled at build time (EXAMPLE_SPV_DIR); set_layout may
+ * be VK_NULL_HANDLE. */
+static int pipeline_create(const engine *e, const char *name, uint32_t push_size, VkDescriptorSetLayout set_layout,
+                           VkPipelineLayout *layout, VkPipeline *pipeline)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", EXAMPLE_SPV_DIR, name);
@@ -214,6 +274,8 @@ static int pipeline_create(const engine *e, const char *name, uint32_t push_size
         return 0;
     VkPushConstantRange range = {VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size};
     VkPipelineLayoutCreateInfo li = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                     .setLayoutCount = set_layout ? 1u : 0u,
+                                     .pSetLayouts = &set_layout,
                                      .pushConstantRangeCount = 1,
                                      .pPushConstantRanges = &range};
     VkComputePipelineCreateInfo pi = {
@@ -401,8 +463,51 @@ int main(int argc, char **argv)
              buffer_create(&e, sizeof(roma_hit) * PROBES, 1, &hits[s]);
     VkPipelineLayout animate_layout = VK_NULL_HANDLE, probe_layout = VK_NULL_HANDLE;
     VkPipeline animate = VK_NULL_HANDLE, probe = VK_NULL_HANDLE;
-    ok = ok && pipeline_create(&e, "animate.spv", 80, &animate_layout, &animate) &&
-         pipeline_create(&e, "probe.spv", 40, &probe_layout, &probe);
+    ok = ok && pipeline_create(&e, "animate.spv", 80, VK_NULL_HANDLE, &animate_layout, &animate) &&
+         pipeline_create(&e, "probe.spv", 40, VK_NULL_HANDLE, &probe_layout, &probe);
+    /* The floor G-buffer and the AO it gets from libroma. */
+    image gb_position = {0}, gb_normal = {0}, ao_image = {0};
+    buffer ao_readback[SLOTS];
+    memset(ao_readback, 0, sizeof ao_readback);
+    VkDescriptorSetLayout gb_set_layout = VK_NULL_HANDLE;
+    VkDescriptorPool gb_pool = VK_NULL_HANDLE;
+    VkDescriptorSet gb_set = VK_NULL_HANDLE;
+    VkPipelineLayout gb_layout = VK_NULL_HANDLE;
+    VkPipeline gb_pipeline = VK_NULL_HANDLE;
+    roma_ao_effect *ao = NULL;
+    const VkImageUsageFlags gb_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    ok = ok && image_create(&e, VK_FORMAT_R32G32B32A32_SFLOAT, gb_usage, &gb_position) &&
+         image_create(&e, VK_FORMAT_R32G32B32A32_SFLOAT, gb_usage, &gb_normal) &&
+         image_create(&e, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &ao_image);
+    for (int s = 0; s < SLOTS && ok; ++s)
+        ok = buffer_create(&e, 4ull * GB_W * GB_H, 1, &ao_readback[s]);
+    if (ok) {
+        VkDescriptorSetLayoutBinding b[2] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
+                                             {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}};
+        VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                               .bindingCount = 2, .pBindings = b};
+        VkDescriptorPoolSize size = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2};
+        VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1,
+                                          .poolSizeCount = 1, .pPoolSizes = &size};
+        ok = vkCreateDescriptorSetLayout(e.device, &sli, NULL, &gb_set_layout) == VK_SUCCESS &&
+             vkCreateDescriptorPool(e.device, &dpi, NULL, &gb_pool) == VK_SUCCESS;
+        VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                           .descriptorPool = gb_pool, .descriptorSetCount = 1,
+                                           .pSetLayouts = &gb_set_layout};
+        ok = ok && vkAllocateDescriptorSets(e.device, &dai, &gb_set) == VK_SUCCESS;
+        if (ok) {
+            VkDescriptorImageInfo ii[2] = {{VK_NULL_HANDLE, gb_position.view, VK_IMAGE_LAYOUT_GENERAL},
+                                           {VK_NULL_HANDLE, gb_normal.view, VK_IMAGE_LAYOUT_GENERAL}};
+            VkWriteDescriptorSet w[2];
+            for (uint32_t i = 0; i < 2; ++i)
+                w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = gb_set,
+                                              .dstBinding = i, .descriptorCount = 1,
+                                              .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &ii[i]};
+            vkUpdateDescriptorSets(e.device, 2, w, 0, NULL);
+        }
+        ok = ok && pipeline_create(&e, "gbuffer.spv", 32, gb_set_layout, &gb_layout, &gb_pipeline) &&
+             roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.frames_in_flight = SLOTS}, &ao) == ROMA_SUCCESS;
+    }
     VkCommandPool pool = VK_NULL_HANDLE;
     VkCommandBuffer cmds[SLOTS];
     VkFence fences[SLOTS] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
@@ -415,6 +520,26 @@ int main(int argc, char **argv)
                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                       .commandBufferCount = SLOTS};
     ok = ok && vkAllocateCommandBuffers(e.device, &ai, cmds) == VK_SUCCESS;
+    if (ok) { /* the three images to GENERAL once, before the first frame */
+        VkCommandBufferBeginInfo once = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+        vkBeginCommandBuffer(cmds[0], &once);
+        VkImageMemoryBarrier2 to_general[3];
+        const VkImage imgs[3] = {gb_position.image, gb_normal.image, ao_image.image};
+        for (int i = 0; i < 3; ++i)
+            to_general[i] = (VkImageMemoryBarrier2){
+                .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+                .newLayout = VK_IMAGE_LAYOUT_GENERAL, .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = imgs[i],
+                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 3,
+                                .pImageMemoryBarriers = to_general};
+        vkCmdPipelineBarrier2(cmds[0], &dep);
+        vkEndCommandBuffer(cmds[0]);
+        VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmds[0]};
+        ok = vkQueueSubmit(e.queue, 1, &si, VK_NULL_HANDLE) == VK_SUCCESS && vkQueueWaitIdle(e.queue) == VK_SUCCESS;
+    }
     for (int s = 0; s < SLOTS && ok; ++s) {
         VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, .flags = VK_FENCE_CREATE_SIGNALED_BIT};
         ok = vkCreateFence(e.device, &fi, NULL, &fences[s]) == VK_SUCCESS;
@@ -441,6 +566,18 @@ int main(int argc, char **argv)
         vkWaitForFences(e.device, 1, &fences[s], VK_TRUE, UINT64_MAX);
         if (in_flight[s] != UINT32_MAX) {
             int w = wrong_answers(probes, hits[s].mapped, box_centre[0] + box_offset(in_flight[s]), cell);
+            /* The floor's AO (radius 0.3): in the back-left corner (-0.95, -0.95) the two
+             * walls hide much of the sky, in the open (0.5, 1.3) nothing does. */
+            const float *aov = ao_readback[s].mapped;
+            float corner = aov[(uint32_t)((-0.95f + 1.0f) / 3.0f * GB_H) * GB_W + (uint32_t)((-0.95f + 1.0f) / 2.0f * GB_W)];
+            float open = aov[(uint32_t)((1.3f + 1.0f) / 3.0f * GB_H) * GB_W + (uint32_t)((0.5f + 1.0f) / 2.0f * GB_W)];
+            if (getenv("EXAMPLE_VERBOSE"))
+                printf("frame %u: AO in the corner %.3f, in the open %.3f\n", in_flight[s], (double)corner, (double)open);
+            if (!(corner < 0.7f) || !(open > 0.85f)) {
+                fprintf(stderr, "frame %u: AO in the corner %.3f, in the open %.3f\n", in_flight[s], (double)corner,
+                        (double)open);
+                ++w;
+            }
             if (w)
                 fprintf(stderr, "frame %u: %d wrong probe answers\n", in_flight[s], w);
             wrong += w;
@@ -508,9 +645,33 @@ int main(int argc, char **argv)
         vkCmdBindPipeline(cmds[s], VK_PIPELINE_BIND_POINT_COMPUTE, probe);
         vkCmdPushConstants(cmds[s], probe_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pp, &pp);
         vkCmdDispatch(cmds[s], 1, 1, 1);
+        /* 5. The floor G-buffer (after the last frame's readers of it: the build's opening
+         *    barrier already orders them, this one says so), then libroma's AO on it. */
+        memory_barrier(cmds[s], VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        struct {
+            uint32_t size[2];
+            float pad[2], area[4];
+        } gp = {{GB_W, GB_H}, {0, 0}, {-1.0f, -1.0f, 1.0f, 2.0f}};
+        vkCmdBindPipeline(cmds[s], VK_PIPELINE_BIND_POINT_COMPUTE, gb_pipeline);
+        vkCmdBindDescriptorSets(cmds[s], VK_PIPELINE_BIND_POINT_COMPUTE, gb_layout, 0, 1, &gb_set, 0, NULL);
+        vkCmdPushConstants(cmds[s], gb_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof gp, &gp);
+        vkCmdDispatch(cmds[s], GB_W / 8, GB_H / 8, 1);
+        memory_barrier(cmds[s], VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        roma_ao_images images = {.width = GB_W, .height = GB_H, .position = gb_position.view,
+                                 .normal = gb_normal.view, .output = ao_image.view,
+                                 .input_layout = VK_IMAGE_LAYOUT_GENERAL};
+        roma_ao_settings settings = {.samples = 16, .radius = AO_RADIUS, .seed = 1, .frame = f};
+        if (roma_ao_effect_record(ao, cmds[s], s, map, &images, &settings) != ROMA_SUCCESS)
+            goto cleanup;
+        memory_barrier(cmds[s], VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        VkBufferImageCopy back = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {GB_W, GB_H, 1}};
+        vkCmdCopyImageToBuffer(cmds[s], ao_image.image, VK_IMAGE_LAYOUT_GENERAL, ao_readback[s].buffer, 1, &back);
         VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                    .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                    .srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT,
+                                    .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                                    .srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                     .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
                                     .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
         VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
@@ -553,6 +714,20 @@ cleanup:
         vkDestroyPipelineLayout(e.device, animate_layout, NULL);
     if (probe_layout)
         vkDestroyPipelineLayout(e.device, probe_layout, NULL);
+    roma_ao_effect_destroy(ao);
+    if (gb_pipeline)
+        vkDestroyPipeline(e.device, gb_pipeline, NULL);
+    if (gb_layout)
+        vkDestroyPipelineLayout(e.device, gb_layout, NULL);
+    if (gb_pool)
+        vkDestroyDescriptorPool(e.device, gb_pool, NULL);
+    if (gb_set_layout)
+        vkDestroyDescriptorSetLayout(e.device, gb_set_layout, NULL);
+    image_destroy(&e, &gb_position);
+    image_destroy(&e, &gb_normal);
+    image_destroy(&e, &ao_image);
+    for (int s = 0; s < SLOTS; ++s)
+        buffer_destroy(&e, &ao_readback[s]);
     buffer_destroy(&e, &rest);
     buffer_destroy(&e, &positions);
 done:

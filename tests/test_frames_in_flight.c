@@ -133,7 +133,7 @@ static int judge(const roma_ray *rays, const roma_hit *hits, float box_x, float 
 int main(void)
 {
     roma_test_log log = {0};
-    roma_context_desc cd = {.flags = ROMA_CONTEXT_SYNC_VALIDATION, .logger = roma_test_logger(&log)};
+    roma_context_desc cd = {.flags = roma_test_sync_validation_flags(), .logger = roma_test_logger(&log)};
     roma_context *ctx = NULL;
     if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS)
         return roma_test_skip("no Vulkan device with validation layers");

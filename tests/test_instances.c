@@ -261,7 +261,7 @@ static void test_frames(roma_context *ctx, roma_scene *floor, roma_scene *box)
 
 int main(void)
 {
-    roma_context_desc cd = {.flags = ROMA_CONTEXT_SYNC_VALIDATION, .logger = roma_test_logger(&log_)};
+    roma_context_desc cd = {.flags = roma_test_sync_validation_flags(), .logger = roma_test_logger(&log_)};
     roma_context *ctx = NULL;
     if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS)
         return roma_test_skip("no Vulkan device with validation layers");

@@ -13,10 +13,10 @@
  *      than in the open.
  * The answers come back a frame later, when the slot's fence is waited on.
  *
- *   example-engine [--frames N] [--validation] [--character file.glb]
+ *   example-engine [--frames N] [--validation | --sync-validation] [--character file.glb]
  *
- * --validation turns on the Khronos validation layer with synchronization validation;
- * any message fails the run. Prints resident memory and libroma's device memory at
+ * --validation turns on the Khronos validation layer, --sync-validation the layer with
+ * synchronization validation; any message fails the run. Prints resident memory and libroma's device memory at
  * frame 100 and at the end (the soak figures). Exit code 0 when every probe answer is
  * right and no validation message was seen. */
 #include <stdio.h>
@@ -91,7 +91,8 @@ static int create_instance(engine *e, int validation)
                                         .enabledValidationFeatureCount = 1,
                                         .pEnabledValidationFeatures = &sync};
     VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-                                 .pNext = validation ? &features : NULL,
+                                 .pNext = validation == 2 ? (const void *)&features
+                                          : validation ? (const void *)&messenger : NULL,
                                  .pApplicationInfo = &app,
                                  .enabledLayerCount = validation ? 1u : 0u,
                                  .ppEnabledLayerNames = &layer,
@@ -412,10 +413,13 @@ int main(int argc, char **argv)
             frames = (uint32_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--validation") == 0)
             validation = 1;
+        else if (strcmp(argv[i], "--sync-validation") == 0)
+            validation = 2;
         else if (strcmp(argv[i], "--character") == 0 && i + 1 < argc)
             character_path = argv[++i];
         else {
-            fprintf(stderr, "usage: example-engine [--frames N] [--validation] [--character file.glb]\n");
+            fprintf(stderr, "usage: example-engine [--frames N] [--validation | --sync-validation] "
+                            "[--character file.glb]\n");
             return 2;
         }
     }

@@ -38,6 +38,12 @@ static void count_validation(roma_log_level level, roma_result code, const char 
         fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);
 }
 
+unsigned roma_test_sync_validation_flags(void)
+{
+    const char *plain = getenv("ROMA_TEST_PLAIN_VALIDATION");
+    return plain && *plain && strcmp(plain, "0") != 0 ? ROMA_CONTEXT_VALIDATION : ROMA_CONTEXT_SYNC_VALIDATION;
+}
+
 roma_context *roma_test_context(void)
 {
     roma_context_desc desc = {0};

@@ -50,6 +50,11 @@ typedef struct roma_test_log {
 
 roma_logger roma_test_logger(roma_test_log *log);
 
+/* ROMA_CONTEXT_SYNC_VALIDATION for tests that record frames in flight, except in the
+ * sanitizer suite (ROMA_TEST_PLAIN_VALIDATION set): there Mesa 22.3's LLVM leaks under the
+ * synchronization-validation layer, outside libroma; plain validation stays on. */
+unsigned roma_test_sync_validation_flags(void);
+
 /* Context with validation on; on failure prints why and returns NULL. */
 roma_context *roma_test_context(void);
 /* Destroys ctx after checking it saw no validation error (counts a failure if it did). */

@@ -9,6 +9,7 @@
 #include "roma/context.h"
 #include "roma/effects.h"
 #include "roma/image.h"
+#include "roma/light_effect.h"
 #include "roma/map.h"
 #include "roma/result.h"
 #include "roma/sampling.h"

@@ -20,7 +20,7 @@ static roma_result upload(roma_context *ctx, const void *data, size_t size, roma
 }
 
 /* The reference's expressions (src/reference/estimators.c), evaluated once here. */
-static int pack_light(const roma_light *l, roma_gpu_light *out)
+int roma_light_pack(const roma_light *l, roma_gpu_light *out)
 {
     memset(out, 0, sizeof *out);
     if (!(l->intensity > 0.0f) || !(l->color[0] > 0.0f || l->color[1] > 0.0f || l->color[2] > 0.0f))
@@ -76,7 +76,7 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, c
         goto done;
     }
     for (uint32_t i = 0; i < v.light_count; ++i)
-        out->light_count += (uint32_t)pack_light(&v.lights[i], &lights[out->light_count]);
+        out->light_count += (uint32_t)roma_light_pack(&v.lights[i], &lights[out->light_count]);
     for (uint32_t i = 0; i < table.count; ++i) {
         const roma_emitter *e = &table.emitters[i];
         roma_gpu_emitter *g = &emitters[i];

@@ -6,6 +6,7 @@
 #define ROMA_PASSES_LIGHT_DATA_H
 
 #include "roma/scene.h"
+#include "roma_shared.h"
 #include "vulkan/vk_internal.h"
 
 typedef struct roma_light_data {
@@ -15,6 +16,10 @@ typedef struct roma_light_data {
 
 /* many_positions: 3 floats per light, may be NULL when many_count is 0.
  * On failure nothing stays allocated and *out is zeroed. */
+/* One light as the shaders read it (the reference's expressions, evaluated once); 0 when
+ * it gives no light (zero intensity or colour, or no direction), and nothing is written. */
+int roma_light_pack(const roma_light *light, roma_gpu_light *out);
+
 roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const float *many_positions,
                                    uint32_t many_count, roma_light_data *out);
 void roma_light_data_destroy(roma_context *ctx, roma_light_data *data);

@@ -1,0 +1,139 @@
+/* roma_light_effect: shadowed irradiance from punctual lights on the engine's G-buffer
+ * images (shaders/effects/lights_images.comp); lights in a host-visible buffer per slot. */
+#include "roma/light_effect.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "effects/image_effect.h"
+#include "passes/light_data.h"
+#include "roma_shared.h"
+#include "util/log.h"
+
+#define MAX_LIGHTS 65536u
+
+struct roma_light_effect {
+    roma_image_effect base;
+    roma_buffer lights[ROMA_MAX_FRAMES_IN_FLIGHT];
+};
+
+roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out)
+{
+    roma_light_settings s = in ? *in : (roma_light_settings){0};
+    if (out)
+        memset(out, 0, sizeof *out);
+    if (!out)
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_settings_resolve: out is NULL");
+    if (!isfinite(s.offset_cells) || s.offset_cells < 0.0f || !isfinite(s.skip_cells))
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_light_settings: offset_cells must be finite and not negative, skip_cells finite");
+    if (s.max_steps == 0)
+        s.max_steps = ROMA_DEFAULT_SHADOW_STEPS;
+    if (s.offset_cells == 0.0f)
+        s.offset_cells = ROMA_DEFAULT_OFFSET_CELLS;
+    s.skip_cells = s.skip_cells < 0.0f ? 0.0f : s.skip_cells > 0.0f ? s.skip_cells : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
+    *out = s;
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_desc *desc_in,
+                                     roma_light_effect **out)
+{
+    roma_light_effect_desc desc = desc_in ? *desc_in : (roma_light_effect_desc){0};
+    const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
+    if (!out)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_create: out is NULL");
+    *out = NULL;
+    if (!ctx)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_create: context is NULL");
+    if (desc.frames_in_flight == 0)
+        desc.frames_in_flight = 2;
+    if (desc.frames_in_flight > ROMA_MAX_FRAMES_IN_FLIGHT)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_light_effect_create: frames_in_flight %u outside [1, %u]", desc.frames_in_flight,
+                         ROMA_MAX_FRAMES_IN_FLIGHT);
+    roma_light_effect *e = calloc(1, sizeof *e);
+    if (!e)
+        return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_light_effect_create: out of host memory");
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", "lights_images.comp", 3, 1,
+                                           sizeof(roma_punctual_push), desc.frames_in_flight);
+    if (r != ROMA_SUCCESS) {
+        free(e);
+        return r;
+    }
+    *out = e;
+    return ROMA_SUCCESS;
+}
+
+void roma_light_effect_destroy(roma_light_effect *e)
+{
+    if (!e)
+        return;
+    roma_context *ctx = e->base.ctx;
+    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
+        roma_buffer_destroy(ctx, &e->lights[s]);
+    roma_image_effect_free(&e->base);
+    free(e);
+}
+
+static int light_finite(const roma_light *l)
+{
+    const float v[] = {l->position[0], l->position[1], l->position[2], l->direction[0], l->direction[1],
+                       l->direction[2], l->color[0], l->color[1], l->color[2], l->intensity, l->range,
+                       l->inner_cone_angle, l->outer_cone_angle};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
+        if (!isfinite(v[i]))
+            return 0;
+    return l->type >= ROMA_LIGHT_POINT && l->type <= ROMA_LIGHT_DIRECTIONAL;
+}
+
+roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                     const roma_light_images *im, const roma_light *lights, uint32_t light_count,
+                                     const roma_light_settings *settings_in)
+{
+    const roma_logger *log = e ? &e->base.logger : NULL;
+    if (!e || !cmd || !map || !im || (light_count && !lights))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_record: %s is NULL",
+                         !e ? "effect" : !cmd ? "cmd" : !map ? "map" : !im ? "images" : "lights");
+    if (!im->width || !im->height || !im->position || !im->normal || !im->output)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_light_effect_record: width, height, position, normal and output are required");
+    if (light_count > MAX_LIGHTS)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_record: %u lights, at most %u",
+                         light_count, MAX_LIGHTS);
+    for (uint32_t i = 0; i < light_count; ++i)
+        if (!light_finite(&lights[i]))
+            return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                             "roma_light_effect_record: light %u has an unknown type or a NaN or infinite value", i);
+    roma_light_settings s;
+    roma_result r = roma_light_settings_resolve(settings_in, &s);
+    if (r != ROMA_SUCCESS)
+        return roma_fail(log, r, "roma_light_effect_record: invalid settings");
+    roma_map_info info;
+    r = roma_image_effect_begin(&e->base, slot, map, &info);
+    if (r != ROMA_SUCCESS)
+        return r;
+    /* The slot's previous use has completed (the slot rules): its buffer may be rewritten or
+     * replaced. */
+    roma_buffer *buf = &e->lights[slot];
+    VkDeviceSize bytes = sizeof(roma_gpu_light) * (VkDeviceSize)(light_count ? light_count : 1);
+    if (buf->size < bytes) {
+        roma_buffer_destroy(e->base.ctx, buf);
+        r = roma_buffer_create(e->base.ctx, bytes,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                               ROMA_MEMORY_UPLOAD, buf);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
+    uint32_t packed = 0;
+    for (uint32_t i = 0; i < light_count; ++i)
+        packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)buf->mapped + packed);
+    roma_punctual_push push = {.lights = buf->address,
+                               .config = {im->width, im->height, packed, s.max_steps},
+                               .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
+    const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
+                                  im->output};
+    return roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
+                                      im->height);
+}

@@ -191,9 +191,10 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     const roma_effect_render_desc *d = R->desc;
     const roma_effect_plan *plan = &R->plan;
     const float offset_cells = d->offset_cells > 0.0f ? d->offset_cells : ROMA_DEFAULT_OFFSET_CELLS;
-    const uint32_t spp = d->spp ? d->spp : 1, steps = d->max_steps ? d->max_steps : 8;
+    const uint32_t spp = d->spp ? d->spp : ROMA_DEFAULT_AO_SAMPLES;
+    const uint32_t steps = d->max_steps ? d->max_steps : ROMA_DEFAULT_SHADOW_STEPS;
     const uint32_t lights_steps = d->lights_max_steps ? d->lights_max_steps : 16;
-    const float skip_cells = d->skip_cells < 0.0f ? 0.0f : d->skip_cells > 0.0f ? d->skip_cells : 1.0f;
+    const float skip_cells = d->skip_cells < 0.0f ? 0.0f : d->skip_cells > 0.0f ? d->skip_cells : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
     const float ao_skip = d->ao_skip_cells < 0.0f ? 0.0f : d->ao_skip_cells > 0.0f ? d->ao_skip_cells : ROMA_DEFAULT_AO_SKIP_CELLS;
     roma_result r = ROMA_SUCCESS;
     for (int p = ROMA_PASS_AO; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p) {

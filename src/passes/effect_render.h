@@ -30,20 +30,21 @@
  * cells, with the exact BOM the value that keeps the worst of the three converged AO scenes
  * lowest (docs/accuracy.md). */
 #include "roma/ao_effect.h"
+#include "roma/light_effect.h"
 
 typedef struct roma_effect_render_desc {
     roma_camera camera;
     uint32_t width, height;
     roma_effect_options options;       /* effects, RES, A per pass, many-light count */
-    uint32_t spp;                      /* per frame, AO and area lights; 0 = 1 */
+    uint32_t spp;                      /* per frame, AO and area lights; 0 = ROMA_DEFAULT_AO_SAMPLES (1) */
     uint32_t frames;                   /* 0 = 1 */
     uint32_t seed;
     float ao_radius;                   /* <= 0: unbounded */
     float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
-    float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = 1, negative = none */
+XX
     float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
                                           negative = none */
-    uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = 8 (paper) */
+    uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = ROMA_DEFAULT_SHADOW_STEPS (8, paper) */
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */
     /* A GI hit counts as lit when it is no farther from the light than the surface

@@ -41,7 +41,8 @@ typedef struct roma_effect_render_desc {
     uint32_t seed;
     float ao_radius;                   /* <= 0: unbounded */
     float offset_cells;                /* 0 = ROMA_DEFAULT_OFFSET_CELLS */
-XX
+    float skip_cells;                  /* shadow rays' tmin in trace cells; 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS (1),
+                                          negative = none */
     float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
                                           negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = ROMA_DEFAULT_SHADOW_STEPS (8, paper) */

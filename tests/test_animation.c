@@ -11,6 +11,7 @@
 
 #include "harness.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/animation.h"
 #include "roma/gltf.h"
 #include "roma/map.h"

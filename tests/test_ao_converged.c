@@ -17,6 +17,7 @@
 #include "harness.h"
 #include "passes/effect_render.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/gltf.h"
 
 #define W 64u

@@ -10,6 +10,7 @@
 
 #include "harness.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/ao_effect.h"
 #include "roma/camera.h"
 #include "roma/light_effect.h"

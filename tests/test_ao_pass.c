@@ -19,6 +19,7 @@
 #include "passes/gbuffer.h"
 #include "passes/pixel_list.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/context.h"
 #include "roma/map.h"
 #include "roma/sampling.h"

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "roma/builtin_scenes.h"
 #include "roma/effects.h"
 #include "roma/gltf.h"
 #include "roma/image.h"

@@ -19,6 +19,7 @@
 #include "harness.h"
 #include "voxelize/bom_raster.h"
 #include "voxelize/bom_voxelize.h"
+#include "roma/builtin_scenes.h"
 #include "roma/context.h"
 #include "roma/gltf.h"
 #include "roma/map.h"

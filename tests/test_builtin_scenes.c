@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "roma/builtin_scenes.h"
 #include "roma/scene.h"
 
 /* Moller-Trumbore with a small tolerance so rays through shared edges count. */

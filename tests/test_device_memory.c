@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "roma/builtin_scenes.h"
 #include "roma/map.h"
 
 static uint64_t in_use(const roma_context *ctx)

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "roma/builtin_scenes.h"
 #include "roma/effects.h"
 #include "roma/scene.h"
 

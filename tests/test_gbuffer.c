@@ -18,6 +18,7 @@
 #include "passes/scene_buffers.h"
 #include "passes/gbuffer.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/context.h"
 #include "roma/gltf.h"
 #include "roma/scene.h"

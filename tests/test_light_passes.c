@@ -23,6 +23,7 @@
 #include "harness.h"
 #include "passes/effect_render.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/sampling.h"
 
 #define W 64u

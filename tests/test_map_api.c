@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "roma/builtin_scenes.h"
 #include "roma/map.h"
 
 static uint64_t popcount_words(const uint32_t *w, uint64_t n)

@@ -21,6 +21,7 @@
 #include "reference.h"
 #include "trace/cpu_mirror.h"
 #include "rotate/directions.h"
+#include "roma/builtin_scenes.h"
 #include "roma/map.h"
 #include "map/map_internal.h"
 #include "roma/sampling.h"

@@ -14,6 +14,7 @@
 
 #include "harness.h"
 #include "reference/reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/gltf.h"
 #include "roma/sampling.h"
 #include "roma/scene.h"

@@ -7,6 +7,7 @@
 
 #include "harness.h"
 #include "trace/cpu_mirror.h"
+#include "roma/builtin_scenes.h"
 #include "roma/gltf.h"
 #include "roma/map.h"
 #include "map/map_internal.h"

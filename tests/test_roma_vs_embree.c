@@ -10,6 +10,7 @@
 
 #include "harness.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/gltf.h"
 #include "roma/map.h"
 #include "roma/sampling.h"

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roma/builtin_scenes.h"
 #include "harness.h"
 #include "passes/effect_render.h"
 #include "reference.h"

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include "app_common.h"
+#include "roma/builtin_scenes.h"
 #include "roma/gltf.h"
 
 roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene)

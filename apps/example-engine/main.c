@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roma/builtin_scenes.h"
 #include "roma/gltf.h"
 #include "roma/roma.h"
 

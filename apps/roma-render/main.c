@@ -12,6 +12,7 @@
 #include "app_common.h"
 #include "passes/effect_render.h"
 #include "reference.h"
+#include "roma/builtin_scenes.h"
 #include "roma/roma.h"
 #include "stats_json.h"
 

@@ -1,4 +1,4 @@
-/* libroma: float images, PFM I/O and image metrics.
+/* libroma tools (library roma_tools): float images, PFM I/O and image metrics.
  *
  * The metrics here are the ones every accuracy test and benchmark uses to
  * compare a ROMA image with the reference. */

@@ -8,7 +8,6 @@
 #include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/effects.h"
-#include "roma/image.h"
 #include "roma/light_effect.h"
 #include "roma/map.h"
 #include "roma/result.h"

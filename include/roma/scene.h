@@ -78,12 +78,7 @@ roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scen
 /* Accepts NULL. */
 void roma_scene_destroy(roma_scene *scene);
 
-/* Names of the built-in scenes, NULL-terminated. The first is the default. */
-const char *const *roma_builtin_scene_names(void);
-
-/* name: one of roma_builtin_scene_names(), or NULL for the default ("cornell"). */
-roma_result roma_scene_create_builtin(const char *name, const roma_logger *logger,
-                                      roma_scene **out_scene);
+/* Built-in test scenes: roma/builtin_scenes.h (library roma_tools). */
 
 /* --- Data kept for animation (glTF skins and animations); rest pose is what
  *     the triangle arrays hold. All arrays may be empty. --- */

@@ -571,14 +571,21 @@ int main(int argc, char **argv)
         vkWaitForFences(e.device, 1, &fences[s], VK_TRUE, UINT64_MAX);
         if (in_flight[s] != UINT32_MAX) {
             int w = wrong_answers(probes, hits[s].mapped, box_centre[0] + box_offset(in_flight[s]), cell);
-            /* The floor's AO (radius 0.3): in the back-left corner (-0.95, -0.95) the two
-             * walls hide much of the sky, in the open (0.5, 1.3) nothing does. */
+            /* The floor's AO (radius 0.3), averaged over 4 x 4 pixels (256 rays): in the
+             * back-left corner the two walls hide much of the sky (about 0.4; in 88 of 10,000
+             * frames the frame's jitter let rays through the corner and it read above 0.6),
+             * in the open (around (0.5, 1.3)) nothing does (1.0 in every frame). */
             const float *aov = ao_readback[s].mapped;
-            float corner = aov[(uint32_t)((-0.95f + 1.0f) / 3.0f * GB_H) * GB_W + (uint32_t)((-0.95f + 1.0f) / 2.0f * GB_W)];
-            float open = aov[(uint32_t)((1.3f + 1.0f) / 3.0f * GB_H) * GB_W + (uint32_t)((0.5f + 1.0f) / 2.0f * GB_W)];
+            float corner = 0.0f, open = 0.0f;
+            for (uint32_t dy = 0; dy < 4; ++dy)
+                for (uint32_t dx = 0; dx < 4; ++dx) {
+                    corner += aov[dy * GB_W + dx] / 16.0f; /* x, z in [-1, -0.875] */
+                    open += aov[(uint32_t)((1.3f + 1.0f) / 3.0f * GB_H + dy) * GB_W +
+                                (uint32_t)((0.5f + 1.0f) / 2.0f * GB_W) + dx] / 16.0f;
+                }
             if (getenv("EXAMPLE_VERBOSE"))
                 printf("frame %u: AO in the corner %.3f, in the open %.3f\n", in_flight[s], (double)corner, (double)open);
-            if (!(corner < 0.7f) || !(open > 0.85f)) {
+            if (!(corner < 0.8f) || !(open > 0.9f)) {
                 fprintf(stderr, "frame %u: AO in the corner %.3f, in the open %.3f\n", in_flight[s], (double)corner,
                         (double)open);
                 ++w;

@@ -183,6 +183,8 @@ int main(void)
     roma_light_images limages = {.width = W, .height = H, .position = in[0].view, .normal = in[1].view,
                                  .geometric_normal = in[2].view, .output = light_out.view};
     CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, sv.lights, sv.light_count, NULL), ROMA_SUCCESS);
+    CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, sv.lights, sv.light_count, NULL),
+                 ROMA_ERROR_INVALID_ARGUMENT); /* one record per slot and frame */
     layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
@@ -256,6 +258,26 @@ int main(void)
     /* Measured: 2.50% and 35 of 3,072 pixels (shadow edges a trace cell off). */
     CHECK(light_err / light_ref <= 0.03);
     CHECK(lit_differ <= 40);
+
+    /* One frame slot, 20 frames (more than a slot's 16 sets): each frame's build starts a
+     * new frame of the slot, whose pool is reset; the engine waits for each frame. */
+    roma_ao_effect *single = NULL;
+    CHECK_RESULT(roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.frames_in_flight = 1}, &single), ROMA_SUCCESS);
+    for (uint32_t f = 0; single && f < 20; ++f) {
+        roma_map_frame_desc bf = {.frame = f, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
+        CHECK_RESULT(roma_map_build(map, &bf, NULL), ROMA_SUCCESS);
+        vkResetCommandPool(dev, pool, 0);
+        vkBeginCommandBuffer(cmd, &begin);
+        layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        settings.frame = f;
+        CHECK_RESULT(roma_ao_effect_record(single, cmd, 0, map, &images, &settings), ROMA_SUCCESS);
+        vkEndCommandBuffer(cmd);
+        CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
+        vkQueueWaitIdle(roma_context_queue(ctx));
+    }
+    roma_ao_effect_destroy(single);
 
     /* Bad input: refused with its code. */
     roma_ao_images none = images;

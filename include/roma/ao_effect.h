@@ -14,8 +14,9 @@
  * image in GENERAL; after the pass, compute-shader storage writes to its own readers. The
  * map must have been built earlier in the queue (its build ends with a barrier that covers
  * every later command). Descriptor sets come from a pool per frame slot (16 records per
- * slot and frame), reset when a record names a slot other than the previous record's:
- * the slot rules of roma_map_frame_desc.slot apply, and one frame's records use one slot. */
+ * slot and frame). A record starts a new frame of its slot when its slot or the map's
+ * build differs from the previous record's, and the slot's pool is reset then: the slot
+ * rules of roma_map_frame_desc.slot apply (one build of the map per frame). */
 #ifndef ROMA_AO_EFFECT_H
 #define ROMA_AO_EFFECT_H
 

@@ -55,7 +55,9 @@ typedef struct roma_light_images {
 } roma_light_images;
 
 /* The lights are copied into the slot's storage at record time (up to 65,536; lights
- * with zero intensity or colour are dropped, as the reference does). */
+ * with zero intensity or colour are dropped, as the reference does). One record per frame:
+ * a second record with the same slot and the same build of the map is refused
+ * (ROMA_ERROR_INVALID_ARGUMENT). */
 roma_result roma_light_effect_record(roma_light_effect *effect, VkCommandBuffer cmd, uint32_t slot,
                                      const roma_map *map, const roma_light_images *images, const roma_light *lights,
                                      uint32_t light_count, const roma_light_settings *settings);

@@ -109,17 +109,24 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, const r
         return r;
     if (!map->built)
         return roma_fail(&e->logger, ROMA_ERROR_NOT_READY, "%s: record a build of the map first", e->name);
+    e->build = map->builds;
     return ROMA_SUCCESS;
+}
+
+int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot)
+{
+    return slot == e->last_slot && e->build == e->last_build && e->used[slot] > 0;
 }
 
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height)
 {
-    if (slot != e->last_slot) { /* a new frame in this slot: its last use has completed */
+    if (!roma_image_effect_same_frame(e, slot)) { /* a new frame in this slot: its last use has completed */
         vkResetDescriptorPool(e->ctx->device, e->pools[slot], 0);
         e->used[slot] = 0;
         e->last_slot = slot;
+        e->last_build = e->build;
     }
     if (e->used[slot] == SETS_PER_SLOT)
         return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: more than %u records in one frame slot",

@@ -14,6 +14,7 @@ typedef struct roma_image_effect {
     roma_logger logger;
     const char *name; /* for messages: "roma_ao_effect_record" */
     uint32_t frames_in_flight, last_slot, used[ROMA_MAX_FRAMES_IN_FLIGHT];
+    uint64_t last_build, build;  /* the map's build count at the last and at this record */
     uint32_t inputs, outputs, push_size;
     VkSampler sampler;
     VkDescriptorSetLayout trace_layout, images_layout;
@@ -26,6 +27,11 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
                                    const char *module, uint32_t inputs, uint32_t outputs, uint32_t push_size,
                                    uint32_t frames_in_flight);
 void roma_image_effect_free(roma_image_effect *e);
+
+/* A record starts a new frame of its slot when the slot or the map's build changed since
+ * the previous record (one build per frame and slot, the map's rule): the slot's pool is
+ * reset then. roma_image_effect_same_frame says whether this record continues one. */
+int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 
 /* Checks slot and map, allocates and writes set 1 (views: inputs then outputs; a NULL
  * input view is replaced by fallback[i] when given), binds, pushes and dispatches

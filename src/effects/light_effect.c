@@ -114,6 +114,11 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     r = roma_image_effect_begin(&e->base, slot, map, &info);
     if (r != ROMA_SUCCESS)
         return r;
+    /* The lights live in one buffer per slot: a second record in the slot's frame would
+     * overwrite what the first one's dispatch reads. */
+    if (roma_image_effect_same_frame(&e->base, slot))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_light_effect_record: one record per frame slot (slot %u was recorded this frame)", slot);
     /* The slot's previous use has completed (the slot rules): its buffer may be rewritten or
      * replaced. */
     roma_buffer *buf = &e->lights[slot];

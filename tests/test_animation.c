@@ -137,6 +137,17 @@ static void check_scene(gpu *g, const char *file, float time_b)
         printf("  t = %.3f s: GPU vs host skinning max |diff| %.3g (extent %.3g); %d coordinates outside the bounds\n",
                (double)times[p], (double)max_diff, (double)extent, outside);
         CHECK(max_diff <= 1e-5f * extent && outside == 0);
+        /* The host-only posed copy (roma_scene_pose) has the host skinning's positions. */
+        roma_scene *posed_copy = NULL;
+        CHECK_RESULT(roma_scene_pose(scene, &pose, NULL, &posed_copy), ROMA_SUCCESS);
+        if (posed_copy) {
+            roma_scene_view pv;
+            roma_scene_get_view(posed_copy, &pv);
+            CHECK(pv.vertex_count == sv.vertex_count && pv.triangle_count == sv.triangle_count &&
+                  memcmp(pv.positions, cpu_pos, 12 * (size_t)sv.vertex_count) == 0 &&
+                  pv.animation.node_count == info.node_count);
+            roma_scene_destroy(posed_copy);
+        }
         if (p == 0)
             box_a = out.bounds; /* both poses' rays cross the same box: pose 0's bounds */
 
@@ -217,6 +228,9 @@ int main(void)
     CHECK_RESULT(roma_animator_create(g.ctx, plain, &(roma_animator_desc){.logger = roma_test_logger(&log)}, &none),
                  ROMA_ERROR_INVALID_ARGUMENT);
     CHECK(none == NULL && log.last_code == ROMA_ERROR_INVALID_ARGUMENT);
+    roma_scene *posed = (roma_scene *)1;
+    CHECK_RESULT(roma_scene_pose(plain, &(roma_animator_pose){0}, NULL, &posed), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(posed == NULL);
     roma_scene_destroy(plain);
 
     check_scene(&g, "CesiumMan.glb", 1.0f);

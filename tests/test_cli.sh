@@ -194,6 +194,17 @@ missing="$dir/no_such_scene.glb"
 expect_status 1 $? "roma-render with a missing scene file"
 grep -qF "$missing" "$dir/missing.err" || fail "the error for a missing scene does not name $missing"
 
+# --time poses an animated glTF (both tracers); a scene without animation says so.
+"$render" --scene builtin:cornell --time 0.5 --size 8x8 --spp 1 --quiet --out "$dir/posed" >/dev/null 2>"$dir/posed.err"
+expect_status 1 $? "roma-render --time on a scene without animation"
+grep -q "no animation data" "$dir/posed.err" || fail "roma-render --time on a static scene does not say it has no animation data"
+if [ -n "${ROMA_SHARED_SCENES_DIR:-}" ] && [ -f "$ROMA_SHARED_SCENES_DIR/CesiumMan.glb" ]; then
+  "$render" --scene "$ROMA_SHARED_SCENES_DIR/CesiumMan.glb" --time 0.5 --size 16x12 --spp 1 --quiet \
+    --out "$dir/cesium" --stats "$dir/cesium.json" >/dev/null 2>"$dir/cesium.err"
+  expect_status 0 $? "roma-render --time 0.5 on CesiumMan" || cat "$dir/cesium.err" >&2
+  grep -q '"pose_time"' "$dir/cesium.json" || fail "the stats of a posed render do not give the pose"
+fi
+
 # An unwritable stats file or a malformed number is an error, not a silent success.
 "$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"
 expect_status 1 $? "roma-render with an unwritable --stats path"

@@ -45,6 +45,9 @@ static const char *usage =
     "  --threads N                 CPU threads for the reference (default: all cores)\n"
     "  --out DIR                   output folder (default out); writes DIR/<effect>.pfm and .png\n"
     "  --stats FILE.json           write device, scene size, settings and timings\n"
+    "  --time SECONDS              an animated glTF posed at this time of its clip (both tracers;\n"
+    "                              default: the rest pose)\n"
+    "  --clip N                    which animation --time plays (default 0)\n"
     "  --list-scenes               print the built-in scene names\n"
     "  --quiet                     no progress line\n"
     "  --help\n";
@@ -58,6 +61,8 @@ typedef struct options {
     float skip, ao_skip; /* < 0: unset (library default) */
     float offset;        /* 0: unset (library default) */
     float ao_radius;
+    float time;          /* < 0: unset (rest pose) */
+    uint32_t clip;
     int quiet;
 } options;
 
@@ -106,6 +111,7 @@ static int parse_camera(const char *s, roma_camera *cam)
 static int parse_args(int argc, char **argv, options *o)
 {
     memset(o, 0, sizeof *o);
+    o->time = -1.0f;
     o->scene = "builtin:cornell";
     o->out = "out";
     o->tracer = "embree";
@@ -159,6 +165,12 @@ static int parse_args(int argc, char **argv, options *o)
             float c = strtof(v, &end);
             ok = end != v && !*end && c >= 0.0f && c <= 64.0f;
             *(strcmp(a, "--skip") == 0 ? &o->skip : &o->ao_skip) = c;
+        } else if (strcmp(a, "--time") == 0) {
+            char *end;
+            o->time = strtof(v, &end);
+            ok = end != v && !*end && o->time >= 0.0f && isfinite(o->time);
+        } else if (strcmp(a, "--clip") == 0) {
+            ok = parse_u32(v, 0, UINT32_MAX, &o->clip);
         } else if (strcmp(a, "--ao-radius") == 0) {
             char *end;
             o->ao_radius = strtof(v, &end);
@@ -296,6 +308,10 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_int(&j, "triangles", sv->triangle_count);
     roma_json_int(&j, "degenerate_triangles", sv->degenerate_triangle_count);
     roma_json_int(&j, "vertices", sv->vertex_count);
+    if (o->time >= 0.0f) { /* posed on the host before rendering (roma_scene_pose) */
+        roma_json_number(&j, "pose_time", o->time);
+        roma_json_int(&j, "pose_clip", o->clip);
+    }
     roma_json_int(&j, "materials", sv->material_count);
     roma_json_int(&j, "punctual_lights", sv->light_count);
     roma_json_int(&j, "emissive_triangles", sv->emissive_triangle_count);
@@ -385,6 +401,17 @@ int main(int argc, char **argv)
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-render: cannot load scene '%s': %s\n", o.scene, roma_result_string(r));
         return 1;
+    }
+    if (o.time >= 0.0f) { /* both tracers render the same posed triangles */
+        roma_scene *posed = NULL;
+        r = roma_scene_pose(scene, &(roma_animator_pose){.clip = o.clip, .time = o.time}, NULL, &posed);
+        roma_scene_destroy(scene);
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: cannot pose '%s' at clip %u, %g s: %s\n", o.scene, o.clip, (double)o.time,
+                    roma_result_string(r));
+            return 1;
+        }
+        scene = posed;
     }
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);

@@ -84,6 +84,13 @@ roma_result roma_animator_get_info(const roma_animator *animator, roma_animator_
 /* Seconds of clip `clip` (its last key time). */
 roma_result roma_animator_clip_duration(const roma_animator *animator, uint32_t clip, float *out_seconds);
 
+/* A copy of `scene` posed at `pose` on the host, no GPU involved: positions skinned as the
+ * animator skins them, normals recomputed from the posed faces, materials and animation
+ * data kept; lights and the camera stay where the file puts them at rest. For offline renderers and tools (roma-render --time). The same
+ * errors as roma_animator_create for a scene without animation data. */
+roma_result roma_scene_pose(const roma_scene *scene, const roma_animator_pose *pose, const roma_logger *logger,
+                            roma_scene **out_posed);
+
 /* Downloads the positions of the last recorded (and completed) skinning, 3 floats per
  * vertex. Blocking; for tests and tools. */
 roma_result roma_animator_download_positions(roma_animator *animator, float *out_positions, uint32_t vertex_count);

@@ -4,6 +4,9 @@
 #   make test   install missing packages, build, run the test suite (ctest, lavapipe, validation on)
 #   make test-sanitize   the same suite, Debug build with ASan + UBSan in build-asan (CI runs it too)
 #   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
+#   make test-consumers  build the core library alone (Vulkan and glslang only); install into a temporary prefix and build two out-of-tree consumers
+#                        against it (CMake package, pkg-config); then the same with the Debian
+#                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -11,7 +14,7 @@ OUT ?= out
 ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 
-.PHONY: deps configure build run test test-sanitize test-fuzz clean
+.PHONY: deps configure build run test test-sanitize test-fuzz test-consumers clean
 
 deps:
 	./install-deps.sh
@@ -54,6 +57,11 @@ test-fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene
 	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz || \
 	    { grep -E 'ERROR: libFuzzer|SUMMARY|Test unit written|^Base64' Testing/Temporary/LastTest.log; exit 1; }
+
+test-consumers: build
+	bash tests/consumers/run.sh core . $(BUILD)/consumers/core
+	bash tests/consumers/run.sh install $(BUILD) $(BUILD)/consumers/install
+	bash tests/consumers/run.sh deb $(BUILD) $(BUILD)/consumers/deb
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(OUT)

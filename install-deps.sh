@@ -6,8 +6,9 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers glslang-tools
-  libglfw3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libglfw3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
   clang libclang-rt-14-dev
+  doxygen dpkg-dev
 )
 
 missing=()

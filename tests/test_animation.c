@@ -79,10 +79,8 @@ typedef struct pose_result {
 static void check_scene(gpu *g, const char *file, float time_b)
 {
     char path[1024];
-    if (!roma_test_shared_scene(file, path, sizeof path)) {
-        printf("%s: not in the shared scenes, skipped\n", file);
+    if (!roma_test_scene_file(file, path, sizeof path))
         return;
-    }
     roma_test_log log;
     roma_gltf_desc gd = {.logger = roma_test_logger(&log)};
     roma_scene *scene = NULL;

@@ -469,11 +469,11 @@ int main(void)
     CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &cornell), ROMA_SUCCESS);
     CHECK_RESULT(roma_scene_create_builtin("blinds", NULL, &blinds), ROMA_SUCCESS);
     char path[1024];
-    if (roma_test_shared_scene("bunny.glb", path, sizeof path))
+    if (roma_test_scene_file("bunny.glb", path, sizeof path))
         CHECK_RESULT(roma_scene_load_gltf(path, NULL, &bunny), ROMA_SUCCESS);
     else
         printf("bunny.glb absent: skipped\n");
-    if (roma_test_shared_scene("spot.glb", path, sizeof path))
+    if (roma_test_scene_file("spot.glb", path, sizeof path))
         CHECK_RESULT(roma_scene_load_gltf(path, NULL, &spot), ROMA_SUCCESS);
     else
         printf("spot.glb absent: skipped\n");

@@ -198,12 +198,27 @@ grep -qF "$missing" "$dir/missing.err" || fail "the error for a missing scene do
 "$render" --scene builtin:cornell --time 0.5 --size 8x8 --spp 1 --quiet --out "$dir/posed" >/dev/null 2>"$dir/posed.err"
 expect_status 1 $? "roma-render --time on a scene without animation"
 grep -q "no animation data" "$dir/posed.err" || fail "roma-render --time on a static scene does not say it has no animation data"
-if [ -n "${ROMA_SHARED_SCENES_DIR:-}" ] && [ -f "$ROMA_SHARED_SCENES_DIR/CesiumMan.glb" ]; then
-  "$render" --scene "$ROMA_SHARED_SCENES_DIR/CesiumMan.glb" --time 0.5 --size 16x12 --spp 1 --quiet \
-    --out "$dir/cesium" --stats "$dir/cesium.json" >/dev/null 2>"$dir/cesium.err"
-  expect_status 0 $? "roma-render --time 0.5 on CesiumMan" || cat "$dir/cesium.err" >&2
-  grep -q '"pose_time"' "$dir/cesium.json" || fail "the stats of a posed render do not give the pose"
-fi
+"$render" --scene "$ROMA_SCENES_DIR/CesiumMan.glb" --time 0.5 --size 16x12 --spp 1 --quiet \
+  --out "$dir/cesium" --stats "$dir/cesium.json" >/dev/null 2>"$dir/cesium.err"
+expect_status 0 $? "roma-render --time 0.5 on CesiumMan" || cat "$dir/cesium.err" >&2
+grep -q '"pose_time"' "$dir/cesium.json" || fail "the stats of a posed render do not give the pose"
+
+# --format: OpenEXR beside PFM holds the same floats (1 and 3 channels), read back by
+# roma-compare; PNG is not written when not asked for; an unknown format lists the valid ones.
+"$render" --scene builtin:cornell --effects ao,direct --tracer roma --size 24x16 --spp 2 --ao-radius 0.5 \
+  --quiet --format pfm,exr --out "$dir/exr" >/dev/null 2>"$dir/exr.err"
+expect_status 0 $? "roma-render --format pfm,exr" || cat "$dir/exr.err" >&2
+for e in ao direct; do
+  [ -f "$dir/exr/$e.exr" ] || fail "--format pfm,exr wrote no $e.exr"
+  [ ! -e "$dir/exr/$e.png" ] || fail "--format pfm,exr wrote $e.png"
+  "$compare" "$dir/exr/$e.exr" "$dir/exr/$e.pfm" >"$dir/exr_$e.cmp" 2>&1
+  expect_status 0 $? "roma-compare $e.exr $e.pfm" || cat "$dir/exr_$e.cmp" >&2
+  [ "$(metric "$dir/exr_$e.cmp" max_abs)" = "0" ] || fail "$e.exr differs from $e.pfm"
+  [ "$(metric "$dir/exr_$e.cmp" pixels)" = "384" ] || fail "$e.exr: not 24x16 pixels"
+done
+"$render" --size 8x8 --spp 1 --quiet --format tiff --out "$dir/tiff" >/dev/null 2>"$dir/tiff.err"
+expect_status 2 $? "roma-render --format tiff"
+grep -q "valid: pfm, png, exr" "$dir/tiff.err" || fail "an unknown --format does not list the valid formats"
 
 # An unwritable stats file or a malformed number is an error, not a silent success.
 "$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"

@@ -309,7 +309,7 @@ int main(void)
             roma_scene_destroy(scene);
         }
         char path[4096];
-        if (roma_test_shared_scene("bunny.glb", path, sizeof path)) {
+        if (roma_test_scene_file("bunny.glb", path, sizeof path)) {
             roma_scene *bunny = NULL;
             CHECK_RESULT(roma_scene_load_gltf(path, NULL, &bunny), ROMA_SUCCESS);
             if (bunny)

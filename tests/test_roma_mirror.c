@@ -193,7 +193,7 @@ int main(void)
     /* 81 maps at RES 128: more than 65535 workgroups, so the 2D dispatch path runs. */
     check_scene(ctx, cornell, "cornell", 128, 9, ROMA_BOM_CONSERVATIVE);
     char path[1024];
-    if (roma_test_shared_scene("spot.glb", path, sizeof path) &&
+    if (roma_test_scene_file("spot.glb", path, sizeof path) &&
         roma_scene_load_gltf(path, NULL, &spot) == ROMA_SUCCESS)
         check_scene(ctx, spot, "spot", 64, 8, ROMA_BOM_CONSERVATIVE);
     else

@@ -158,8 +158,7 @@ int main(void)
         char path[1024];
         if (cases[i].builtin) {
             CHECK_RESULT(roma_scene_create_builtin(cases[i].name, NULL, &scene), ROMA_SUCCESS);
-        } else if (!roma_test_shared_scene(cases[i].name, path, sizeof path)) {
-            printf("%s: shared scenes not available, skipped\n", cases[i].name);
+        } else if (!roma_test_scene_file(cases[i].name, path, sizeof path)) {
             continue;
         } else {
             CHECK_RESULT(roma_scene_load_gltf(path, NULL, &scene), ROMA_SUCCESS);

@@ -15,6 +15,13 @@ typedef enum roma_png_mode {
 roma_result roma_app_write_png(const roma_image *image, const char *path, roma_png_mode mode,
                                float scale);
 
+/* OpenEXR (32-bit float, ZIP): one channel as Y, three as R, G, B (exr_io.c). */
+roma_result roma_app_write_exr(const roma_image *image, const char *path);
+/* Reads a scanline EXR's Y channel, or its R, G, B channels, as float. */
+roma_result roma_app_read_exr(const char *path, roma_image *out);
+/* Reads .exr with roma_app_read_exr, anything else as PFM. */
+roma_result roma_app_read_image(const char *path, roma_image *out);
+
 /* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path. */
 roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene);
 

@@ -1,4 +1,4 @@
-/* roma-compare: error metrics between two PFM images (and an optional heat map). */
+/* roma-compare: error metrics between two float images, PFM or OpenEXR (and an optional heat map). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,10 +8,11 @@
 #include "roma/image.h"
 
 static const char *usage =
-    "usage: roma-compare A.pfm B.pfm [--mask M.pfm] [--tolerance T] [--heatmap out.png] [--heat-scale S]\n"
+    "usage: roma-compare A.pfm|A.exr B.pfm|B.exr [--mask M.pfm|M.exr] [--tolerance T] [--heatmap out.png] [--heat-scale S]\n"
     "                    [--side-by-side out.png] [--exposure E]\n"
+    "  Images are read as OpenEXR when their name ends in .exr, as PFM otherwise.\n"
     "  Prints mean absolute error, RMSE, max error and the fraction of pixels whose error\n"
-    "  exceeds T (default 0.05), over the pixels where the mask (1-channel PFM) is > 0.\n"
+    "  exceeds T (default 0.05), over the pixels where the mask (1 channel) is > 0.\n"
     "  The heat map shows |A-B| (max over channels) with S as white (default: the max error).\n"
     "  --side-by-side writes A and B next to each other, tone-mapped with exposure E (default 1).\n"
     "  Exit status: 0 ok, 1 unreadable or mismatched images, 2 usage.\n";
@@ -75,7 +76,7 @@ int main(int argc, char **argv)
     }
     roma_image img[2] = {{0}}, mask = {0};
     for (int k = 0; k < 2; ++k) {
-        roma_result r = roma_image_read_pfm(paths[k], &img[k]);
+        roma_result r = roma_app_read_image(paths[k], &img[k]);
         if (r != ROMA_SUCCESS) {
             fprintf(stderr, "roma-compare: %s: %s\n", paths[k], roma_result_string(r));
             roma_image_free(&img[0]);
@@ -84,7 +85,7 @@ int main(int argc, char **argv)
     }
     int status = 0;
     if (mask_path) {
-        roma_result r = roma_image_read_pfm(mask_path, &mask);
+        roma_result r = roma_app_read_image(mask_path, &mask);
         if (r != ROMA_SUCCESS) {
             fprintf(stderr, "roma-compare: %s: %s\n", mask_path, roma_result_string(r));
             status = 1;

@@ -43,7 +43,9 @@ static const char *usage =
     "  --lights N                  point lights for the many-lights effect (default 256)\n"
     "  --seed N                    sample-sequence seed (default 1)\n"
     "  --threads N                 CPU threads for the reference (default: all cores)\n"
-    "  --out DIR                   output folder (default out); writes DIR/<effect>.pfm and .png\n"
+    "  --out DIR                   output folder (default out); writes DIR/<effect>.<format>\n"
+    "  --format LIST               output formats, comma-separated: pfm (linear float), png (8-bit\n"
+    "                              sRGB), exr (OpenEXR, linear 32-bit float); default pfm,png\n"
     "  --stats FILE.json           write device, scene size, settings and timings\n"
     "  --time SECONDS              an animated glTF posed at this time of its clip (both tracers;\n"
     "                              default: the rest pose)\n"
@@ -64,7 +66,27 @@ typedef struct options {
     float time;          /* < 0: unset (rest pose) */
     uint32_t clip;
     int quiet;
+    uint32_t formats;    /* FORMAT_* bits */
 } options;
+
+enum { FORMAT_PFM = 1u << 0, FORMAT_PNG = 1u << 1, FORMAT_EXR = 1u << 2 };
+
+static int parse_formats(const char *s, uint32_t *out)
+{
+    *out = 0;
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", s);
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (strcmp(tok, "pfm") == 0) *out |= FORMAT_PFM;
+        else if (strcmp(tok, "png") == 0) *out |= FORMAT_PNG;
+        else if (strcmp(tok, "exr") == 0) *out |= FORMAT_EXR;
+        else {
+            fprintf(stderr, "roma-render: unknown format '%s' (valid: pfm, png, exr)\n", tok);
+            return 0;
+        }
+    }
+    return *out != 0;
+}
 
 static int parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out)
 {
@@ -118,6 +140,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1;
     o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8, o->max_steps = 8;
     o->skip = o->ao_skip = -1.0f;
+    o->formats = FORMAT_PFM | FORMAT_PNG;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -136,6 +159,7 @@ static int parse_args(int argc, char **argv, options *o)
             return 0;
         } else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--out") == 0) o->out = v;
+        else if (strcmp(a, "--format") == 0) ok = parse_formats(v, &o->formats);
         else if (strcmp(a, "--stats") == 0) o->stats = v;
         else if (strcmp(a, "--tracer") == 0) o->tracer = v;
         else if (strcmp(a, "--camera") == 0) ok = o->has_camera = parse_camera(v, &o->camera);
@@ -246,20 +270,29 @@ static int write_outputs(const options *o, const char *name, const roma_image *i
                          float scale)
 {
     char path[4096];
-    snprintf(path, sizeof path, "%s/%s.pfm", o->out, name);
-    roma_result r = roma_image_write_pfm(img, path);
+    roma_result r = ROMA_SUCCESS;
+    if (o->formats & FORMAT_PFM) {
+        snprintf(path, sizeof path, "%s/%s.pfm", o->out, name);
+        r = roma_image_write_pfm(img, path);
+    }
+    if (r == ROMA_SUCCESS && (o->formats & FORMAT_PFM))
+        printf("wrote %s\n", path);
+    if (r == ROMA_SUCCESS && (o->formats & FORMAT_EXR)) {
+        snprintf(path, sizeof path, "%s/%s.exr", o->out, name);
+        r = roma_app_write_exr(img, path);
+        if (r == ROMA_SUCCESS)
+            printf("wrote %s\n", path);
+    }
+    if (r == ROMA_SUCCESS && (o->formats & FORMAT_PNG)) {
+        snprintf(path, sizeof path, "%s/%s.png", o->out, name);
+        r = roma_app_write_png(img, path, mode, scale);
+        if (r == ROMA_SUCCESS)
+            printf("wrote %s\n", path);
+    }
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-render: cannot write %s: %s\n", path, roma_result_string(r));
         return 0;
     }
-    printf("wrote %s\n", path);
-    snprintf(path, sizeof path, "%s/%s.png", o->out, name);
-    r = roma_app_write_png(img, path, mode, scale);
-    if (r != ROMA_SUCCESS) {
-        fprintf(stderr, "roma-render: cannot write %s: %s\n", path, roma_result_string(r));
-        return 0;
-    }
-    printf("wrote %s\n", path);
     return 1;
 }
 

@@ -18,6 +18,8 @@
 #ifndef ROMA_ANIMATION_H
 #define ROMA_ANIMATION_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 #include <vulkan/vulkan.h>
 
@@ -40,10 +42,10 @@ typedef struct roma_animator_desc {
  * arrays, as the glTF loader keeps for skinned or animated files):
  * ROMA_ERROR_INVALID_ARGUMENT otherwise. Uploads the per-vertex skinning data and the
  * rest pose (submits and waits once; not a per-frame call). */
-roma_result roma_animator_create(roma_context *context, const roma_scene *scene, const roma_animator_desc *desc,
-                                 roma_animator **out_animator);
+ROMA_API roma_result roma_animator_create(roma_context *context, const roma_scene *scene, const roma_animator_desc *desc,
+                                          roma_animator **out_animator);
 /* Accepts NULL. The caller makes sure no submitted work still uses it. */
-void roma_animator_destroy(roma_animator *animator);
+ROMA_API void roma_animator_destroy(roma_animator *animator);
 
 typedef struct roma_animator_pose {
     uint32_t clip;   /* index of the animation, < roma_animator_info.clip_count */
@@ -65,13 +67,13 @@ typedef struct roma_animator_output {
  * The matrices go to the slot's storage. The written positions are visible to
  * roma_map_record_build (which opens with its own barrier); for other readers the
  * caller adds a barrier from compute-shader writes. */
-roma_result roma_animator_record(roma_animator *animator, VkCommandBuffer cmd, uint32_t slot,
-                                 const roma_animator_pose *pose, roma_animator_output *out);
+ROMA_API roma_result roma_animator_record(roma_animator *animator, VkCommandBuffer cmd, uint32_t slot,
+                                          const roma_animator_pose *pose, roma_animator_output *out);
 
 /* The same pose evaluated and skinned on the host (the GPU pass's reference, and a path
  * for CPU callers): out_positions receives 3 floats per vertex. */
-roma_result roma_animator_pose_cpu(roma_animator *animator, const roma_animator_pose *pose, float *out_positions,
-                                   roma_box *out_bounds);
+ROMA_API roma_result roma_animator_pose_cpu(roma_animator *animator, const roma_animator_pose *pose, float *out_positions,
+                                            roma_box *out_bounds);
 
 typedef struct roma_animator_info {
     uint32_t vertex_count;
@@ -80,20 +82,20 @@ typedef struct roma_animator_info {
     uint32_t node_count;
 } roma_animator_info;
 
-roma_result roma_animator_get_info(const roma_animator *animator, roma_animator_info *out_info);
+ROMA_API roma_result roma_animator_get_info(const roma_animator *animator, roma_animator_info *out_info);
 /* Seconds of clip `clip` (its last key time). */
-roma_result roma_animator_clip_duration(const roma_animator *animator, uint32_t clip, float *out_seconds);
+ROMA_API roma_result roma_animator_clip_duration(const roma_animator *animator, uint32_t clip, float *out_seconds);
 
 /* A copy of `scene` posed at `pose` on the host, no GPU involved: positions skinned as the
  * animator skins them, normals recomputed from the posed faces, materials and animation
  * data kept; lights and the camera stay where the file puts them at rest. For offline renderers and tools (roma-render --time). The same
  * errors as roma_animator_create for a scene without animation data. */
-roma_result roma_scene_pose(const roma_scene *scene, const roma_animator_pose *pose, const roma_logger *logger,
-                            roma_scene **out_posed);
+ROMA_API roma_result roma_scene_pose(const roma_scene *scene, const roma_animator_pose *pose, const roma_logger *logger,
+                                     roma_scene **out_posed);
 
 /* Downloads the positions of the last recorded (and completed) skinning, 3 floats per
  * vertex. Blocking; for tests and tools. */
-roma_result roma_animator_download_positions(roma_animator *animator, float *out_positions, uint32_t vertex_count);
+ROMA_API roma_result roma_animator_download_positions(roma_animator *animator, float *out_positions, uint32_t vertex_count);
 
 #ifdef __cplusplus
 }

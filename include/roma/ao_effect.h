@@ -20,6 +20,8 @@
 #ifndef ROMA_AO_EFFECT_H
 #define ROMA_AO_EFFECT_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 #include <vulkan/vulkan.h>
 
@@ -48,7 +50,7 @@ typedef struct roma_ao_settings {
 
 /* The zero value's meaning, filled in (the one place defaults are resolved).
  * ROMA_ERROR_INVALID_ARGUMENT for NaN or infinite values or a negative radius. */
-roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
+ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
 
 typedef struct roma_ao_effect roma_ao_effect;
 
@@ -57,9 +59,9 @@ typedef struct roma_ao_effect_desc {
     roma_logger logger;        /* 0 = the context's */
 } roma_ao_effect_desc;
 
-roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
+ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
 /* Accepts NULL. The caller makes sure no submitted work still uses it. */
-void roma_ao_effect_destroy(roma_ao_effect *effect);
+ROMA_API void roma_ao_effect_destroy(roma_ao_effect *effect);
 
 typedef struct roma_ao_images {
     uint32_t width, height;
@@ -70,8 +72,8 @@ typedef struct roma_ao_images {
     VkImageLayout input_layout;   /* of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_ao_images;
 
-roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
-                                  const roma_ao_images *images, const roma_ao_settings *settings);
+ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                           const roma_ao_images *images, const roma_ao_settings *settings);
 
 #ifdef __cplusplus
 }

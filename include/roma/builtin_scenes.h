@@ -2,6 +2,8 @@
 #ifndef ROMA_BUILTIN_SCENES_H
 #define ROMA_BUILTIN_SCENES_H
 
+#include "roma/api.h"
+
 #include "roma/scene.h"
 
 #ifdef __cplusplus
@@ -9,11 +11,11 @@ extern "C" {
 #endif
 
 /* Names of the built-in scenes, NULL-terminated. The first is the default. */
-const char *const *roma_builtin_scene_names(void);
+ROMA_API const char *const *roma_builtin_scene_names(void);
 
 /* name: one of roma_builtin_scene_names(), or NULL for the default ("cornell"). */
-roma_result roma_scene_create_builtin(const char *name, const roma_logger *logger,
-                                      roma_scene **out_scene);
+ROMA_API roma_result roma_scene_create_builtin(const char *name, const roma_logger *logger,
+                                               roma_scene **out_scene);
 
 #ifdef __cplusplus
 }

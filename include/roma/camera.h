@@ -5,6 +5,8 @@
 #ifndef ROMA_CAMERA_H
 #define ROMA_CAMERA_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -32,20 +34,20 @@ typedef struct roma_camera_frame {
 /* Fills in defaults (up, fovy) and builds the frame. Returns 0 when the camera
  * is degenerate (eye == target, up parallel to the view direction, non-finite
  * values, zero image size); the frame is then left zeroed. */
-int roma_camera_make_frame(const roma_camera *camera, uint32_t width, uint32_t height,
-                           roma_camera_frame *out_frame);
+ROMA_API int roma_camera_make_frame(const roma_camera *camera, uint32_t width, uint32_t height,
+                                    roma_camera_frame *out_frame);
 
 /* World-space ray through image position (px, py) in pixels; (x + 0.5, y + 0.5)
  * is the centre of pixel (x, y). dir is normalised. A zeroed frame (from a failed
  * roma_camera_make_frame) gives zero origin and dir. */
-void roma_camera_ray(const roma_camera_frame *frame, float px, float py, float origin[3],
-                     float dir[3]);
+ROMA_API void roma_camera_ray(const roma_camera_frame *frame, float px, float py, float origin[3],
+                              float dir[3]);
 
 /* A camera that looks at the box [bmin, bmax] from the front-upper-right
  * diagonal (+x, +y, +z side) so that the whole box fits the view. NULL or
  * non-finite bounds leave *out_camera zeroed (which roma_camera_make_frame refuses). */
-void roma_camera_frame_bounds(const float bmin[3], const float bmax[3], float aspect,
-                              roma_camera *out_camera);
+ROMA_API void roma_camera_frame_bounds(const float bmin[3], const float bmax[3], float aspect,
+                                       roma_camera *out_camera);
 
 #ifdef __cplusplus
 }

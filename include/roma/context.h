@@ -33,6 +33,8 @@
 #ifndef ROMA_CONTEXT_H
 #define ROMA_CONTEXT_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 #include <vulkan/vulkan.h>
 
@@ -80,7 +82,7 @@ typedef struct roma_device_requirements {
     VkQueueFlags queue_flags;      /* the queue's family: GRAPHICS | COMPUTE, timestampValidBits > 0 */
 } roma_device_requirements;
 
-void roma_get_device_requirements(roma_device_requirements *out);
+ROMA_API void roma_get_device_requirements(roma_device_requirements *out);
 
 typedef struct roma_context_desc {
     uint32_t flags;                       /* roma_context_flags; unknown bits are rejected */
@@ -98,9 +100,9 @@ typedef struct roma_context_desc {
     uint64_t device_memory_budget;
 } roma_context_desc;
 
-roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
+ROMA_API roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
 /* Waits for the device to be idle, then destroys what libroma created. Accepts NULL. */
-void roma_context_destroy(roma_context *context);
+ROMA_API void roma_context_destroy(roma_context *context);
 
 typedef struct roma_context_info {
     char device_name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
@@ -123,20 +125,20 @@ typedef struct roma_context_info {
     uint32_t pipelines_compiled;
 } roma_context_info;
 
-roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);
+ROMA_API roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);
 
 /* Errors reported by the validation layer since creation (0 when validation is off). */
-uint32_t roma_context_validation_error_count(const roma_context *context);
+ROMA_API uint32_t roma_context_validation_error_count(const roma_context *context);
 
-VkInstance roma_context_instance(const roma_context *context);
-VkPhysicalDevice roma_context_physical_device(const roma_context *context);
-VkDevice roma_context_device(const roma_context *context);
-VkQueue roma_context_queue(const roma_context *context);
-uint32_t roma_context_queue_family(const roma_context *context);
+ROMA_API VkInstance roma_context_instance(const roma_context *context);
+ROMA_API VkPhysicalDevice roma_context_physical_device(const roma_context *context);
+ROMA_API VkDevice roma_context_device(const roma_context *context);
+ROMA_API VkQueue roma_context_queue(const roma_context *context);
+ROMA_API uint32_t roma_context_queue_family(const roma_context *context);
 
 /* Runs a tiny compute shader end to end (upload-free fill, readback, timestamp)
  * to prove the device, the embedded SPIR-V and the timers work. Optional. */
-roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
+ROMA_API roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
 
 /* --- GPU timers: timestamp queries around named passes ---
  * Record begin/end into any command buffer of the context's queue family;
@@ -152,18 +154,18 @@ typedef struct roma_gpu_timing {
     double milliseconds;
 } roma_gpu_timing;
 
-roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_scopes,
-                                  roma_gpu_timer **out_timer);
-void roma_gpu_timer_destroy(roma_gpu_timer *timer);
+ROMA_API roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_scopes,
+                                           roma_gpu_timer **out_timer);
+ROMA_API void roma_gpu_timer_destroy(roma_gpu_timer *timer);
 /* Records the query reset; call once per use, before the first begin. */
-void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
+ROMA_API void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
 /* Returns a scope index, or UINT32_MAX when max_scopes is exhausted (nothing recorded). */
-uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cmd, const char *name);
-void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uint32_t scope);
+ROMA_API uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cmd, const char *name);
+ROMA_API void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uint32_t scope);
 /* Copies up to *count timings; *count becomes the number of scopes recorded.
  * ROMA_ERROR_NOT_READY if the GPU has not finished them. */
-roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing *out_timings,
-                                uint32_t *count);
+ROMA_API roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing *out_timings,
+                                         uint32_t *count);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,8 @@
 #ifndef ROMA_EFFECTS_H
 #define ROMA_EFFECTS_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 
 #include "roma/result.h"
@@ -45,7 +47,7 @@ typedef enum roma_pass_kind {
 
 /* "gbuffer", "ao", "punctual_lights", "soft_shadows", "many_lights", "rsm", "gi";
  * "unknown" outside the enum. */
-const char *roma_pass_name(roma_pass_kind pass);
+ROMA_API const char *roma_pass_name(roma_pass_kind pass);
 
 /* Zero value: the paper's settings (RES 128; A = 4 for hemisphere rays, A = 8 for
  * rays towards lights) and 256 many lights. */
@@ -76,8 +78,8 @@ typedef struct roma_effect_plan {
  * bits, resolutions other than 32/64/128/256, A outside 1..16 and many-light
  * counts above 65536 (ROMA_ERROR_INVALID_ARGUMENT, message through logger, which
  * may be NULL); on failure *out_plan runs nothing: zeroed, with every pass_map -1. */
-roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_options *options,
-                                    const roma_logger *logger, roma_effect_plan *out_plan);
+ROMA_API roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_options *options,
+                                             const roma_logger *logger, roma_effect_plan *out_plan);
 
 /* 0 for a NULL plan or a pass outside the enum (a shift by 32 or more is undefined). */
 static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_kind pass)

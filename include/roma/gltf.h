@@ -18,6 +18,8 @@
 #ifndef ROMA_GLTF_H
 #define ROMA_GLTF_H
 
+#include "roma/api.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -41,13 +43,13 @@ typedef struct roma_gltf_desc {
 #define ROMA_GLTF_DEFAULT_MAX_TRIANGLES (1u << 25)
 
 /* path ends in .gltf or .glb (detected from content, not the name). desc may be NULL. */
-roma_result roma_scene_load_gltf(const char *path, const roma_gltf_desc *desc,
-                                 roma_scene **out_scene);
+ROMA_API roma_result roma_scene_load_gltf(const char *path, const roma_gltf_desc *desc,
+                                          roma_scene **out_scene);
 
 /* From memory. base_dir resolves external buffers (may be NULL: external URIs are
  * then an error). The data is not kept. */
-roma_result roma_scene_load_gltf_memory(const void *data, size_t size, const char *base_dir,
-                                        const roma_gltf_desc *desc, roma_scene **out_scene);
+ROMA_API roma_result roma_scene_load_gltf_memory(const void *data, size_t size, const char *base_dir,
+                                                 const roma_gltf_desc *desc, roma_scene **out_scene);
 
 #ifdef __cplusplus
 }

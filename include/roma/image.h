@@ -5,6 +5,8 @@
 #ifndef ROMA_IMAGE_H
 #define ROMA_IMAGE_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 
 #include "roma/result.h"
@@ -21,16 +23,16 @@ typedef struct roma_image {
 
 /* Allocates zeroed pixels. Rejects zero sizes, channels not in {1,3}, and sizes
  * whose byte count overflows or exceeds 1 GiB. */
-roma_result roma_image_alloc(roma_image *image, uint32_t width, uint32_t height,
-                             uint32_t channels);
+ROMA_API roma_result roma_image_alloc(roma_image *image, uint32_t width, uint32_t height,
+                                      uint32_t channels);
 /* Frees pixels and zeroes the struct; accepts NULL and zeroed images. */
-void roma_image_free(roma_image *image);
+ROMA_API void roma_image_free(roma_image *image);
 
 /* Portable float map: "Pf" for 1 channel, "PF" for 3, little-endian, rows stored bottom-up
  * as the format requires. */
-roma_result roma_image_write_pfm(const roma_image *image, const char *path);
+ROMA_API roma_result roma_image_write_pfm(const roma_image *image, const char *path);
 /* On success *out_image owns new pixels; on failure it is zeroed. */
-roma_result roma_image_read_pfm(const char *path, roma_image *out_image);
+ROMA_API roma_result roma_image_read_pfm(const char *path, roma_image *out_image);
 
 typedef struct roma_image_metrics {
     double mean_abs_error;   /* over all channels of the counted pixels */
@@ -45,12 +47,12 @@ typedef struct roma_image_metrics {
 /* Compares a and b (same size and channels). mask is optional (1 channel, same size):
  * only pixels with mask > 0 count. Non-finite pixels are counted in non_finite and
  * excluded from the other figures. A NaN tolerance is rejected. */
-roma_result roma_image_compare(const roma_image *a, const roma_image *b, const roma_image *mask,
-                               float tolerance, roma_image_metrics *out_metrics);
+ROMA_API roma_result roma_image_compare(const roma_image *a, const roma_image *b, const roma_image *mask,
+                                        float tolerance, roma_image_metrics *out_metrics);
 
 /* |a - b| per pixel (max over channels) into a new 1-channel image; out_diff must
  * not be a or b. */
-roma_result roma_image_abs_diff(const roma_image *a, const roma_image *b, roma_image *out_diff);
+ROMA_API roma_result roma_image_abs_diff(const roma_image *a, const roma_image *b, roma_image *out_diff);
 
 #ifdef __cplusplus
 }

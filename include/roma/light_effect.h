@@ -13,6 +13,8 @@
 #ifndef ROMA_LIGHT_EFFECT_H
 #define ROMA_LIGHT_EFFECT_H
 
+#include "roma/api.h"
+
 #include <stdint.h>
 #include <vulkan/vulkan.h>
 
@@ -34,7 +36,7 @@ typedef struct roma_light_settings {
     float skip_cells;     /* 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS, negative = 0 */
 } roma_light_settings;
 
-roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out);
+ROMA_API roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out);
 
 typedef struct roma_light_effect roma_light_effect;
 
@@ -43,9 +45,9 @@ typedef struct roma_light_effect_desc {
     roma_logger logger;        /* 0 = the context's */
 } roma_light_effect_desc;
 
-roma_result roma_light_effect_create(roma_context *context, const roma_light_effect_desc *desc,
-                                     roma_light_effect **out);
-void roma_light_effect_destroy(roma_light_effect *effect);
+ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_light_effect_desc *desc,
+                                              roma_light_effect **out);
+ROMA_API void roma_light_effect_destroy(roma_light_effect *effect);
 
 typedef struct roma_light_images {
     uint32_t width, height;
@@ -58,9 +60,9 @@ typedef struct roma_light_images {
  * with zero intensity or colour are dropped, as the reference does). One record per frame:
  * a second record with the same slot and the same build of the map is refused
  * (ROMA_ERROR_INVALID_ARGUMENT). */
-roma_result roma_light_effect_record(roma_light_effect *effect, VkCommandBuffer cmd, uint32_t slot,
-                                     const roma_map *map, const roma_light_images *images, const roma_light *lights,
-                                     uint32_t light_count, const roma_light_settings *settings);
+ROMA_API roma_result roma_light_effect_record(roma_light_effect *effect, VkCommandBuffer cmd, uint32_t slot,
+                                              const roma_map *map, const roma_light_images *images, const roma_light *lights,
+                                              uint32_t light_count, const roma_light_settings *settings);
 
 #ifdef __cplusplus
 }

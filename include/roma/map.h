@@ -38,6 +38,8 @@
 #ifndef ROMA_MAP_H
 #define ROMA_MAP_H
 
+#include "roma/api.h"
+
 #define ROMA_DEFAULT_OFFSET_CELLS 1.5f
 
 #include <stdint.h>
@@ -83,11 +85,11 @@ typedef struct roma_map_desc {
  * its cells be at least 1e-35 across (at RES 32, volumes at least ~3e-34 wide; at most
  * ~1.6e38 wide when centred on the origin); others are refused with
  * ROMA_ERROR_INVALID_SCENE. */
-roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
-                            const roma_scene *scene, roma_map **out_map);
+ROMA_API roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
+                                     const roma_scene *scene, roma_map **out_map);
 /* Accepts NULL. The caller makes sure no submitted work still uses the map (the
  * blocking convenience calls below always finish theirs). */
-void roma_map_destroy(roma_map *map);
+ROMA_API void roma_map_destroy(roma_map *map);
 
 /* An axis-aligned box in world space. */
 typedef struct roma_box {
@@ -136,12 +138,12 @@ typedef struct roma_map_frame_desc {
  * to a map must come from a context on the map's VkDevice: ROMA_ERROR_INVALID_ARGUMENT
  * otherwise). A failed call records nothing the map depends on and keeps the previous
  * positions. */
-roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
-                                  const roma_map_frame_desc *frame, roma_gpu_timer *timer);
+ROMA_API roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
+                                           const roma_map_frame_desc *frame, roma_gpu_timer *timer);
 
 /* Convenience: records, submits and waits. */
-roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
-                           roma_gpu_timer *timer);
+ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
+                                    roma_gpu_timer *timer);
 
 /* --- Objects: meshes and their instances ---
  * Besides the scene it was made with, a map voxelizes instances of meshes added to it,
@@ -161,9 +163,9 @@ roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
 
 /* A mesh from a scene's triangles (its positions are the local frame; materials, lights
  * and animation data are ignored). The scene may be destroyed afterwards. */
-roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, uint32_t *out_mesh);
+ROMA_API roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, uint32_t *out_mesh);
 /* Refused (ROMA_ERROR_INVALID_ARGUMENT) while instances of it remain. */
-roma_result roma_map_remove_mesh(roma_map *map, uint32_t mesh);
+ROMA_API roma_result roma_map_remove_mesh(roma_map *map, uint32_t mesh);
 
 typedef struct roma_instance_desc {
     uint32_t mesh;         /* from roma_map_add_mesh */
@@ -171,10 +173,10 @@ typedef struct roma_instance_desc {
     uint32_t flags;        /* ROMA_INSTANCE_DYNAMIC */
 } roma_instance_desc;
 
-roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc, uint32_t *out_instance);
-roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
+ROMA_API roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc, uint32_t *out_instance);
+ROMA_API roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
 /* Dynamic instances only; takes effect at the next build. */
-roma_result roma_map_set_instance_transform(roma_map *map, uint32_t instance, const float transform[12]);
+ROMA_API roma_result roma_map_set_instance_transform(roma_map *map, uint32_t instance, const float transform[12]);
 
 typedef struct roma_map_info {
     uint32_t resolution, angular, map_count, words_per_texel;
@@ -198,10 +200,10 @@ typedef struct roma_map_info {
     VkDescriptorSetLayout trace_set_layout;
 } roma_map_info;
 
-roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
+ROMA_API roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
 
 /* Candidate direction of map k this frame (unit, z >= 0); zero on failure. */
-roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
+ROMA_API roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
 
 /* --- Queries --- */
 
@@ -249,19 +251,19 @@ typedef struct roma_trace_desc {
 /* Records a trace of caller buffers after the build (same command buffer or a
  * later one). The caller synchronises its own writes to rays and reads of hits;
  * libroma adds the barrier between its build and the trace. */
-roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
-                                  roma_gpu_timer *timer);
+ROMA_API roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
+                                           roma_gpu_timer *timer);
 
 /* Convenience for CPU callers: uploads rays, traces, downloads hits (blocking).
  * timer may be NULL; otherwise it is reset and gets the scope "trace". */
-roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,
-                           const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
-                           roma_gpu_timer *timer);
+ROMA_API roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,
+                                    const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
+                                    roma_gpu_timer *timer);
 
 /* Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words).
  * word_count must be exactly that; ROMA_ERROR_NOT_READY before the first build. */
-roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
-roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
+ROMA_API roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
+ROMA_API roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
 
 #ifdef __cplusplus
 }

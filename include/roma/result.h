@@ -6,6 +6,8 @@
 #ifndef ROMA_RESULT_H
 #define ROMA_RESULT_H
 
+#include "roma/api.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -32,7 +34,7 @@ typedef enum roma_result {
 } roma_result;
 
 /* Never NULL; "unknown roma_result" for values outside the enum. */
-const char *roma_result_string(roma_result result);
+ROMA_API const char *roma_result_string(roma_result result);
 
 typedef enum roma_log_level {
     ROMA_LOG_DEBUG = 0,
@@ -41,7 +43,7 @@ typedef enum roma_log_level {
     ROMA_LOG_ERROR
 } roma_log_level;
 
-const char *roma_log_level_string(roma_log_level level);
+ROMA_API const char *roma_log_level_string(roma_log_level level);
 
 /* code: for an error, the roma_result the failing call returns (ROMA_ERROR_VALIDATION for
  * a validation-layer message); ROMA_SUCCESS for debug, info and warning messages. Callers

@@ -11,6 +11,8 @@
 #ifndef ROMA_SCENE_H
 #define ROMA_SCENE_H
 
+#include "roma/api.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -73,10 +75,10 @@ typedef struct roma_scene_desc {
  * roma_scene_view.degenerate_triangle_count; "zero area" includes slivers whose
  * squared cross product is below 1e-14 |e1|^2 |e2|^2 (sine of the angle < 1e-7).
  * Given normals of zero length fall back to the face normals, with a warning. */
-roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scene);
+ROMA_API roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scene);
 
 /* Accepts NULL. */
-void roma_scene_destroy(roma_scene *scene);
+ROMA_API void roma_scene_destroy(roma_scene *scene);
 
 /* Built-in test scenes: roma/builtin_scenes.h (library roma_tools). */
 
@@ -170,17 +172,17 @@ typedef struct roma_scene_view {
 } roma_scene_view;
 
 /* Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (*out_view zeroed). */
-roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view);
+ROMA_API roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view);
 
 /* Animation data is attached by loaders after the geometry is validated; the
  * scene copies the arrays. Rejects out-of-range node/skin/joint indices and
  * non-finite floats. Intended for loaders; engines rarely need it. */
-roma_result roma_scene_set_animation_data(roma_scene *scene,
-                                          const roma_scene_animation_data *data,
-                                          const roma_logger *logger);
+ROMA_API roma_result roma_scene_set_animation_data(roma_scene *scene,
+                                                   const roma_scene_animation_data *data,
+                                                   const roma_logger *logger);
 
 /* Camera to use when none is given: the scene's own, or one framing the bounds. */
-void roma_scene_default_camera(const roma_scene *scene, float aspect, roma_camera *out_camera);
+ROMA_API void roma_scene_default_camera(const roma_scene *scene, float aspect, roma_camera *out_camera);
 
 #ifdef __cplusplus
 }

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "roma/scene.h"
+#include "roma/builtin_scenes.h"
 #include "util/log.h"
 
 #define DEG(x) ((float)((x) * 3.14159265358979323846 / 180.0))

@@ -73,15 +73,16 @@ void roma_test_context_finish(roma_context *ctx)
     }
 }
 
-int roma_test_shared_scene(const char *file, char *buf, size_t size)
+int roma_test_scene_file(const char *file, char *buf, size_t size)
 {
-    const char *dir = getenv("ROMA_SHARED_SCENES_DIR");
-    if (!dir || !*dir)
-        return 0;
-    snprintf(buf, size, "%s/%s", dir, file);
+    const char *dir = getenv("ROMA_SCENES_DIR");
+    snprintf(buf, size, "%s/%s", (dir && *dir) ? dir : ".", file);
     FILE *f = fopen(buf, "rb");
-    if (!f)
+    if (!f) {
+        fprintf(stderr, "scene file %s not found (ROMA_SCENES_DIR is the repository's scenes/)\n", buf);
+        ++roma_test_failures;
         return 0;
+    }
     fclose(f);
     return 1;
 }

@@ -60,8 +60,9 @@ roma_context *roma_test_context(void);
 /* Destroys ctx after checking it saw no validation error (counts a failure if it did). */
 void roma_test_context_finish(roma_context *ctx);
 
-/* Shared scene path (ROMA_SHARED_SCENES_DIR/<file>) into buf; returns 0 if absent. */
-int roma_test_shared_scene(const char *file, char *buf, size_t size);
+/* Path of a file of the repository's scenes/ (ROMA_SCENES_DIR/<file>) into buf; returns 1.
+ * A missing file is a failed check (returns 0): the scenes are part of the repository. */
+int roma_test_scene_file(const char *file, char *buf, size_t size);
 
 /* Writable scratch path: ROMA_TEST_TMPDIR (or /tmp) + "/" + name. */
 const char *roma_test_tmp_path(const char *name, char *buf, size_t size);

@@ -1,0 +1,13 @@
+/* ROMA_API marks the functions a libroma shared library exports. The libraries are
+ * compiled with hidden visibility, so nothing else (no internal function) is visible
+ * to the program that links them. */
+#ifndef ROMA_API_H
+#define ROMA_API_H
+
+#if defined(__GNUC__) || defined(__clang__)
+#define ROMA_API __attribute__((visibility("default")))
+#else
+#define ROMA_API
+#endif
+
+#endif /* ROMA_API_H */

@@ -8,6 +8,7 @@ packages=(
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers glslang-tools
   libglfw3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
   clang libclang-rt-14-dev
+  libimgui-dev xvfb xauth
   doxygen dpkg-dev
 )
 

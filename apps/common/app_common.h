@@ -5,6 +5,10 @@
 #include "roma/image.h"
 #include "roma/scene.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum roma_png_mode {
     ROMA_PNG_SRGB = 0, /* linear values times exposure, clamped, sRGB-encoded */
     ROMA_PNG_HEAT      /* values / scale through a black-red-yellow-white ramp */
@@ -32,5 +36,9 @@ double roma_app_median(double *values, int count);
 
 /* Creates the folder (and parents) if needed; 0 on failure. */
 int roma_app_make_dir(const char *path);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* ROMA_APP_COMMON_H */

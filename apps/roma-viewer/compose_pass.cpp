@@ -1,0 +1,192 @@
+#include "compose_pass.h"
+
+#include <roma/trace_types.h>
+
+#include "compose_comp_spv.h"
+
+bool compose_pass_create(const vk_base &b, compose_pass &c)
+{
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+    si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    if (vkCreateSampler(b.device, &si, nullptr, &c.sampler) != VK_SUCCESS)
+        return false;
+    VkDescriptorSetLayoutBinding bindings[7];
+    for (uint32_t i = 0; i < 7; ++i)
+        bindings[i] = {i, i < 3 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+                       VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    li.bindingCount = 7;
+    li.pBindings = bindings;
+    if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.set_layout) != VK_SUCCESS)
+        return false;
+    // Set 1: defined as roma_map_info.trace_set_layout is (roma/trace_descriptors.glsl), so
+    // every map's trace set can be bound with this one pipeline layout.
+    VkDescriptorSetLayoutBinding trace[ROMA_TRACE_BINDINGS] = {
+        {ROMA_TRACE_BINDING_MAPS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {ROMA_TRACE_BINDING_PARAMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+    li.bindingCount = ROMA_TRACE_BINDINGS;
+    li.pBindings = trace;
+    if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.trace_layout) != VK_SUCCESS)
+        return false;
+    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4}};
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pi.maxSets = 1;
+    pi.poolSizeCount = 2;
+    pi.pPoolSizes = sizes;
+    if (vkCreateDescriptorPool(b.device, &pi, nullptr, &c.pool) != VK_SUCCESS)
+        return false;
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = c.pool;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &c.set_layout;
+    if (vkAllocateDescriptorSets(b.device, &ai, &c.set) != VK_SUCCESS)
+        return false;
+    VkDescriptorSetLayout layouts[2] = {c.set_layout, c.trace_layout};
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 72};
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 2;
+    pli.pSetLayouts = layouts;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &push;
+    if (vkCreatePipelineLayout(b.device, &pli, nullptr, &c.layout) != VK_SUCCESS)
+        return false;
+    VkShaderModule m = vk_shader_module(b, compose_comp_spv, sizeof compose_comp_spv);
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = m;
+    ci.stage.pName = "main";
+    ci.layout = c.layout;
+    bool ok = m && vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &ci, nullptr, &c.pipeline) == VK_SUCCESS;
+    if (m)
+        vkDestroyShaderModule(b.device, m, nullptr);
+    return ok;
+}
+
+bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &g)
+{
+    vk_image_destroy(b, c.ao);
+    vk_image_destroy(b, c.light);
+    vk_image_destroy(b, c.accum);
+    vk_image_destroy(b, c.display);
+    c.width = g.width;
+    c.height = g.height;
+    VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    if (!vk_image_create(b, c.width, c.height, VK_FORMAT_R32_SFLOAT, storage, c.ao) ||
+        !vk_image_create(b, c.width, c.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, c.light) ||
+        !vk_image_create(b, c.width, c.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, c.accum) ||
+        !vk_image_create(b, c.width, c.height, VK_FORMAT_R8G8B8A8_UNORM, storage, c.display))
+        return false;
+    VkDescriptorImageInfo images[7] = {
+        {c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        {c.sampler, g.albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        {VK_NULL_HANDLE, c.ao.view, VK_IMAGE_LAYOUT_GENERAL},
+        {VK_NULL_HANDLE, c.light.view, VK_IMAGE_LAYOUT_GENERAL},
+        {VK_NULL_HANDLE, c.accum.view, VK_IMAGE_LAYOUT_GENERAL},
+        {VK_NULL_HANDLE, c.display.view, VK_IMAGE_LAYOUT_GENERAL}};
+    VkWriteDescriptorSet writes[7];
+    for (uint32_t i = 0; i < 7; ++i) {
+        writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = c.set;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = i < 3 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        writes[i].pImageInfo = &images[i];
+    }
+    vkUpdateDescriptorSets(b.device, 7, writes, 0, nullptr);
+    return true;
+}
+
+void compose_pass_destroy(const vk_base &b, compose_pass &c)
+{
+    vk_image_destroy(b, c.ao);
+    vk_image_destroy(b, c.light);
+    vk_image_destroy(b, c.accum);
+    vk_image_destroy(b, c.display);
+    if (c.pipeline)
+        vkDestroyPipeline(b.device, c.pipeline, nullptr);
+    if (c.layout)
+        vkDestroyPipelineLayout(b.device, c.layout, nullptr);
+    if (c.pool)
+        vkDestroyDescriptorPool(b.device, c.pool, nullptr);
+    if (c.set_layout)
+        vkDestroyDescriptorSetLayout(b.device, c.set_layout, nullptr);
+    if (c.trace_layout)
+        vkDestroyDescriptorSetLayout(b.device, c.trace_layout, nullptr);
+    if (c.sampler)
+        vkDestroySampler(b.device, c.sampler, nullptr);
+    c = compose_pass{};
+}
+
+void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd)
+{
+    // The accumulation image keeps its contents (GENERAL to GENERAL); the others are
+    // rewritten every frame. Last frame's readers: compose (compute) and the copies.
+    const VkPipelineStageFlags2 before = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    const VkAccessFlags2 rw = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    vk_image_barrier(cmd, c.ao.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before, 0,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
+    vk_image_barrier(cmd, c.light.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before, 0,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
+}
+
+void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
+                         VkDescriptorSet trace_set)
+{
+    const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    const VkAccessFlags2 rw = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    // The effects' storage writes, read here.
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = cs;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    mb.dstStageMask = cs;
+    mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    // The accumulation image survives frames; the display image is rewritten.
+    vk_image_barrier(cmd, c.accum.image, s.accumulated ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_GENERAL, cs | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, cs, rw);
+    vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    struct {
+        float ambient[4], background[4];
+        uint32_t size[2], view, accumulated;
+        float exposure, debug_length, offset;
+        uint32_t ao_on, direct_on;
+    } push{};
+    static_assert(sizeof push == 68, "the push block of compose.comp");
+    for (int i = 0; i < 3; ++i) {
+        push.ambient[i] = s.ambient[i];
+        push.background[i] = s.background[i];
+    }
+    push.size[0] = c.width;
+    push.size[1] = c.height;
+    push.view = s.view;
+    push.accumulated = s.accumulated;
+    push.exposure = s.exposure;
+    push.debug_length = s.debug_length;
+    push.offset = s.offset;
+    push.ao_on = s.ao_on;
+    push.direct_on = s.direct_on;
+    VkDescriptorSet sets[2] = {c.set, trace_set};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);
+    vkCmdPushConstants(cmd, c.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
+    vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, cs,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
+    // The accumulation image is read by copies (screenshots) and the next frame.
+    VkMemoryBarrier2 after{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    after.srcStageMask = cs;
+    after.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    after.dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT | cs;
+    after.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | rw;
+    dep.pMemoryBarriers = &after;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}

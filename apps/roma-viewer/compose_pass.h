@@ -1,0 +1,49 @@
+// roma-viewer: the effect outputs (AO, direct irradiance), the accumulation image and
+// the display image, and the compute pass that turns them into the picture.
+#pragma once
+
+#include "gbuffer_pass.h"
+
+enum view_mode : uint32_t {
+    VIEW_COMPOSED = 0,
+    VIEW_AO,
+    VIEW_DIRECT,
+    VIEW_ALBEDO,
+    VIEW_NORMAL,
+    VIEW_MAP,          // which ROMA map a ray along the normal uses
+    VIEW_HIT_DISTANCE, // how far that ray goes before a hit
+    VIEW_COUNT
+};
+
+struct compose_settings {
+    float ambient[3];
+    float background[3];
+    view_mode view;
+    uint32_t accumulated;
+    float exposure;
+    float debug_length;
+    float offset;
+    bool ao_on, direct_on;
+};
+
+struct compose_pass {
+    vk_image ao, light, accum, display;
+    uint32_t width = 0, height = 0;
+    VkSampler sampler = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE, trace_layout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+};
+
+bool compose_pass_create(const vk_base &b, compose_pass &c);
+// New images at the G-buffer's size (the old ones must be idle); the set is rewritten.
+bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &g);
+void compose_pass_destroy(const vk_base &b, compose_pass &c);
+// Puts the effect outputs into GENERAL after last frame's readers, ready for the effects.
+void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd);
+// trace_set: roma_map_info.trace_set of this frame's map. Leaves the display image in
+// TRANSFER_SRC_OPTIMAL.
+void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
+                         VkDescriptorSet trace_set);

@@ -1,0 +1,1029 @@
+// roma-viewer: the interactive viewer of libroma, built on the public API only (the
+// installed libraries roma::roma, roma::gltf and roma::tools, the public headers and the
+// public GLSL), as an engine would use it: its own instance, device, swapchain and
+// G-buffer; libroma's map build, animator, AO and light effects recorded into its command
+// buffers with two frames in flight; its own compute pass tracing ROMA rays for the debug
+// views. --headless renders without a window (tests, scripts).
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+#include <stb_image_write.h>
+
+#include <roma/animation.h>
+#include <roma/ao_effect.h>
+#include <roma/builtin_scenes.h>
+#include <roma/gltf.h>
+#include <roma/image.h>
+#include <roma/light_effect.h>
+#include <roma/roma.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "app_common.h"
+#include "gbuffer_pass.h"
+#include "compose_pass.h"
+#include "swapchain.h"
+#include "ui.h"
+
+namespace {
+
+constexpr uint32_t kSlots = 2;      // frames in flight
+constexpr uint32_t kStamps = 6;     // timestamps per frame
+constexpr uint32_t kHistory = 240;  // frame-time graph
+
+const char *kUsage =
+    "usage: roma-viewer [--scene builtin:NAME|FILE.gltf|FILE.glb] [options]\n"
+    "  --scene S            a built-in scene (default builtin:cornell) or a glTF 2.0 file;\n"
+    "                       a glTF file dropped on the window opens too\n"
+    "  --camera ex,ey,ez,tx,ty,tz,fovy   start camera (the string roma-render takes)\n"
+    "  --size WxH           window or image size (default 1280x720)\n"
+    "  --view NAME          composed, ao, direct, albedo, normal, map, hit-distance\n"
+    "  --res R --angular A  ROMA array (default 128, 4)\n"
+    "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
+    "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
+    "  --exposure E         (default 1)\n"
+    "  --time T --clip N    animation time and clip; --play starts playing\n"
+    "  --headless           no window: render --frames frames and exit\n"
+    "  --frames N           exit after N frames (default: run until closed; headless 16)\n"
+    "  --screenshot F.png   after the last frame: the picture (8-bit) to F.png\n"
+    "  --linear F.pfm|F.exr after the last frame: the accumulated linear values of the view\n"
+    "  --validation         Khronos validation layer on; exit status 1 on any message\n"
+    "  --device NAME        a device whose name contains NAME\n"
+    "Keys: F frame the scene, Tab orbit/fly, F12 screenshot (roma-viewer-N.png), Esc quit.\n";
+
+struct options {
+    std::string scene = "builtin:cornell";
+    roma_camera camera{};
+    bool has_camera = false;
+    uint32_t width = 1280, height = 720;
+    bool headless = false, validation = false, play = false;
+    uint32_t frames = 0;
+    std::string screenshot, linear, device;
+    viewer_settings settings;
+};
+
+bool parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t &out)
+{
+    char *end;
+    unsigned long v = std::strtoul(s, &end, 10);
+    if (end == s || *end || s[0] == '-' || v < lo || v > hi)
+        return false;
+    out = static_cast<uint32_t>(v);
+    return true;
+}
+
+bool parse_float(const char *s, float lo, float hi, float &out)
+{
+    char *end;
+    float v = std::strtof(s, &end);
+    if (end == s || *end || !(v >= lo && v <= hi))
+        return false;
+    out = v;
+    return true;
+}
+
+const char *kViewNames[VIEW_COUNT] = {"composed", "ao", "direct", "albedo", "normal", "map", "hit-distance"};
+
+int parse_args(int argc, char **argv, options &o)
+{
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
+        bool ok = true, used = true;
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (a == "--headless") {
+            o.headless = true, used = false;
+        } else if (a == "--validation") {
+            o.validation = true, used = false;
+        } else if (a == "--play") {
+            o.play = true, used = false;
+        } else if (!v) {
+            std::fprintf(stderr, "roma-viewer: %s needs a value (see --help)\n", a.c_str());
+            return 2;
+        } else if (a == "--scene") {
+            o.scene = v;
+        } else if (a == "--camera") {
+            ok = o.has_camera = camera_from_string(v, o.camera);
+        } else if (a == "--size") {
+            unsigned w = 0, h = 0;
+            char tail;
+            ok = std::sscanf(v, "%ux%u%c", &w, &h, &tail) == 2 && w >= 8 && h >= 8 && w <= 8192 && h <= 8192;
+            o.width = w, o.height = h;
+        } else if (a == "--view") {
+            ok = false;
+            for (uint32_t k = 0; k < VIEW_COUNT; ++k)
+                if (!std::strcmp(v, kViewNames[k]))
+                    o.settings.view = static_cast<view_mode>(k), ok = true;
+            if (!ok) {
+                std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, albedo, "
+                                     "normal, map, hit-distance)\n", v);
+                return 2;
+            }
+        } else if (a == "--res") {
+            ok = parse_u32(v, 32, 256, o.settings.res) && (o.settings.res & (o.settings.res - 1)) == 0;
+        } else if (a == "--angular") {
+            ok = parse_u32(v, 1, 16, o.settings.angular);
+        } else if (a == "--ao-samples") {
+            ok = parse_u32(v, 1, 256, o.settings.ao_samples);
+        } else if (a == "--ao-radius") {
+            ok = parse_float(v, 1e-6f, 1e30f, o.settings.ao_radius);
+        } else if (a == "--exposure") {
+            ok = parse_float(v, 1e-6f, 1e6f, o.settings.exposure);
+        } else if (a == "--time") {
+            ok = parse_float(v, 0.0f, 1e6f, o.settings.time);
+        } else if (a == "--clip") {
+            ok = parse_u32(v, 0, 1u << 20, o.settings.clip);
+        } else if (a == "--frames") {
+            ok = parse_u32(v, 1, 1u << 30, o.frames);
+        } else if (a == "--screenshot") {
+            o.screenshot = v;
+        } else if (a == "--linear") {
+            o.linear = v;
+        } else if (a == "--device") {
+            o.device = v;
+        } else {
+            std::fprintf(stderr, "roma-viewer: unknown option %s (see --help)\n", a.c_str());
+            return 2;
+        }
+        if (!ok) {
+            std::fprintf(stderr, "roma-viewer: bad value for %s: '%s' (see --help)\n", a.c_str(), v);
+            return 2;
+        }
+        if (used)
+            ++i;
+    }
+    if (o.headless && !o.frames)
+        o.frames = 16;
+    return -1;
+}
+
+struct gpu_scene {
+    vk_buffer positions, indices, albedo;
+    uint32_t vertex_count = 0, triangle_count = 0;
+};
+
+struct viewer {
+    options opt;
+    vk_base base;
+    GLFWwindow *window = nullptr;
+    swapchain sc;
+    bool imgui = false;
+    VkDescriptorPool imgui_pool = VK_NULL_HANDLE;
+    roma_context *ctx = nullptr;
+    roma_scene *scene = nullptr;
+    roma_scene_view view{};
+    gpu_scene gs;
+    roma_map *map = nullptr;
+    roma_animator *animator = nullptr;
+    roma_ao_effect *ao = nullptr;
+    roma_light_effect *light = nullptr;
+    gbuffer_pass gb;
+    compose_pass cp;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd[kSlots] = {};
+    VkFence fence[kSlots] = {};
+    VkSemaphore acquired[kSlots] = {};
+    bool submitted[kSlots] = {};
+    VkQueryPool queries = VK_NULL_HANDLE;
+    double timestamp_ns = 1.0;
+    uint32_t frame = 0, accumulated = 0, screenshots = 0;
+    viewer_settings s;
+    viewer_timings timings;
+    viewer_info info;
+    camera_control cam;
+    std::chrono::steady_clock::time_point last;
+    bool map_failed = false;
+};
+
+void log_to_stderr(roma_log_level level, roma_result, const char *message, void *)
+{
+    if (level >= ROMA_LOG_WARNING)
+        std::fprintf(stderr, "roma-viewer: libroma %s: %s\n", roma_log_level_string(level), message);
+}
+
+// --- the scene on the GPU ---------------------------------------------------------------
+
+bool upload_scene(viewer &v)
+{
+    const roma_scene_view &sv = v.view;
+    gpu_scene &g = v.gs;
+    g.vertex_count = sv.vertex_count;
+    g.triangle_count = sv.triangle_count;
+    VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (!vk_buffer_create(v.base, sizeof(float) * 3 * sv.vertex_count, storage, true, g.positions) ||
+        !vk_buffer_create(v.base, sizeof(uint32_t) * 3 * sv.triangle_count, storage, true, g.indices) ||
+        !vk_buffer_create(v.base, sizeof(float) * 4 * sv.triangle_count, storage, true, g.albedo)) {
+        std::fprintf(stderr, "roma-viewer: out of memory for the scene's buffers\n");
+        return false;
+    }
+    std::memcpy(g.positions.mapped, sv.positions, sizeof(float) * 3 * sv.vertex_count);
+    std::memcpy(g.indices.mapped, sv.indices, sizeof(uint32_t) * 3 * sv.triangle_count);
+    float *albedo = static_cast<float *>(g.albedo.mapped);
+    for (uint32_t t = 0; t < sv.triangle_count; ++t) {
+        const roma_material &m = sv.materials[sv.triangle_materials[t]];
+        for (int c = 0; c < 3; ++c)
+            albedo[4 * t + c] = m.base_color[c];
+        albedo[4 * t + 3] = 1.0f;
+    }
+    return true;
+}
+
+void free_scene(viewer &v)
+{
+    vk_buffer_destroy(v.base, v.gs.positions);
+    vk_buffer_destroy(v.base, v.gs.indices);
+    vk_buffer_destroy(v.base, v.gs.albedo);
+    roma_animator_destroy(v.animator);
+    v.animator = nullptr;
+    roma_map_destroy(v.map);
+    v.map = nullptr;
+    roma_scene_destroy(v.scene);
+    v.scene = nullptr;
+}
+
+bool create_map(viewer &v)
+{
+    roma_map_destroy(v.map);
+    v.map = nullptr;
+    roma_map_desc md{};
+    md.resolution = v.s.res;
+    md.angular = v.s.angular;
+    md.frames_in_flight = kSlots;
+    if (roma_map_create(v.ctx, &md, v.scene, &v.map) != ROMA_SUCCESS) {
+        std::fprintf(stderr, "roma-viewer: cannot create a RES %u, A %u map\n", v.s.res, v.s.angular);
+        return false;
+    }
+    roma_map_info mi;
+    roma_map_get_info(v.map, &mi);
+    v.info.map_bytes = mi.bom_bytes + mi.maps_bytes + mi.params_bytes + mi.geometry_bytes;
+    v.info.grid_cell = mi.grid_cell;
+    return true;
+}
+
+// Loads a scene (built-in or glTF) and everything made from it; the device must be idle.
+// On failure the previous scene stays.
+bool open_scene(viewer &v, const std::string &name)
+{
+    roma_logger logger{log_to_stderr, nullptr};
+    roma_scene *scene = nullptr;
+    roma_result r;
+    if (name.rfind("builtin:", 0) == 0 || name == "builtin") {
+        const char *builtin = name.size() > 8 ? name.c_str() + 8 : nullptr;
+        r = roma_scene_create_builtin(builtin, &logger, &scene);
+    } else {
+        roma_gltf_desc gd{};
+        gd.logger = logger;
+        r = roma_scene_load_gltf(name.c_str(), &gd, &scene);
+    }
+    if (r != ROMA_SUCCESS) {
+        std::fprintf(stderr, "roma-viewer: cannot open %s: %s\n", name.c_str(), roma_result_string(r));
+        return false;
+    }
+    free_scene(v);
+    v.scene = scene;
+    roma_scene_get_view(scene, &v.view);
+    v.info.scene_name = name;
+    v.info.vertices = v.view.vertex_count;
+    v.info.triangles = v.view.triangle_count;
+    v.info.lights = v.view.light_count;
+    v.info.area_light_triangles = v.view.emissive_triangle_count;
+    if (!upload_scene(v) || !create_map(v))
+        return false;
+    v.s.animated = false;
+    if (v.view.animation.animation_count > 0 && v.view.animation.vertex_node) {
+        roma_animator_desc ad{};
+        ad.frames_in_flight = kSlots;
+        if (roma_animator_create(v.ctx, scene, &ad, &v.animator) == ROMA_SUCCESS) {
+            roma_animator_info ai;
+            roma_animator_get_info(v.animator, &ai);
+            v.s.animated = true;
+            v.s.clip_count = ai.clip_count;
+            v.s.clip = std::min(v.s.clip, ai.clip_count ? ai.clip_count - 1 : 0u);
+            roma_animator_clip_duration(v.animator, v.s.clip, &v.s.duration);
+            v.s.playing = v.opt.play;
+        }
+    }
+    float dx = v.view.bounds_max[0] - v.view.bounds_min[0], dy = v.view.bounds_max[1] - v.view.bounds_min[1],
+          dz = v.view.bounds_max[2] - v.view.bounds_min[2];
+    v.s.auto_ao_radius = 0.1f * std::sqrt(dx * dx + dy * dy + dz * dz);
+    camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
+                                float(v.opt.width) / float(v.opt.height));
+    if (v.view.has_camera)
+        camera_control_set(v.cam, v.view.camera);
+    v.accumulated = 0;
+    return true;
+}
+
+// --- device, libroma objects, passes ------------------------------------------------------
+
+bool create_frame_objects(viewer &v)
+{
+    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pi.queueFamilyIndex = v.base.family;
+    if (vkCreateCommandPool(v.base.device, &pi, nullptr, &v.pool) != VK_SUCCESS)
+        return false;
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = v.pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = kSlots;
+    if (vkAllocateCommandBuffers(v.base.device, &ai, v.cmd) != VK_SUCCESS)
+        return false;
+    for (uint32_t i = 0; i < kSlots; ++i) {
+        VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        if (vkCreateFence(v.base.device, &fi, nullptr, &v.fence[i]) != VK_SUCCESS ||
+            vkCreateSemaphore(v.base.device, &si, nullptr, &v.acquired[i]) != VK_SUCCESS)
+            return false;
+    }
+    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qi.queryCount = kSlots * kStamps;
+    if (vkCreateQueryPool(v.base.device, &qi, nullptr, &v.queries) != VK_SUCCESS)
+        return false;
+    vkResetQueryPool(v.base.device, v.queries, 0, kSlots * kStamps);
+    v.timestamp_ns = v.base.properties.limits.timestampPeriod;
+    bool cpu = v.base.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    v.timings.clock = cpu ? "GPU timestamps (a CPU device: they may not cover compute work)" : "GPU timestamps";
+    return true;
+}
+
+bool create_libroma(viewer &v)
+{
+    roma_external_device ext{};
+    ext.instance = v.base.instance;
+    ext.physical_device = v.base.physical;
+    ext.device = v.base.device;
+    ext.queue_family_index = v.base.family;
+    ext.queue = v.base.queue;
+    ext.enabled_features = &v.base.requirements.features;
+    roma_context_desc cd{};
+    cd.external = &ext;
+    cd.logger = {log_to_stderr, nullptr};
+    if (roma_context_create(&cd, &v.ctx) != ROMA_SUCCESS)
+        return false;
+    roma_ao_effect_desc ad{};
+    ad.frames_in_flight = kSlots;
+    roma_light_effect_desc ld{};
+    ld.frames_in_flight = kSlots;
+    return roma_ao_effect_create(v.ctx, &ad, &v.ao) == ROMA_SUCCESS &&
+           roma_light_effect_create(v.ctx, &ld, &v.light) == ROMA_SUCCESS;
+}
+
+bool resize_images(viewer &v, uint32_t width, uint32_t height)
+{
+    vkDeviceWaitIdle(v.base.device);
+    v.info.width = width;
+    v.info.height = height;
+    v.accumulated = 0;
+    return gbuffer_pass_resize(v.base, v.gb, width, height) && compose_pass_resize(v.base, v.cp, v.gb);
+}
+
+// World -> clip rows for the G-buffer, from the same frame libroma's camera rays use
+// (row 0 of the image at the top, depth 0 at the near plane).
+void clip_rows(const roma_camera &cam, uint32_t width, uint32_t height, float scene_size, float rows[4][4])
+{
+    roma_camera_frame f;
+    roma_camera_make_frame(&cam, width, height, &f);
+    float near_plane = 1e-4f * scene_size, far_plane = 100.0f * scene_size;
+    float a = far_plane / (far_plane - near_plane), b = -far_plane * near_plane / (far_plane - near_plane);
+    const float *axes[3] = {f.right, f.up, f.forward};
+    float scale[3] = {1.0f / (f.tan_half_fovy * f.aspect), -1.0f / f.tan_half_fovy, 1.0f};
+    for (int r = 0; r < 3; ++r) {
+        float d = 0.0f;
+        for (int i = 0; i < 3; ++i) {
+            rows[r][i] = axes[r][i] * scale[r];
+            d += axes[r][i] * f.origin[i];
+        }
+        rows[r][3] = -d * scale[r];
+    }
+    // depth = a * z + b, w = z (z: distance along forward)
+    for (int i = 0; i < 4; ++i) {
+        float z = i < 3 ? f.forward[i] : -(f.forward[0] * f.origin[0] + f.forward[1] * f.origin[1] +
+                                           f.forward[2] * f.origin[2]);
+        rows[3][i] = z;
+        rows[2][i] = a * z + (i == 3 ? b : 0.0f);
+    }
+}
+
+// --- one frame ------------------------------------------------------------------------------
+
+void stamp(viewer &v, VkCommandBuffer cmd, uint32_t slot, uint32_t k)
+{
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, v.queries, slot * kStamps + k);
+}
+
+bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
+{
+    const viewer_settings &s = v.s;
+    vkCmdResetQueryPool(cmd, v.queries, slot * kStamps, kStamps);
+    stamp(v, cmd, slot, 0);
+    VkDeviceAddress positions = v.gs.positions.address;
+    roma_map_frame_desc fd{};
+    fd.frame = v.frame;
+    fd.seed = 1;
+    fd.jitter_grid = 1;
+    fd.jitter_directions = 1;
+    fd.slot = slot;
+    roma_animator_output out{};
+    if (v.animator) {
+        roma_animator_pose pose{s.clip, s.time};
+        if (roma_animator_record(v.animator, cmd, slot, &pose, &out) != ROMA_SUCCESS)
+            return false;
+        positions = out.positions;
+        fd.gpu_positions = out.positions;
+        fd.vertex_count = v.gs.vertex_count;
+        fd.volume = &out.bounds;
+    }
+    stamp(v, cmd, slot, 1);
+    if (roma_map_record_build(v.map, cmd, &fd, nullptr) != ROMA_SUCCESS)
+        return false;
+    stamp(v, cmd, slot, 2);
+    // The skinned positions, read by the G-buffer's vertex shader.
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    roma_camera cam = camera_control_get(v.cam);
+    gbuffer_draw draw{};
+    clip_rows(cam, v.gb.width, v.gb.height, v.cam.scene_size, draw.clip_rows);
+    for (int i = 0; i < 3; ++i)
+        draw.eye[i] = cam.eye[i];
+    draw.positions = positions;
+    draw.albedo = v.gs.albedo.address;
+    draw.indices = v.gs.indices.address;
+    draw.triangle_count = v.gs.triangle_count;
+    gbuffer_pass_record(v.gb, cmd, draw);
+    stamp(v, cmd, slot, 3);
+    compose_pass_prepare(v.cp, cmd);
+    bool want_ao = s.ao_on && (s.view == VIEW_COMPOSED || s.view == VIEW_AO);
+    bool want_direct = s.direct_on && v.view.light_count > 0 && (s.view == VIEW_COMPOSED || s.view == VIEW_DIRECT);
+    if (want_ao) {
+        roma_ao_images images{};
+        images.width = v.gb.width;
+        images.height = v.gb.height;
+        images.position = v.gb.position.view;
+        images.normal = v.gb.normal.view;
+        images.output = v.cp.ao.view;
+        roma_ao_settings as{};
+        as.samples = s.ao_samples;
+        as.radius = s.ao_radius > 0.0f ? s.ao_radius : s.auto_ao_radius;
+        as.offset_cells = s.offset;
+        as.skip_cells = s.ao_skip;
+        as.seed = 1;
+        as.frame = v.frame;
+        if (roma_ao_effect_record(v.ao, cmd, slot, v.map, &images, &as) != ROMA_SUCCESS)
+            return false;
+    }
+    if (want_direct) {
+        roma_light_images images{};
+        images.width = v.gb.width;
+        images.height = v.gb.height;
+        images.position = v.gb.position.view;
+        images.normal = v.gb.normal.view;
+        images.output = v.cp.light.view;
+        roma_light_settings ls{};
+        ls.max_steps = s.max_steps;
+        ls.offset_cells = s.offset;
+        ls.skip_cells = s.shadow_skip;
+        if (roma_light_effect_record(v.light, cmd, slot, v.map, &images, v.view.lights, v.view.light_count, &ls) !=
+            ROMA_SUCCESS)
+            return false;
+    }
+    stamp(v, cmd, slot, 4);
+    roma_map_info mi;
+    roma_map_get_info(v.map, &mi);
+    compose_settings cs{};
+    for (int i = 0; i < 3; ++i) {
+        cs.ambient[i] = s.ambient;
+        cs.background[i] = s.background[i];
+    }
+    cs.view = s.view;
+    cs.accumulated = v.accumulated;
+    cs.exposure = s.exposure;
+    cs.debug_length = s.ao_radius > 0.0f ? s.ao_radius : s.auto_ao_radius;
+    cs.offset = (s.offset > 0.0f ? s.offset : ROMA_DEFAULT_OFFSET_CELLS) * mi.trace_cell;
+    cs.ao_on = want_ao;
+    cs.direct_on = want_direct;
+    compose_pass_record(v.cp, cmd, cs, mi.trace_set);
+    stamp(v, cmd, slot, 5);
+    return true;
+}
+
+void read_timings(viewer &v, uint32_t slot)
+{
+    uint64_t t[kStamps];
+    VkResult r = vkGetQueryPoolResults(v.base.device, v.queries, slot * kStamps, kStamps, sizeof t, t, sizeof t[0],
+                                       VK_QUERY_RESULT_64_BIT);
+    v.timings.gpu = r == VK_SUCCESS;
+    if (!v.timings.gpu)
+        return;
+    auto ms = [&](int a, int b) { return double(t[b] - t[a]) * v.timestamp_ns * 1e-6; };
+    v.timings.animate_ms = ms(0, 1);
+    v.timings.build_ms = ms(1, 2);
+    v.timings.gbuffer_ms = ms(2, 3);
+    v.timings.effects_ms = ms(3, 4);
+    v.timings.compose_ms = ms(4, 5);
+}
+
+// --- pictures ---------------------------------------------------------------------------------
+
+struct readback {
+    const viewer *v;
+    VkBuffer display, accum;
+};
+
+void record_readback(VkCommandBuffer cmd, void *user)
+{
+    const readback *r = static_cast<const readback *>(user);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {r->v->cp.width, r->v->cp.height, 1};
+    vkCmdCopyImageToBuffer(cmd, r->v->cp.display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display, 1, &region);
+    vkCmdCopyImageToBuffer(cmd, r->v->cp.accum.image, VK_IMAGE_LAYOUT_GENERAL, r->accum, 1, &region);
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+// The last frame's picture (8-bit PNG) and its accumulated linear values (PFM or EXR by
+// the name's ending; AO and debug views: the value itself; composed and direct: radiance).
+bool save_pictures(viewer &v, const std::string &png, const std::string &linear)
+{
+    vkDeviceWaitIdle(v.base.device);
+    uint32_t w = v.cp.width, h = v.cp.height;
+    vk_buffer display, accum;
+    bool ok = vk_buffer_create(v.base, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) &&
+              vk_buffer_create(v.base, VkDeviceSize(w) * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum);
+    readback r{&v, display.buffer, accum.buffer};
+    ok = ok && vk_submit_now(v.base, v.pool, record_readback, &r);
+    if (ok && !png.empty()) {
+        std::vector<unsigned char> rgb(size_t(w) * h * 3);
+        const unsigned char *src = static_cast<const unsigned char *>(display.mapped);
+        for (size_t i = 0; i < size_t(w) * h; ++i)
+            for (int c = 0; c < 3; ++c)
+                rgb[3 * i + c] = src[4 * i + c];
+        ok = stbi_write_png(png.c_str(), int(w), int(h), 3, rgb.data(), int(w) * 3) != 0;
+        if (!ok)
+            std::fprintf(stderr, "roma-viewer: cannot write %s\n", png.c_str());
+        else
+            std::printf("wrote %s\n", png.c_str());
+    }
+    if (ok && !linear.empty()) {
+        bool one_channel = v.s.view == VIEW_AO;
+        roma_image img{};
+        ok = roma_image_alloc(&img, w, h, one_channel ? 1 : 3) == ROMA_SUCCESS;
+        const float *src = static_cast<const float *>(accum.mapped);
+        for (size_t i = 0; ok && i < size_t(w) * h; ++i)
+            for (uint32_t c = 0; c < img.channels; ++c)
+                img.pixels[i * img.channels + c] = src[4 * i + c];
+        bool exr = linear.size() > 4 && linear.compare(linear.size() - 4, 4, ".exr") == 0;
+        roma_result rr = !ok ? ROMA_ERROR_OUT_OF_HOST_MEMORY
+                         : exr ? roma_app_write_exr(&img, linear.c_str())
+                               : roma_image_write_pfm(&img, linear.c_str());
+        roma_image_free(&img);
+        ok = rr == ROMA_SUCCESS;
+        if (!ok)
+            std::fprintf(stderr, "roma-viewer: cannot write %s: %s\n", linear.c_str(), roma_result_string(rr));
+        else
+            std::printf("wrote %s (%u frames accumulated)\n", linear.c_str(), v.accumulated);
+    }
+    vk_buffer_destroy(v.base, display);
+    vk_buffer_destroy(v.base, accum);
+    return ok;
+}
+
+// --- the window -----------------------------------------------------------------------------
+
+void check_vk(VkResult r)
+{
+    if (r < 0)
+        std::fprintf(stderr, "roma-viewer: the interface's Vulkan call failed (%d)\n", int(r));
+}
+
+struct font_upload {
+    static void record(VkCommandBuffer cmd, void *) { ImGui_ImplVulkan_CreateFontsTexture(cmd); }
+};
+
+bool init_imgui(viewer &v)
+{
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    pi.maxSets = 16;
+    pi.poolSizeCount = 1;
+    pi.pPoolSizes = &size;
+    if (vkCreateDescriptorPool(v.base.device, &pi, nullptr, &v.imgui_pool) != VK_SUCCESS)
+        return false;
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr; // no imgui.ini beside the user's files
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForVulkan(v.window, true);
+    ImGui_ImplVulkan_InitInfo ii{};
+    ii.Instance = v.base.instance;
+    ii.PhysicalDevice = v.base.physical;
+    ii.Device = v.base.device;
+    ii.QueueFamily = v.base.family;
+    ii.Queue = v.base.queue;
+    ii.DescriptorPool = v.imgui_pool;
+    ii.MinImageCount = v.sc.min_image_count;
+    ii.ImageCount = static_cast<uint32_t>(v.sc.images.size());
+    ii.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+    ii.CheckVkResultFn = check_vk;
+    if (!ImGui_ImplVulkan_Init(&ii, v.sc.ui_pass))
+        return false;
+    v.imgui = true;
+    bool ok = vk_submit_now(v.base, v.pool, font_upload::record, nullptr);
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    return ok;
+}
+
+struct input_state {
+    double x = 0, y = 0;
+    bool have = false;
+    float wheel = 0;
+    std::vector<std::string> dropped;
+    bool down[3] = {}; // Tab, F, F12 last frame
+};
+
+// True on the frame a key goes down (Tab, F, F12).
+bool pressed(GLFWwindow *w, input_state &in, int which)
+{
+    static const int keys[3] = {GLFW_KEY_TAB, GLFW_KEY_F, GLFW_KEY_F12};
+    bool now = glfwGetKey(w, keys[which]) == GLFW_PRESS;
+    bool edge = now && !in.down[which];
+    in.down[which] = now;
+    return edge;
+}
+
+void on_scroll(GLFWwindow *w, double dx, double dy)
+{
+    ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
+    if (!ImGui::GetIO().WantCaptureMouse)
+        static_cast<input_state *>(glfwGetWindowUserPointer(w))->wheel += float(dy);
+}
+
+void on_drop(GLFWwindow *w, int count, const char **paths)
+{
+    auto *in = static_cast<input_state *>(glfwGetWindowUserPointer(w));
+    for (int i = 0; i < count; ++i)
+        in->dropped.push_back(paths[i]);
+}
+
+// Mouse and keys to the camera; true when it moved.
+bool handle_input(viewer &v, input_state &in, float dt)
+{
+    bool moved = false;
+    double x, y;
+    glfwGetCursorPos(v.window, &x, &y);
+    ImGuiIO &io = ImGui::GetIO();
+    if (in.have && !io.WantCaptureMouse) {
+        float dx = float(x - in.x), dy = float(y - in.y);
+        if (glfwGetMouseButton(v.window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
+            moved |= camera_control_rotate(v.cam, dx, dy);
+        else if (glfwGetMouseButton(v.window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                 glfwGetMouseButton(v.window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
+            moved |= camera_control_pan(v.cam, dx, dy, float(v.gb.height));
+    }
+    in.x = x, in.y = y, in.have = true;
+    moved |= camera_control_zoom(v.cam, in.wheel);
+    in.wheel = 0;
+    if (!io.WantCaptureKeyboard) {
+        if (pressed(v.window, in, 0))
+            v.cam.fly = !v.cam.fly;
+        if (pressed(v.window, in, 1)) {
+            camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
+                                        float(v.gb.width) / float(v.gb.height));
+            moved = true;
+        }
+        if (v.cam.fly) {
+            float move[3] = {0, 0, 0};
+            auto key = [&](int k) { return glfwGetKey(v.window, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+            move[0] = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+            move[1] = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
+            move[2] = key(GLFW_KEY_W) - key(GLFW_KEY_S);
+            moved |= camera_control_move(v.cam, move, dt);
+        }
+    }
+    return moved;
+}
+
+std::string next_screenshot_name(viewer &v)
+{
+    char name[64];
+    std::snprintf(name, sizeof name, "roma-viewer-%u.png", v.screenshots++);
+    return name;
+}
+
+int run_window(viewer &v)
+{
+    input_state in;
+    glfwSetWindowUserPointer(v.window, &in);
+    glfwSetScrollCallback(v.window, on_scroll);
+    glfwSetDropCallback(v.window, on_drop);
+    bool resize = false;
+    auto previous = std::chrono::steady_clock::now();
+    uint32_t frames_left = v.opt.frames;
+    int status = 0;
+    while (!glfwWindowShouldClose(v.window)) {
+        glfwPollEvents();
+        int fw = 0, fh = 0;
+        glfwGetFramebufferSize(v.window, &fw, &fh);
+        if (fw == 0 || fh == 0) { // minimised: wait, render nothing
+            glfwWaitEvents();
+            continue;
+        }
+        if (resize || uint32_t(fw) != v.sc.extent.width || uint32_t(fh) != v.sc.extent.height) {
+            vkDeviceWaitIdle(v.base.device);
+            if (!swapchain_create(v.base, v.sc, uint32_t(fw), uint32_t(fh)))
+                continue;
+            ImGui_ImplVulkan_SetMinImageCount(v.sc.min_image_count);
+            if (!resize_images(v, v.sc.extent.width, v.sc.extent.height))
+                return 1;
+            resize = false;
+        }
+        for (const std::string &path : in.dropped) {
+            vkDeviceWaitIdle(v.base.device);
+            if (open_scene(v, path))
+                v.accumulated = 0;
+        }
+        in.dropped.clear();
+        auto now = std::chrono::steady_clock::now();
+        float dt = std::chrono::duration<float>(now - previous).count();
+        previous = now;
+        v.timings.frame_ms = dt * 1000.0;
+        v.timings.history.push_back(float(v.timings.frame_ms));
+        if (v.timings.history.size() > kHistory)
+            v.timings.history.erase(v.timings.history.begin());
+
+        ImGui_ImplVulkan_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        ui_actions act;
+        v.info.camera_string = camera_to_string(camera_control_get(v.cam));
+        v.info.accumulated = v.accumulated;
+        v.info.validation_messages = v.base.validation_messages;
+        ui_draw(v.s, v.timings, v.info, act);
+        bool moved = handle_input(v, in, dt);
+        if (act.camera_pasted) {
+            roma_camera c;
+            if (camera_from_string(act.camera_text, c)) {
+                camera_control_set(v.cam, c);
+                moved = true;
+            }
+        }
+        if (act.frame_scene) {
+            camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max, float(fw) / float(fh));
+            moved = true;
+        }
+        if (act.rebuild_map) {
+            vkDeviceWaitIdle(v.base.device);
+            if (!create_map(v))
+                return 1;
+        }
+        if (v.s.animated && v.s.playing && v.s.duration > 0.0f) {
+            v.s.time = std::fmod(v.s.time + dt * v.s.speed, v.s.duration);
+            moved = true;
+        }
+        if (moved || act.reset_accumulation || !v.s.accumulate)
+            v.accumulated = 0;
+        ImGui::Render();
+
+        uint32_t slot = v.frame % kSlots;
+        if (v.submitted[slot]) {
+            vkWaitForFences(v.base.device, 1, &v.fence[slot], VK_TRUE, UINT64_MAX);
+            read_timings(v, slot);
+        }
+        uint32_t image = 0;
+        VkResult ar = vkAcquireNextImageKHR(v.base.device, v.sc.handle, UINT64_MAX, v.acquired[slot], VK_NULL_HANDLE,
+                                            &image);
+        if (ar == VK_ERROR_OUT_OF_DATE_KHR) {
+            resize = true;
+            continue;
+        }
+        vkResetFences(v.base.device, 1, &v.fence[slot]);
+        VkCommandBuffer cmd = v.cmd[slot];
+        vkResetCommandBuffer(cmd, 0);
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        vkBeginCommandBuffer(cmd, &bi);
+        if (!record_frame(v, slot, cmd)) {
+            std::fprintf(stderr, "roma-viewer: recording frame %u failed\n", v.frame);
+            vkEndCommandBuffer(cmd);
+            status = 1;
+            break;
+        }
+        // The picture into the swapchain image, the interface over it.
+        VkImage target = v.sc.images[image];
+        vk_image_barrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkImageBlit blit{};
+        blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.srcOffsets[1] = {int32_t(v.cp.width), int32_t(v.cp.height), 1};
+        blit.dstOffsets[1] = {int32_t(v.sc.extent.width), int32_t(v.sc.extent.height), 1};
+        vkCmdBlitImage(cmd, v.cp.display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+        VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        rp.renderPass = v.sc.ui_pass;
+        rp.framebuffer = v.sc.framebuffers[image];
+        rp.renderArea = {{0, 0}, v.sc.extent};
+        vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
+        ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+        vkCmdEndRenderPass(cmd);
+        vkEndCommandBuffer(cmd);
+        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.waitSemaphoreCount = 1;
+        si.pWaitSemaphores = &v.acquired[slot];
+        si.pWaitDstStageMask = &wait_stage;
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &cmd;
+        si.signalSemaphoreCount = 1;
+        si.pSignalSemaphores = &v.sc.rendered[image];
+        if (vkQueueSubmit(v.base.queue, 1, &si, v.fence[slot]) != VK_SUCCESS) {
+            std::fprintf(stderr, "roma-viewer: vkQueueSubmit failed\n");
+            status = 1;
+            break;
+        }
+        v.submitted[slot] = true;
+        VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+        pi.waitSemaphoreCount = 1;
+        pi.pWaitSemaphores = &v.sc.rendered[image];
+        pi.swapchainCount = 1;
+        pi.pSwapchains = &v.sc.handle;
+        pi.pImageIndices = &image;
+        VkResult pr = vkQueuePresentKHR(v.base.queue, &pi);
+        if (pr == VK_ERROR_OUT_OF_DATE_KHR || pr == VK_SUBOPTIMAL_KHR)
+            resize = true;
+        ++v.frame;
+        ++v.accumulated;
+        if (act.screenshot || (!ImGui::GetIO().WantCaptureKeyboard && pressed(v.window, in, 2)))
+            save_pictures(v, next_screenshot_name(v), "");
+        if (glfwGetKey(v.window, GLFW_KEY_ESCAPE) == GLFW_PRESS)
+            glfwSetWindowShouldClose(v.window, GLFW_TRUE);
+        if (frames_left && --frames_left == 0)
+            break;
+    }
+    vkDeviceWaitIdle(v.base.device);
+    if (status == 0 && (!v.opt.screenshot.empty() || !v.opt.linear.empty()) &&
+        !save_pictures(v, v.opt.screenshot, v.opt.linear))
+        status = 1;
+    return status;
+}
+
+// --- headless -------------------------------------------------------------------------------
+
+int run_headless(viewer &v)
+{
+    if (!resize_images(v, v.opt.width, v.opt.height))
+        return 1;
+    for (uint32_t f = 0; f < v.opt.frames; ++f) {
+        uint32_t slot = v.frame % kSlots;
+        if (v.submitted[slot]) {
+            vkWaitForFences(v.base.device, 1, &v.fence[slot], VK_TRUE, UINT64_MAX);
+            read_timings(v, slot);
+        }
+        vkResetFences(v.base.device, 1, &v.fence[slot]);
+        VkCommandBuffer cmd = v.cmd[slot];
+        vkResetCommandBuffer(cmd, 0);
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        vkBeginCommandBuffer(cmd, &bi);
+        bool ok = record_frame(v, slot, cmd);
+        vkEndCommandBuffer(cmd);
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &cmd;
+        if (!ok || vkQueueSubmit(v.base.queue, 1, &si, v.fence[slot]) != VK_SUCCESS) {
+            std::fprintf(stderr, "roma-viewer: frame %u failed\n", v.frame);
+            vkDeviceWaitIdle(v.base.device);
+            return 1;
+        }
+        v.submitted[slot] = true;
+        ++v.frame;
+        ++v.accumulated;
+        if (v.s.animated && v.s.playing && v.s.duration > 0.0f) {
+            v.s.time = std::fmod(v.s.time + 1.0f / 30.0f * v.s.speed, v.s.duration);
+            v.accumulated = 0;
+        }
+    }
+    vkDeviceWaitIdle(v.base.device);
+    read_timings(v, (v.frame + kSlots - 1) % kSlots);
+    std::printf("roma-viewer: %u frames of %s at %ux%u on %s; last frame: build %.2f, G-buffer %.2f, effects "
+                "%.2f, compose %.2f ms (%s)\n",
+                v.frame, v.info.scene_name.c_str(), v.gb.width, v.gb.height, v.info.device.c_str(),
+                v.timings.build_ms, v.timings.gbuffer_ms, v.timings.effects_ms, v.timings.compose_ms,
+                v.timings.clock.c_str());
+    if ((!v.opt.screenshot.empty() || !v.opt.linear.empty()) && !save_pictures(v, v.opt.screenshot, v.opt.linear))
+        return 1;
+    return 0;
+}
+
+void destroy(viewer &v)
+{
+    if (v.base.device)
+        vkDeviceWaitIdle(v.base.device);
+    if (v.imgui) {
+        ImGui_ImplVulkan_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    if (v.imgui_pool)
+        vkDestroyDescriptorPool(v.base.device, v.imgui_pool, nullptr);
+    free_scene(v);
+    roma_ao_effect_destroy(v.ao);
+    roma_light_effect_destroy(v.light);
+    roma_context_destroy(v.ctx);
+    gbuffer_pass_destroy(v.base, v.gb);
+    compose_pass_destroy(v.base, v.cp);
+    if (v.base.device) {
+        for (uint32_t i = 0; i < kSlots; ++i) {
+            if (v.fence[i])
+                vkDestroyFence(v.base.device, v.fence[i], nullptr);
+            if (v.acquired[i])
+                vkDestroySemaphore(v.base.device, v.acquired[i], nullptr);
+        }
+        if (v.queries)
+            vkDestroyQueryPool(v.base.device, v.queries, nullptr);
+        if (v.pool)
+            vkDestroyCommandPool(v.base.device, v.pool, nullptr);
+        swapchain_destroy(v.base, v.sc);
+    }
+    vk_base_destroy(v.base);
+    if (v.window)
+        glfwDestroyWindow(v.window);
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    viewer v;
+    int parsed = parse_args(argc, argv, v.opt);
+    if (parsed >= 0)
+        return parsed;
+    v.s = v.opt.settings;
+    if (!v.opt.headless) {
+        if (!glfwInit()) {
+            std::fprintf(stderr, "roma-viewer: cannot open a window (no display?); --headless renders without one\n");
+            return 1;
+        }
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+        v.window = glfwCreateWindow(int(v.opt.width), int(v.opt.height), "roma-viewer", nullptr, nullptr);
+        if (!v.window || !glfwVulkanSupported()) {
+            std::fprintf(stderr, "roma-viewer: cannot open a Vulkan window; --headless renders without one\n");
+            glfwTerminate();
+            return 1;
+        }
+    }
+    int status = 1;
+    if (vk_base_create(v.base, v.window, v.opt.validation, v.opt.device.empty() ? nullptr : v.opt.device.c_str()) &&
+        create_frame_objects(v) && create_libroma(v) && gbuffer_pass_create(v.base, v.gb) &&
+        compose_pass_create(v.base, v.cp) && open_scene(v, v.opt.scene)) {
+        v.info.device = v.base.properties.deviceName;
+        if (v.opt.has_camera)
+            camera_control_set(v.cam, v.opt.camera);
+        if (v.opt.headless) {
+            status = run_headless(v);
+        } else {
+            int fw = 0, fh = 0;
+            glfwGetFramebufferSize(v.window, &fw, &fh);
+            if (swapchain_create(v.base, v.sc, uint32_t(fw), uint32_t(fh)) && init_imgui(v) &&
+                resize_images(v, v.sc.extent.width, v.sc.extent.height))
+                status = run_window(v);
+        }
+    }
+    uint32_t messages = v.base.validation_messages;
+    destroy(v);
+    messages = std::max(messages, v.base.validation_messages);
+    if (!v.opt.headless)
+        glfwTerminate();
+    if (v.opt.validation && messages) {
+        std::fprintf(stderr, "roma-viewer: %u validation messages\n", messages);
+        return 1;
+    }
+    return status;
+}

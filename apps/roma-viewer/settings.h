@@ -1,0 +1,50 @@
+// roma-viewer: what the user chooses (command line and interface) and what the
+// interface shows (timings, device, scene), shared by the frame loop and the interface.
+#pragma once
+
+#include "camera_control.h"
+#include "compose_pass.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+struct viewer_settings {
+    // ROMA array (a change makes a new map: pipelines are shared, so it is quick)
+    uint32_t res = 128, angular = 4;
+    // effects
+    bool ao_on = true, direct_on = true;
+    uint32_t ao_samples = 4;
+    float ao_radius = 0.0f;          // 0: from the scene size (auto_ao_radius)
+    float auto_ao_radius = 1.0f;
+    uint32_t max_steps = 8;
+    float ao_skip = 0.0f, shadow_skip = 0.0f, offset = 0.0f; // 0 = the library's defaults
+    // picture
+    view_mode view = VIEW_COMPOSED;
+    float exposure = 1.0f;
+    float ambient = 0.6f;            // sky radiance in the composed view (scaled by AO)
+    float background[3] = {0.11f, 0.12f, 0.15f};
+    bool accumulate = true;          // still camera: average frames
+    // animation
+    bool animated = false, playing = false;
+    uint32_t clip = 0, clip_count = 0;
+    float time = 0.0f, duration = 0.0f, speed = 1.0f;
+};
+
+// Measured per frame (GPU timestamps where the device writes them; host otherwise).
+struct viewer_timings {
+    bool gpu = false;                 // timestamps valid
+    std::string clock;                // what the stage times are, in words
+    double animate_ms = 0, build_ms = 0, gbuffer_ms = 0, effects_ms = 0, compose_ms = 0;
+    double frame_ms = 0;              // host: from one frame's start to the next
+    std::vector<float> history;       // frame_ms, newest last
+};
+
+struct viewer_info {
+    std::string device, scene_name, camera_string;
+    uint32_t vertices = 0, triangles = 0, lights = 0, area_light_triangles = 0;
+    uint32_t width = 0, height = 0, accumulated = 0;
+    uint64_t map_bytes = 0;
+    float grid_cell = 0;
+    uint32_t validation_messages = 0;
+};

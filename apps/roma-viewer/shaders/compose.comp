@@ -1,0 +1,113 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The viewer's picture: the chosen view of this frame's G-buffer and effect outputs,
+// averaged over the frames since the view last changed (progressive accumulation), then
+// exposed and sRGB-encoded into the display image. The ROMA debug views trace their own
+// rays through the public GLSL (roma/trace_descriptors.glsl, set 1).
+#define ROMA_TRACE_SET 1
+#include "roma/trace_descriptors.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform sampler2D g_position;
+layout(set = 0, binding = 1) uniform sampler2D g_normal;
+layout(set = 0, binding = 2) uniform sampler2D g_albedo;
+layout(set = 0, binding = 3, r32f) uniform readonly image2D ao_image;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2D light_image;
+layout(set = 0, binding = 5, rgba32f) uniform image2D accum_image;
+layout(set = 0, binding = 6, rgba8) uniform writeonly image2D display_image;
+
+// Views (roma-viewer's view_mode).
+#define VIEW_COMPOSED 0u
+#define VIEW_AO 1u
+#define VIEW_DIRECT 2u
+#define VIEW_ALBEDO 3u
+#define VIEW_NORMAL 4u
+#define VIEW_MAP 5u
+#define VIEW_HIT_DISTANCE 6u
+
+layout(push_constant) uniform Push {
+    vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
+    vec4 background;     // rgb: display colour where no geometry is
+    uvec2 size;
+    uint view;
+    uint accumulated;    // frames already in accum_image (0: start over)
+    float exposure;
+    float debug_length;  // ray length of the debug views (world units)
+    float offset;        // origin offset of the debug rays (world units)
+    uint ao_on;
+    uint direct_on;
+} pc;
+
+const float PI = 3.14159265358979;
+
+vec3 srgb(vec3 c)
+{
+    c = clamp(c, 0.0, 1.0);
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
+}
+
+vec3 hash_colour(uint k)
+{
+    uint h = k * 2654435761u;
+    return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
+}
+
+vec3 heat(float t)
+{
+    t = clamp(t, 0.0, 1.0);
+    return clamp(vec3(3.0 * t, 3.0 * t - 1.0, 3.0 * t - 2.0), 0.0, 1.0);
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(p), pc.size)))
+        return;
+    vec4 pos = texelFetch(g_position, p, 0);
+    if (pos.w <= 0.0) {
+        imageStore(accum_image, p, vec4(0.0));
+        imageStore(display_image, p, vec4(pc.background.rgb, 1.0));
+        return;
+    }
+    vec3 n = texelFetch(g_normal, p, 0).xyz;
+    vec3 albedo = texelFetch(g_albedo, p, 0).rgb;
+    float ao = pc.ao_on != 0u ? imageLoad(ao_image, p).r : 1.0;
+    vec3 irradiance = pc.direct_on != 0u ? imageLoad(light_image, p).rgb : vec3(0.0);
+
+    vec3 value;      // linear, accumulated
+    bool tone = true; // exposure applies
+    if (pc.view == VIEW_AO) {
+        value = vec3(ao);
+        tone = false;
+    } else if (pc.view == VIEW_DIRECT) {
+        value = albedo / PI * irradiance;
+    } else if (pc.view == VIEW_ALBEDO) {
+        value = albedo;
+        tone = false;
+    } else if (pc.view == VIEW_NORMAL) {
+        value = 0.5 * n + 0.5;
+        tone = false;
+    } else if (pc.view == VIEW_MAP || pc.view == VIEW_HIT_DISTANCE) {
+        // One ROMA ray along the normal: which map (candidate direction) serves it, and
+        // how far it goes before a hit (black: no hit within debug_length).
+        vec3 o = pos.xyz + n * pc.offset;
+        roma_hit h = roma_trace_snapped(o, n, 0.0, pc.debug_length, true);
+        bool hit = (h.info & ROMA_HIT_FLAG) != 0u;
+        if (pc.view == VIEW_MAP)
+            value = hash_colour(ROMA_HIT_MAP(h.info)) * (hit ? 0.55 : 1.0);
+        else
+            value = hit ? heat(h.t / pc.debug_length) : vec3(0.0);
+        tone = false;
+    } else {
+        value = albedo / PI * irradiance + albedo * pc.ambient.rgb * ao;
+    }
+    vec3 mean = value;
+    if (pc.accumulated > 0u) {
+        vec3 previous = imageLoad(accum_image, p).rgb;
+        mean = previous + (value - previous) / float(pc.accumulated + 1u);
+    }
+    imageStore(accum_image, p, vec4(mean, 1.0));
+    vec3 shown = tone ? mean * pc.exposure : mean;
+    imageStore(display_image, p, vec4(srgb(shown), 1.0));
+}

@@ -1,0 +1,119 @@
+#include "ui.h"
+
+#include <imgui.h>
+
+#include <cstdio>
+#include <cstring>
+
+namespace {
+const char *kViews[VIEW_COUNT] = {"composed", "ambient occlusion", "direct light", "albedo", "normal",
+                                  "ROMA map per pixel (ray along the normal)", "ROMA hit distance along the normal"};
+const uint32_t kResolutions[4] = {32, 64, 128, 256};
+} // namespace
+
+void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &info, ui_actions &out)
+{
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
+    ImGui::Begin("libroma viewer");
+    ImGui::Text("%s", info.device.c_str());
+    ImGui::Text("%s: %u triangles, %u lights%s", info.scene_name.c_str(), info.triangles, info.lights,
+                info.area_light_triangles ? " (+ emissive triangles: not lit here)" : "");
+    ImGui::Text("%ux%u, %u frames accumulated", info.width, info.height, info.accumulated);
+    if (info.validation_messages)
+        ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%u validation messages (see the terminal)",
+                           info.validation_messages);
+
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+        int v = static_cast<int>(s.view);
+        if (ImGui::Combo("view", &v, kViews, VIEW_COUNT)) {
+            s.view = static_cast<view_mode>(v);
+            out.reset_accumulation = true;
+        }
+        out.reset_accumulation |= ImGui::SliderFloat("exposure", &s.exposure, 0.05f, 20.0f, "%.2f",
+                                                     ImGuiSliderFlags_Logarithmic);
+        out.reset_accumulation |= ImGui::SliderFloat("sky (ambient x AO)", &s.ambient, 0.0f, 2.0f);
+        out.reset_accumulation |= ImGui::Checkbox("accumulate while still", &s.accumulate);
+    }
+    if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
+        out.reset_accumulation |= ImGui::Checkbox("ambient occlusion", &s.ao_on);
+        ImGui::SameLine();
+        out.reset_accumulation |= ImGui::Checkbox("direct light (punctual lights)", &s.direct_on);
+        int samples = static_cast<int>(s.ao_samples);
+        if (ImGui::SliderInt("AO rays per pixel", &samples, 1, 64)) {
+            s.ao_samples = static_cast<uint32_t>(samples);
+            out.reset_accumulation = true;
+        }
+        float shown = s.ao_radius > 0.0f ? s.ao_radius : s.auto_ao_radius;
+        if (ImGui::SliderFloat("AO radius", &shown, 0.001f * s.auto_ao_radius, 20.0f * s.auto_ao_radius, "%.4g",
+                               ImGuiSliderFlags_Logarithmic)) {
+            s.ao_radius = shown;
+            out.reset_accumulation = true;
+        }
+        int steps = static_cast<int>(s.max_steps);
+        if (ImGui::SliderInt("shadow max steps", &steps, 1, 64)) {
+            s.max_steps = static_cast<uint32_t>(steps);
+            out.reset_accumulation = true;
+        }
+        out.reset_accumulation |= ImGui::SliderFloat("AO skip (cells, 0 = default)", &s.ao_skip, 0.0f, 4.0f);
+        out.reset_accumulation |= ImGui::SliderFloat("shadow skip (cells, 0 = default)", &s.shadow_skip, 0.0f, 4.0f);
+        out.reset_accumulation |= ImGui::SliderFloat("origin offset (cells, 0 = default)", &s.offset, 0.0f, 4.0f);
+    }
+    if (ImGui::CollapsingHeader("ROMA array", ImGuiTreeNodeFlags_DefaultOpen)) {
+        int r = 0;
+        for (int i = 0; i < 4; ++i)
+            if (kResolutions[i] == s.res)
+                r = i;
+        const char *names[4] = {"32", "64", "128", "256"};
+        if (ImGui::Combo("RES", &r, names, 4)) {
+            s.res = kResolutions[r];
+            out.rebuild_map = out.reset_accumulation = true;
+        }
+        int a = static_cast<int>(s.angular);
+        if (ImGui::SliderInt("A (A x A directions)", &a, 1, 16)) {
+            s.angular = static_cast<uint32_t>(a);
+            out.rebuild_map = out.reset_accumulation = true;
+        }
+        ImGui::Text("%u maps, %.1f MiB, cell %.4g", s.angular * s.angular, double(info.map_bytes) / (1 << 20),
+                    double(info.grid_cell));
+    }
+    if (s.animated && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::Checkbox("play", &s.playing);
+        ImGui::SameLine();
+        ImGui::SliderFloat("speed", &s.speed, 0.0f, 4.0f);
+        if (ImGui::SliderFloat("time", &s.time, 0.0f, s.duration > 0.0f ? s.duration : 1.0f, "%.3f s"))
+            out.reset_accumulation = true;
+        int clip = static_cast<int>(s.clip);
+        if (s.clip_count > 1 && ImGui::SliderInt("clip", &clip, 0, static_cast<int>(s.clip_count) - 1)) {
+            s.clip = static_cast<uint32_t>(clip);
+            out.reset_accumulation = true;
+        }
+    }
+    if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::TextWrapped("%s", info.camera_string.c_str());
+        if (ImGui::Button("copy"))
+            ImGui::SetClipboardText(info.camera_string.c_str());
+        ImGui::SameLine();
+        if (ImGui::Button("paste")) {
+            const char *clip = ImGui::GetClipboardText();
+            if (clip) {
+                std::snprintf(out.camera_text, sizeof out.camera_text, "%s", clip);
+                out.camera_pasted = true;
+            }
+        }
+        ImGui::SameLine();
+        out.frame_scene |= ImGui::Button("frame the scene (F)");
+        ImGui::TextDisabled("left drag: orbit, right drag: pan, wheel: zoom; Tab: fly (WASD, QE)");
+    }
+    if (ImGui::CollapsingHeader("Timing", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const char *clock = t.clock.c_str();
+        ImGui::Text("frame %.1f ms (host)", t.frame_ms);
+        ImGui::Text("%s: animate %.2f, build %.2f, G-buffer %.2f, effects %.2f, compose %.2f ms", clock,
+                    t.animate_ms, t.build_ms, t.gbuffer_ms, t.effects_ms, t.compose_ms);
+        if (!t.history.empty())
+            ImGui::PlotLines("frame ms", t.history.data(), static_cast<int>(t.history.size()), 0, nullptr, 0.0f,
+                             FLT_MAX, ImVec2(0, 60));
+    }
+    out.screenshot |= ImGui::Button("screenshot (F12)");
+    ImGui::End();
+}

@@ -1,0 +1,15 @@
+// roma-viewer: the interface (Dear ImGui): settings, timings, camera string, screenshot.
+#pragma once
+
+#include "settings.h"
+
+struct ui_actions {
+    bool reset_accumulation = false; // a setting that changes the picture changed
+    bool rebuild_map = false;        // RES or A changed
+    bool frame_scene = false;
+    bool screenshot = false;
+    bool camera_pasted = false;      // camera_text holds a new camera string
+    char camera_text[256] = {};
+};
+
+void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &info, ui_actions &out);

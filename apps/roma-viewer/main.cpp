@@ -49,7 +49,7 @@ const char *kUsage =
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
-    "  --exposure E         (default 1)\n"
+    "  --exposure E         (default 2.5)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
     "  --headless           no window: render --frames frames and exit\n"
     "  --frames N           exit after N frames (default: run until closed; headless 16)\n"
@@ -270,6 +270,36 @@ bool create_map(viewer &v)
     return true;
 }
 
+// libroma's plan for every effect on this scene (roma/effects.h), and which of its passes
+// the viewer runs through the public effect API.
+void describe_plan(viewer &v)
+{
+    roma_effect_options eo{};
+    eo.effects = ROMA_EFFECT_AO | ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI | ROMA_EFFECT_LIGHTS;
+    eo.resolution = v.s.res;
+    eo.ao_angular = v.s.angular;
+    roma_effect_plan plan;
+    std::string text;
+    if (roma_effect_plan_derive(v.scene, &eo, nullptr, &plan) != ROMA_SUCCESS) {
+        v.info.plan = "no plan (roma_effect_plan_derive failed)";
+        return;
+    }
+    text = "For every effect, libroma's plan runs:";
+    for (uint32_t p = 0; p < ROMA_PASS_COUNT; ++p) {
+        if (!roma_effect_plan_runs(&plan, roma_pass_kind(p)))
+            continue;
+        text += std::string("\n  ") + roma_pass_name(roma_pass_kind(p));
+        if (plan.pass_map[p] >= 0) {
+            const roma_map_config &m = plan.maps[plan.pass_map[p]];
+            text += " (RES " + std::to_string(m.resolution) + ", A " + std::to_string(m.angular) + ")";
+        }
+    }
+    text += "\n" + std::to_string(plan.map_count) + " ROMA arrays. The viewer runs the G-buffer, AO (roma_ao_effect)";
+    text += v.view.light_count ? " and the punctual lights (roma_light_effect)" : " (no punctual lights: no direct light)";
+    text += " on one array; area lights, many lights and GI are not in the public effect API yet.";
+    v.info.plan = text;
+}
+
 // Loads a scene (built-in or glTF) and everything made from it; the device must be idle.
 // On failure the previous scene stays.
 bool open_scene(viewer &v, const std::string &name)
@@ -316,6 +346,7 @@ bool open_scene(viewer &v, const std::string &name)
     float dx = v.view.bounds_max[0] - v.view.bounds_min[0], dy = v.view.bounds_max[1] - v.view.bounds_min[1],
           dz = v.view.bounds_max[2] - v.view.bounds_min[2];
     v.s.auto_ao_radius = 0.1f * std::sqrt(dx * dx + dy * dy + dz * dz);
+    describe_plan(v);
     camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
                                 float(v.opt.width) / float(v.opt.height));
     if (v.view.has_camera)
@@ -521,6 +552,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.ao_on = want_ao;
     cs.direct_on = want_direct;
     compose_pass_record(v.cp, cmd, cs, mi.trace_set);
+    v.info.grid_cell = mi.grid_cell;
     stamp(v, cmd, slot, 5);
     return true;
 }

@@ -21,8 +21,8 @@ struct viewer_settings {
     float ao_skip = 0.0f, shadow_skip = 0.0f, offset = 0.0f; // 0 = the library's defaults
     // picture
     view_mode view = VIEW_COMPOSED;
-    float exposure = 1.0f;
-    float ambient = 0.6f;            // sky radiance in the composed view (scaled by AO)
+    float exposure = 2.5f;           // the built-in room's spot light reads well at 2.5
+    float ambient = 0.2f;            // sky radiance in the composed view (scaled by AO)
     float background[3] = {0.11f, 0.12f, 0.15f};
     bool accumulate = true;          // still camera: average frames
     // animation
@@ -47,4 +47,5 @@ struct viewer_info {
     uint64_t map_bytes = 0;
     float grid_cell = 0;
     uint32_t validation_messages = 0;
+    std::string plan; // libroma's effect plan for this scene, and what the viewer runs of it
 };

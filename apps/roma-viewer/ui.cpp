@@ -14,7 +14,7 @@ const uint32_t kResolutions[4] = {32, 64, 128, 256};
 void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &info, ui_actions &out)
 {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(470, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("libroma viewer");
     ImGui::Text("%s", info.device.c_str());
     ImGui::Text("%s: %u triangles, %u lights%s", info.scene_name.c_str(), info.triangles, info.lights,
@@ -58,6 +58,9 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         out.reset_accumulation |= ImGui::SliderFloat("AO skip (cells, 0 = default)", &s.ao_skip, 0.0f, 4.0f);
         out.reset_accumulation |= ImGui::SliderFloat("shadow skip (cells, 0 = default)", &s.shadow_skip, 0.0f, 4.0f);
         out.reset_accumulation |= ImGui::SliderFloat("origin offset (cells, 0 = default)", &s.offset, 0.0f, 4.0f);
+    }
+    if (ImGui::CollapsingHeader("Effect plan")) {
+        ImGui::TextWrapped("%s", info.plan.c_str());
     }
     if (ImGui::CollapsingHeader("ROMA array", ImGuiTreeNodeFlags_DefaultOpen)) {
         int r = 0;

@@ -53,12 +53,14 @@ install)
   cmake --install "$build" --prefix "$prefix" >/dev/null
   for f in include/roma/roma.h include/roma/api.h include/roma/trace.glsl include/roma/trace_descriptors.glsl \
            include/roma/trace_types.h lib/libroma.so lib/cmake/roma/romaConfig.cmake \
-           lib/cmake/roma/romaConfigVersion.cmake lib/pkgconfig/roma.pc bin/roma-render; do
+           lib/cmake/roma/romaConfigVersion.cmake lib/pkgconfig/roma.pc bin/roma-render bin/roma-viewer; do
     [ -e "$prefix/$f" ] || fail "cmake --install did not install $f"
   done
   [ -n "$(ls "$prefix"/lib/libroma.so.0.* 2>/dev/null)" ] || fail "no versioned libroma.so.0.*"
   # Nothing internal is installed.
   if find "$prefix/include" -name '*internal*' | grep -q .; then fail "internal headers installed"; fi
+  "$prefix/bin/roma-viewer" --headless --frames 2 --size 32x32 --screenshot "$work/viewer.png" >/dev/null \
+    || fail "the installed roma-viewer does not run from $prefix (RPATH?)"
   echo "== find_package(roma) consumer against $prefix"
   build_cmake_consumer "$prefix"
   echo "== pkg-config consumer against $prefix"
@@ -84,9 +86,12 @@ deb)
   grep -q '^./usr/lib/cmake/roma/romaConfig.cmake$' "$work/libroma-dev.files" || fail "libroma-dev lacks romaConfig.cmake"
   grep -q '^./usr/lib/pkgconfig/roma.pc$' "$work/libroma-dev.files" || fail "libroma-dev lacks roma.pc"
   grep -q '^./usr/bin/roma-render$' "$work/roma-tools.files" || fail "roma-tools lacks roma-render"
+  grep -q '^./usr/bin/roma-viewer$' "$work/roma-tools.files" || fail "roma-tools lacks roma-viewer"
   if grep -q 'include' "$work/libroma0.files"; then fail "libroma0 carries headers"; fi
-  if dpkg-query -W libroma0 >/dev/null 2>&1; then fail "libroma0 is already installed on this machine"; fi
-  trap '"${run[@]}" dpkg -r roma-tools libroma-dev libroma0 >/dev/null 2>&1 || true' EXIT
+  if dpkg-query -W -f='${Status}' libroma0 2>/dev/null | grep -q "install ok installed"; then
+    fail "libroma0 is already installed on this machine"
+  fi
+  trap '"${run[@]}" dpkg -P roma-tools libroma-dev libroma0 >/dev/null 2>&1 || true' EXIT
   "${run[@]}" dpkg -i "${debs[@]}" >/dev/null
   echo "== pkg-config consumer against the installed packages"
   build_pkgconfig_consumer
@@ -94,7 +99,9 @@ deb)
   build_cmake_consumer ""
   roma-render --size 16x16 --spp 1 --quiet --out "$work/render" >/dev/null
   [ -f "$work/render/ao.pfm" ] || fail "the installed roma-render wrote no ao.pfm"
-  "${run[@]}" dpkg -r roma-tools libroma-dev libroma0 >/dev/null
+  roma-viewer --headless --frames 2 --size 32x32 --screenshot "$work/viewer.png" >/dev/null
+  [ -f "$work/viewer.png" ] || fail "the installed roma-viewer wrote no picture"
+  "${run[@]}" dpkg -P roma-tools libroma-dev libroma0 >/dev/null
   trap - EXIT
   ! dpkg-query -W -f='${Status}' libroma0 2>/dev/null | grep -q "install ok installed" || fail "libroma0 still installed"
   echo "packages installed, used and removed"

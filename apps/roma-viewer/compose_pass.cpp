@@ -11,12 +11,15 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     if (vkCreateSampler(b.device, &si, nullptr, &c.sampler) != VK_SUCCESS)
         return false;
-    VkDescriptorSetLayoutBinding bindings[7];
-    for (uint32_t i = 0; i < 7; ++i)
-        bindings[i] = {i, i < 3 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
-                       VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutBinding bindings[9];
+    for (uint32_t i = 0; i < 9; ++i)
+        bindings[i] = {i,
+                       i < 3   ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                       : i < 7 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                       1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    li.bindingCount = 7;
+    li.bindingCount = 9;
     li.pBindings = bindings;
     if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.set_layout) != VK_SUCCESS)
         return false;
@@ -29,10 +32,12 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     li.pBindings = trace;
     if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.trace_layout) != VK_SUCCESS)
         return false;
-    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4}};
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pi.maxSets = 1;
-    pi.poolSizeCount = 2;
+    pi.poolSizeCount = 3;
     pi.pPoolSizes = sizes;
     if (vkCreateDescriptorPool(b.device, &pi, nullptr, &c.pool) != VK_SUCCESS)
         return false;
@@ -43,7 +48,7 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     if (vkAllocateDescriptorSets(b.device, &ai, &c.set) != VK_SUCCESS)
         return false;
     VkDescriptorSetLayout layouts[2] = {c.set_layout, c.trace_layout};
-    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 72};
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 112};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 2;
     pli.pSetLayouts = layouts;
@@ -97,6 +102,21 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
     }
     vkUpdateDescriptorSets(b.device, 7, writes, 0, nullptr);
     return true;
+}
+
+void compose_pass_set_buffers(const vk_base &b, compose_pass &c, VkBuffer reference, VkBuffer bom)
+{
+    VkDescriptorBufferInfo infos[2] = {{reference, 0, VK_WHOLE_SIZE}, {bom, 0, VK_WHOLE_SIZE}};
+    VkWriteDescriptorSet writes[2];
+    for (uint32_t i = 0; i < 2; ++i) {
+        writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = c.set;
+        writes[i].dstBinding = 7 + i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(b.device, 2, writes, 0, nullptr);
 }
 
 void compose_pass_destroy(const vk_base &b, compose_pass &c)
@@ -154,16 +174,22 @@ void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compo
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                      VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     struct {
-        float ambient[4], background[4];
+        float ambient[4], background[4], bom_origin[4];
         uint32_t size[2], view, accumulated;
         float exposure, debug_length, offset;
-        uint32_t ao_on, direct_on;
+        uint32_t ao_on, direct_on, slice_axis, slice_depth, bom_res, compared;
     } push{};
-    static_assert(sizeof push == 68, "the push block of compose.comp");
+    static_assert(sizeof push == 100, "the push block of compose.comp");
     for (int i = 0; i < 3; ++i) {
         push.ambient[i] = s.ambient[i];
         push.background[i] = s.background[i];
     }
+    for (int i = 0; i < 4; ++i)
+        push.bom_origin[i] = s.bom_origin[i];
+    push.slice_axis = s.slice_axis;
+    push.slice_depth = s.slice_depth;
+    push.bom_res = s.bom_res;
+    push.compared = s.compared;
     push.size[0] = c.width;
     push.size[1] = c.height;
     push.view = s.view;

@@ -12,6 +12,9 @@ enum view_mode : uint32_t {
     VIEW_NORMAL,
     VIEW_MAP,          // which ROMA map a ray along the normal uses
     VIEW_HIT_DISTANCE, // how far that ray goes before a hit
+    VIEW_BOM_SLICE,    // a layer of a captured base occupancy map over the scene
+    VIEW_REFERENCE,    // the Embree reference of the compared view
+    VIEW_DIFFERENCE,   // |ROMA - reference| as a heat map
     VIEW_COUNT
 };
 
@@ -24,6 +27,9 @@ struct compose_settings {
     float debug_length;
     float offset;
     bool ao_on, direct_on;
+    float bom_origin[4];    // xyz corner of cell (0,0,0), w cell size
+    uint32_t slice_axis, slice_depth, bom_res; // bom_res 0: nothing captured
+    view_mode compared;     // VIEW_AO or VIEW_DIRECT: what the reference holds
 };
 
 struct compose_pass {
@@ -41,6 +47,9 @@ bool compose_pass_create(const vk_base &b, compose_pass &c);
 // New images at the G-buffer's size (the old ones must be idle); the set is rewritten.
 bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &g);
 void compose_pass_destroy(const vk_base &b, compose_pass &c);
+// Binds the reference (vec4 per pixel, at least width * height) and the captured BOM
+// (RES^3 / 32 words); both must be idle.
+void compose_pass_set_buffers(const vk_base &b, compose_pass &c, VkBuffer reference, VkBuffer bom);
 // Puts the effect outputs into GENERAL after last frame's readers, ready for the effects.
 void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd);
 // trace_set: roma_map_info.trace_set of this frame's map. Leaves the display image in

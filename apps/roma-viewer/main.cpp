@@ -31,6 +31,7 @@
 #include "gbuffer_pass.h"
 #include "compose_pass.h"
 #include "swapchain.h"
+#include "reference_job.h"
 #include "ui.h"
 
 namespace {
@@ -55,6 +56,11 @@ const char *kUsage =
     "  --frames N           exit after N frames (default: run until closed; headless 16)\n"
     "  --screenshot F.png   after the last frame: the picture (8-bit) to F.png\n"
     "  --linear F.pfm|F.exr after the last frame: the accumulated linear values of the view\n"
+    "  --slice-axis x|y|z --slice-depth D   the layer the bom-slice view shows (headless: the\n"
+    "                       occupancy map is captured after the first frame)\n"
+    "  --compare-reference  headless, AO or direct view: after the last frame, render the\n"
+    "                       same view with the Embree reference (roma-render beside the\n"
+    "                       viewer, --reference-spp samples, default 64) and print the MAE\n"
     "  --validation         Khronos validation layer on; exit status 1 on any message\n"
     "  --device NAME        a device whose name contains NAME\n"
     "Keys: F frame the scene, Tab orbit/fly, F12 screenshot (roma-viewer-N.png), Esc quit.\n";
@@ -64,7 +70,7 @@ struct options {
     roma_camera camera{};
     bool has_camera = false;
     uint32_t width = 1280, height = 720;
-    bool headless = false, validation = false, play = false;
+    bool headless = false, validation = false, play = false, compare_reference = false;
     uint32_t frames = 0;
     std::string screenshot, linear, device;
     viewer_settings settings;
@@ -90,7 +96,8 @@ bool parse_float(const char *s, float lo, float hi, float &out)
     return true;
 }
 
-const char *kViewNames[VIEW_COUNT] = {"composed", "ao", "direct", "albedo", "normal", "map", "hit-distance"};
+const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",
+                                     "map",      "hit-distance", "bom-slice", "reference", "difference"};
 
 int parse_args(int argc, char **argv, options &o)
 {
@@ -107,6 +114,8 @@ int parse_args(int argc, char **argv, options &o)
             o.validation = true, used = false;
         } else if (a == "--play") {
             o.play = true, used = false;
+        } else if (a == "--compare-reference") {
+            o.compare_reference = true, used = false;
         } else if (!v) {
             std::fprintf(stderr, "roma-viewer: %s needs a value (see --help)\n", a.c_str());
             return 2;
@@ -126,7 +135,7 @@ int parse_args(int argc, char **argv, options &o)
                     o.settings.view = static_cast<view_mode>(k), ok = true;
             if (!ok) {
                 std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, albedo, "
-                                     "normal, map, hit-distance)\n", v);
+                                     "normal, map, hit-distance, bom-slice)\n", v);
                 return 2;
             }
         } else if (a == "--res") {
@@ -143,6 +152,13 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_float(v, 0.0f, 1e6f, o.settings.time);
         } else if (a == "--clip") {
             ok = parse_u32(v, 0, 1u << 20, o.settings.clip);
+        } else if (a == "--slice-axis") {
+            ok = std::strlen(v) == 1 && v[0] >= 'x' && v[0] <= 'z';
+            o.settings.slice_axis = ok ? uint32_t(v[0] - 'x') : 0;
+        } else if (a == "--slice-depth") {
+            ok = parse_u32(v, 0, 255, o.settings.slice_depth);
+        } else if (a == "--reference-spp") {
+            ok = parse_u32(v, 1, 1u << 16, o.settings.reference_spp);
         } else if (a == "--frames") {
             ok = parse_u32(v, 1, 1u << 30, o.frames);
         } else if (a == "--screenshot") {
@@ -164,6 +180,15 @@ int parse_args(int argc, char **argv, options &o)
     }
     if (o.headless && !o.frames)
         o.frames = 16;
+    if (o.settings.view == VIEW_REFERENCE || o.settings.view == VIEW_DIFFERENCE) {
+        std::fprintf(stderr, "roma-viewer: the reference views need a reference first (--compare-reference)\n");
+        return 2;
+    }
+    if (o.compare_reference && (!o.headless || (o.settings.view != VIEW_AO && o.settings.view != VIEW_DIRECT))) {
+        std::fprintf(stderr, "roma-viewer: --compare-reference needs --headless and --view ao or --view direct "
+                             "(in the window: the button under \"What the rays see\")\n");
+        return 2;
+    }
     return -1;
 }
 
@@ -201,8 +226,13 @@ struct viewer {
     viewer_timings timings;
     viewer_info info;
     camera_control cam;
-    std::chrono::steady_clock::time_point last;
-    bool map_failed = false;
+    // debug: a captured BOM and the Embree reference of the compared view
+    vk_buffer bom, reference;
+    float bom_origin[4] = {};
+    uint32_t bom_res = 0;
+    reference_job job;
+    view_mode compared = VIEW_AO;
+    roma_image coverage{};
 };
 
 void log_to_stderr(roma_log_level level, roma_result, const char *message, void *)
@@ -417,7 +447,91 @@ bool resize_images(viewer &v, uint32_t width, uint32_t height)
     v.info.width = width;
     v.info.height = height;
     v.accumulated = 0;
-    return gbuffer_pass_resize(v.base, v.gb, width, height) && compose_pass_resize(v.base, v.cp, v.gb);
+    vk_buffer_destroy(v.base, v.reference);
+    v.info.reference_ready = false;
+    if (!v.bom.buffer && !vk_buffer_create(v.base, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, v.bom))
+        return false;
+    if (!gbuffer_pass_resize(v.base, v.gb, width, height) || !compose_pass_resize(v.base, v.cp, v.gb) ||
+        !vk_buffer_create(v.base, VkDeviceSize(width) * height * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
+                          v.reference))
+        return false;
+    std::memset(v.reference.mapped, 0, size_t(width) * height * 16);
+    compose_pass_set_buffers(v.base, v.cp, v.reference.buffer, v.bom.buffer);
+    return true;
+}
+
+// The BOM of the last build, for the slice view (blocking: a debug action).
+bool capture_bom(viewer &v)
+{
+    vkDeviceWaitIdle(v.base.device);
+    roma_map_info mi;
+    roma_map_get_info(v.map, &mi);
+    uint64_t words = uint64_t(mi.resolution) * mi.resolution * mi.resolution / 32;
+    vk_buffer_destroy(v.base, v.bom);
+    if (!vk_buffer_create(v.base, words * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, v.bom))
+        return false;
+    roma_result r = roma_map_download_bom(v.map, static_cast<uint32_t *>(v.bom.mapped), words);
+    if (r != ROMA_SUCCESS) {
+        std::fprintf(stderr, "roma-viewer: cannot download the occupancy map: %s\n", roma_result_string(r));
+        std::memset(v.bom.mapped, 0, words * 4);
+    }
+    for (int i = 0; i < 3; ++i)
+        v.bom_origin[i] = mi.grid_origin[i];
+    v.bom_origin[3] = mi.grid_cell;
+    v.bom_res = r == ROMA_SUCCESS ? mi.resolution : 0;
+    v.info.bom_captured = v.bom_res != 0;
+    v.accumulated = 0; // the view changes
+    compose_pass_set_buffers(v.base, v.cp, v.reference.buffer, v.bom.buffer);
+    return r == ROMA_SUCCESS;
+}
+
+float effective_ao_radius(const viewer &v)
+{
+    return v.s.ao_radius > 0.0f ? v.s.ao_radius : v.s.auto_ao_radius;
+}
+
+// Starts the Embree reference of the current view (AO, or direct in the direct view).
+void start_reference(viewer &v)
+{
+    v.compared = v.s.view == VIEW_DIRECT ? VIEW_DIRECT : VIEW_AO;
+    std::string camera = camera_to_string(camera_control_get(v.cam));
+    if (!reference_job_start(v.job, reference_tool_path(), camera, v.gb.width, v.gb.height, v.s.reference_spp,
+                             effective_ao_radius(v), v.info.scene_name))
+        v.info.reference_status = v.job.message;
+    else
+        v.info.reference_status = "rendering the reference: " + v.job.command;
+    v.info.reference_ready = false;
+}
+
+// When the job has finished: its image into the reference buffer, the coverage kept.
+void finish_reference(viewer &v)
+{
+    if (!v.job.finished || v.job.running)
+        return;
+    v.job.finished = false;
+    reference_job_join(v.job);
+    if (!v.job.ok) {
+        v.info.reference_status = v.job.message;
+        return;
+    }
+    roma_image img{};
+    roma_image_free(&v.coverage);
+    const char *name = v.compared == VIEW_DIRECT ? "direct" : "ao";
+    if (!reference_job_image(v.job, name, &img) || !reference_job_image(v.job, "coverage", &v.coverage) ||
+        img.width != v.gb.width || img.height != v.gb.height) {
+        v.info.reference_status = "the reference's images are missing or of another size (the window changed?)";
+        roma_image_free(&img);
+        return;
+    }
+    vkDeviceWaitIdle(v.base.device);
+    float *dst = static_cast<float *>(v.reference.mapped);
+    for (size_t i = 0; i < size_t(img.width) * img.height; ++i)
+        for (uint32_t c = 0; c < 3; ++c)
+            dst[4 * i + c] = img.pixels[i * img.channels + (img.channels == 1 ? 0 : c)];
+    roma_image_free(&img);
+    v.info.reference_ready = true;
+    v.info.reference_status = std::string("reference of ") + name + " ready (" +
+                              std::to_string(v.s.reference_spp) + " samples per pixel)";
 }
 
 // World -> clip rows for the G-buffer, from the same frame libroma's camera rays use
@@ -502,8 +616,9 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     gbuffer_pass_record(v.gb, cmd, draw);
     stamp(v, cmd, slot, 3);
     compose_pass_prepare(v.cp, cmd);
-    bool want_ao = s.ao_on && (s.view == VIEW_COMPOSED || s.view == VIEW_AO);
-    bool want_direct = s.direct_on && v.view.light_count > 0 && (s.view == VIEW_COMPOSED || s.view == VIEW_DIRECT);
+    view_mode shown = (s.view == VIEW_REFERENCE || s.view == VIEW_DIFFERENCE) ? v.compared : s.view;
+    bool want_ao = s.ao_on && (shown == VIEW_COMPOSED || shown == VIEW_AO);
+    bool want_direct = s.direct_on && v.view.light_count > 0 && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
     if (want_ao) {
         roma_ao_images images{};
         images.width = v.gb.width;
@@ -513,7 +628,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         images.output = v.cp.ao.view;
         roma_ao_settings as{};
         as.samples = s.ao_samples;
-        as.radius = s.ao_radius > 0.0f ? s.ao_radius : s.auto_ao_radius;
+        as.radius = effective_ao_radius(v);
         as.offset_cells = s.offset;
         as.skip_cells = s.ao_skip;
         as.seed = 1;
@@ -547,10 +662,16 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.view = s.view;
     cs.accumulated = v.accumulated;
     cs.exposure = s.exposure;
-    cs.debug_length = s.ao_radius > 0.0f ? s.ao_radius : s.auto_ao_radius;
+    cs.debug_length = effective_ao_radius(v);
     cs.offset = (s.offset > 0.0f ? s.offset : ROMA_DEFAULT_OFFSET_CELLS) * mi.trace_cell;
     cs.ao_on = want_ao;
     cs.direct_on = want_direct;
+    for (int i = 0; i < 4; ++i)
+        cs.bom_origin[i] = v.bom_origin[i];
+    cs.slice_axis = s.slice_axis;
+    cs.slice_depth = std::min(s.slice_depth, v.bom_res ? v.bom_res - 1 : 0u);
+    cs.bom_res = v.bom_res;
+    cs.compared = v.compared;
     compose_pass_record(v.cp, cmd, cs, mi.trace_set);
     v.info.grid_cell = mi.grid_cell;
     stamp(v, cmd, slot, 5);
@@ -597,6 +718,68 @@ void record_readback(VkCommandBuffer cmd, void *user)
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &mb;
     vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+// MAE of the accumulated compared view against the reference, over the pixels the
+// reference saw geometry in (its coverage), as roma-compare --mask computes it.
+bool measure_mae(viewer &v, double &mae, uint64_t &pixels)
+{
+    if (!v.info.reference_ready || v.coverage.width != v.cp.width || v.coverage.height != v.cp.height)
+        return false;
+    vkDeviceWaitIdle(v.base.device);
+    uint32_t w = v.cp.width, h = v.cp.height;
+    vk_buffer display, accum;
+    bool ok = vk_buffer_create(v.base, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) &&
+              vk_buffer_create(v.base, VkDeviceSize(w) * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum);
+    readback r{&v, display.buffer, accum.buffer};
+    ok = ok && vk_submit_now(v.base, v.pool, record_readback, &r);
+    double sum = 0.0;
+    pixels = 0;
+    uint32_t channels = v.compared == VIEW_AO ? 1 : 3;
+    if (ok) {
+        const float *a = static_cast<const float *>(accum.mapped);
+        const float *ref = static_cast<const float *>(v.reference.mapped);
+        for (size_t i = 0; i < size_t(w) * h; ++i) {
+            if (!(v.coverage.pixels[i * v.coverage.channels] > 0.0f))
+                continue;
+            for (uint32_t c = 0; c < channels; ++c)
+                sum += std::fabs(double(a[4 * i + c]) - double(ref[4 * i + c]));
+            ++pixels;
+        }
+    }
+    mae = pixels ? sum / double(pixels * channels) : 0.0;
+    vk_buffer_destroy(v.base, display);
+    vk_buffer_destroy(v.base, accum);
+    return ok && pixels > 0;
+}
+
+// Headless bom-slice view: how many pixels of the layer show occupied (red) and empty
+// (blue) cells. Every surface point lies in a cell the voxelization marked, so blue
+// pixels are cells the voxelization missed, or points on a cell boundary.
+void report_slice(viewer &v)
+{
+    vkDeviceWaitIdle(v.base.device);
+    uint32_t w = v.cp.width, h = v.cp.height;
+    vk_buffer display, accum;
+    if (!vk_buffer_create(v.base, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) ||
+        !vk_buffer_create(v.base, VkDeviceSize(w) * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum)) {
+        vk_buffer_destroy(v.base, display);
+        return;
+    }
+    readback r{&v, display.buffer, accum.buffer};
+    uint64_t occupied = 0, empty = 0;
+    if (vk_submit_now(v.base, v.pool, record_readback, &r)) {
+        const float *a = static_cast<const float *>(accum.mapped);
+        for (size_t i = 0; i < size_t(w) * h; ++i) {
+            occupied += a[4 * i] > 0.85f && a[4 * i + 1] < 0.2f;
+            empty += a[4 * i + 2] > 0.85f && a[4 * i] < 0.2f;
+        }
+    }
+    std::printf("roma-viewer: occupancy slice %c = %u (RES %u): %llu pixels on occupied cells, %llu on empty cells\n",
+                char('x' + v.s.slice_axis), v.s.slice_depth, v.bom_res, (unsigned long long)occupied,
+                (unsigned long long)empty);
+    vk_buffer_destroy(v.base, display);
+    vk_buffer_destroy(v.base, accum);
 }
 
 // The last frame's picture (8-bit PNG) and its accumulated linear values (PFM or EXR by
@@ -830,6 +1013,26 @@ int run_window(viewer &v)
             camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max, float(fw) / float(fh));
             moved = true;
         }
+        if (act.capture_bom)
+            capture_bom(v);
+        if (act.start_reference)
+            start_reference(v);
+        finish_reference(v);
+        v.info.reference_running = v.job.running;
+        v.info.reference_percent = v.job.percent;
+        if (act.measure) {
+            double mae;
+            uint64_t pixels;
+            if (measure_mae(v, mae, pixels)) {
+                char line[256];
+                std::snprintf(line, sizeof line, "%s MAE %.4f over %llu covered pixels, %u frames accumulated",
+                              v.compared == VIEW_AO ? "AO" : "direct light", mae, (unsigned long long)pixels,
+                              v.accumulated);
+                v.info.reference_status = line;
+            } else {
+                v.info.reference_status = "no measurement: the reference does not match this view's size";
+            }
+        }
         if (act.rebuild_map) {
             vkDeviceWaitIdle(v.base.device);
             if (!create_map(v))
@@ -961,6 +1164,8 @@ int run_headless(viewer &v)
             v.s.time = std::fmod(v.s.time + 1.0f / 30.0f * v.s.speed, v.s.duration);
             v.accumulated = 0;
         }
+        if (f == 0 && v.s.view == VIEW_BOM_SLICE && !capture_bom(v))
+            return 1;
     }
     vkDeviceWaitIdle(v.base.device);
     read_timings(v, (v.frame + kSlots - 1) % kSlots);
@@ -971,6 +1176,23 @@ int run_headless(viewer &v)
                 v.timings.clock.c_str());
     if ((!v.opt.screenshot.empty() || !v.opt.linear.empty()) && !save_pictures(v, v.opt.screenshot, v.opt.linear))
         return 1;
+    if (v.s.view == VIEW_BOM_SLICE)
+        report_slice(v);
+    if (v.opt.compare_reference) {
+        start_reference(v);
+        reference_job_join(v.job);
+        finish_reference(v);
+        double mae;
+        uint64_t pixels;
+        if (!measure_mae(v, mae, pixels)) {
+            std::fprintf(stderr, "roma-viewer: no comparison with the reference: %s\n", v.info.reference_status.c_str());
+            return 1;
+        }
+        std::printf("roma-viewer: %s against the Embree reference (%u samples per pixel): MAE %.4f over %llu "
+                    "covered pixels, %u frames accumulated\n",
+                    v.compared == VIEW_AO ? "AO" : "direct light", v.s.reference_spp, mae,
+                    (unsigned long long)pixels, v.accumulated);
+    }
     return 0;
 }
 
@@ -985,6 +1207,10 @@ void destroy(viewer &v)
     }
     if (v.imgui_pool)
         vkDestroyDescriptorPool(v.base.device, v.imgui_pool, nullptr);
+    reference_job_cleanup(v.job);
+    roma_image_free(&v.coverage);
+    vk_buffer_destroy(v.base, v.bom);
+    vk_buffer_destroy(v.base, v.reference);
     free_scene(v);
     roma_ao_effect_destroy(v.ao);
     roma_light_effect_destroy(v.light);

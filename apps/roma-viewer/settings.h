@@ -25,6 +25,9 @@ struct viewer_settings {
     float ambient = 0.2f;            // sky radiance in the composed view (scaled by AO)
     float background[3] = {0.11f, 0.12f, 0.15f};
     bool accumulate = true;          // still camera: average frames
+    // debug
+    uint32_t slice_axis = 1, slice_depth = 8; // y = 8: near the floor at RES 128
+    uint32_t reference_spp = 64;
     // animation
     bool animated = false, playing = false;
     uint32_t clip = 0, clip_count = 0;
@@ -48,4 +51,8 @@ struct viewer_info {
     float grid_cell = 0;
     uint32_t validation_messages = 0;
     std::string plan; // libroma's effect plan for this scene, and what the viewer runs of it
+    bool bom_captured = false;
+    bool reference_running = false, reference_ready = false;
+    int reference_percent = 0;
+    std::string reference_status; // what was compared and the last MAE, or the error
 };

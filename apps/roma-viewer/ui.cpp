@@ -7,7 +7,9 @@
 
 namespace {
 const char *kViews[VIEW_COUNT] = {"composed", "ambient occlusion", "direct light", "albedo", "normal",
-                                  "ROMA map per pixel (ray along the normal)", "ROMA hit distance along the normal"};
+                                  "ROMA map per pixel (ray along the normal)", "ROMA hit distance along the normal",
+                                  "base occupancy map slice (captured)", "reference (Embree)",
+                                  "difference to the reference"};
 const uint32_t kResolutions[4] = {32, 64, 128, 256};
 } // namespace
 
@@ -79,6 +81,47 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         }
         ImGui::Text("%u maps, %.1f MiB, cell %.4g", s.angular * s.angular, double(info.map_bytes) / (1 << 20),
                     double(info.grid_cell));
+    }
+    if (ImGui::CollapsingHeader("What the rays see")) {
+        const char *axes[3] = {"x", "y", "z"};
+        int axis = static_cast<int>(s.slice_axis);
+        if (ImGui::Combo("slice axis", &axis, axes, 3)) {
+            s.slice_axis = static_cast<uint32_t>(axis);
+            out.reset_accumulation = true;
+        }
+        int depth = static_cast<int>(s.slice_depth);
+        if (ImGui::SliderInt("slice depth (cells)", &depth, 0, static_cast<int>(s.res) - 1)) {
+            s.slice_depth = static_cast<uint32_t>(depth);
+            out.reset_accumulation = true;
+        }
+        if (ImGui::Button("capture the occupancy map")) {
+            out.capture_bom = true;
+            s.view = VIEW_BOM_SLICE;
+        }
+        if (info.bom_captured) {
+            ImGui::SameLine();
+            ImGui::TextDisabled("red: occupied cells of the layer, blue: empty");
+        }
+        ImGui::Separator();
+        int spp = static_cast<int>(s.reference_spp);
+        if (ImGui::SliderInt("reference samples", &spp, 4, 1024, "%d", ImGuiSliderFlags_Logarithmic))
+            s.reference_spp = static_cast<uint32_t>(spp);
+        if (info.reference_running) {
+            ImGui::ProgressBar(float(info.reference_percent) / 100.0f, ImVec2(-1, 0), "Embree reference");
+        } else {
+            out.start_reference |= ImGui::Button("compare with reference (AO, or direct in the direct view)");
+        }
+        if (info.reference_ready) {
+            out.measure |= ImGui::Button("measure MAE");
+            ImGui::SameLine();
+            if (ImGui::Button("show reference"))
+                s.view = VIEW_REFERENCE;
+            ImGui::SameLine();
+            if (ImGui::Button("show difference"))
+                s.view = VIEW_DIFFERENCE;
+        }
+        if (!info.reference_status.empty())
+            ImGui::TextWrapped("%s", info.reference_status.c_str());
     }
     if (s.animated && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::Checkbox("play", &s.playing);

@@ -9,6 +9,9 @@ struct ui_actions {
     bool frame_scene = false;
     bool screenshot = false;
     bool camera_pasted = false;      // camera_text holds a new camera string
+    bool capture_bom = false;
+    bool start_reference = false;
+    bool measure = false;            // MAE of the accumulated view against the reference
     char camera_text[256] = {};
 };
 

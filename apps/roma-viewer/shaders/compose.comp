@@ -16,6 +16,10 @@ layout(set = 0, binding = 3, r32f) uniform readonly image2D ao_image;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D light_image;
 layout(set = 0, binding = 5, rgba32f) uniform image2D accum_image;
 layout(set = 0, binding = 6, rgba8) uniform writeonly image2D display_image;
+// The Embree reference of the compared view, one vec4 per pixel (row 0 at the top).
+layout(std430, set = 0, binding = 7) readonly buffer Reference { vec4 reference[]; };
+// A captured base occupancy map: cell (x, y, z) is bit z & 31 of word (y * RES + x) * (RES / 32) + z / 32.
+layout(std430, set = 0, binding = 8) readonly buffer Bom { uint bom[]; };
 
 // Views (roma-viewer's view_mode).
 #define VIEW_COMPOSED 0u
@@ -25,10 +29,14 @@ layout(set = 0, binding = 6, rgba8) uniform writeonly image2D display_image;
 #define VIEW_NORMAL 4u
 #define VIEW_MAP 5u
 #define VIEW_HIT_DISTANCE 6u
+#define VIEW_BOM_SLICE 7u
+#define VIEW_REFERENCE 8u
+#define VIEW_DIFFERENCE 9u
 
 layout(push_constant) uniform Push {
     vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
     vec4 background;     // rgb: display colour where no geometry is
+    vec4 bom_origin;     // xyz: the captured BOM's cell (0,0,0) corner; w: its cell size
     uvec2 size;
     uint view;
     uint accumulated;    // frames already in accum_image (0: start over)
@@ -37,6 +45,10 @@ layout(push_constant) uniform Push {
     float offset;        // origin offset of the debug rays (world units)
     uint ao_on;
     uint direct_on;
+    uint slice_axis;     // 0, 1, 2: x, y, z
+    uint slice_depth;    // cell index along the axis
+    uint bom_res;        // 0: nothing captured
+    uint compared;       // the reference's quantity: VIEW_AO or VIEW_DIRECT (0: none)
 } pc;
 
 const float PI = 3.14159265358979;
@@ -75,26 +87,44 @@ void main()
     float ao = pc.ao_on != 0u ? imageLoad(ao_image, p).r : 1.0;
     vec3 irradiance = pc.direct_on != 0u ? imageLoad(light_image, p).rgb : vec3(0.0);
 
+    uint view = pc.view;
+    if (view == VIEW_REFERENCE || view == VIEW_DIFFERENCE)
+        view = pc.compared; // accumulate the compared quantity; show it against the reference
     vec3 value;      // linear, accumulated
     bool tone = true; // exposure applies
-    if (pc.view == VIEW_AO) {
+    if (view == VIEW_BOM_SLICE) {
+        // The layer of cells at the chosen depth, over the scene: occupied cells red,
+        // empty ones blue; elsewhere the albedo, dimmed.
+        value = albedo * 0.35;
+        if (pc.bom_res > 0u) {
+            ivec3 c = ivec3(floor((pos.xyz - pc.bom_origin.xyz) / pc.bom_origin.w));
+            int res = int(pc.bom_res);
+            if (all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(res))) &&
+                uint(c[pc.slice_axis]) == pc.slice_depth) {
+                uint word = bom[(uint(c.y) * pc.bom_res + uint(c.x)) * (pc.bom_res / 32u) + uint(c.z) / 32u];
+                bool occupied = ((word >> (uint(c.z) & 31u)) & 1u) != 0u;
+                value = occupied ? vec3(0.9, 0.15, 0.1) : vec3(0.1, 0.3, 0.9);
+            }
+        }
+        tone = false;
+    } else if (view == VIEW_AO) {
         value = vec3(ao);
         tone = false;
-    } else if (pc.view == VIEW_DIRECT) {
+    } else if (view == VIEW_DIRECT) {
         value = albedo / PI * irradiance;
-    } else if (pc.view == VIEW_ALBEDO) {
+    } else if (view == VIEW_ALBEDO) {
         value = albedo;
         tone = false;
-    } else if (pc.view == VIEW_NORMAL) {
+    } else if (view == VIEW_NORMAL) {
         value = 0.5 * n + 0.5;
         tone = false;
-    } else if (pc.view == VIEW_MAP || pc.view == VIEW_HIT_DISTANCE) {
+    } else if (view == VIEW_MAP || view == VIEW_HIT_DISTANCE) {
         // One ROMA ray along the normal: which map (candidate direction) serves it, and
         // how far it goes before a hit (black: no hit within debug_length).
         vec3 o = pos.xyz + n * pc.offset;
         roma_hit h = roma_trace_snapped(o, n, 0.0, pc.debug_length, true);
         bool hit = (h.info & ROMA_HIT_FLAG) != 0u;
-        if (pc.view == VIEW_MAP)
+        if (view == VIEW_MAP)
             value = hash_colour(ROMA_HIT_MAP(h.info)) * (hit ? 0.55 : 1.0);
         else
             value = hit ? heat(h.t / pc.debug_length) : vec3(0.0);
@@ -109,5 +139,13 @@ void main()
     }
     imageStore(accum_image, p, vec4(mean, 1.0));
     vec3 shown = tone ? mean * pc.exposure : mean;
+    if (pc.view == VIEW_REFERENCE || pc.view == VIEW_DIFFERENCE) {
+        vec3 ref = reference[p.y * int(pc.size.x) + p.x].rgb;
+        if (pc.view == VIEW_REFERENCE)
+            shown = tone ? ref * pc.exposure : ref;
+        else // |ROMA - reference|, max over channels, 0.25 (exposed) as white
+            shown = heat(max(max(abs(mean - ref).r, abs(mean - ref).g), abs(mean - ref).b) *
+                         (tone ? pc.exposure : 1.0) / 0.25);
+    }
     imageStore(display_image, p, vec4(srgb(shown), 1.0));
 }

@@ -76,6 +76,15 @@ elif [ -n "${vr:-}" ]; then
     || fail "the viewer's own MAE ($own) is not roma-compare's ($vr)"
 fi
 
+# 1b'. Direct light (the room's spot and its ceiling area light) against the reference.
+"$viewer" --headless --validation --view direct --frames 32 --area-samples 8 --camera "$cam" --size 160x120 \
+  --compare-reference --reference-spp 256 >"$dir/direct.out" 2>&1 \
+  || { cat "$dir/direct.out" >&2; fail "roma-viewer --view direct --compare-reference failed"; }
+direct=$(sed -n 's/.*direct light against the Embree reference.*MAE \([0-9.]*\) over.*/\1/p' "$dir/direct.out")
+echo "direct light MAE (viewer vs Embree): ${direct:-none}"
+# Measured: 0.0055 (the mean reflected radiance is about 0.09).
+[ -n "$direct" ] && below "$direct" 0.006 || fail "the viewer's direct light is further from the reference than 0.006 ($direct)"
+
 # 1c. The occupancy slice: every surface point the rasterizer draws lies in a cell the
 #     voxelization marked (conservative), at three layers of the room.
 for layer in "y 22" "y 60" "x 64"; do

@@ -50,7 +50,8 @@ const char *kUsage =
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
-    "  --exposure E         (default 2.5)\n"
+    "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
+    "  --exposure E         (default 1.2)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
     "  --headless           no window: render --frames frames and exit\n"
     "  --frames N           exit after N frames (default: run until closed; headless 16)\n"
@@ -144,6 +145,8 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 16, o.settings.angular);
         } else if (a == "--ao-samples") {
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
+        } else if (a == "--area-samples") {
+            ok = parse_u32(v, 1, 1024, o.settings.area_samples);
         } else if (a == "--ao-radius") {
             ok = parse_float(v, 1e-6f, 1e30f, o.settings.ao_radius);
         } else if (a == "--exposure") {
@@ -325,8 +328,10 @@ void describe_plan(viewer &v)
         }
     }
     text += "\n" + std::to_string(plan.map_count) + " ROMA arrays. The viewer runs the G-buffer, AO (roma_ao_effect)";
-    text += v.view.light_count ? " and the punctual lights (roma_light_effect)" : " (no punctual lights: no direct light)";
-    text += " on one array; area lights, many lights and GI are not in the public effect API yet.";
+    text += v.view.light_count || v.view.emissive_triangle_count
+                ? " and direct light from punctual and area lights (roma_light_effect)"
+                : " (no lights in the scene: no direct light)";
+    text += " on one array; many lights and GI are not in the public effect API yet.";
     v.info.plan = text;
 }
 
@@ -358,6 +363,8 @@ bool open_scene(viewer &v, const std::string &name)
     v.info.lights = v.view.light_count;
     v.info.area_light_triangles = v.view.emissive_triangle_count;
     if (!upload_scene(v) || !create_map(v))
+        return false;
+    if (roma_light_effect_set_area_lights(v.light, scene) != ROMA_SUCCESS)
         return false;
     v.s.animated = false;
     if (v.view.animation.animation_count > 0 && v.view.animation.vertex_node) {
@@ -618,7 +625,8 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     compose_pass_prepare(v.cp, cmd);
     view_mode shown = (s.view == VIEW_REFERENCE || s.view == VIEW_DIFFERENCE) ? v.compared : s.view;
     bool want_ao = s.ao_on && (shown == VIEW_COMPOSED || shown == VIEW_AO);
-    bool want_direct = s.direct_on && v.view.light_count > 0 && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
+    bool lit = v.view.light_count > 0 || v.view.emissive_triangle_count > 0;
+    bool want_direct = s.direct_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
     if (want_ao) {
         roma_ao_images images{};
         images.width = v.gb.width;
@@ -647,6 +655,9 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         ls.max_steps = s.max_steps;
         ls.offset_cells = s.offset;
         ls.skip_cells = s.shadow_skip;
+        ls.area_samples = s.area_samples;
+        ls.seed = 1;
+        ls.frame = v.frame;
         if (roma_light_effect_record(v.light, cmd, slot, v.map, &images, v.view.lights, v.view.light_count, &ls) !=
             ROMA_SUCCESS)
             return false;

@@ -18,10 +18,11 @@ struct viewer_settings {
     float ao_radius = 0.0f;          // 0: from the scene size (auto_ao_radius)
     float auto_ao_radius = 1.0f;
     uint32_t max_steps = 8;
+    uint32_t area_samples = 4;       // area-light samples per pixel and frame
     float ao_skip = 0.0f, shadow_skip = 0.0f, offset = 0.0f; // 0 = the library's defaults
     // picture
     view_mode view = VIEW_COMPOSED;
-    float exposure = 2.5f;           // the built-in room's spot light reads well at 2.5
+    float exposure = 1.2f;           // the built-in room's lights read well at 1.2
     float ambient = 0.2f;            // sky radiance in the composed view (scaled by AO)
     float background[3] = {0.11f, 0.12f, 0.15f};
     bool accumulate = true;          // still camera: average frames

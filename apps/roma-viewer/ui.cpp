@@ -19,8 +19,8 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
     ImGui::SetNextWindowSize(ImVec2(470, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("libroma viewer");
     ImGui::Text("%s", info.device.c_str());
-    ImGui::Text("%s: %u triangles, %u lights%s", info.scene_name.c_str(), info.triangles, info.lights,
-                info.area_light_triangles ? " (+ emissive triangles: not lit here)" : "");
+    ImGui::Text("%s: %u triangles, %u punctual lights, %u emissive triangles", info.scene_name.c_str(),
+                info.triangles, info.lights, info.area_light_triangles);
     ImGui::Text("%ux%u, %u frames accumulated", info.width, info.height, info.accumulated);
     if (info.validation_messages)
         ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%u validation messages (see the terminal)",
@@ -40,7 +40,7 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
     if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
         out.reset_accumulation |= ImGui::Checkbox("ambient occlusion", &s.ao_on);
         ImGui::SameLine();
-        out.reset_accumulation |= ImGui::Checkbox("direct light (punctual lights)", &s.direct_on);
+        out.reset_accumulation |= ImGui::Checkbox("direct light", &s.direct_on);
         int samples = static_cast<int>(s.ao_samples);
         if (ImGui::SliderInt("AO rays per pixel", &samples, 1, 64)) {
             s.ao_samples = static_cast<uint32_t>(samples);
@@ -50,6 +50,11 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         if (ImGui::SliderFloat("AO radius", &shown, 0.001f * s.auto_ao_radius, 20.0f * s.auto_ao_radius, "%.4g",
                                ImGuiSliderFlags_Logarithmic)) {
             s.ao_radius = shown;
+            out.reset_accumulation = true;
+        }
+        int area = static_cast<int>(s.area_samples);
+        if (ImGui::SliderInt("area-light samples per pixel", &area, 1, 64)) {
+            s.area_samples = static_cast<uint32_t>(area);
             out.reset_accumulation = true;
         }
         int steps = static_cast<int>(s.max_steps);

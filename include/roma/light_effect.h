@@ -1,11 +1,13 @@
-/* libroma: direct light with ROMA shadows from point, spot and directional lights, on the
- * engine's own G-buffer images, recorded into the engine's command buffer.
+/* libroma: direct light with ROMA shadows from point, spot and directional lights and from
+ * area lights (emissive triangles, roma_light_effect_set_area_lights), on the engine's own
+ * G-buffer images, recorded into the engine's command buffer.
  *
  * Inputs as for roma_ao_effect (world position with w > 0 where there is geometry,
  * shading normal, optional geometric normal; sampled). Output: an RGBA32F storage image
  * (layout GENERAL) the engine owns: rgb = the irradiance E (W/m^2 per colour channel) that
  * reaches the surface from the lights, each light's share counted when one un-snapped
- * shadow ray to it (at most max_steps texels) is free; a = 0. Multiply by albedo / pi for
+ * shadow ray to it (at most max_steps texels) is free, plus the area lights' estimate over
+ * area_samples samples; a = 0. Multiply by albedo / pi for
  * the reflected radiance of a diffuse surface. Pixels with w <= 0 get 0. The lights'
  * units and windows are glTF KHR_lights_punctual's, as in roma_scene (intensity in cd for
  * point and spot lights, lux for directional ones; range windows; spot cones); their
@@ -29,16 +31,30 @@ extern "C" {
 /* Defaults, resolved in one place (roma_light_settings_resolve). */
 #define ROMA_DEFAULT_SHADOW_STEPS 8u        /* the paper's un-snapped walk */
 #define ROMA_DEFAULT_SHADOW_SKIP_CELLS 1.0f /* shadow rays start one trace cell past their origin */
+#define ROMA_DEFAULT_AREA_LIGHT_SAMPLES 4u  /* area-light samples per pixel and frame */
 
 typedef struct roma_light_settings {
     uint32_t max_steps;   /* texels an un-snapped shadow ray walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
     float offset_cells;   /* origin offset along the geometric normal, trace cells; 0 = ROMA_DEFAULT_OFFSET_CELLS */
     float skip_cells;     /* 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS, negative = 0 */
+    uint32_t area_samples; /* area-light samples per pixel and frame; 0 = ROMA_DEFAULT_AREA_LIGHT_SAMPLES */
+    uint32_t seed;         /* area-light sample sequences, as roma_ao_settings */
+    uint32_t frame;        /* new area-light samples every frame */
 } roma_light_settings;
 
 ROMA_API roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out);
 
 typedef struct roma_light_effect roma_light_effect;
+
+/* Area lights: the emissive triangles of `scene` (materials with emission), sampled in
+ * proportion to power x area as the reference tracer samples them; each sample is one
+ * un-snapped shadow segment from the surface to a point on the emitter, and the output adds
+ * their average to the punctual lights' irradiance. Replaces the previous set (NULL or a
+ * scene without emitters removes it); a failure keeps it. The emitters are copied (the
+ * scene may be destroyed afterwards) and stay where the scene puts them. Call it between
+ * frames, when no submitted work of this effect is still running (it frees the old
+ * buffers). ROMA_ERROR_INVALID_ARGUMENT for a NULL effect; out of memory errors. */
+ROMA_API roma_result roma_light_effect_set_area_lights(roma_light_effect *effect, const roma_scene *scene);
 
 typedef struct roma_light_effect_desc {
     uint32_t frames_in_flight; /* [1, 8]; 0 = 2 */

@@ -269,6 +269,17 @@ ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_punctual_push)
 
+/* roma_light_effect (shaders/effects/lights_images.comp): punctual lights and area lights. */
+ROMA_STRUCT_BEGIN(roma_light_images_push)
+    ROMA_U64(lights);     /* roma_gpu_light */
+    ROMA_U64(emitters);   /* roma_gpu_emitter; 0 when there are no area lights */
+    ROMA_U64(cdf);        /* float per emitter */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
+    ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: area samples, w: frame */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
+ROMA_STRUCT_END(roma_light_images_push)
+
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(emitters);   /* roma_gpu_emitter */
     ROMA_U64(cdf);        /* float per emitter */

@@ -1,5 +1,7 @@
-/* roma_light_effect: shadowed irradiance from punctual lights on the engine's G-buffer
- * images (shaders/effects/lights_images.comp); lights in a host-visible buffer per slot. */
+/* roma_light_effect: shadowed irradiance from punctual lights and area lights on the
+ * engine's G-buffer images (shaders/effects/lights_images.comp); punctual lights in a
+ * host-visible buffer per slot, area lights (a scene's emissive triangles and their
+ * sampling CDF) in two buffers set between frames. */
 #include "roma/light_effect.h"
 
 #include <math.h>
@@ -9,6 +11,7 @@
 #include "effects/image_effect.h"
 #include "passes/light_data.h"
 #include "roma_shared.h"
+#include "scene/emitters.h"
 #include "util/log.h"
 
 #define MAX_LIGHTS 65536u
@@ -16,6 +19,8 @@
 struct roma_light_effect {
     roma_image_effect base;
     roma_buffer lights[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_buffer emitters, cdf; /* area lights; absent when emitter_count is 0 */
+    uint32_t emitter_count;
 };
 
 roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out)
@@ -30,6 +35,8 @@ roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_ligh
                          "roma_light_settings: offset_cells must be finite and not negative, skip_cells finite");
     if (s.max_steps == 0)
         s.max_steps = ROMA_DEFAULT_SHADOW_STEPS;
+    if (s.area_samples == 0)
+        s.area_samples = ROMA_DEFAULT_AREA_LIGHT_SAMPLES;
     if (s.offset_cells == 0.0f)
         s.offset_cells = ROMA_DEFAULT_OFFSET_CELLS;
     s.skip_cells = s.skip_cells < 0.0f ? 0.0f : s.skip_cells > 0.0f ? s.skip_cells : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
@@ -57,7 +64,7 @@ roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_light_effect_create: out of host memory");
     roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", "lights_images.comp", 3, 1,
-                                           sizeof(roma_punctual_push), desc.frames_in_flight);
+                                           sizeof(roma_light_images_push), desc.frames_in_flight);
     if (r != ROMA_SUCCESS) {
         free(e);
         return r;
@@ -73,8 +80,66 @@ void roma_light_effect_destroy(roma_light_effect *e)
     roma_context *ctx = e->base.ctx;
     for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
         roma_buffer_destroy(ctx, &e->lights[s]);
+    roma_buffer_destroy(ctx, &e->emitters);
+    roma_buffer_destroy(ctx, &e->cdf);
     roma_image_effect_free(&e->base);
     free(e);
+}
+
+roma_result roma_light_effect_set_area_lights(roma_light_effect *e, const roma_scene *scene)
+{
+    const roma_logger *log = e ? &e->base.logger : NULL;
+    if (!e)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_set_area_lights: effect is NULL");
+    roma_context *ctx = e->base.ctx;
+    roma_emitter_table table = {0};
+    roma_scene_view v;
+    roma_result r = ROMA_SUCCESS;
+    if (scene) {
+        r = roma_scene_get_view(scene, &v);
+        if (r == ROMA_SUCCESS)
+            r = roma_emitter_table_build(&v, log, &table);
+        if (r != ROMA_SUCCESS)
+            return roma_fail(log, r, "roma_light_effect_set_area_lights: cannot read the scene's emitters");
+    }
+    /* Built aside, swapped in only when complete: a failure keeps the previous set. */
+    roma_buffer emitters = {0}, cdf = {0};
+    if (table.count) {
+        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+        r = roma_buffer_create(ctx, sizeof(roma_gpu_emitter) * (VkDeviceSize)table.count, usage, ROMA_MEMORY_UPLOAD,
+                               &emitters);
+        if (r == ROMA_SUCCESS)
+            r = roma_buffer_create(ctx, sizeof(float) * (VkDeviceSize)table.count, usage, ROMA_MEMORY_UPLOAD, &cdf);
+        if (r == ROMA_SUCCESS) {
+            roma_gpu_emitter *g = emitters.mapped;
+            for (uint32_t i = 0; i < table.count; ++i) {
+                const roma_emitter *em = &table.emitters[i];
+                memset(&g[i], 0, sizeof g[i]);
+                for (int k = 0; k < 3; ++k) {
+                    g[i].v0_pdf[k] = em->v0[k];
+                    g[i].e1[k] = em->e1[k];
+                    g[i].e2[k] = em->e2[k];
+                    g[i].normal[k] = em->normal[k];
+                    g[i].emission[k] = em->emission[k];
+                }
+                g[i].v0_pdf[3] = em->pdf_area;
+            }
+            memcpy(cdf.mapped, table.cdf, sizeof(float) * table.count);
+        }
+    }
+    uint32_t count = table.count;
+    roma_emitter_table_free(&table);
+    if (r != ROMA_SUCCESS) {
+        roma_buffer_destroy(ctx, &emitters);
+        roma_buffer_destroy(ctx, &cdf);
+        return roma_fail(log, r, "roma_light_effect_set_area_lights: out of memory for %u emitters", count);
+    }
+    roma_buffer_destroy(ctx, &e->emitters);
+    roma_buffer_destroy(ctx, &e->cdf);
+    e->emitters = emitters;
+    e->cdf = cdf;
+    e->emitter_count = count;
+    return ROMA_SUCCESS;
 }
 
 static int light_finite(const roma_light *l)
@@ -134,9 +199,12 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     uint32_t packed = 0;
     for (uint32_t i = 0; i < light_count; ++i)
         packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)buf->mapped + packed);
-    roma_punctual_push push = {.lights = buf->address,
-                               .config = {im->width, im->height, packed, s.max_steps},
-                               .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
+    roma_light_images_push push = {.lights = buf->address,
+                                   .emitters = e->emitter_count ? e->emitters.address : 0,
+                                   .cdf = e->emitter_count ? e->cdf.address : 0,
+                                   .config = {im->width, im->height, packed, s.max_steps},
+                                   .config2 = {s.seed, e->emitter_count, s.area_samples, s.frame},
+                                   .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     return roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,

@@ -112,7 +112,7 @@ ao_mean() {
   "$compare" "$dir/$label/ao.pfm" "$dir/$label/ao.pfm" >"$dir/$label.cmp" 2>&1 || return 1
   metric "$dir/$label.cmp" mean_a
 }
-if m=$(ao_mean ao_unbounded); then
+if m=$(ao_mean ao_unbounded --ao-radius inf); then
   python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) == 0.0 else 1)' "$m" ||
     fail "unbounded AO mean of the closed cornell room is $m, expected 0"
 else
@@ -193,6 +193,64 @@ missing="$dir/no_such_scene.glb"
 "$render" --scene "$missing" --size 8x8 --spp 1 --out "$dir/missing" >/dev/null 2>"$dir/missing.err"
 expect_status 1 $? "roma-render with a missing scene file"
 grep -qF "$missing" "$dir/missing.err" || fail "the error for a missing scene does not name $missing"
+grep -q "No such file or directory" "$dir/missing.err" || fail "the error for a missing scene does not give the system's reason"
+
+# Errors that name the cause; choices list their valid values; near misses are suggested.
+# says WHAT PATTERN ARGS...: roma-render exits non-zero and stderr matches PATTERN.
+says() {
+  local what=$1 pattern=$2
+  shift 2
+  "$render" --size 8x8 --spp 1 --quiet "$@" >"$dir/says.out" 2>"$dir/says.err"
+  [ $? -ne 0 ] || fail "roma-render $what succeeded"
+  grep -q -- "$pattern" "$dir/says.err" || { fail "roma-render $what does not say '$pattern'"; cat "$dir/says.err" >&2; }
+}
+mkdir -p "$dir/a_folder"
+printf 'o cube\n' >"$dir/model.obj"
+says "--scene DIRECTORY" "is a directory" --scene "$dir/a_folder" --out "$dir/x1"
+says "--scene MODEL.obj" "only glTF 2.0 files (.gltf, .glb)" --scene "$dir/model.obj" --out "$dir/x2"
+says "--scene builtin:cornel" "did you mean builtin:cornell?" --scene builtin:cornel --out "$dir/x3"
+says "--out under a file" "cannot create output folder .*: Not a directory" --out "$dir/model.obj/out"
+says "--res 100" "valid: 32, 64, 128, 256" --tracer roma --res 100 --out "$dir/x4"
+says "--effects occlusion" "valid: ao, direct, gi, lights" --effects occlusion --out "$dir/x5"
+says "--effects directt" "did you mean direct?" --effects directt --out "$dir/x6"
+says "--effcts" "did you mean --effects?" --effcts ao --out "$dir/x7"
+says "--tracer optix" "valid: embree, roma" --tracer optix --out "$dir/x8"
+says "--light bogus" "bad light 'bogus'" --light bogus --out "$dir/x9"
+says "--stats in a missing folder" "cannot write .*stats.json: No such file or directory" \
+  --out "$dir/x10" --stats "$dir/no/such/stats.json"
+
+# Say when nothing happens (stderr and the stats' notes), and the defaults chosen.
+"$render" --scene "$ROMA_SCENES_DIR/spot.glb" --effects ao,direct,gi --size 16x12 --spp 1 --frames 2 --res 64 \
+  --out "$dir/notes" --stats "$dir/notes/stats.json" >/dev/null 2>"$dir/notes.err"
+expect_status 0 $? "roma-render on spot.glb with direct and gi" || cat "$dir/notes.err" >&2
+for pattern in "direct: the scene has no light" "gi: the scene has no light" "--frames is a ROMA setting" \
+               "--res is a ROMA setting" "AO radius .*10% of the scene's diagonal"; do
+  grep -q -- "$pattern" "$dir/notes.err" || fail "roma-render does not say '$pattern'"
+  grep -q -- "$pattern" "$dir/notes/stats.json" || fail "the stats' notes lack '$pattern'"
+done
+grep -q '"ao_radius_from": "10% of the scene' "$dir/notes/stats.json" || fail "the stats do not say where the AO radius came from"
+"$render" --tracer roma --effects gi --threads 2 --size 16x12 --spp 1 --out "$dir/notes2" >/dev/null 2>"$dir/notes2.err"
+grep -q "gi: ROMA's GI carries only the light of point and spot lights; the scene's area lights" "$dir/notes2.err" \
+  || fail "ROMA's GI on the room does not say that the area light gives no bounce"
+grep -q -- "--threads sets the reference's CPU threads" "$dir/notes2.err" || fail "--threads with ROMA: no note"
+grep -q "frames 100%" "$dir/notes2.err" || fail "a ROMA render prints no progress"
+grep -q "done in" "$dir/notes2.err" || fail "roma-render does not say how long it took"
+"$render" --tracer roma --effects ao --size 16x12 --spp 1 --quiet --out "$dir/quiet" >/dev/null 2>"$dir/quiet.err"
+[ ! -s "$dir/quiet.err" ] || fail "roma-render --quiet printed: $(head -2 "$dir/quiet.err")"
+
+# --light adds lights to any scene: the spot model is lit (direct no longer black), by
+# a point light and by a sun, on both tracers.
+for tracer in embree roma; do
+  "$render" --scene "$ROMA_SCENES_DIR/spot.glb" --tracer "$tracer" --effects direct --size 24x18 --spp 1 --quiet \
+    --light point:0,1.5,1.5:1,1,1:5 --light sun:0,-1,-1:1,0.9,0.8:2 --res 64 \
+    --out "$dir/lit_$tracer" --stats "$dir/lit_$tracer/stats.json" >/dev/null 2>"$dir/lit_$tracer.err"
+  expect_status 0 $? "roma-render --light ($tracer)" || cat "$dir/lit_$tracer.err" >&2
+  "$compare" "$dir/lit_$tracer/direct.pfm" "$dir/lit_$tracer/direct.pfm" >"$dir/lit_$tracer.cmp" 2>&1
+  m=$(metric "$dir/lit_$tracer.cmp" mean_a)
+  awk -v m="${m:-0}" 'BEGIN { exit !(m > 0) }' || fail "--light ($tracer): direct.pfm is still black (mean ${m:-none})"
+  grep -q '"added_lights": 2' "$dir/lit_$tracer/stats.json" || fail "--light ($tracer): the stats do not count 2 added lights"
+  grep -q '"punctual_lights": 2' "$dir/lit_$tracer/stats.json" || fail "--light ($tracer): the scene has not 2 lights"
+done
 
 # --time poses an animated glTF (both tracers); a scene without animation says so.
 "$render" --scene builtin:cornell --time 0.5 --size 8x8 --spp 1 --quiet --out "$dir/posed" >/dev/null 2>"$dir/posed.err"

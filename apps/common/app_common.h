@@ -26,7 +26,9 @@ roma_result roma_app_read_exr(const char *path, roma_image *out);
 /* Reads .exr with roma_app_read_exr, anything else as PFM. */
 roma_result roma_app_read_image(const char *path, roma_image *out);
 
-/* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path. */
+/* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path. A missing file, a
+ * directory, or another format is refused with the cause on stderr (and a near built-in
+ * name suggested). */
 roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene);
 
 /* Monotonic wall clock in milliseconds. */
@@ -34,7 +36,10 @@ double roma_app_now_ms(void);
 /* Median of count values (sorts them in place); 0 for none. */
 double roma_app_median(double *values, int count);
 
-/* Creates the folder (and parents) if needed; 0 on failure. */
+/* The name in names (NULL-terminated) closest to typed, or NULL when none is close. */
+const char *roma_app_suggest(const char *typed, const char *const *names);
+
+/* Creates the folder (and parents) if needed; 0 on failure, with errno set. */
 int roma_app_make_dir(const char *path);
 
 #ifdef __cplusplus

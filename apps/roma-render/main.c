@@ -2,6 +2,7 @@
  * and writes a stats JSON. The main job of libroma. */
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,19 +40,29 @@ static const char *usage =
     "  --frames N                  ROMA: frames accumulated, each with new jitter and new samples\n"
     "                              (frame f uses samples f*spp .. f*spp+spp-1, so the reference with\n"
     "                              --spp spp*frames traces the same directions)\n"
-    "  --ao-radius R               AO ray length in scene units (default: unbounded)\n"
+    "  --ao-radius R|inf           AO ray length in scene units (default: 10% of the scene's\n"
+    "                              diagonal, printed; inf: unbounded, which is 0 everywhere in a\n"
+    "                              closed room)\n"
     "  --lights N                  point lights for the many-lights effect (default 256)\n"
+    "  --light SPEC                a light added to the scene (repeatable; the direct and gi effects\n"
+    "                              use it): point:x,y,z:r,g,b:candela, spot:x,y,z:dx,dy,dz:r,g,b:\n"
+    "                              candela:degrees (outer cone), sun:dx,dy,dz:r,g,b:lux (dx,dy,dz:\n"
+    "                              where the light points)\n"
     "  --seed N                    sample-sequence seed (default 1)\n"
     "  --threads N                 CPU threads for the reference (default: all cores)\n"
     "  --out DIR                   output folder (default out); writes DIR/<effect>.<format>\n"
     "  --format LIST               output formats, comma-separated: pfm (linear float), png (8-bit\n"
     "                              sRGB), exr (OpenEXR, linear 32-bit float); default pfm,png\n"
-    "  --stats FILE.json           write device, scene size, settings and timings\n"
+    "  --stats FILE.json           write device, scene size, settings, timings and notes\n"
+    "  --exposure E                PNG only: linear values times E before sRGB (default 1)\n"
+    "  --background R,G,B          PNG only: colour (sRGB, 0..1) of pixels that see no geometry\n"
+    "                              (default 0.12,0.13,0.16, so white models stand out)\n"
     "  --time SECONDS              an animated glTF posed at this time of its clip (both tracers;\n"
     "                              default: the rest pose)\n"
     "  --clip N                    which animation --time plays (default 0)\n"
     "  --list-scenes               print the built-in scene names\n"
-    "  --quiet                     no progress line\n"
+    "  --quiet                     no progress lines (none either when stderr is not a terminal,\n"
+    "                              but a line per 10%)\n"
     "  --help\n";
 
 typedef struct options {
@@ -67,7 +78,26 @@ typedef struct options {
     uint32_t clip;
     int quiet;
     uint32_t formats;    /* FORMAT_* bits */
+    float ao_radius_auto; /* 1: ao_radius was derived from the scene */
+    float exposure;
+    float background[3];
+    roma_light extra_lights[16];
+    uint32_t extra_light_count;
+    uint32_t given;      /* GIVEN_* bits: options a tracer may ignore */
 } options;
+
+/* Options that only one tracer reads (a warning when the other ignores them). */
+enum {
+    GIVEN_FRAMES = 1u << 0, GIVEN_RES = 1u << 1, GIVEN_ANGULAR = 1u << 2, GIVEN_SHADOW_ANGULAR = 1u << 3,
+    GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
+    GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10
+};
+
+static const char *const option_names[] = {
+    "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
+    "--max-steps", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
+    "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--background",
+    "--time", "--clip", "--list-scenes", "--quiet", "--help", NULL};
 
 enum { FORMAT_PFM = 1u << 0, FORMAT_PNG = 1u << 1, FORMAT_EXR = 1u << 2 };
 
@@ -101,6 +131,7 @@ static int parse_u32(const char *s, uint32_t min, uint32_t max, uint32_t *out)
 
 static int parse_effects(const char *s, uint32_t *out)
 {
+    static const char *const names[] = {"ao", "direct", "gi", "lights", NULL};
     *out = 0;
     char buf[256];
     snprintf(buf, sizeof buf, "%s", s);
@@ -109,9 +140,69 @@ static int parse_effects(const char *s, uint32_t *out)
         else if (strcmp(tok, "direct") == 0) *out |= ROMA_EFFECT_DIRECT;
         else if (strcmp(tok, "gi") == 0) *out |= ROMA_EFFECT_GI;
         else if (strcmp(tok, "lights") == 0) *out |= ROMA_EFFECT_LIGHTS;
-        else return 0;
+        else {
+            const char *near = roma_app_suggest(tok, names);
+            fprintf(stderr, "roma-render: unknown effect '%s' (valid: ao, direct, gi, lights)%s%s%s\n", tok,
+                    near ? "; did you mean " : "", near ? near : "", near ? "?" : "");
+            return 0;
+        }
     }
     return *out != 0;
+}
+
+/* n comma-separated floats and nothing else. */
+static int parse_floats(const char *s, float *v, int n)
+{
+    for (int i = 0; i < n; ++i) {
+        char *end;
+        v[i] = strtof(s, &end);
+        if (end == s || !isfinite(v[i]))
+            return 0;
+        s = end;
+        if (i + 1 < n && *s++ != ',')
+            return 0;
+    }
+    return *s == '\0';
+}
+
+/* point:x,y,z:r,g,b:candela | spot:x,y,z:dx,dy,dz:r,g,b:candela:degrees | sun:dx,dy,dz:r,g,b:lux */
+static int parse_light(const char *spec, roma_light *l)
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", spec);
+    char *parts[6] = {0};
+    int n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ":", &save); tok && n < 6; tok = strtok_r(NULL, ":", &save))
+        parts[n++] = tok;
+    memset(l, 0, sizeof *l);
+    int ok = 0;
+    if (n == 4 && strcmp(parts[0], "point") == 0) {
+        l->type = ROMA_LIGHT_POINT;
+        ok = parse_floats(parts[1], l->position, 3) && parse_floats(parts[2], l->color, 3) &&
+             parse_floats(parts[3], &l->intensity, 1);
+    } else if (n == 6 && strcmp(parts[0], "spot") == 0) {
+        float degrees = 0.0f;
+        l->type = ROMA_LIGHT_SPOT;
+        ok = parse_floats(parts[1], l->position, 3) && parse_floats(parts[2], l->direction, 3) &&
+             parse_floats(parts[3], l->color, 3) && parse_floats(parts[4], &l->intensity, 1) &&
+             parse_floats(parts[5], &degrees, 1) && degrees > 0.0f && degrees < 90.0f;
+        l->outer_cone_angle = degrees * 3.14159265f / 180.0f;
+    } else if (n == 4 && strcmp(parts[0], "sun") == 0) {
+        l->type = ROMA_LIGHT_DIRECTIONAL;
+        ok = parse_floats(parts[1], l->direction, 3) && parse_floats(parts[2], l->color, 3) &&
+             parse_floats(parts[3], &l->intensity, 1);
+    }
+    if (ok && l->type != ROMA_LIGHT_POINT) {
+        float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                          l->direction[2] * l->direction[2]);
+        ok = len > 0.0f;
+        for (int i = 0; ok && i < 3; ++i)
+            l->direction[i] /= len;
+    }
+    if (!ok)
+        fprintf(stderr, "roma-render: bad light '%s' (point:x,y,z:r,g,b:candela, "
+                        "spot:x,y,z:dx,dy,dz:r,g,b:candela:degrees or sun:dx,dy,dz:r,g,b:lux)\n", spec);
+    return ok && l->intensity > 0.0f;
 }
 
 static int parse_camera(const char *s, roma_camera *cam)
@@ -141,6 +232,8 @@ static int parse_args(int argc, char **argv, options *o)
     o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8, o->max_steps = 8;
     o->skip = o->ao_skip = -1.0f;
     o->formats = FORMAT_PFM | FORMAT_PNG;
+    o->exposure = 1.0f;
+    o->background[0] = 0.12f, o->background[1] = 0.13f, o->background[2] = 0.16f;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -160,6 +253,20 @@ static int parse_args(int argc, char **argv, options *o)
         } else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--out") == 0) o->out = v;
         else if (strcmp(a, "--format") == 0) ok = parse_formats(v, &o->formats);
+        else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
+        else if (strcmp(a, "--background") == 0)
+            ok = parse_floats(v, o->background, 3) && o->background[0] >= 0.0f && o->background[1] >= 0.0f &&
+                 o->background[2] >= 0.0f && o->background[0] <= 1.0f && o->background[1] <= 1.0f &&
+                 o->background[2] <= 1.0f;
+        else if (strcmp(a, "--light") == 0) {
+            if (o->extra_light_count == sizeof o->extra_lights / sizeof o->extra_lights[0]) {
+                fprintf(stderr, "roma-render: at most 16 --light options\n");
+                return 0;
+            }
+            if (!parse_light(v, &o->extra_lights[o->extra_light_count]))
+                return 0;
+            ++o->extra_light_count;
+        }
         else if (strcmp(a, "--stats") == 0) o->stats = v;
         else if (strcmp(a, "--tracer") == 0) o->tracer = v;
         else if (strcmp(a, "--camera") == 0) ok = o->has_camera = parse_camera(v, &o->camera);
@@ -170,17 +277,25 @@ static int parse_args(int argc, char **argv, options *o)
             o->width = w, o->height = h;
         } else if (strcmp(a, "--effects") == 0) ok = parse_effects(v, &o->effects);
         else if (strcmp(a, "--spp") == 0) ok = parse_u32(v, 1, 1u << 20, &o->spp);
-        else if (strcmp(a, "--frames") == 0) ok = parse_u32(v, 1, 1u << 20, &o->frames);
+        else if (strcmp(a, "--frames") == 0) ok = parse_u32(v, 1, 1u << 20, &o->frames), o->given |= GIVEN_FRAMES;
         else if (strcmp(a, "--lights") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights);
         else if (strcmp(a, "--seed") == 0) ok = parse_u32(v, 0, UINT32_MAX, &o->seed);
-        else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, 1, 1024, &o->threads);
-        else if (strcmp(a, "--res") == 0)
+        else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, 1, 1024, &o->threads), o->given |= GIVEN_THREADS;
+        else if (strcmp(a, "--res") == 0) {
             ok = parse_u32(v, 32, 256, &o->res) && (o->res == 32 || o->res == 64 || o->res == 128 || o->res == 256);
-        else if (strcmp(a, "--angular") == 0) ok = parse_u32(v, 1, 16, &o->angular);
-        else if (strcmp(a, "--shadow-angular") == 0) ok = parse_u32(v, 1, 16, &o->shadow_angular);
-        else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps);
-        else if (strcmp(a, "--lights-per-frame") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame);
+            o->given |= GIVEN_RES;
+            if (!ok) {
+                fprintf(stderr, "roma-render: bad value for --res: '%s' (valid: 32, 64, 128, 256)\n", v);
+                return 0;
+            }
+        } else if (strcmp(a, "--angular") == 0) ok = parse_u32(v, 1, 16, &o->angular), o->given |= GIVEN_ANGULAR;
+        else if (strcmp(a, "--shadow-angular") == 0)
+            ok = parse_u32(v, 1, 16, &o->shadow_angular), o->given |= GIVEN_SHADOW_ANGULAR;
+        else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps), o->given |= GIVEN_MAX_STEPS;
+        else if (strcmp(a, "--lights-per-frame") == 0)
+            ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame), o->given |= GIVEN_LIGHTS_PER_FRAME;
         else if (strcmp(a, "--offset") == 0) {
+            o->given |= GIVEN_OFFSET;
             char *end;
             o->offset = strtof(v, &end);
             ok = end != v && !*end && o->offset > 0.0f && o->offset <= 64.0f;
@@ -189,6 +304,7 @@ static int parse_args(int argc, char **argv, options *o)
             float c = strtof(v, &end);
             ok = end != v && !*end && c >= 0.0f && c <= 64.0f;
             *(strcmp(a, "--skip") == 0 ? &o->skip : &o->ao_skip) = c;
+            o->given |= strcmp(a, "--skip") == 0 ? GIVEN_SKIP : GIVEN_AO_SKIP;
         } else if (strcmp(a, "--time") == 0) {
             char *end;
             o->time = strtof(v, &end);
@@ -196,11 +312,18 @@ static int parse_args(int argc, char **argv, options *o)
         } else if (strcmp(a, "--clip") == 0) {
             ok = parse_u32(v, 0, UINT32_MAX, &o->clip);
         } else if (strcmp(a, "--ao-radius") == 0) {
-            char *end;
-            o->ao_radius = strtof(v, &end);
-            ok = end != v && !*end && o->ao_radius >= 0.0f && isfinite(o->ao_radius);
+            o->given |= GIVEN_AO_RADIUS;
+            if (strcmp(v, "inf") == 0 || strcmp(v, "unbounded") == 0) {
+                o->ao_radius = 0.0f; /* the library's "unbounded" */
+            } else {
+                char *end;
+                o->ao_radius = strtof(v, &end);
+                ok = end != v && !*end && o->ao_radius > 0.0f && isfinite(o->ao_radius);
+            }
         } else {
-            fprintf(stderr, "roma-render: unknown option %s (see --help)\n", a);
+            const char *near = roma_app_suggest(a, option_names);
+            fprintf(stderr, "roma-render: unknown option %s%s%s%s (see --help)\n", a, near ? "; did you mean " : "",
+                    near ? near : "", near ? "?" : "");
             return 0;
         }
         if (!ok) {
@@ -210,7 +333,7 @@ static int parse_args(int argc, char **argv, options *o)
         i += used;
     }
     if (strcmp(o->tracer, "embree") != 0 && strcmp(o->tracer, "roma") != 0) {
-        fprintf(stderr, "roma-render: unknown tracer '%s' (embree or roma)\n", o->tracer);
+        fprintf(stderr, "roma-render: unknown tracer '%s' (valid: embree, roma)\n", o->tracer);
         return 0;
     }
     return 1;
@@ -220,6 +343,7 @@ typedef struct progress_state {
     const char *what;
     int quiet;
     int last_percent;
+    double start_ms; /* 0: set at the first call */
 } progress_state;
 
 /* One line per 10% in logs; an updating line on a terminal. */
@@ -231,10 +355,20 @@ static void on_progress(float fraction, void *user)
     if (p->quiet || percent == p->last_percent || (!tty && percent / 10 == p->last_percent / 10))
         return;
     p->last_percent = percent;
+    double now = roma_app_now_ms();
+    if (p->start_ms == 0.0)
+        p->start_ms = now;
+    double elapsed = (now - p->start_ms) / 1000.0;
+    double left = fraction > 0.0f ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    char timing[64] = "";
+    if (fraction > 0.0f && fraction < 1.0f)
+        snprintf(timing, sizeof timing, " (%.1f s, about %.1f s left)", elapsed, left);
+    else if (fraction >= 1.0f)
+        snprintf(timing, sizeof timing, " (%.1f s)", elapsed);
     if (tty)
-        fprintf(stderr, "\rroma-render: %s %3d%%%s", p->what, percent, percent >= 100 ? "\n" : "");
+        fprintf(stderr, "\rroma-render: %s %3d%%%s%s", p->what, percent, timing, percent >= 100 ? "\n" : "   ");
     else
-        fprintf(stderr, "roma-render: %s %3d%%\n", p->what, percent);
+        fprintf(stderr, "roma-render: %s %3d%%%s\n", p->what, percent, timing);
     fflush(stderr);
 }
 
@@ -252,10 +386,32 @@ typedef struct pass_record {
     uint64_t bytes;    /* GPU memory of the pass's own buffers (0 for CPU passes) */
 } pass_record;
 
+/* Warnings a person should see: an effect with nothing to do, an option a tracer ignores,
+ * a default chosen for them. Printed, and listed in the stats ("notes"). */
+typedef struct notes {
+    char text[16][256];
+    int count;
+} notes;
+
+static void note(notes *n, int quiet, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void note(notes *n, int quiet, const char *fmt, ...)
+{
+    if (n->count == 16)
+        return;
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(n->text[n->count], sizeof n->text[0], fmt, args);
+    va_end(args);
+    if (!quiet)
+        fprintf(stderr, "roma-render: note: %s\n", n->text[n->count]);
+    ++n->count;
+}
+
 typedef struct run_record {
     const char *device_kind, *device_name;
     uint32_t threads;
     pass_record passes[16];
+    notes notes;
     int pass_count;
     const roma_effect_stats *roma; /* ROMA tracer only */
 } run_record;
@@ -266,7 +422,33 @@ static void add_pass(run_record *run, const char *name, const char *clock, doubl
         run->passes[run->pass_count++] = (pass_record){name, clock, ms, 0};
 }
 
-static int write_outputs(const options *o, const char *name, const roma_image *img, roma_png_mode mode,
+static float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+/* The PNG's picture: exposure applied, and the background colour where the coverage says
+ * no geometry was seen (the PFM and EXR keep the exact values). */
+static roma_result write_png(const options *o, const roma_image *img, const roma_image *coverage, float scale,
+                             const char *path)
+{
+    roma_image shown = {0};
+    roma_result r = roma_image_alloc(&shown, img->width, img->height, 3);
+    if (r != ROMA_SUCCESS)
+        return r;
+    float exposure = scale * o->exposure;
+    int mask = coverage && coverage->pixels && coverage->width == img->width && coverage->height == img->height;
+    for (size_t i = 0; i < (size_t)img->width * img->height; ++i)
+        for (uint32_t c = 0; c < 3; ++c)
+            shown.pixels[3 * i + c] = mask && !(coverage->pixels[i * coverage->channels] > 0.0f)
+                                          ? srgb_to_linear(o->background[c]) / exposure
+                                          : img->pixels[i * img->channels + (img->channels == 1 ? 0 : c)];
+    r = roma_app_write_png(&shown, path, ROMA_PNG_SRGB, exposure);
+    roma_image_free(&shown);
+    return r;
+}
+
+static int write_outputs(const options *o, const char *name, const roma_image *img, const roma_image *coverage,
                          float scale)
 {
     char path[4096];
@@ -285,7 +467,7 @@ static int write_outputs(const options *o, const char *name, const roma_image *i
     }
     if (r == ROMA_SUCCESS && (o->formats & FORMAT_PNG)) {
         snprintf(path, sizeof path, "%s/%s.png", o->out, name);
-        r = roma_app_write_png(img, path, mode, scale);
+        r = write_png(o, img, coverage, scale, path);
         if (r == ROMA_SUCCESS)
             printf("wrote %s\n", path);
     }
@@ -301,7 +483,7 @@ static int write_outputs(const options *o, const char *name, const roma_image *i
 static int write_extras(const options *o, const roma_image *coverage, const roma_image *direct,
                         const roma_image *gi)
 {
-    if (coverage->pixels && !write_outputs(o, "coverage", coverage, ROMA_PNG_SRGB, 1.0f))
+    if (coverage->pixels && !write_outputs(o, "coverage", coverage, NULL, 1.0f))
         return 0;
     if (!direct->pixels || !gi->pixels)
         return 1;
@@ -310,7 +492,7 @@ static int write_extras(const options *o, const roma_image *coverage, const roma
         return 0;
     for (size_t i = 0; i < (size_t)direct->width * direct->height * 3; ++i)
         composed.pixels[i] = direct->pixels[i] + gi->pixels[i];
-    int ok = write_outputs(o, "composed", &composed, ROMA_PNG_SRGB, 1.0f);
+    int ok = write_outputs(o, "composed", &composed, coverage, 1.0f);
     roma_image_free(&composed);
     return ok;
 }
@@ -320,7 +502,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
 {
     FILE *f = fopen(o->stats, "w");
     if (!f) {
-        fprintf(stderr, "roma-render: cannot write %s\n", o->stats);
+        fprintf(stderr, "roma-render: cannot write %s: %s\n", o->stats, strerror(errno));
         return 0;
     }
     roma_json j = {.f = f};
@@ -361,6 +543,8 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_int(&j, "spp", o->spp);
     roma_json_int(&j, "frames", o->frames);
     roma_json_number(&j, "ao_radius", o->ao_radius > 0.0f ? o->ao_radius : INFINITY);
+    roma_json_string(&j, "ao_radius_from", o->ao_radius_auto ? "10% of the scene's diagonal" : "--ao-radius");
+    roma_json_int(&j, "added_lights", o->extra_light_count);
     roma_json_int(&j, "many_lights", o->lights);
     roma_json_int(&j, "seed", o->seed);
     if (strcmp(o->tracer, "roma") == 0) {
@@ -403,6 +587,10 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         }
         roma_json_end_array(&j);
     }
+    roma_json_begin_array(&j, "notes");
+    for (int i = 0; i < run->notes.count; ++i)
+        roma_json_string(&j, NULL, run->notes.text[i]);
+    roma_json_end_array(&j);
     /* CPU passes carry wall-clock times, GPU passes timestamp-query times. */
     roma_json_begin_array(&j, "passes");
     for (int i = 0; i < run->pass_count; ++i) {
@@ -424,16 +612,88 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     return 1;
 }
 
+/* A copy of scene with lights appended (--light). */
+static roma_result with_lights(const roma_scene *scene, const roma_light *extra, uint32_t count, roma_scene **out)
+{
+    roma_scene_view v;
+    roma_result r = roma_scene_get_view(scene, &v);
+    if (r != ROMA_SUCCESS)
+        return r;
+    roma_light *lights = malloc(sizeof *lights * (v.light_count + count));
+    if (!lights)
+        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    memcpy(lights, v.lights, sizeof *lights * v.light_count);
+    memcpy(lights + v.light_count, extra, sizeof *lights * count);
+    roma_scene_desc d = {.positions = v.positions, .normals = v.normals, .vertex_count = v.vertex_count,
+                         .indices = v.indices, .triangle_count = v.triangle_count,
+                         .triangle_materials = v.triangle_materials, .materials = v.materials,
+                         .material_count = v.material_count, .lights = lights, .light_count = v.light_count + count,
+                         .camera = v.has_camera ? &v.camera : NULL, .name = v.name};
+    r = roma_scene_create(&d, out);
+    free(lights);
+    return r;
+}
+
+/* Defaults chosen for the user and effects or options with nothing to do, said once. */
+static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
+{
+    int roma = strcmp(o->tracer, "roma") == 0;
+    float dx = sv->bounds_max[0] - sv->bounds_min[0], dy = sv->bounds_max[1] - sv->bounds_min[1],
+          dz = sv->bounds_max[2] - sv->bounds_min[2];
+    if ((o->effects & ROMA_EFFECT_AO) && !(o->given & GIVEN_AO_RADIUS)) {
+        o->ao_radius = 0.1f * sqrtf(dx * dx + dy * dy + dz * dz);
+        o->ao_radius_auto = 1;
+        note(n, o->quiet, "AO radius %.4g: 10%% of the scene's diagonal (--ao-radius R to choose, --ao-radius inf "
+             "for unbounded rays)", (double)o->ao_radius);
+    }
+    int lights = sv->light_count > 0, emitters = sv->emissive_triangle_count > 0;
+    int point_or_spot = 0;
+    for (uint32_t i = 0; i < sv->light_count; ++i)
+        point_or_spot |= sv->lights[i].type == ROMA_LIGHT_POINT || sv->lights[i].type == ROMA_LIGHT_SPOT;
+    if ((o->effects & ROMA_EFFECT_DIRECT) && !lights && !emitters)
+        note(n, o->quiet, "direct: the scene has no light (no punctual light, no emissive triangle): direct.pfm is "
+             "black; add one with --light");
+    if ((o->effects & ROMA_EFFECT_GI) && !lights && !emitters)
+        note(n, o->quiet, "gi: the scene has no light to bounce: gi.pfm is black; add one with --light");
+    else if ((o->effects & ROMA_EFFECT_GI) && roma && !point_or_spot)
+        note(n, o->quiet, "gi: ROMA's GI carries only the light of point and spot lights (through their reflective "
+             "shadow maps); this scene has none, so gi.pfm is black while the reference's is not");
+    else if ((o->effects & ROMA_EFFECT_GI) && roma && (emitters || point_or_spot < lights))
+        note(n, o->quiet, "gi: ROMA's GI carries only the light of point and spot lights; the scene's %s "
+             "give no bounce here (the reference's do)", emitters ? "area lights" : "directional lights");
+    static const struct { uint32_t bit; const char *name; } roma_only[] = {
+        {GIVEN_FRAMES, "--frames"}, {GIVEN_RES, "--res"}, {GIVEN_ANGULAR, "--angular"},
+        {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
+        {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"}};
+    for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
+        if (!roma && (o->given & roma_only[i].bit))
+            note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,
+                 roma_only[i].bit == GIVEN_FRAMES ? " (the reference takes all its samples at once: --spp)" : "");
+    if (roma && (o->given & GIVEN_THREADS))
+        note(n, o->quiet, "--threads sets the reference's CPU threads: --tracer roma ignores it");
+}
+
 int main(int argc, char **argv)
 {
     options o;
     if (!parse_args(argc, argv, &o))
         return 2;
     roma_scene *scene = NULL;
+    double started = roma_app_now_ms();
     roma_result r = roma_app_load_scene(o.scene, NULL, &scene);
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-render: cannot load scene '%s': %s\n", o.scene, roma_result_string(r));
         return 1;
+    }
+    if (o.extra_light_count) { /* --light: the scene with the lights added */
+        roma_scene *lit = NULL;
+        r = with_lights(scene, o.extra_lights, o.extra_light_count, &lit);
+        roma_scene_destroy(scene);
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: cannot add the --light lights: %s\n", roma_result_string(r));
+            return 1;
+        }
+        scene = lit;
     }
     if (o.time >= 0.0f) { /* both tracers render the same posed triangles */
         roma_scene *posed = NULL;
@@ -448,13 +708,16 @@ int main(int argc, char **argv)
     }
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);
+    run_record run = {.device_kind = "cpu", .device_name = "Embree 3 reference (CPU)",
+                      .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
+    say_what_happens(&o, &sv, &run.notes);
     roma_camera cam = o.camera;
     if (!o.has_camera)
         roma_scene_default_camera(scene, (float)o.width / (float)o.height, &cam);
     struct stat out_stat;
     const int out_existed = stat(o.out, &out_stat) == 0;
     if (!roma_app_make_dir(o.out)) {
-        fprintf(stderr, "roma-render: cannot create output folder %s\n", o.out);
+        fprintf(stderr, "roma-render: cannot create output folder %s: %s\n", o.out, strerror(errno));
         roma_scene_destroy(scene);
         return 1;
     }
@@ -469,9 +732,11 @@ int main(int argc, char **argv)
         roma_scene_destroy(scene);
         return 1;
     }
+    int roma = strcmp(o.tracer, "roma") == 0;
     if (!o.quiet)
-        fprintf(stderr, "roma-render: %s, %u triangles, %ux%u, %u spp\n", sv.name ? sv.name : o.scene,
-                sv.triangle_count, o.width, o.height, o.spp);
+        fprintf(stderr, "roma-render: %s, %u triangles, %ux%u, %s, %u samples per pixel%s\n",
+                sv.name ? sv.name : o.scene, sv.triangle_count, o.width, o.height, roma ? "ROMA" : "Embree",
+                roma ? o.spp * o.frames : o.spp, roma && o.frames > 1 ? " (spp x frames)" : "");
 
     float *light_positions = NULL;
     if (o.effects & ROMA_EFFECT_LIGHTS) {
@@ -484,8 +749,6 @@ int main(int argc, char **argv)
         roma_many_lights_positions(sv.bounds_min, sv.bounds_max, o.lights, o.seed, light_positions);
     }
 
-    run_record run = {.device_kind = "cpu", .device_name = "Embree 3 reference (CPU)",
-                      .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
     add_pass(&run, "embree_scene_build", "cpu_wall", build_ms);
     int status = 0;
     roma_context *ctx = NULL;
@@ -514,6 +777,10 @@ int main(int argc, char **argv)
                 .offset_cells = o.offset,
                 .many_light_positions = light_positions,
             };
+            progress_state frames_progress = {"frames", o.quiet, -1, 0.0};
+            on_progress(0.0f, &frames_progress);
+            desc.progress = on_progress;
+            desc.progress_user_data = &frames_progress;
             roma_effect_images images;
             double start = roma_app_now_ms();
             r = roma_effect_render(ctx, scene, &desc, &images, &roma_stats);
@@ -529,15 +796,15 @@ int main(int argc, char **argv)
                     run.passes[run.pass_count - 1].bytes = roma_stats.pass_bytes[p];
                 }
                 run.roma = &roma_stats;
-                if ((o.effects & ROMA_EFFECT_AO) && !write_outputs(&o, "ao", &images.ao, ROMA_PNG_SRGB, 1.0f))
+                if ((o.effects & ROMA_EFFECT_AO) && !write_outputs(&o, "ao", &images.ao, &images.coverage, 1.0f))
                     status = 1;
                 if ((o.effects & ROMA_EFFECT_DIRECT) &&
-                    !write_outputs(&o, "direct", &images.direct, ROMA_PNG_SRGB, 1.0f))
+                    !write_outputs(&o, "direct", &images.direct, &images.coverage, 1.0f))
                     status = 1;
-                if ((o.effects & ROMA_EFFECT_GI) && !write_outputs(&o, "gi", &images.gi, ROMA_PNG_SRGB, 1.0f))
+                if ((o.effects & ROMA_EFFECT_GI) && !write_outputs(&o, "gi", &images.gi, &images.coverage, 1.0f))
                     status = 1;
                 if ((o.effects & ROMA_EFFECT_LIGHTS) &&
-                    !write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights))
+                    !write_outputs(&o, "lights", &images.lights, &images.coverage, 1.0f / (float)o.lights))
                     status = 1;
                 if (status == 0 && !write_extras(&o, &images.coverage, &images.direct, &images.gi))
                     status = 1;
@@ -552,7 +819,8 @@ int main(int argc, char **argv)
         if (!(o.effects & effects[e].bit))
             continue;
         /* One effect per call so that each gets its own time and progress line. */
-        progress_state progress = {effects[e].name, o.quiet, -1};
+        progress_state progress = {effects[e].name, o.quiet, -1, 0.0};
+        on_progress(0.0f, &progress);
         roma_ref_render_desc desc = {
             .camera = cam, .width = o.width, .height = o.height, .effects = effects[e].bit,
             .spp = o.spp, .ao_radius = o.ao_radius, .seed = o.seed,
@@ -570,11 +838,11 @@ int main(int argc, char **argv)
         }
         int ok = 1;
         switch (effects[e].bit) {
-        case ROMA_EFFECT_AO: ok = write_outputs(&o, "ao", &images.ao, ROMA_PNG_SRGB, 1.0f); break;
-        case ROMA_EFFECT_DIRECT: ok = write_outputs(&o, "direct", &images.direct, ROMA_PNG_SRGB, 1.0f); break;
-        case ROMA_EFFECT_GI: ok = write_outputs(&o, "gi", &images.gi, ROMA_PNG_SRGB, 1.0f); break;
+        case ROMA_EFFECT_AO: ok = write_outputs(&o, "ao", &images.ao, &images.coverage, 1.0f); break;
+        case ROMA_EFFECT_DIRECT: ok = write_outputs(&o, "direct", &images.direct, &images.coverage, 1.0f); break;
+        case ROMA_EFFECT_GI: ok = write_outputs(&o, "gi", &images.gi, &images.coverage, 1.0f); break;
         case ROMA_EFFECT_LIGHTS:
-            ok = write_outputs(&o, "lights", &images.lights, ROMA_PNG_SRGB, 1.0f / (float)o.lights);
+            ok = write_outputs(&o, "lights", &images.lights, &images.coverage, 1.0f / (float)o.lights);
             break;
         }
         /* Kept for the coverage mask and the composed image. */
@@ -602,6 +870,8 @@ int main(int argc, char **argv)
     roma_image_free(&kept_gi);
     if (status == 0 && o.stats && !write_stats(&o, &sv, &cam, &run))
         status = 1;
+    if (status == 0 && !o.quiet)
+        fprintf(stderr, "roma-render: done in %.1f s\n", (roma_app_now_ms() - started) / 1000.0);
     roma_context_destroy(ctx);
     free(light_positions);
     roma_ref_destroy(ref);

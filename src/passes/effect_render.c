@@ -351,6 +351,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
         for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
             if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p))
                 stats->pass_ms[p] += scope_ms(R->timer, roma_pass_name((roma_pass_kind)p));
+        if (r == ROMA_SUCCESS && d->progress)
+            d->progress((float)(f + 1) / (float)frames, d->progress_user_data);
     }
     return r;
 }

@@ -70,6 +70,9 @@ typedef struct roma_effect_render_desc {
      * tests fewer than all lights). */
     roma_gbuffer_pixel *out_gbuffer;
     uint32_t *out_light_mask;
+    /* Called after each frame's submission has finished, with frames done / frames. */
+    void (*progress)(float fraction, void *user_data);
+    void *progress_user_data;
 } roma_effect_render_desc;
 
 /* Same layout as the reference's images: ao 1 channel (background 1), direct and

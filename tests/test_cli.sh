@@ -102,6 +102,26 @@ expect_status 1 $? "roma-compare ao.pfm direct.pfm (channel mismatch)"
 "$compare" "$out/ao.pfm" >/dev/null 2>"$dir/compare_usage.err"
 expect_status 2 $? "roma-compare with one image"
 
+# roma-compare for people: labelled figures, relative error and bias, the heat map's
+# scale and legend, a pass/fail threshold, JSON, and the mask's own errors.
+"$compare" "$out/direct.pfm" "$out/composed.pfm" --mask "$out/coverage.pfm" --heatmap "$dir/heat.png" \
+  --json "$dir/compare.json" --threshold 1000 >"$dir/people.cmp" 2>&1
+expect_status 0 $? "roma-compare with --threshold 1000" || cat "$dir/people.cmp" >&2
+for key in "^A  " "^B  " "^relative .*mean_abs / mean_b" "^bias .*mean_a - mean_b" "^heat_scale " "^pass: "; do
+  grep -q "$key" "$dir/people.cmp" || fail "roma-compare does not print '$key'"
+done
+python3 - "$dir/compare.json" <<'PY' || fail "roma-compare --json is not the figures as JSON"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["result"] == "pass" and j["pixels"] > 0 and abs(j["bias"] - (j["mean_a"] - j["mean_b"])) < 1e-6, j
+PY
+"$compare" "$out/direct.pfm" "$out/composed.pfm" --threshold 0 >"$dir/threshold.cmp" 2>&1
+expect_status 3 $? "roma-compare --threshold 0 on images that differ"
+grep -q "^FAIL: mean_abs .* is above the threshold 0" "$dir/threshold.cmp" || fail "roma-compare --threshold: no FAIL line"
+"$compare" "$out/ao.pfm" "$out/ao.pfm" --mask "$out/direct.pfm" >/dev/null 2>"$dir/mask3.err"
+expect_status 1 $? "roma-compare with a 3-channel mask"
+grep -q "the mask .* has 3 channels; a mask has 1" "$dir/mask3.err" || fail "a 3-channel mask is not named as the cause"
+
 # --- AO of the closed room: unbounded is exactly 0, a short radius is not ---
 # ao_mean LABEL ARGS...: renders AO into $dir/LABEL and prints its mean.
 ao_mean() {
@@ -277,6 +297,21 @@ done
 "$render" --size 8x8 --spp 1 --quiet --format tiff --out "$dir/tiff" >/dev/null 2>"$dir/tiff.err"
 expect_status 2 $? "roma-render --format tiff"
 grep -q "valid: pfm, png, exr" "$dir/tiff.err" || fail "an unknown --format does not list the valid formats"
+
+# --up turns a scene authored with another up axis: tabletop.gltf is y-down; turned, its
+# bounds in y are the negated bounds of the file (a rotation by 180 degrees about x).
+for up in +y -y; do
+  "$render" --scene "$ROMA_SCENES_DIR/tabletop.gltf" --up "$up" --size 8x6 --spp 1 --quiet --ao-radius 1 \
+    --out "$dir/up$up" --stats "$dir/up$up.json" >/dev/null 2>"$dir/up$up.err"
+  expect_status 0 $? "roma-render --up $up" || cat "$dir/up$up.err" >&2
+done
+python3 - "$dir/up+y.json" "$dir/up-y.json" <<'PY' || fail "--up -y did not turn tabletop.gltf upside up"
+import json, sys
+a, b = (json.load(open(p))["scene"] for p in sys.argv[1:])
+assert abs(a["bounds_min"][1] + b["bounds_max"][1]) < 1e-4 and abs(a["bounds_max"][1] + b["bounds_min"][1]) < 1e-4, (a, b)
+assert abs(a["bounds_min"][0] - b["bounds_min"][0]) < 1e-4, (a, b)
+PY
+says "--up sideways" "valid: +y, -y, +z" --up sideways --out "$dir/x11"
 
 # An unwritable stats file or a malformed number is an error, not a silent success.
 "$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"

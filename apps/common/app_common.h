@@ -36,6 +36,11 @@ double roma_app_now_ms(void);
 /* Median of count values (sorts them in place); 0 for none. */
 double roma_app_median(double *values, int count);
 
+/* --up +y|-y|+z: a copy of scene turned so that the given axis points up (+y). Animation
+ * data is not kept (turn a posed copy). ROMA_ERROR_INVALID_ARGUMENT for another value. */
+roma_result roma_app_reorient(const roma_scene *scene, const char *up, roma_scene **out);
+int roma_app_valid_up(const char *up);
+
 /* The name in names (NULL-terminated) closest to typed, or NULL when none is close. */
 const char *roma_app_suggest(const char *typed, const char *const *names);
 

@@ -57,6 +57,8 @@ static const char *usage =
     "  --exposure E                PNG only: linear values times E before sRGB (default 1)\n"
     "  --background R,G,B          PNG only: colour (sRGB, 0..1) of pixels that see no geometry\n"
     "                              (default 0.12,0.13,0.16, so white models stand out)\n"
+    "  --up +y|-y|+z               the scene's up axis, turned to +y (tabletop.gltf: -y; z-up CAD\n"
+    "                              files: +z; default +y)\n"
     "  --time SECONDS              an animated glTF posed at this time of its clip (both tracers;\n"
     "                              default: the rest pose)\n"
     "  --clip N                    which animation --time plays (default 0)\n"
@@ -84,6 +86,7 @@ typedef struct options {
     roma_light extra_lights[16];
     uint32_t extra_light_count;
     uint32_t given;      /* GIVEN_* bits: options a tracer may ignore */
+    const char *up;      /* --up; NULL = +y */
 } options;
 
 /* Options that only one tracer reads (a warning when the other ignores them). */
@@ -97,7 +100,7 @@ static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
     "--max-steps", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--background",
-    "--time", "--clip", "--list-scenes", "--quiet", "--help", NULL};
+    "--time", "--clip", "--up", "--list-scenes", "--quiet", "--help", NULL};
 
 enum { FORMAT_PFM = 1u << 0, FORMAT_PNG = 1u << 1, FORMAT_EXR = 1u << 2 };
 
@@ -253,6 +256,13 @@ static int parse_args(int argc, char **argv, options *o)
         } else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--out") == 0) o->out = v;
         else if (strcmp(a, "--format") == 0) ok = parse_formats(v, &o->formats);
+        else if (strcmp(a, "--up") == 0) {
+            o->up = v;
+            if (!roma_app_valid_up(v)) {
+                fprintf(stderr, "roma-render: bad value for --up: '%s' (valid: +y, -y, +z)\n", v);
+                return 0;
+            }
+        }
         else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
         else if (strcmp(a, "--background") == 0)
             ok = parse_floats(v, o->background, 3) && o->background[0] >= 0.0f && o->background[1] >= 0.0f &&
@@ -685,16 +695,6 @@ int main(int argc, char **argv)
         fprintf(stderr, "roma-render: cannot load scene '%s': %s\n", o.scene, roma_result_string(r));
         return 1;
     }
-    if (o.extra_light_count) { /* --light: the scene with the lights added */
-        roma_scene *lit = NULL;
-        r = with_lights(scene, o.extra_lights, o.extra_light_count, &lit);
-        roma_scene_destroy(scene);
-        if (r != ROMA_SUCCESS) {
-            fprintf(stderr, "roma-render: cannot add the --light lights: %s\n", roma_result_string(r));
-            return 1;
-        }
-        scene = lit;
-    }
     if (o.time >= 0.0f) { /* both tracers render the same posed triangles */
         roma_scene *posed = NULL;
         r = roma_scene_pose(scene, &(roma_animator_pose){.clip = o.clip, .time = o.time}, NULL, &posed);
@@ -705,6 +705,26 @@ int main(int argc, char **argv)
             return 1;
         }
         scene = posed;
+    }
+    if (o.up && strcmp(o.up, "+y") != 0) { /* --up: turned after posing, before lights are added */
+        roma_scene *turned = NULL;
+        r = roma_app_reorient(scene, o.up, &turned);
+        roma_scene_destroy(scene);
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: cannot turn the scene (--up %s): %s\n", o.up, roma_result_string(r));
+            return 1;
+        }
+        scene = turned;
+    }
+    if (o.extra_light_count) { /* --light: the scene with the lights added */
+        roma_scene *lit = NULL;
+        r = with_lights(scene, o.extra_lights, o.extra_light_count, &lit);
+        roma_scene_destroy(scene);
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: cannot add the --light lights: %s\n", roma_result_string(r));
+            return 1;
+        }
+        scene = lit;
     }
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);

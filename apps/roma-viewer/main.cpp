@@ -46,6 +46,7 @@ const char *kUsage =
     "                       a glTF file dropped on the window opens too\n"
     "  --camera ex,ey,ez,tx,ty,tz,fovy   start camera (the string roma-render takes)\n"
     "  --size WxH           window or image size (default 1280x720)\n"
+    "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
     "  --view NAME          composed, ao, direct, albedo, normal, map, hit-distance\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
@@ -73,7 +74,7 @@ struct options {
     uint32_t width = 1280, height = 720;
     bool headless = false, validation = false, play = false, compare_reference = false;
     uint32_t frames = 0;
-    std::string screenshot, linear, device;
+    std::string screenshot, linear, device, up = "+y";
     viewer_settings settings;
 };
 
@@ -168,6 +169,12 @@ int parse_args(int argc, char **argv, options &o)
             o.screenshot = v;
         } else if (a == "--linear") {
             o.linear = v;
+        } else if (a == "--up") {
+            o.up = v;
+            if (!roma_app_valid_up(v)) {
+                std::fprintf(stderr, "roma-viewer: bad value for --up: '%s' (valid: +y, -y, +z)\n", v);
+                return 2;
+            }
         } else if (a == "--device") {
             o.device = v;
         } else {
@@ -353,6 +360,17 @@ bool open_scene(viewer &v, const std::string &name)
     if (r != ROMA_SUCCESS) {
         std::fprintf(stderr, "roma-viewer: cannot open %s: %s\n", name.c_str(), roma_result_string(r));
         return false;
+    }
+    if (v.opt.up != "+y") {
+        roma_scene_view sv;
+        roma_scene_get_view(scene, &sv);
+        roma_scene *turned = nullptr;
+        if (sv.animation.animation_count > 0) {
+            std::fprintf(stderr, "roma-viewer: --up is not applied to an animated scene\n");
+        } else if (roma_app_reorient(scene, v.opt.up.c_str(), &turned) == ROMA_SUCCESS) {
+            roma_scene_destroy(scene);
+            scene = turned;
+        }
     }
     free_scene(v);
     v.scene = scene;

@@ -10,7 +10,7 @@
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/accuracy}
-scenes_dir=${ROMA_SHARED_SCENES_DIR:-../shared/scenes}
+scenes_dir=${ROMA_SCENES_DIR:-scenes}
 render=$build/apps/roma-render
 compare=$build/apps/roma-compare
 mkdir -p "$out"
@@ -51,8 +51,8 @@ row() {
 }
 
 echo "== Ambient occlusion, RES 128, A = 4 (MAE target <= 0.05): MAE, mean ROMA, mean reference, relative bias, relative MAE"
-for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.glb|" \
-            "engine|$scenes_dir/2CylinderEngine.glb|"; do
+for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.glb|--ao-radius inf" \
+            "engine|$scenes_dir/2CylinderEngine.glb|--ao-radius inf"; do
   IFS='|' read -r name scene extra <<<"$spec"
   # shellcheck disable=SC2086
   ref "$name" "$scene" ao $extra

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Every tool command of the README runs as written, so the README cannot drift from the
+# tools: each indented line that starts with build/apps/ is run in a scratch folder where
+# build/ is this build and scenes/ the repository's, made small by options appended after
+# it (a later option wins): roma-render 24x18 pixels, 1 sample; roma-viewer headless, one
+# frame. `make` lines (the set-up commands) are what CI runs anyway.
+# Usage: test_readme.sh README BUILD_DIR SCENES_DIR SCRATCH_DIR
+set -u
+readme=$1
+build=$(realpath "$2")
+scenes=$(realpath "$3")
+dir=$4
+rm -rf "$dir"
+mkdir -p "$dir"
+ln -s "$build" "$dir/build"
+ln -s "$scenes" "$dir/scenes"
+cd "$dir" || exit 1
+
+failures=0
+count=0
+while IFS= read -r line; do
+  count=$((count + 1))
+  read -r -a words <<<"$line"
+  tool=$(basename "${words[0]}")
+  case "$tool" in
+    roma-render) extra=(--size 24x18 --spp 1 --quiet) ;;
+    roma-viewer) extra=(--headless --frames 1 --size 32x24) ;;
+    example-engine) extra=(--frames 2) ;;
+    *) extra=() ;;
+  esac
+  [ "${words[1]:-}" = "--help" ] && extra=()
+  if ! "${words[@]}" "${extra[@]}" >"cmd$count.out" 2>&1; then
+    echo "FAIL: README command failed: $line" >&2
+    tail -5 "cmd$count.out" >&2
+    failures=$((failures + 1))
+  fi
+done < <(sed -n 's/^    \(build\/apps\/[^#]*\).*/\1/p' "$readme" | sed 's/[[:space:]]*$//')
+
+if [ "$count" -lt 8 ]; then
+  echo "FAIL: only $count tool commands found in $readme" >&2
+  failures=$((failures + 1))
+fi
+if [ "$failures" -ne 0 ]; then
+  echo "test_readme: $failures of $count README commands failed (outputs in $dir)" >&2
+  exit 1
+fi
+echo "test_readme: all $count README commands ran"

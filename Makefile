@@ -7,6 +7,7 @@
 #   make test-consumers  build the core library alone (Vulkan and glslang only); install into a temporary prefix and build two out-of-tree consumers
 #                        against it (CMake package, pkg-config); then the same with the Debian
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
+#   make docs            the API reference (doxygen) in build/docs/html
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -14,7 +15,7 @@ OUT ?= out
 ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 
-.PHONY: deps configure build run test test-sanitize test-fuzz test-consumers clean
+.PHONY: deps configure build run test test-sanitize test-fuzz test-consumers docs clean
 
 deps:
 	./install-deps.sh
@@ -62,6 +63,9 @@ test-consumers: build
 	bash tests/consumers/run.sh core . $(BUILD)/consumers/core
 	bash tests/consumers/run.sh install $(BUILD) $(BUILD)/consumers/install
 	bash tests/consumers/run.sh deb $(BUILD) $(BUILD)/consumers/deb
+
+docs: configure
+	cmake --build $(BUILD) --target docs
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(OUT)

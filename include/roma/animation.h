@@ -1,4 +1,5 @@
-/* libroma: playing a scene's glTF animations (node animations and skins) on the GPU.
+/** @file
+ * libroma: playing a scene's glTF animations (node animations and skins) on the GPU.
  *
  * A roma_animator evaluates a clip at a time on the host (keyframes -> node transforms
  * -> joint matrices: a few hundred matrices, not vertices) and records a compute pass
@@ -31,38 +32,45 @@
 extern "C" {
 #endif
 
+/** Plays a scene's glTF skins and node animations on the GPU (opaque). Used by one thread at a
+ * time, like its context.
+ */
 typedef struct roma_animator roma_animator;
 
+/** Settings of roma_animator_create; the zero value is the default. */
 typedef struct roma_animator_desc {
-    uint32_t frames_in_flight; /* slots for the per-frame matrices, [1, 8]; 0 = 2 */
-    roma_logger logger;        /* 0 = the context's */
+    uint32_t frames_in_flight; /**< slots for the per-frame matrices, [1, 8]; 0 = 2 */
+    roma_logger logger;        /**< 0 = the context's */
 } roma_animator_desc;
 
-/* The scene must carry animation data (roma_scene_view.animation with per-vertex
+/** The scene must carry animation data (roma_scene_view.animation with per-vertex
  * arrays, as the glTF loader keeps for skinned or animated files):
  * ROMA_ERROR_INVALID_ARGUMENT otherwise. Uploads the per-vertex skinning data and the
  * rest pose (submits and waits once; not a per-frame call). */
 ROMA_API roma_result roma_animator_create(roma_context *context, const roma_scene *scene, const roma_animator_desc *desc,
                                           roma_animator **out_animator);
-/* Accepts NULL. The caller makes sure no submitted work still uses it. */
+/** Accepts NULL. The caller makes sure no submitted work still uses it. */
 ROMA_API void roma_animator_destroy(roma_animator *animator);
 
+/** A clip and a time in it. */
 typedef struct roma_animator_pose {
-    uint32_t clip;   /* index of the animation, < roma_animator_info.clip_count */
-    float time;      /* seconds; wraps at the clip's duration; negative = 0 */
+    uint32_t clip;   /**< index of the animation, < roma_animator_info.clip_count */
+    float time;      /**< seconds; wraps at the clip's duration; negative = 0 */
 } roma_animator_pose;
 
+/** Where one record put this frame's positions (roma_animator_record). */
 typedef struct roma_animator_output {
-    VkDeviceAddress positions;          /* this frame's skinned positions (3 floats per vertex) */
-    VkDeviceAddress previous_positions; /* the previous record's (the rest pose before the first) */
-    VkBuffer positions_buffer, previous_positions_buffer;
-    /* Bounds every skinned vertex lies in: the union of each joint's rest-pose vertex box
+    VkDeviceAddress positions;          /**< this frame's skinned positions (3 floats per vertex) */
+    VkDeviceAddress previous_positions; /**< the previous record's (the rest pose before the first) */
+    VkBuffer positions_buffer; /**< the buffer positions lies in (as a storage or vertex buffer of the caller) */
+    VkBuffer previous_positions_buffer; /**< the buffer previous_positions lies in */
+    /** Bounds every skinned vertex lies in: the union of each joint's rest-pose vertex box
      * under its joint matrix (and each node's under its world matrix), so it holds however
      * the weights mix. A volume for roma_map_frame_desc. */
     roma_box bounds;
 } roma_animator_output;
 
-/* Records the skinning of `pose` into cmd (compute; a barrier after every earlier
+/** Records the skinning of `pose` into cmd (compute; a barrier after every earlier
  * command first, so the previous frame's readers of the buffer it overwrites are done).
  * The matrices go to the slot's storage. The written positions are visible to
  * roma_map_record_build (which opens with its own barrier); for other readers the
@@ -70,30 +78,32 @@ typedef struct roma_animator_output {
 ROMA_API roma_result roma_animator_record(roma_animator *animator, VkCommandBuffer cmd, uint32_t slot,
                                           const roma_animator_pose *pose, roma_animator_output *out);
 
-/* The same pose evaluated and skinned on the host (the GPU pass's reference, and a path
+/** The same pose evaluated and skinned on the host (the GPU pass's reference, and a path
  * for CPU callers): out_positions receives 3 floats per vertex. */
 ROMA_API roma_result roma_animator_pose_cpu(roma_animator *animator, const roma_animator_pose *pose, float *out_positions,
                                             roma_box *out_bounds);
 
+/** What an animator plays (roma_animator_get_info). */
 typedef struct roma_animator_info {
-    uint32_t vertex_count;
-    uint32_t clip_count;
-    uint32_t joint_count;
-    uint32_t node_count;
+    uint32_t vertex_count; /**< vertices the animator skins: the scene's */
+    uint32_t clip_count; /**< animations (glTF animations) of the scene */
+    uint32_t joint_count; /**< skin joints over all skins */
+    uint32_t node_count; /**< nodes of the glTF node hierarchy */
 } roma_animator_info;
 
+/** What the animator plays. ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (out_info zeroed). */
 ROMA_API roma_result roma_animator_get_info(const roma_animator *animator, roma_animator_info *out_info);
-/* Seconds of clip `clip` (its last key time). */
+/** Seconds of clip `clip` (its last key time). */
 ROMA_API roma_result roma_animator_clip_duration(const roma_animator *animator, uint32_t clip, float *out_seconds);
 
-/* A copy of `scene` posed at `pose` on the host, no GPU involved: positions skinned as the
+/** A copy of `scene` posed at `pose` on the host, no GPU involved: positions skinned as the
  * animator skins them, normals recomputed from the posed faces, materials and animation
  * data kept; lights and the camera stay where the file puts them at rest. For offline renderers and tools (roma-render --time). The same
  * errors as roma_animator_create for a scene without animation data. */
 ROMA_API roma_result roma_scene_pose(const roma_scene *scene, const roma_animator_pose *pose, const roma_logger *logger,
                                      roma_scene **out_posed);
 
-/* Downloads the positions of the last recorded (and completed) skinning, 3 floats per
+/** Downloads the positions of the last recorded (and completed) skinning, 3 floats per
  * vertex. Blocking; for tests and tools. */
 ROMA_API roma_result roma_animator_download_positions(roma_animator *animator, float *out_positions, uint32_t vertex_count);
 
@@ -101,4 +111,4 @@ ROMA_API roma_result roma_animator_download_positions(roma_animator *animator, f
 }
 #endif
 
-#endif /* ROMA_ANIMATION_H */
+#endif /**< ROMA_ANIMATION_H */

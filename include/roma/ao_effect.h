@@ -1,4 +1,5 @@
-/* libroma: ambient occlusion from the engine's own G-buffer, recorded into the engine's
+/** @file
+ * libroma: ambient occlusion from the engine's own G-buffer, recorded into the engine's
  * command buffer (the first of the public effect passes).
  *
  * Inputs are the engine's images, read with texelFetch through a sampler libroma owns
@@ -32,44 +33,57 @@
 extern "C" {
 #endif
 
-/* Defaults, resolved in one place (roma_ao_settings_resolve). */
+/** Defaults, resolved in one place (roma_ao_settings_resolve). */
 #define ROMA_DEFAULT_AO_SAMPLES 1u
-/* AO rays start this many trace cells past their (offset) origin: the cells around a
+/** AO rays start this many trace cells past their (offset) origin: the cells around a
  * surface hold the surface itself (docs/accuracy.md measures the choice). */
 #define ROMA_DEFAULT_AO_SKIP_CELLS 1.6f
 
+/** Per-record AO settings; the zero value is the default (roma_ao_settings_resolve). */
 typedef struct roma_ao_settings {
-    uint32_t samples;     /* rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
-    float radius;         /* ray length, world units; 0 = unbounded */
-    float offset_cells;   /* origin offset along the geometric normal, trace cells; 0 = ROMA_DEFAULT_OFFSET_CELLS */
-    float skip_cells;     /* rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
+    uint32_t samples;     /**< rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
+    float radius;         /**< ray length, world units; 0 = unbounded */
+    float offset_cells;   /**< origin offset along the geometric normal, trace cells; 0 = ROMA_DEFAULT_OFFSET_CELLS */
+    float skip_cells;     /**< rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
                              negative = 0 */
-    uint32_t seed;
-    uint32_t frame;       /* new directions every frame */
+    uint32_t seed; /**< sample sequences: the same seed as the reference gives the same rays */
+    uint32_t frame;       /**< new directions every frame */
 } roma_ao_settings;
 
-/* The zero value's meaning, filled in (the one place defaults are resolved).
+/** The zero value's meaning, filled in (the one place defaults are resolved).
  * ROMA_ERROR_INVALID_ARGUMENT for NaN or infinite values or a negative radius. */
 ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
 
+/** Ambient occlusion on the engine's G-buffer images (opaque). Used by one thread at a time, like
+ * its context.
+ */
 typedef struct roma_ao_effect roma_ao_effect;
 
+/** Settings of roma_ao_effect_create; the zero value is the default. */
 typedef struct roma_ao_effect_desc {
-    uint32_t frames_in_flight; /* [1, 8]; 0 = 2 */
-    roma_logger logger;        /* 0 = the context's */
+    uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
+    roma_logger logger;        /**< 0 = the context's */
 } roma_ao_effect_desc;
 
+/** Creates the AO effect (its pipeline comes from the context's shared cache). desc may be NULL
+ * (defaults). ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, or frames_in_flight above
+ * ROMA_MAX_FRAMES_IN_FLIGHT; out-of-memory and ROMA_ERROR_VULKAN failures leave *out NULL.
+ */
 ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
-/* Accepts NULL. The caller makes sure no submitted work still uses it. */
+/** Accepts NULL. The caller makes sure no submitted work still uses it. */
 ROMA_API void roma_ao_effect_destroy(roma_ao_effect *effect);
 
+/** The engine's images the AO effect reads and writes (views it owns, valid while recorded work
+ * runs).
+ */
 typedef struct roma_ao_images {
-    uint32_t width, height;
-    VkImageView position;         /* sampled: xyz world position, w > 0 = geometry */
-    VkImageView normal;           /* sampled: shading normal */
-    VkImageView geometric_normal; /* sampled, optional (VK_NULL_HANDLE: the shading normal) */
-    VkImageView output;           /* storage, R32_SFLOAT, layout GENERAL */
-    VkImageLayout input_layout;   /* of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
+    uint32_t width; /**< size of every image, pixels */
+    uint32_t height; /**< size of every image, pixels */
+    VkImageView position;         /**< sampled: xyz world position, w > 0 = geometry */
+    VkImageView normal;           /**< sampled: shading normal */
+    VkImageView geometric_normal; /**< sampled, optional (VK_NULL_HANDLE: the shading normal) */
+    VkImageView output;           /**< storage, R32_SFLOAT, layout GENERAL */
+    VkImageLayout input_layout;   /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_ao_images;
 
 ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
@@ -79,4 +93,4 @@ ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuff
 }
 #endif
 
-#endif /* ROMA_AO_EFFECT_H */
+#endif /**< ROMA_AO_EFFECT_H */

@@ -1,4 +1,5 @@
-/* ROMA_API marks the functions a libroma shared library exports. The libraries are
+/** @file
+ * ROMA_API marks the functions a libroma shared library exports. The libraries are
  * compiled with hidden visibility, so nothing else (no internal function) is visible
  * to the program that links them. */
 #ifndef ROMA_API_H
@@ -10,4 +11,4 @@
 #define ROMA_API
 #endif
 
-#endif /* ROMA_API_H */
+#endif /**< ROMA_API_H */

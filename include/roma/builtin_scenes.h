@@ -1,4 +1,5 @@
-/* libroma tools (library roma_tools): the built-in scenes the tools and tests use. */
+/** @file
+ * libroma tools (library roma_tools): the built-in scenes the tools and tests use. */
 #ifndef ROMA_BUILTIN_SCENES_H
 #define ROMA_BUILTIN_SCENES_H
 
@@ -10,10 +11,10 @@
 extern "C" {
 #endif
 
-/* Names of the built-in scenes, NULL-terminated. The first is the default. */
+/** Names of the built-in scenes, NULL-terminated. The first is the default. */
 ROMA_API const char *const *roma_builtin_scene_names(void);
 
-/* name: one of roma_builtin_scene_names(), or NULL for the default ("cornell"). */
+/** name: one of roma_builtin_scene_names(), or NULL for the default ("cornell"). */
 ROMA_API roma_result roma_scene_create_builtin(const char *name, const roma_logger *logger,
                                                roma_scene **out_scene);
 
@@ -21,4 +22,4 @@ ROMA_API roma_result roma_scene_create_builtin(const char *name, const roma_logg
 }
 #endif
 
-#endif /* ROMA_BUILTIN_SCENES_H */
+#endif /**< ROMA_BUILTIN_SCENES_H */

@@ -1,4 +1,5 @@
-/* libroma: the Vulkan context every GPU object hangs off.
+/** @file
+ * libroma: the Vulkan context every GPU object hangs off.
  *
  * Two modes:
  *  - own device (default): libroma creates a headless instance, device and
@@ -25,7 +26,7 @@
  * the caller must not submit to it from another thread during those calls.
  *
  * Environment (read once in roma_context_create, only where the desc is silent):
- *   ROMA_DEVICE=<substring>   choose the physical device by name
+ *   ROMA_DEVICE=NAME          choose the physical device whose name contains NAME
  *   ROMA_VALIDATION=1         enable VK_LAYER_KHRONOS_validation (own device only)
  *
  * No global state: several contexts may coexist. A context is not thread-safe;
@@ -44,55 +45,64 @@
 extern "C" {
 #endif
 
+/** A Vulkan device and queue libroma works on, and the pipelines and caches its objects share
+ * (opaque). Not thread-safe: one thread at a time.
+ */
 typedef struct roma_context roma_context;
 
+/** Bits of roma_context_desc.flags. */
 typedef enum roma_context_flags {
-    /* Enable the Khronos validation layer and route its messages to the logger;
+    /** Enable the Khronos validation layer and route its messages to the logger;
      * creation fails with ROMA_ERROR_MISSING_FEATURE if the layer is absent. */
     ROMA_CONTEXT_VALIDATION = 1u << 0,
-    /* Never pick a CPU implementation (lavapipe). */
+    /** Never pick a CPU implementation (lavapipe). */
     ROMA_CONTEXT_REQUIRE_GPU = 1u << 1,
-    /* Validation with synchronization validation (hazards between commands, across
+    /** Validation with synchronization validation (hazards between commands, across
      * submissions); implies ROMA_CONTEXT_VALIDATION. Own device only. */
     ROMA_CONTEXT_SYNC_VALIDATION = 1u << 2
 } roma_context_flags;
 
+/** A device the engine created and owns, adopted by roma_context_create (it must outlive the
+ * context).
+ */
 typedef struct roma_external_device {
-    VkInstance instance;
-    VkPhysicalDevice physical_device;
-    VkDevice device;
-    uint32_t queue_family_index; /* must support graphics, compute and timestamps */
-    VkQueue queue;
-    /* The features the device was created with: the VkDeviceCreateInfo pNext chain's
+    VkInstance instance; /**< the caller's instance (Vulkan 1.3) */
+    VkPhysicalDevice physical_device; /**< the device's physical device */
+    VkDevice device; /**< the caller's device, created with what roma_get_device_requirements lists */
+    uint32_t queue_family_index; /**< must support graphics, compute and timestamps */
+    VkQueue queue; /**< a queue of queue_family_index: the only one libroma submits to */
+    /** The features the device was created with: the VkDeviceCreateInfo pNext chain's
      * VkPhysicalDeviceFeatures2 (followed through pNext: Vulkan11/12/13Features and the
      * single-feature structs are read). Required. */
     const VkPhysicalDeviceFeatures2 *enabled_features;
 } roma_external_device;
 
-/* What libroma needs of a device, for an engine that creates its own. The features
+/** What libroma needs of a device, for an engine that creates its own. The features
  * form a chain inside the struct (features.pNext -> features12 -> features13): use
  * it in place, or OR its VK_TRUE fields into the engine's own chain. */
 typedef struct roma_device_requirements {
-    uint32_t api_version; /* VK_API_VERSION_1_3: the instance's apiVersion and the device's */
-    VkPhysicalDeviceFeatures2 features;
-    VkPhysicalDeviceVulkan12Features features12;
-    VkPhysicalDeviceVulkan13Features features13;
-    uint32_t extension_count;      /* device extensions to enable: none today */
-    const char *const *extensions;
-    VkQueueFlags queue_flags;      /* the queue's family: GRAPHICS | COMPUTE, timestampValidBits > 0 */
+    uint32_t api_version; /**< VK_API_VERSION_1_3: the instance's apiVersion and the device's */
+    VkPhysicalDeviceFeatures2 features; /**< core features to enable; pNext points to features12 */
+    VkPhysicalDeviceVulkan12Features features12; /**< Vulkan 1.2 features to enable; pNext points to features13 */
+    VkPhysicalDeviceVulkan13Features features13; /**< Vulkan 1.3 features to enable */
+    uint32_t extension_count;      /**< device extensions to enable: none today */
+    const char *const *extensions; /**< extension_count device extension names */
+    VkQueueFlags queue_flags;      /**< the queue's family: GRAPHICS | COMPUTE, timestampValidBits > 0 */
 } roma_device_requirements;
 
+/** Fills out with what libroma needs of a device (no failure; out must not be NULL). */
 ROMA_API void roma_get_device_requirements(roma_device_requirements *out);
 
+/** Settings of roma_context_create; the zero value gives libroma's own headless device. */
 typedef struct roma_context_desc {
-    uint32_t flags;                       /* roma_context_flags; unknown bits are rejected */
-    const char *device_name;              /* substring of the device name; NULL = ROMA_DEVICE or auto */
-    const roma_external_device *external; /* NULL = libroma creates its own device */
-    roma_logger logger;
-    /* Used for every Vulkan object libroma creates (and, own device, for the instance
+    uint32_t flags;                       /**< roma_context_flags; unknown bits are rejected */
+    const char *device_name;              /**< substring of the device name; NULL = ROMA_DEVICE or auto */
+    const roma_external_device *external; /**< NULL = libroma creates its own device */
+    roma_logger logger; /**< where messages go; zero: stderr, warnings and errors only */
+    /** Used for every Vulkan object libroma creates (and, own device, for the instance
      * and device); NULL = the driver's. Must outlive the context. */
     const VkAllocationCallbacks *allocation_callbacks;
-    /* Bytes of device memory (every vkAllocateMemory: device-local and staging) that
+    /** Bytes of device memory (every vkAllocateMemory: device-local and staging) that
      * objects on this context may hold together; 0 = no limit but the device's.
      * Any call that would pass it (a create, a first build, a trace that needs larger
      * staging buffers) fails with ROMA_ERROR_OUT_OF_DEVICE_MEMORY and keeps nothing
@@ -100,43 +110,55 @@ typedef struct roma_context_desc {
     uint64_t device_memory_budget;
 } roma_context_desc;
 
+/** Creates a context: on libroma's own instance and device (external NULL) or on the engine's.
+ * ROMA_ERROR_INVALID_ARGUMENT (NULL out, unknown flag bits, a queue family without graphics,
+ * compute and timestamps), ROMA_ERROR_NO_VULKAN, ROMA_ERROR_NO_DEVICE, ROMA_ERROR_MISSING_FEATURE
+ * (named in the log), out-of-memory codes; *out_context is NULL on failure.
+ */
 ROMA_API roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
-/* Waits for the device to be idle, then destroys what libroma created. Accepts NULL. */
+/** Waits for the device to be idle, then destroys what libroma created. Accepts NULL. */
 ROMA_API void roma_context_destroy(roma_context *context);
 
+/** The device a context runs on and what libroma did with it (roma_context_get_info). */
 typedef struct roma_context_info {
-    char device_name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE];
-    VkPhysicalDeviceType device_type;
-    uint32_t api_version;
-    uint32_t driver_version;
-    float timestamp_period_ns;  /* nanoseconds per timestamp tick */
-    int validation_enabled;
-    int owns_device;            /* 0 when running on the caller's device */
-    uint64_t device_memory_in_use; /* bytes libroma's objects on this context hold now */
-    uint64_t device_memory_budget; /* desc.device_memory_budget (0 = none) */
-    uint64_t max_allocation_size;  /* the device's largest single allocation */
-    /* vkQueueSubmit and waits (fence, queue idle) libroma made on the context's queue
+    char device_name[VK_MAX_PHYSICAL_DEVICE_NAME_SIZE]; /**< the device's name, as Vulkan gives it */
+    VkPhysicalDeviceType device_type; /**< CPU (lavapipe) or a GPU kind */
+    uint32_t api_version; /**< the device's Vulkan version */
+    uint32_t driver_version; /**< the driver's version, vendor-encoded */
+    float timestamp_period_ns;  /**< nanoseconds per timestamp tick */
+    int validation_enabled; /**< 1 when the Khronos validation layer is on */
+    int owns_device;            /**< 0 when running on the caller's device */
+    uint64_t device_memory_in_use; /**< bytes libroma's objects on this context hold now */
+    uint64_t device_memory_budget; /**< desc.device_memory_budget (0 = none) */
+    uint64_t max_allocation_size;  /**< the device's largest single allocation */
+    /** vkQueueSubmit and waits (fence, queue idle) libroma made on the context's queue
      * since creation: the blocking convenience calls and object creation make them;
      * record calls never do. */
     uint64_t queue_submits;
-    uint64_t queue_waits;
-    /* Compute pipelines compiled so far. Every object of the context shares them: a map
+    uint64_t queue_waits; /**< waits libroma made on the queue since creation (vkQueueWaitIdle or a fence) */
+    /** Compute pipelines compiled so far. Every object of the context shares them: a map
      * of another RES or A, or a second map, compiles none (kept until the context goes). */
     uint32_t pipelines_compiled;
 } roma_context_info;
 
+/** The device and counters of a context. ROMA_ERROR_INVALID_ARGUMENT for NULL arguments. */
 ROMA_API roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);
 
-/* Errors reported by the validation layer since creation (0 when validation is off). */
+/** Errors reported by the validation layer since creation (0 when validation is off). */
 ROMA_API uint32_t roma_context_validation_error_count(const roma_context *context);
 
+/** The context's instance (the engine's when adopted); VK_NULL_HANDLE for NULL. */
 ROMA_API VkInstance roma_context_instance(const roma_context *context);
+/** The context's physical device; VK_NULL_HANDLE for NULL. */
 ROMA_API VkPhysicalDevice roma_context_physical_device(const roma_context *context);
+/** The context's device; VK_NULL_HANDLE for NULL. */
 ROMA_API VkDevice roma_context_device(const roma_context *context);
+/** The queue libroma submits to; VK_NULL_HANDLE for NULL. */
 ROMA_API VkQueue roma_context_queue(const roma_context *context);
+/** That queue's family index; 0 for NULL. */
 ROMA_API uint32_t roma_context_queue_family(const roma_context *context);
 
-/* Runs a tiny compute shader end to end (upload-free fill, readback, timestamp)
+/** Runs a tiny compute shader end to end (upload-free fill, readback, timestamp)
  * to prove the device, the embedded SPIR-V and the timers work. Optional. */
 ROMA_API roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
 
@@ -147,22 +169,28 @@ ROMA_API roma_result roma_context_self_test(roma_context *context, double *out_g
  * (they are written before the dispatch runs), so on that device compute passes
  * read as near zero; roma-bench reports host-observed times beside them. */
 
+/** GPU timestamps around named scopes of recorded work (opaque). */
 typedef struct roma_gpu_timer roma_gpu_timer;
 
+/** One scope's measured time (roma_gpu_timer_read). */
 typedef struct roma_gpu_timing {
-    char name[48];
-    double milliseconds;
+    char name[48]; /**< the scope's name */
+    double milliseconds; /**< GPU time between the scope's begin and end */
 } roma_gpu_timing;
 
+/** A timer of max_scopes scopes (1 to 4096). ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or a
+ * count outside that range, ROMA_ERROR_OUT_OF_HOST_MEMORY. */
 ROMA_API roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_scopes,
                                            roma_gpu_timer **out_timer);
+/** Accepts NULL. No submitted work may still write its queries. */
 ROMA_API void roma_gpu_timer_destroy(roma_gpu_timer *timer);
-/* Records the query reset; call once per use, before the first begin. */
+/** Records the query reset; call once per use, before the first begin. */
 ROMA_API void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
-/* Returns a scope index, or UINT32_MAX when max_scopes is exhausted (nothing recorded). */
+/** Returns a scope index, or UINT32_MAX when max_scopes is exhausted (nothing recorded). */
 ROMA_API uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cmd, const char *name);
+/** Records the end timestamp of scope (from roma_gpu_timer_begin). */
 ROMA_API void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uint32_t scope);
-/* Copies up to *count timings; *count becomes the number of scopes recorded.
+/** Copies up to *count timings; *count becomes the number of scopes recorded.
  * ROMA_ERROR_NOT_READY if the GPU has not finished them. */
 ROMA_API roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing *out_timings,
                                          uint32_t *count);
@@ -171,4 +199,4 @@ ROMA_API roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing 
 }
 #endif
 
-#endif /* ROMA_CONTEXT_H */
+#endif /**< ROMA_CONTEXT_H */

@@ -1,4 +1,5 @@
-/* libroma: effects and the plan of passes a frame runs.
+/** @file
+ * libroma: effects and the plan of passes a frame runs.
  *
  * The effect plan is derived from the scene and the caller's options before any
  * GPU work, so that a frame runs only the passes its scene calls for:
@@ -25,7 +26,7 @@
 extern "C" {
 #endif
 
-/* Effects an image can be asked for (bit flags). */
+/** Effects an image can be asked for (bit flags). */
 enum {
     ROMA_EFFECT_AO = 1u << 0,
     ROMA_EFFECT_DIRECT = 1u << 1,
@@ -34,54 +35,58 @@ enum {
     ROMA_EFFECT_ALL_ = (1u << 4) - 1u
 };
 
+/** The passes a frame of effects can run (roma_effect_plan.passes). */
 typedef enum roma_pass_kind {
     ROMA_PASS_GBUFFER = 0,
-    ROMA_PASS_AO,              /* snapped any-hit, hemisphere rays */
-    ROMA_PASS_PUNCTUAL_LIGHTS, /* point/spot/directional light with un-snapped shadow rays */
-    ROMA_PASS_SOFT_SHADOWS,    /* area-light samples, un-snapped shadow rays */
-    ROMA_PASS_MANY_LIGHTS,     /* visibility of many point lights, un-snapped */
-    ROMA_PASS_RSM,             /* reflective shadow maps of point/spot lights */
-    ROMA_PASS_GI,              /* snapped closest-hit bounce rays, radiance from the RSMs */
+    ROMA_PASS_AO,              /**< snapped any-hit, hemisphere rays */
+    ROMA_PASS_PUNCTUAL_LIGHTS, /**< point/spot/directional light with un-snapped shadow rays */
+    ROMA_PASS_SOFT_SHADOWS,    /**< area-light samples, un-snapped shadow rays */
+    ROMA_PASS_MANY_LIGHTS,     /**< visibility of many point lights, un-snapped */
+    ROMA_PASS_RSM,             /**< reflective shadow maps of point/spot lights */
+    ROMA_PASS_GI,              /**< snapped closest-hit bounce rays, radiance from the RSMs */
     ROMA_PASS_COUNT
 } roma_pass_kind;
 
-/* "gbuffer", "ao", "punctual_lights", "soft_shadows", "many_lights", "rsm", "gi";
+/** "gbuffer", "ao", "punctual_lights", "soft_shadows", "many_lights", "rsm", "gi";
  * "unknown" outside the enum. */
 ROMA_API const char *roma_pass_name(roma_pass_kind pass);
 
-/* Zero value: the paper's settings (RES 128; A = 4 for hemisphere rays, A = 8 for
+/** Zero value: the paper's settings (RES 128; A = 4 for hemisphere rays, A = 8 for
  * rays towards lights) and 256 many lights. */
 typedef struct roma_effect_options {
-    uint32_t effects;          /* ROMA_EFFECT_* bits asked for */
-    uint32_t resolution;       /* RES of every array: 32, 64, 128 or 256; 0 = 128 */
-    uint32_t ao_angular;       /* A of the AO array, 1..16; 0 = 4 */
-    uint32_t gi_angular;       /* A of the GI array; 0 = 4 */
-    uint32_t shadow_angular;   /* A of the array for shadow rays (punctual and area lights); 0 = 8 */
-    uint32_t lights_angular;   /* A of the many-lights array; 0 = 8 */
-    uint32_t many_light_count; /* 1..65536; 0 = 256 */
+    uint32_t effects;          /**< ROMA_EFFECT_* bits asked for */
+    uint32_t resolution;       /**< RES of every array: 32, 64, 128 or 256; 0 = 128 */
+    uint32_t ao_angular;       /**< A of the AO array, 1..16; 0 = 4 */
+    uint32_t gi_angular;       /**< A of the GI array; 0 = 4 */
+    uint32_t shadow_angular;   /**< A of the array for shadow rays (punctual and area lights); 0 = 8 */
+    uint32_t lights_angular;   /**< A of the many-lights array; 0 = 8 */
+    uint32_t many_light_count; /**< 1..65536; 0 = 256 */
 } roma_effect_options;
 
+/** One ROMA array of a plan. */
 typedef struct roma_map_config {
-    uint32_t resolution, angular;
+    uint32_t resolution; /**< RES */
+    uint32_t angular; /**< A (A x A maps) */
 } roma_map_config;
 
+/** Which passes run and which ROMA arrays they share (roma_effect_plan_derive). */
 typedef struct roma_effect_plan {
-    uint32_t effects;                   /* as asked (an effect the scene cannot show renders black) */
-    uint32_t passes;                    /* bit (1u << roma_pass_kind) per pass that runs */
-    uint32_t map_count;                 /* distinct ROMA arrays built per frame */
-    roma_map_config maps[ROMA_PASS_COUNT];
-    int32_t pass_map[ROMA_PASS_COUNT];  /* index into maps of the array a pass traces; -1: none */
-    uint32_t many_light_count;          /* resolved count (0 when the pass does not run) */
+    uint32_t effects;                   /**< as asked (an effect the scene cannot show renders black) */
+    uint32_t passes;                    /**< bit (1u << roma_pass_kind) per pass that runs */
+    uint32_t map_count;                 /**< distinct ROMA arrays built per frame */
+    roma_map_config maps[ROMA_PASS_COUNT]; /**< the distinct arrays, map_count of them */
+    int32_t pass_map[ROMA_PASS_COUNT];  /**< index into maps of the array a pass traces; -1: none */
+    uint32_t many_light_count;          /**< resolved count (0 when the pass does not run) */
 } roma_effect_plan;
 
-/* Resolves defaults and derives the plan from the scene. Rejects unknown effect
+/** Resolves defaults and derives the plan from the scene. Rejects unknown effect
  * bits, resolutions other than 32/64/128/256, A outside 1..16 and many-light
  * counts above 65536 (ROMA_ERROR_INVALID_ARGUMENT, message through logger, which
  * may be NULL); on failure *out_plan runs nothing: zeroed, with every pass_map -1. */
 ROMA_API roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_options *options,
                                              const roma_logger *logger, roma_effect_plan *out_plan);
 
-/* 0 for a NULL plan or a pass outside the enum (a shift by 32 or more is undefined). */
+/** 0 for a NULL plan or a pass outside the enum (a shift by 32 or more is undefined). */
 static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_kind pass)
 {
     return plan && (uint32_t)pass < (uint32_t)ROMA_PASS_COUNT && ((plan->passes >> (uint32_t)pass) & 1u);
@@ -91,4 +96,4 @@ static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_
 }
 #endif
 
-#endif /* ROMA_EFFECTS_H */
+#endif /**< ROMA_EFFECTS_H */

@@ -1,4 +1,5 @@
-/* libroma: glTF 2.0 scene loading (separate target roma_gltf, C API over tinygltf).
+/** @file
+ * libroma: glTF 2.0 scene loading (separate target roma_gltf, C API over tinygltf).
  *
  * All mesh primitives of mode TRIANGLES (also strips and fans, converted) are
  * flattened into world space through the node hierarchy of the default scene
@@ -29,24 +30,27 @@
 extern "C" {
 #endif
 
+/** Settings of the glTF loader; the zero value is the default. */
 typedef struct roma_gltf_desc {
-    roma_logger logger;
-    /* Limits on the flattened scene, checked before anything is allocated for it
+    roma_logger logger; /**< where the loader's warnings and errors go; zero: stderr */
+    /** Limits on the flattened scene, checked before anything is allocated for it
      * (instancing and accessors without data can make a few hundred bytes of
      * glTF describe gigabytes): a file over either is ROMA_ERROR_UNSUPPORTED.
      * 0 = ROMA_GLTF_DEFAULT_MAX_VERTICES / ROMA_GLTF_DEFAULT_MAX_TRIANGLES. */
     uint32_t max_vertices;
-    uint32_t max_triangles;
+    uint32_t max_triangles; /**< see max_vertices */
 } roma_gltf_desc;
 
+/** Default of roma_gltf_desc.max_vertices. */
 #define ROMA_GLTF_DEFAULT_MAX_VERTICES (1u << 25)
+/** Default of roma_gltf_desc.max_triangles. */
 #define ROMA_GLTF_DEFAULT_MAX_TRIANGLES (1u << 25)
 
-/* path ends in .gltf or .glb (detected from content, not the name). desc may be NULL. */
+/** path ends in .gltf or .glb (detected from content, not the name). desc may be NULL. */
 ROMA_API roma_result roma_scene_load_gltf(const char *path, const roma_gltf_desc *desc,
                                           roma_scene **out_scene);
 
-/* From memory. base_dir resolves external buffers (may be NULL: external URIs are
+/** From memory. base_dir resolves external buffers (may be NULL: external URIs are
  * then an error). The data is not kept. */
 ROMA_API roma_result roma_scene_load_gltf_memory(const void *data, size_t size, const char *base_dir,
                                                  const roma_gltf_desc *desc, roma_scene **out_scene);
@@ -55,4 +59,4 @@ ROMA_API roma_result roma_scene_load_gltf_memory(const void *data, size_t size, 
 }
 #endif
 
-#endif /* ROMA_GLTF_H */
+#endif /**< ROMA_GLTF_H */

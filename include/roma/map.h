@@ -1,4 +1,5 @@
-/* libroma: the Ray-aligned Occupancy Map Array.
+/** @file
+ * libroma: the Ray-aligned Occupancy Map Array.
  *
  * A roma_map owns, on the GPU:
  *  - the base occupancy map (BOM): a RES^3 binary grid over a cube fitted to the
@@ -40,6 +41,7 @@
 
 #include "roma/api.h"
 
+/** Default ray-origin offset off the surface, in trace cells. */
 #define ROMA_DEFAULT_OFFSET_CELLS 1.5f
 
 #include <stdint.h>
@@ -53,32 +55,38 @@
 extern "C" {
 #endif
 
+/** A ray-aligned occupancy map array and the scene geometry it is built from (opaque). Used by one
+ * thread at a time, like its context.
+ */
 typedef struct roma_map roma_map;
 
+/** How the base occupancy map is voxelized. */
 typedef enum roma_bom_mode {
-    /* Default: the exact voxelization, in compute on every device: a cell is occupied
+    /** Default: the exact voxelization, in compute on every device: a cell is occupied
      * when a triangle overlaps it (separating-axis test), up to float ties. */
     ROMA_BOM_EXACT = 0,
-    ROMA_BOM_UNION3,      /* rasterize along x, y and z at pixel centres, union (misses thin parts) */
-    ROMA_BOM_DOMINANT,    /* each triangle only along its dominant normal axis, pixel centres */
-    /* Dominant axis rasterized conservatively (the projected triangle grown by half a
+    ROMA_BOM_UNION3,      /**< rasterize along x, y and z at pixel centres, union (misses thin parts) */
+    ROMA_BOM_DOMINANT,    /**< each triangle only along its dominant normal axis, pixel centres */
+    /** Dominant axis rasterized conservatively (the projected triangle grown by half a
      * pixel, pixels it does not touch discarded): the exact voxelization through the
      * raster pipeline, for devices where that is faster (large triangles on a GPU). */
     ROMA_BOM_CONSERVATIVE
 } roma_bom_mode;
 
+/** Most frame slots any libroma object takes. */
 #define ROMA_MAX_FRAMES_IN_FLIGHT 8
 
+/** Settings of roma_map_create; the zero value is the default (RES 128, A 4, exact BOM). */
 typedef struct roma_map_desc {
-    uint32_t resolution;       /* RES in {32, 64, 128, 256}; 0 = 128 */
-    uint32_t angular;          /* A in [1, 16]: A x A maps; 0 = 4 */
-    roma_bom_mode bom_mode;
-    float margin_cells;        /* padding of the grid cube around the traced volume, in cells; 0 = 1 */
-    uint32_t frames_in_flight; /* frame slots for host-written positions, [1, 8]; 0 = 2 */
-    roma_logger logger;        /* 0 = the context's */
+    uint32_t resolution;       /**< RES in {32, 64, 128, 256}; 0 = 128 */
+    uint32_t angular;          /**< A in [1, 16]: A x A maps; 0 = 4 */
+    roma_bom_mode bom_mode; /**< how the BOM is voxelized; 0 = ROMA_BOM_EXACT */
+    float margin_cells;        /**< padding of the grid cube around the traced volume, in cells; 0 = 1 */
+    uint32_t frames_in_flight; /**< frame slots for host-written positions, [1, 8]; 0 = 2 */
+    roma_logger logger;        /**< 0 = the context's */
 } roma_map_desc;
 
-/* The scene's topology (indices) and first positions are uploaded here: the one call
+/** The scene's topology (indices) and first positions are uploaded here: the one call
  * of a map that submits to the context's queue and waits (not a per-frame call).
  * Supported volumes: the grid cube around the traced volume (the scene's bounds or
  * roma_map_frame_desc.volume) must lie within +-8.5e37 world units on every axis and
@@ -87,28 +95,32 @@ typedef struct roma_map_desc {
  * ROMA_ERROR_INVALID_SCENE. */
 ROMA_API roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                                      const roma_scene *scene, roma_map **out_map);
-/* Accepts NULL. The caller makes sure no submitted work still uses the map (the
+/** Accepts NULL. The caller makes sure no submitted work still uses the map (the
  * blocking convenience calls below always finish theirs). */
 ROMA_API void roma_map_destroy(roma_map *map);
 
-/* An axis-aligned box in world space. */
+/** An axis-aligned box in world space. */
 typedef struct roma_box {
-    float min[3], max[3];
+    float min[3]; /**< lowest corner */
+    float max[3]; /**< highest corner */
 } roma_box;
 
+/** What one build uses: its slot, jitter, volume and new positions; the zero value rebuilds the
+ * last positions in slot 0.
+ */
 typedef struct roma_map_frame_desc {
-    uint32_t frame;        /* frame counter: drives the jitter */
-    uint32_t seed;
-    int jitter_grid;       /* sub-cell offset of the grid origin per frame */
-    int jitter_directions; /* candidates jittered inside their strata (else stratum centres) */
-    /* The engine's frame slot, in [0, frames_in_flight): host data of this build goes to
+    uint32_t frame;        /**< frame counter: drives the jitter */
+    uint32_t seed; /**< with frame: the jitter sequence */
+    int jitter_grid;       /**< sub-cell offset of the grid origin per frame */
+    int jitter_directions; /**< candidates jittered inside their strata (else stratum centres) */
+    /** The engine's frame slot, in [0, frames_in_flight): host data of this build goes to
      * storage of this slot. The caller makes sure the GPU finished the last command
      * buffer recorded with the same slot (its own per-frame fence) before recording. */
     uint32_t slot;
-    /* The box the grid is fitted to (plus margin_cells); geometry outside it is not
+    /** The box the grid is fitted to (plus margin_cells); geometry outside it is not
      * traced. NULL: the bounds of the last host positions (the scene's at first). */
     const roma_box *volume;
-    /* New vertex positions for this build (the map's vertex count, vertex_count must
+    /** New vertex positions for this build (the map's vertex count, vertex_count must
      * equal it), from either:
      *  - host memory: 3 floats per vertex, copied at record time into the slot's
      *    staging and from there by the GPU (vkCmdCopyBuffer);
@@ -117,12 +129,12 @@ typedef struct roma_map_frame_desc {
      *    by a compute pass; volume is then required (the host cannot see the bounds).
      * Neither: the positions of the previous build stay. */
     const float *positions;
-    VkDeviceAddress gpu_positions;
-    uint32_t gpu_position_stride;
-    uint32_t vertex_count;
+    VkDeviceAddress gpu_positions; /**< the caller's positions by address (0: none) */
+    uint32_t gpu_position_stride; /**< bytes between vertices, a multiple of 4; 0 = 12 */
+    uint32_t vertex_count; /**< with positions or gpu_positions: the map's vertex count */
 } roma_map_frame_desc;
 
-/* Records the build of this frame into cmd (a command buffer of the context's queue
+/** Records the build of this frame into cmd (a command buffer of the context's queue
  * family, outside a render pass): the frame parameters (vkCmdUpdateBuffer: they travel
  * in the command buffer, so builds may be recorded for any number of frames in
  * flight), new positions if given, BOM clear + voxelization + rotation. It never
@@ -141,7 +153,7 @@ typedef struct roma_map_frame_desc {
 ROMA_API roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
                                            const roma_map_frame_desc *frame, roma_gpu_timer *timer);
 
-/* Convenience: records, submits and waits. */
+/** Convenience: records, submits and waits. */
 ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
                                     roma_gpu_timer *timer);
 
@@ -159,55 +171,72 @@ ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *fr
  * everything in it; a caller that needs the object finds it from the hit point.
  * Transforms are row-major 3x4: world = M[0..2][0..2] * local + M[.][3]. */
 
-#define ROMA_INSTANCE_DYNAMIC 1u /* roma_instance_desc.flags: its transform may change */
+#define ROMA_INSTANCE_DYNAMIC 1u /**< roma_instance_desc.flags: its transform may change */
 
-/* A mesh from a scene's triangles (its positions are the local frame; materials, lights
+/** A mesh from a scene's triangles (its positions are the local frame; materials, lights
  * and animation data are ignored). The scene may be destroyed afterwards. */
 ROMA_API roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, uint32_t *out_mesh);
-/* Refused (ROMA_ERROR_INVALID_ARGUMENT) while instances of it remain. */
+/** Refused (ROMA_ERROR_INVALID_ARGUMENT) while instances of it remain. */
 ROMA_API roma_result roma_map_remove_mesh(roma_map *map, uint32_t mesh);
 
+/** An instance of a mesh added to a map. */
 typedef struct roma_instance_desc {
-    uint32_t mesh;         /* from roma_map_add_mesh */
-    float transform[12];   /* row-major 3x4, local -> world; all zero = identity */
-    uint32_t flags;        /* ROMA_INSTANCE_DYNAMIC */
+    uint32_t mesh;         /**< from roma_map_add_mesh */
+    float transform[12];   /**< row-major 3x4, local -> world; all zero = identity */
+    uint32_t flags;        /**< ROMA_INSTANCE_DYNAMIC */
 } roma_instance_desc;
 
+/** Adds an instance of a mesh (roma_map_add_mesh) at desc->transform; it is voxelized
+ * from the next build. ROMA_ERROR_INVALID_ARGUMENT (NULL arguments, an unknown mesh, unknown flag
+ * bits, more geometry than a map holds), ROMA_ERROR_OUT_OF_HOST_MEMORY. */
 ROMA_API roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc, uint32_t *out_instance);
+/** Removes an instance from the next build on (its storage is freed once frames_in_flight later
+ * builds have been recorded). ROMA_ERROR_INVALID_ARGUMENT for a NULL map or an unknown instance.
+ */
 ROMA_API roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
-/* Dynamic instances only; takes effect at the next build. */
+/** Dynamic instances only; takes effect at the next build. */
 ROMA_API roma_result roma_map_set_instance_transform(roma_map *map, uint32_t instance, const float transform[12]);
 
+/** Sizes, grid placement and the handles for tracing from the caller's shaders (roma_map_get_info). */
 typedef struct roma_map_info {
-    uint32_t resolution, angular, map_count, words_per_texel;
-    float grid_origin[3];      /* world position of BOM cell (0,0,0)'s corner, this frame */
-    float grid_cell;           /* world size of a BOM cell */
-    float trace_cell;          /* grid_cell * sqrt(3): the longest edge a rotated cell can have;
+    uint32_t resolution; /**< RES */
+    uint32_t angular; /**< A */
+    uint32_t map_count; /**< A x A */
+    uint32_t words_per_texel; /**< RES / 32 */
+    float grid_origin[3];      /**< world position of BOM cell (0,0,0)'s corner, this frame */
+    float grid_cell;           /**< world size of a BOM cell */
+    float trace_cell;          /**< grid_cell * sqrt(3): the longest edge a rotated cell can have;
                                   the unit of ray-origin offsets (see roma_offset_origin) */
-    uint64_t bom_bytes, maps_bytes, params_bytes, geometry_bytes;
-    /* For roma/trace.glsl in the caller's shaders (valid until the map is destroyed).
+    uint64_t bom_bytes; /**< device memory of the BOM */
+    uint64_t maps_bytes; /**< device memory of the A x A maps */
+    uint64_t params_bytes; /**< device memory of the frame parameters */
+    uint64_t geometry_bytes; /**< device memory of positions, indices and instances */
+    /** For roma/trace.glsl in the caller's shaders (valid until the map is destroyed).
      * By address (roma_use_addresses): */
     VkDeviceAddress maps_address;
-    VkDeviceAddress params_address;
-    /* Through descriptors (roma/trace_descriptors.glsl): the maps as a uniform texel
+    VkDeviceAddress params_address; /**< the frame parameters (roma_use_addresses) */
+    /** Through descriptors (roma/trace_descriptors.glsl): the maps as a uniform texel
      * buffer (maps_view, R32_UINT) and the parameters as a uniform buffer, or the set
      * libroma wrote for them, for a pipeline layout whose set ROMA_TRACE_SET is
      * trace_set_layout (or defined identically). The set is never rewritten. */
     VkBuffer maps_buffer;
-    VkBuffer params_buffer;
-    VkBufferView maps_view;
-    VkDescriptorSet trace_set;
-    VkDescriptorSetLayout trace_set_layout;
+    VkBuffer params_buffer; /**< the parameters as a uniform buffer */
+    VkBufferView maps_view; /**< the maps as an R32_UINT uniform texel buffer */
+    VkDescriptorSet trace_set; /**< a set holding maps_view and params_buffer */
+    VkDescriptorSetLayout trace_set_layout; /**< trace_set's layout (compute stage) */
 } roma_map_info;
 
+/** The map's sizes, grid and trace handles, as of the last recorded build.
+ * ROMA_ERROR_INVALID_ARGUMENT for NULL arguments.
+ */
 ROMA_API roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
 
-/* Candidate direction of map k this frame (unit, z >= 0); zero on failure. */
+/** Candidate direction of map k this frame (unit, z >= 0); zero on failure. */
 ROMA_API roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
 
 /* --- Queries --- */
 
-/* Matches struct roma_ray in roma/trace.glsl (std430, 32 bytes).
+/** Matches struct roma_ray in roma/trace.glsl (std430, 32 bytes).
  * Defined for every bit pattern (docs/robustness.md):
  *  - dir need not be unit: any finite non-zero vector, however large or small, traces
  *    as its unit vector (d and d * 2^k give the same bits while no component crosses
@@ -220,19 +249,20 @@ ROMA_API roma_result roma_map_candidate(const roma_map *map, uint32_t k, float o
  *    a snapped ray misses unless its line along the candidate crosses the grid.
  * Invalid rays report map 0, not folded. */
 typedef struct roma_ray {
-    float origin[3];
-    float tmin;
-    float dir[3];          /* need not be unit; t is a world-space distance along dir/|dir| */
-    float tmax;            /* INFINITY allowed */
+    float origin[3]; /**< world space */
+    float tmin; /**< hits before tmin along the ray are ignored */
+    float dir[3];          /**< need not be unit; t is a world-space distance along dir/|dir| */
+    float tmax;            /**< INFINITY allowed */
 } roma_ray;
 
-/* Matches struct roma_hit in roma/trace.glsl (8 bytes). */
+/** Matches struct roma_hit in roma/trace.glsl (8 bytes). */
 typedef struct roma_hit {
-    float t;               /* closest-hit distance (world units), INFINITY on a miss or for any-hit */
-    uint32_t info;         /* ROMA_HIT_FLAG, ROMA_HIT_MAP(info), ROMA_HIT_FOLDED (roma/trace_types.h) */
+    float t;               /**< closest-hit distance (world units), INFINITY on a miss or for any-hit */
+    uint32_t info;         /**< ROMA_HIT_FLAG, ROMA_HIT_MAP(info), ROMA_HIT_FOLDED (roma/trace_types.h) */
 } roma_hit;
 
 
+/** How a batch of rays is traced. */
 typedef enum roma_trace_mode {
     ROMA_TRACE_SNAPPED_ANY = 0,
     ROMA_TRACE_SNAPPED_CLOSEST,
@@ -240,27 +270,28 @@ typedef enum roma_trace_mode {
     ROMA_TRACE_UNSNAPPED_CLOSEST
 } roma_trace_mode;
 
+/** A batch of rays traced by roma_map_record_trace on the caller's buffers. */
 typedef struct roma_trace_desc {
-    roma_trace_mode mode;
-    uint32_t max_steps;      /* un-snapped only; 0 = 8 */
-    VkDeviceAddress rays;    /* ray_count roma_ray (buffer with SHADER_DEVICE_ADDRESS usage) */
-    VkDeviceAddress hits;    /* ray_count roma_hit */
-    uint32_t ray_count;
+    roma_trace_mode mode; /**< snapped or un-snapped, any or closest hit */
+    uint32_t max_steps;      /**< un-snapped only; 0 = 8 */
+    VkDeviceAddress rays;    /**< ray_count roma_ray (buffer with SHADER_DEVICE_ADDRESS usage) */
+    VkDeviceAddress hits;    /**< ray_count roma_hit */
+    uint32_t ray_count; /**< rays and hits */
 } roma_trace_desc;
 
-/* Records a trace of caller buffers after the build (same command buffer or a
+/** Records a trace of caller buffers after the build (same command buffer or a
  * later one). The caller synchronises its own writes to rays and reads of hits;
  * libroma adds the barrier between its build and the trace. */
 ROMA_API roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
                                            roma_gpu_timer *timer);
 
-/* Convenience for CPU callers: uploads rays, traces, downloads hits (blocking).
+/** Convenience for CPU callers: uploads rays, traces, downloads hits (blocking).
  * timer may be NULL; otherwise it is reset and gets the scope "trace". */
 ROMA_API roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,
                                     const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
                                     roma_gpu_timer *timer);
 
-/* Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words).
+/** Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words).
  * word_count must be exactly that; ROMA_ERROR_NOT_READY before the first build. */
 ROMA_API roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
 ROMA_API roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
@@ -269,4 +300,4 @@ ROMA_API roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, 
 }
 #endif
 
-#endif /* ROMA_MAP_H */
+#endif /**< ROMA_MAP_H */

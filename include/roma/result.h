@@ -1,4 +1,5 @@
-/* libroma: result codes and logging.
+/** @file
+ * libroma: result codes and logging.
  *
  * Every fallible call returns a roma_result. Details go to the caller's log
  * callback (roma_logger); the library never exits, aborts or asserts on bad
@@ -12,30 +13,32 @@
 extern "C" {
 #endif
 
+/** What a call returns: ROMA_SUCCESS or the reason it failed (roma_result_string names it). */
 typedef enum roma_result {
     ROMA_SUCCESS = 0,
-    ROMA_ERROR_INVALID_ARGUMENT,    /* NULL handle, out-of-range value, inconsistent desc */
+    ROMA_ERROR_INVALID_ARGUMENT,    /**< NULL handle, out-of-range value, inconsistent desc */
     ROMA_ERROR_OUT_OF_HOST_MEMORY,
     ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
-    ROMA_ERROR_NO_VULKAN,           /* no Vulkan loader or driver could be initialised */
-    ROMA_ERROR_NO_DEVICE,           /* no physical device matches the requirements */
-    ROMA_ERROR_MISSING_FEATURE,     /* the device lacks a required feature or extension */
-    ROMA_ERROR_VULKAN,              /* any other Vulkan failure */
+    ROMA_ERROR_NO_VULKAN,           /**< no Vulkan loader or driver could be initialised */
+    ROMA_ERROR_NO_DEVICE,           /**< no physical device matches the requirements */
+    ROMA_ERROR_MISSING_FEATURE,     /**< the device lacks a required feature or extension */
+    ROMA_ERROR_VULKAN,              /**< any other Vulkan failure */
     ROMA_ERROR_DEVICE_LOST,
     ROMA_ERROR_FILE_NOT_FOUND,
-    ROMA_ERROR_IO,                  /* read/write failed on an existing path */
-    ROMA_ERROR_PARSE,               /* malformed file: JSON, GLB container, PFM header */
-    ROMA_ERROR_INVALID_SCENE,       /* well-formed file with unusable data (NaN, bad indices) */
-    ROMA_ERROR_EMPTY_SCENE,         /* no triangle with non-zero area */
-    ROMA_ERROR_UNSUPPORTED,         /* e.g. a required glTF extension libroma cannot decode */
-    ROMA_ERROR_NOT_READY,           /* results asked for before the GPU produced them */
-    ROMA_ERROR_VALIDATION,          /* a Vulkan validation-layer message (logged, never returned) */
+    ROMA_ERROR_IO,                  /**< read/write failed on an existing path */
+    ROMA_ERROR_PARSE,               /**< malformed file: JSON, GLB container, PFM header */
+    ROMA_ERROR_INVALID_SCENE,       /**< well-formed file with unusable data (NaN, bad indices) */
+    ROMA_ERROR_EMPTY_SCENE,         /**< no triangle with non-zero area */
+    ROMA_ERROR_UNSUPPORTED,         /**< e.g. a required glTF extension libroma cannot decode */
+    ROMA_ERROR_NOT_READY,           /**< results asked for before the GPU produced them */
+    ROMA_ERROR_VALIDATION,          /**< a Vulkan validation-layer message (logged, never returned) */
     ROMA_RESULT_COUNT_
 } roma_result;
 
-/* Never NULL; "unknown roma_result" for values outside the enum. */
+/** Never NULL; "unknown roma_result" for values outside the enum. */
 ROMA_API const char *roma_result_string(roma_result result);
 
+/** Severity of a logged message. */
 typedef enum roma_log_level {
     ROMA_LOG_DEBUG = 0,
     ROMA_LOG_INFO,
@@ -43,21 +46,22 @@ typedef enum roma_log_level {
     ROMA_LOG_ERROR
 } roma_log_level;
 
+/** "debug", "info", "warning" or "error"; "unknown" otherwise. */
 ROMA_API const char *roma_log_level_string(roma_log_level level);
 
-/* code: for an error, the roma_result the failing call returns (ROMA_ERROR_VALIDATION for
+/** code: for an error, the roma_result the failing call returns (ROMA_ERROR_VALIDATION for
  * a validation-layer message); ROMA_SUCCESS for debug, info and warning messages. Callers
  * can act on the code; the message is for people. */
 typedef void (*roma_log_fn)(roma_log_level level, roma_result code, const char *message, void *user_data);
 
-/* Zero value: warnings and errors go to stderr. Set fn to route them elsewhere. */
+/** Zero value: warnings and errors go to stderr. Set fn to route them elsewhere. */
 typedef struct roma_logger {
-    roma_log_fn fn;
-    void *user_data;
+    roma_log_fn fn; /**< called for each message; NULL: the default (stderr, warnings and errors) */
+    void *user_data; /**< passed to fn */
 } roma_logger;
 
 #ifdef __cplusplus
 }
 #endif
 
-#endif /* ROMA_RESULT_H */
+#endif /**< ROMA_RESULT_H */

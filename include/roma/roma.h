@@ -1,4 +1,5 @@
-/* libroma: fast approximate ray tracing of dynamic triangle scenes with a
+/** @file
+ * libroma: fast approximate ray tracing of dynamic triangle scenes with a
  * Ray-aligned Occupancy Map Array. Umbrella header. */
 #ifndef ROMA_ROMA_H
 #define ROMA_ROMA_H
@@ -14,8 +15,10 @@
 #include "roma/sampling.h"
 #include "roma/scene.h"
 
+/** Major version: the shared library's SONAME (libroma.so.0). */
 #define ROMA_VERSION_MAJOR 0
+/** Minor version. */
 #define ROMA_VERSION_MINOR 1
 #define ROMA_VERSION_PATCH 0
 
-#endif /* ROMA_ROMA_H */
+#endif /**< ROMA_ROMA_H */

@@ -1,4 +1,5 @@
-/* libroma: deterministic sample sequences shared by the reference tracer and
+/** @file
+ * libroma: deterministic sample sequences shared by the reference tracer and
  * the GPU passes (shaders/include/roma_sampling.glsl mirrors this file), so
  * that ROMA and Embree can be compared on the same rays.
  *
@@ -14,9 +15,10 @@
 extern "C" {
 #endif
 
+/** pi as a float. */
 #define ROMA_PI 3.14159265358979323846f
 
-/* A 32-bit integer hash with good avalanche ("lowbias32" constants). */
+/** A 32-bit integer hash with good avalanche ("lowbias32" constants). */
 static inline uint32_t roma_hash_u32(uint32_t x)
 {
     x ^= x >> 16;
@@ -27,13 +29,13 @@ static inline uint32_t roma_hash_u32(uint32_t x)
     return x;
 }
 
-/* Uniform float in [0, 1) with 24 bits of precision. */
+/** Uniform float in [0, 1) with 24 bits of precision. */
 static inline float roma_u32_to_unit_float(uint32_t x)
 {
     return (float)(x >> 8) * (1.0f / 16777216.0f);
 }
 
-/* Random number for (seed, pixel, sample, dimension). */
+/** Random number for (seed, pixel, sample, dimension). */
 static inline float roma_random(uint32_t seed, uint32_t pixel, uint32_t sample, uint32_t dimension)
 {
     uint32_t h = roma_hash_u32(seed ^ 0x9e3779b9U);
@@ -43,7 +45,7 @@ static inline float roma_random(uint32_t seed, uint32_t pixel, uint32_t sample, 
     return roma_u32_to_unit_float(h);
 }
 
-/* Concentric (Shirley-Chiu) map from the unit square to the unit disk. */
+/** Concentric (Shirley-Chiu) map from the unit square to the unit disk. */
 static inline void roma_concentric_disk(float u, float v, float *x, float *y)
 {
     float a = 2.0f * u - 1.0f, b = 2.0f * v - 1.0f;
@@ -64,7 +66,7 @@ static inline void roma_concentric_disk(float u, float v, float *x, float *y)
     *y = r * sinf(phi);
 }
 
-/* Cosine-weighted direction in the local frame where +z is the normal; pdf = cos/pi. */
+/** Cosine-weighted direction in the local frame where +z is the normal; pdf = cos/pi. */
 static inline void roma_cosine_hemisphere(float u, float v, float dir[3])
 {
     float x, y;
@@ -75,7 +77,7 @@ static inline void roma_cosine_hemisphere(float u, float v, float dir[3])
     dir[2] = z2 > 0.0f ? sqrtf(z2) : 0.0f;
 }
 
-/* Orthonormal basis (t, b, n) around unit n, continuous except at n.z = -1 boundary
+/** Orthonormal basis (t, b, n) around unit n, continuous except at n.z = -1 boundary
  * (Duff et al. 2017, "Building an orthonormal basis, revisited"). */
 static inline void roma_basis(const float n[3], float t[3], float b[3])
 {
@@ -90,7 +92,7 @@ static inline void roma_basis(const float n[3], float t[3], float b[3])
     b[2] = -n[1];
 }
 
-/* Local direction -> world direction around unit normal n. */
+/** Local direction -> world direction around unit normal n. */
 static inline void roma_local_to_world(const float n[3], const float local[3], float out[3])
 {
     float t[3], b[3];
@@ -99,7 +101,7 @@ static inline void roma_local_to_world(const float n[3], const float local[3], f
         out[i] = t[i] * local[0] + b[i] * local[1] + n[i] * local[2];
 }
 
-/* Uniform point on a triangle (barycentrics from two uniforms, square-root method). */
+/** Uniform point on a triangle (barycentrics from two uniforms, square-root method). */
 static inline void roma_triangle_sample(float u, float v, float *b1, float *b2)
 {
     float su = sqrtf(u);
@@ -107,7 +109,7 @@ static inline void roma_triangle_sample(float u, float v, float *b1, float *b2)
     *b2 = v * su;
 }
 
-/* Point-light positions for the many-lights effect: count positions, uniformly
+/** Point-light positions for the many-lights effect: count positions, uniformly
  * in the box [bmin, bmax] shrunk by 2% per side, from seed. out: 3 floats per light. */
 static inline void roma_many_lights_positions(const float bmin[3], const float bmax[3],
                                               uint32_t count, uint32_t seed, float *out)
@@ -115,7 +117,7 @@ static inline void roma_many_lights_positions(const float bmin[3], const float b
     for (uint32_t i = 0; i < count; ++i)
         for (uint32_t k = 0; k < 3; ++k) {
             float ext = bmax[k] - bmin[k];
-            float u = roma_random(seed, i, 0x4c49u, k); /* 'LI' */
+            float u = roma_random(seed, i, 0x4c49u, k); /**< 'LI' */
             out[3 * i + k] = bmin[k] + ext * (0.02f + 0.96f * u);
         }
 }
@@ -124,4 +126,4 @@ static inline void roma_many_lights_positions(const float bmin[3], const float b
 }
 #endif
 
-#endif /* ROMA_SAMPLING_H */
+#endif /**< ROMA_SAMPLING_H */

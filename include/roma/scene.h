@@ -1,4 +1,5 @@
-/* libroma: triangle scenes.
+/** @file
+ * libroma: triangle scenes.
  *
  * A roma_scene is an immutable, world-space triangle soup with per-triangle
  * materials, punctual lights, area lights (emissive triangles) and an optional
@@ -23,50 +24,56 @@
 extern "C" {
 #endif
 
+/** An immutable triangle scene with materials, lights, camera and animation data (opaque). Safe to
+ * read from several threads; destroyed by one.
+ */
 typedef struct roma_scene roma_scene;
 
+/** A diffuse material. */
 typedef struct roma_material {
-    float base_color[3]; /* linear albedo in [0,1] */
-    float emission[3];   /* emitted radiance, linear; non-zero makes the triangles area lights */
+    float base_color[3]; /**< linear albedo in [0,1] */
+    float emission[3];   /**< emitted radiance, linear; non-zero makes the triangles area lights */
 } roma_material;
 
+/** Kinds of punctual light (glTF KHR_lights_punctual). */
 typedef enum roma_light_type {
     ROMA_LIGHT_POINT = 1,
     ROMA_LIGHT_SPOT,
     ROMA_LIGHT_DIRECTIONAL
 } roma_light_type;
 
-/* Units follow KHR_lights_punctual: intensity is in candela (W/sr after
+/** Units follow KHR_lights_punctual: intensity is in candela (W/sr after
  * multiplying by color) for point and spot lights, in lux (W/m^2) for
  * directional lights. */
 typedef struct roma_light {
-    roma_light_type type;
-    float position[3];      /* world space; unused for directional lights */
-    float direction[3];     /* world space, unit: where the light points (spot, directional) */
-    float color[3];         /* linear RGB */
-    float intensity;
-    float range;            /* 0 = unlimited; otherwise the glTF-recommended window applies */
-    float inner_cone_angle; /* radians, spot lights only */
-    float outer_cone_angle; /* radians, spot lights only; 0 means pi/4 */
+    roma_light_type type; /**< point, spot or directional */
+    float position[3];      /**< world space; unused for directional lights */
+    float direction[3];     /**< world space, unit: where the light points (spot, directional) */
+    float color[3];         /**< linear RGB */
+    float intensity; /**< candela (point, spot) or lux (directional), as KHR_lights_punctual */
+    float range;            /**< 0 = unlimited; otherwise the glTF-recommended window applies */
+    float inner_cone_angle; /**< radians, spot lights only */
+    float outer_cone_angle; /**< radians, spot lights only; 0 means pi/4 */
 } roma_light;
 
+/** Arrays roma_scene_create validates and copies (the caller keeps ownership). */
 typedef struct roma_scene_desc {
-    const float *positions;           /* 3 floats per vertex, world space */
-    const float *normals;             /* optional, 3 per vertex; computed from faces when NULL */
-    uint32_t vertex_count;
-    const uint32_t *indices;          /* 3 per triangle */
-    uint32_t triangle_count;
-    const uint32_t *triangle_materials; /* optional, one per triangle; NULL = material 0 */
-    const roma_material *materials;   /* optional; NULL = one grey material (albedo 0.8) */
-    uint32_t material_count;
-    const roma_light *lights;         /* optional punctual lights */
-    uint32_t light_count;
-    const roma_camera *camera;        /* optional */
-    const char *name;                 /* optional, copied; shown in logs and stats */
-    roma_logger logger;
+    const float *positions;           /**< 3 floats per vertex, world space */
+    const float *normals;             /**< optional, 3 per vertex; computed from faces when NULL */
+    uint32_t vertex_count; /**< vertices */
+    const uint32_t *indices;          /**< 3 per triangle */
+    uint32_t triangle_count; /**< triangles */
+    const uint32_t *triangle_materials; /**< optional, one per triangle; NULL = material 0 */
+    const roma_material *materials;   /**< optional; NULL = one grey material (albedo 0.8) */
+    uint32_t material_count; /**< materials */
+    const roma_light *lights;         /**< optional punctual lights */
+    uint32_t light_count; /**< lights */
+    const roma_camera *camera;        /**< optional */
+    const char *name;                 /**< optional, copied; shown in logs and stats */
+    roma_logger logger; /**< where validation messages go; zero: stderr */
 } roma_scene_desc;
 
-/* Validates and copies the arrays. Rejects: NULL/zero arrays, indices >= vertex_count,
+/** Validates and copies the arrays. Rejects: NULL/zero arrays, indices >= vertex_count,
  * material indices >= material_count, NaN/Inf positions, normals or light data,
  * negative colours, base colours above 1, spot cones outside 0 <= inner <= outer <= pi/2,
  * zero light directions (spot, directional), no triangle with non-zero area
@@ -77,7 +84,7 @@ typedef struct roma_scene_desc {
  * Given normals of zero length fall back to the face normals, with a warning. */
 ROMA_API roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scene);
 
-/* Accepts NULL. */
+/** Accepts NULL. */
 ROMA_API void roma_scene_destroy(roma_scene *scene);
 
 /* Built-in test scenes: roma/builtin_scenes.h (library roma_tools). */
@@ -85,20 +92,23 @@ ROMA_API void roma_scene_destroy(roma_scene *scene);
 /* --- Data kept for animation (glTF skins and animations); rest pose is what
  *     the triangle arrays hold. All arrays may be empty. --- */
 
+/** A node of the glTF hierarchy at rest. */
 typedef struct roma_scene_node {
-    int32_t parent;          /* index into nodes, -1 for roots */
-    int32_t skin;            /* index into skins, -1 if none */
-    float translation[3];    /* local TRS at rest */
-    float rotation[4];       /* quaternion x, y, z, w */
-    float scale[3];
-    float world[16];         /* column-major world matrix at rest */
+    int32_t parent;          /**< index into nodes, -1 for roots */
+    int32_t skin;            /**< index into skins, -1 if none */
+    float translation[3];    /**< local TRS at rest */
+    float rotation[4];       /**< quaternion x, y, z, w */
+    float scale[3]; /**< rest scale */
+    float world[16];         /**< column-major world matrix at rest */
 } roma_scene_node;
 
+/** A skin: a range of joints. */
 typedef struct roma_scene_skin {
-    uint32_t first_joint;    /* range into roma_scene_animation_data.joint_nodes and inverse_binds */
-    uint32_t joint_count;
+    uint32_t first_joint;    /**< range into roma_scene_animation_data.joint_nodes and inverse_binds */
+    uint32_t joint_count; /**< joints of the skin (entries of joint_nodes from first_joint) */
 } roma_scene_skin;
 
+/** What an animation channel drives. */
 typedef enum roma_anim_path {
     ROMA_ANIM_TRANSLATION = 1,
     ROMA_ANIM_ROTATION,
@@ -106,86 +116,90 @@ typedef enum roma_anim_path {
     ROMA_ANIM_WEIGHTS
 } roma_anim_path;
 
+/** How an animation channel interpolates its keys. */
 typedef enum roma_anim_interp {
     ROMA_ANIM_LINEAR = 0,
     ROMA_ANIM_STEP,
     ROMA_ANIM_CUBICSPLINE
 } roma_anim_interp;
 
+/** One animation channel: a node's translation, rotation or scale over key times. */
 typedef struct roma_scene_anim_channel {
-    uint32_t animation;      /* index of the clip this channel belongs to */
-    uint32_t node;
-    roma_anim_path path;
-    roma_anim_interp interpolation;
-    uint32_t key_count;
-    uint32_t components;     /* floats per element: 3 (translation, scale), 4 (rotation), or
+    uint32_t animation;      /**< index of the clip this channel belongs to */
+    uint32_t node; /**< the animated node */
+    roma_anim_path path; /**< translation, rotation or scale */
+    roma_anim_interp interpolation; /**< step, linear or cubic spline */
+    uint32_t key_count; /**< keys in times (and values) */
+    uint32_t components;     /**< floats per element: 3 (translation, scale), 4 (rotation), or
                                 the morph target count (weights);
                                 the channel's values are key_count elements, or 3 * key_count
                                 for CUBICSPLINE (in-tangent, value, out-tangent per key) */
-    uint32_t first_time;     /* offset into roma_scene_animation_data.times */
-    uint32_t first_value;    /* offset into roma_scene_animation_data.values */
+    uint32_t first_time;     /**< offset into roma_scene_animation_data.times */
+    uint32_t first_value;    /**< offset into roma_scene_animation_data.values */
 } roma_scene_anim_channel;
 
+/** The skins and animations a glTF file carries, for roma_animator and roma_scene_pose. */
 typedef struct roma_scene_animation_data {
-    const roma_scene_node *nodes;
-    uint32_t node_count;
-    const roma_scene_skin *skins;
-    uint32_t skin_count;
-    const uint32_t *joint_nodes;       /* per skin joint: node index */
-    const float *inverse_binds;        /* per skin joint: column-major 4x4 */
-    uint32_t joint_total;
-    /* Per vertex of the flattened scene (vertex_count entries each, or NULL when no vertex is skinned): */
-    const uint32_t *vertex_node;       /* node that instanced the vertex */
-    const int32_t *vertex_skin;        /* skin index or -1 */
-    const uint16_t *vertex_joints;     /* 4 per vertex, index within the skin */
-    const float *vertex_weights;       /* 4 per vertex */
-    const float *vertex_rest_local;    /* 3 per vertex: position in mesh space before any transform */
-    const roma_scene_anim_channel *channels;
-    uint32_t channel_count;
-    uint32_t animation_count;
-    const float *times;
-    const float *values;
+    const roma_scene_node *nodes; /**< the node hierarchy */
+    uint32_t node_count; /**< entries of nodes */
+    const roma_scene_skin *skins; /**< skins */
+    uint32_t skin_count; /**< entries of skins */
+    const uint32_t *joint_nodes;       /**< per skin joint: node index */
+    const float *inverse_binds;        /**< per skin joint: column-major 4x4 */
+    uint32_t joint_total; /**< entries of joint_nodes and inverse_binds */
+    /** Per vertex of the flattened scene (vertex_count entries each, or NULL when no vertex is skinned): */
+    const uint32_t *vertex_node;       /**< node that instanced the vertex */
+    const int32_t *vertex_skin;        /**< skin index or -1 */
+    const uint16_t *vertex_joints;     /**< 4 per vertex, index within the skin */
+    const float *vertex_weights;       /**< 4 per vertex */
+    const float *vertex_rest_local;    /**< 3 per vertex: position in mesh space before any transform */
+    const roma_scene_anim_channel *channels; /**< animation channels of every clip */
+    uint32_t channel_count; /**< entries of channels */
+    uint32_t animation_count; /**< clips */
+    const float *times; /**< key times of every channel, seconds */
+    const float *values; /**< key values of every channel */
 } roma_scene_animation_data;
 
-/* Read-only view of a scene; pointers stay valid until roma_scene_destroy. */
+/** Read-only view of a scene; pointers stay valid until roma_scene_destroy. */
 typedef struct roma_scene_view {
-    const char *name;
-    const float *positions;           /* 3 per vertex */
-    const float *normals;             /* 3 per vertex, unit length (zero for unused vertices and
+    const char *name; /**< the scene's name */
+    const float *positions;           /**< 3 per vertex */
+    const float *normals;             /**< 3 per vertex, unit length (zero for unused vertices and
                                          for those with neither a usable given normal nor a
                                          triangle of non-zero area) */
-    uint32_t vertex_count;
-    const uint32_t *indices;          /* 3 per triangle */
-    uint32_t triangle_count;
-    uint32_t degenerate_triangle_count;
-    const uint32_t *triangle_materials; /* one per triangle */
-    const roma_material *materials;
-    uint32_t material_count;
-    const roma_light *lights;
-    uint32_t light_count;
-    const uint32_t *emissive_triangles; /* triangles whose material emits and whose area > 0 */
-    uint32_t emissive_triangle_count;
-    int has_camera;
-    roma_camera camera;
-    float bounds_min[3], bounds_max[3]; /* over vertices referenced by triangles */
-    roma_scene_animation_data animation;
+    uint32_t vertex_count; /**< vertices */
+    const uint32_t *indices;          /**< 3 per triangle */
+    uint32_t triangle_count; /**< triangles */
+    uint32_t degenerate_triangle_count; /**< triangles of zero area (kept, never hit) */
+    const uint32_t *triangle_materials; /**< one per triangle */
+    const roma_material *materials; /**< material_count materials */
+    uint32_t material_count; /**< materials */
+    const roma_light *lights; /**< light_count punctual lights */
+    uint32_t light_count; /**< lights */
+    const uint32_t *emissive_triangles; /**< triangles whose material emits and whose area > 0 */
+    uint32_t emissive_triangle_count; /**< entries of emissive_triangles */
+    int has_camera; /**< 1 when the scene carries a camera */
+    roma_camera camera; /**< valid when has_camera */
+    float bounds_min[3]; /**< lowest corner over the vertices referenced by triangles */
+    float bounds_max[3]; /**< highest corner over the vertices referenced by triangles */
+    roma_scene_animation_data animation; /**< skins and animations (empty for static scenes) */
 } roma_scene_view;
 
-/* Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (*out_view zeroed). */
+/** Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (*out_view zeroed). */
 ROMA_API roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view);
 
-/* Animation data is attached by loaders after the geometry is validated; the
+/** Animation data is attached by loaders after the geometry is validated; the
  * scene copies the arrays. Rejects out-of-range node/skin/joint indices and
  * non-finite floats. Intended for loaders; engines rarely need it. */
 ROMA_API roma_result roma_scene_set_animation_data(roma_scene *scene,
                                                    const roma_scene_animation_data *data,
                                                    const roma_logger *logger);
 
-/* Camera to use when none is given: the scene's own, or one framing the bounds. */
+/** Camera to use when none is given: the scene's own, or one framing the bounds. */
 ROMA_API void roma_scene_default_camera(const roma_scene *scene, float aspect, roma_camera *out_camera);
 
 #ifdef __cplusplus
 }
 #endif
 
-#endif /* ROMA_SCENE_H */
+#endif /**< ROMA_SCENE_H */

@@ -1,4 +1,5 @@
-/* libroma: the types, limits and flags that the C API and the tracing GLSL share.
+/** @file
+ * libroma: the types, limits and flags that the C API and the tracing GLSL share.
  *
  * Included from C as "roma/trace_types.h" (roma/map.h does) and from GLSL by
  * roma/trace.glsl. It holds only what an engine's shaders need to trace: the layout of
@@ -18,7 +19,7 @@
 #else
 #define ROMA_VEC4(name) vec4 name
 #define ROMA_UVEC4(name) uvec4 name
-/* Buffer device addresses as uvec2 (GL_EXT_buffer_reference_uvec2): same 8-byte
+/** Buffer device addresses as uvec2 (GL_EXT_buffer_reference_uvec2): same 8-byte
  * size and alignment as the C uint64_t, and no shaderInt64 needed. */
 #define ROMA_U64(name) uvec2 name
 #define ROMA_STRUCT_BEGIN(name) struct name {
@@ -29,14 +30,14 @@
 #define ROMA_MAX_WORDS (ROMA_MAX_RESOLUTION / 32)
 #define ROMA_MAX_ANGULAR 16
 
-/* Placement of the BOM grid this frame (world space). */
+/** Placement of the BOM grid this frame (world space). */
 ROMA_STRUCT_BEGIN(roma_grid_params)
-    ROMA_VEC4(origin);    /* xyz: corner of cell (0,0,0); w: cell size */
-    ROMA_VEC4(inv_cell);  /* x: 1 / cell size */
-    ROMA_UVEC4(dims);     /* x: RES, y: words per texel, z: A, w: map count */
+    ROMA_VEC4(origin);    /**< xyz: corner of cell (0,0,0); w: cell size */
+    ROMA_VEC4(inv_cell);  /**< x: 1 / cell size */
+    ROMA_UVEC4(dims);     /**< x: RES, y: words per texel, z: A, w: map count */
 ROMA_STRUCT_END(roma_grid_params)
 
-/* One ray-aligned map. world -> map cell coordinates, from the position relative to the
+/** One ray-aligned map. world -> map cell coordinates, from the position relative to the
  * grid origin (r = p - grid.origin.xyz, which keeps full precision far from the world
  * origin): m_i = dot(to_map_i.xyz, r) + to_map_i.w (evaluated as
  * ((x*r.x + y*r.y) + z*r.z) + w, without contraction). map -> BOM cell
@@ -50,25 +51,25 @@ ROMA_STRUCT_BEGIN(roma_map_frame)
     ROMA_VEC4(map_to_bom_1);
     ROMA_VEC4(map_to_bom_2);
     ROMA_VEC4(map_to_bom_3);
-    ROMA_VEC4(dir);       /* xyz: candidate direction (unit, z >= 0); w: world size of a cell along it */
-    ROMA_VEC4(cell);      /* world cell size along map x, y, z */
+    ROMA_VEC4(dir);       /**< xyz: candidate direction (unit, z >= 0); w: world size of a cell along it */
+    ROMA_VEC4(cell);      /**< world cell size along map x, y, z */
 ROMA_STRUCT_END(roma_map_frame)
 
-/* The parameters buffer of a map: grid + up to ROMA_MAX_ANGULAR^2 frames, read by the
+/** The parameters buffer of a map: grid + up to ROMA_MAX_ANGULAR^2 frames, read by the
  * rotation as one uniform block of this size (48 + 256 * 144 bytes). */
 #define ROMA_PARAMS_BLOCK_BYTES (48u + 144u * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR)
 
-/* Tracing through descriptors (roma/trace_descriptors.glsl): in set ROMA_TRACE_SET, the
+/** Tracing through descriptors (roma/trace_descriptors.glsl): in set ROMA_TRACE_SET, the
  * maps as a uniform texel buffer (R32_UINT) and the parameters as a uniform block of
  * ROMA_PARAMS_BLOCK_BYTES. */
 #define ROMA_TRACE_BINDING_MAPS 0
 #define ROMA_TRACE_BINDING_PARAMS 1
 #define ROMA_TRACE_BINDINGS 2
 
-/* roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the
+/** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the
  * ray was folded (its direction had z < 0 and was traced backwards in the map of -d). */
 #define ROMA_HIT_FLAG 1u
 #define ROMA_HIT_MAP(info) (((info) >> 8) & 0xffu)
 #define ROMA_HIT_FOLDED 0x10000u
 
-#endif /* ROMA_TRACE_TYPES_H */
+#endif /**< ROMA_TRACE_TYPES_H */

@@ -29,7 +29,10 @@ while IFS= read -r line; do
     *) extra=() ;;
   esac
   [ "${words[1]:-}" = "--help" ] && extra=()
-  if ! "${words[@]}" "${extra[@]}" >"cmd$count.out" 2>&1; then
+  # Sanitizer builds: the driver preloaded, as test_cli does (tests/CMakeLists.txt says why).
+  preload=()
+  [ -n "${ROMA_TOOL_PRELOAD:-}" ] && preload=(env "LD_PRELOAD=$ROMA_TOOL_PRELOAD")
+  if ! "${preload[@]}" "${words[@]}" "${extra[@]}" >"cmd$count.out" 2>&1; then
     echo "FAIL: README command failed: $line" >&2
     tail -5 "cmd$count.out" >&2
     failures=$((failures + 1))

@@ -1014,6 +1014,10 @@ int run_window(viewer &v)
                 v.accumulated = 0;
         }
         in.dropped.clear();
+        if (!v.map) { // a dropped file loaded but its GPU objects could not be made
+            status = 1;
+            break;
+        }
         auto now = std::chrono::steady_clock::now();
         float dt = std::chrono::duration<float>(now - previous).count();
         previous = now;
@@ -1086,6 +1090,11 @@ int run_window(viewer &v)
         if (ar == VK_ERROR_OUT_OF_DATE_KHR) {
             resize = true;
             continue;
+        }
+        if (ar < 0) {
+            std::fprintf(stderr, "roma-viewer: vkAcquireNextImageKHR failed (%d)\n", int(ar));
+            status = 1;
+            break;
         }
         vkResetFences(v.base.device, 1, &v.fence[slot]);
         VkCommandBuffer cmd = v.cmd[slot];

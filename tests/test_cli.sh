@@ -313,6 +313,16 @@ assert abs(a["bounds_min"][0] - b["bounds_min"][0]) < 1e-4, (a, b)
 PY
 says "--up sideways" "valid: +y, -y, +z" --up sideways --out "$dir/x11"
 
+# --animation by name (or index) and --gltf-camera; a wrong name lists the animations.
+"$render" --scene "$ROMA_SCENES_DIR/Fox.glb" --animation Walk --time 0.3 --size 8x6 --spp 1 --quiet \
+  --out "$dir/fox" --stats "$dir/fox.json" >/dev/null 2>"$dir/fox.err"
+expect_status 0 $? "roma-render --animation Walk" || cat "$dir/fox.err" >&2
+grep -q '"pose_clip": 1' "$dir/fox.json" || fail "--animation Walk did not pose clip 1"
+says "--animation Wallk" "did you mean Walk?" --scene "$ROMA_SCENES_DIR/Fox.glb" --animation Wallk --out "$dir/x12"
+grep -q "the scene has 3: 0 (Survey) 1 (Walk) 2 (Run)" "$dir/says.err" || fail "a wrong --animation does not list the animations"
+says "--gltf-camera 1" "the file has 1 perspective camera" --scene "$ROMA_SCENES_DIR/2CylinderEngine.glb" \
+  --gltf-camera 1 --out "$dir/x13"
+
 # An unwritable stats file or a malformed number is an error, not a silent success.
 "$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"
 expect_status 1 $? "roma-render with an unwritable --stats path"

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "roma/animation.h"
 #include "roma/gltf.h"
 
 static int sentinel_storage;
@@ -734,10 +735,49 @@ static void test_size_limits(void)
     free(doc);
 }
 
+/* roma_gltf_desc.camera_index picks among a file's perspective cameras (2CylinderEngine
+ * has one); the animations keep their names (Fox: Survey, Walk, Run), also in a posed copy. */
+static void test_cameras_and_names(void)
+{
+    char path[1024];
+    if (roma_test_scene_file("2CylinderEngine.glb", path, sizeof path)) {
+        roma_scene *s = NULL;
+        CHECK_RESULT(roma_scene_load_gltf(path, &(roma_gltf_desc){.camera_index = 0}, &s), ROMA_SUCCESS);
+        roma_scene_view v;
+        roma_scene_get_view(s, &v);
+        CHECK(s && v.has_camera);
+        roma_scene_destroy(s);
+        int errors = 0;
+        s = SENTINEL;
+        CHECK_RESULT(roma_scene_load_gltf(path, &(roma_gltf_desc){.logger = {count_errors, &errors}, .camera_index = 1},
+                                          &s),
+                     ROMA_ERROR_INVALID_ARGUMENT);
+        CHECK(s == NULL && errors == 1);
+    }
+    if (roma_test_scene_file("Fox.glb", path, sizeof path)) {
+        roma_scene *s = NULL;
+        CHECK_RESULT(roma_scene_load_gltf(path, NULL, &s), ROMA_SUCCESS);
+        roma_scene_view v;
+        roma_scene_get_view(s, &v);
+        const char *want[3] = {"Survey", "Walk", "Run"};
+        CHECK(v.animation.animation_count == 3 && v.animation.animation_names);
+        for (int i = 0; v.animation.animation_names && i < 3; ++i)
+            CHECK(strcmp(v.animation.animation_names[i], want[i]) == 0);
+        roma_scene *posed = NULL;
+        CHECK_RESULT(roma_scene_pose(s, &(roma_animator_pose){.clip = 1, .time = 0.5f}, NULL, &posed), ROMA_SUCCESS);
+        roma_scene_view pv;
+        roma_scene_get_view(posed, &pv);
+        CHECK(pv.animation.animation_names && strcmp(pv.animation.animation_names[2], "Run") == 0);
+        roma_scene_destroy(posed);
+        roma_scene_destroy(s);
+    }
+}
+
 int main(void)
 {
     test_good();
     test_corpus();
     test_size_limits();
+    test_cameras_and_names();
     return roma_test_finish("test_gltf_loader");
 }

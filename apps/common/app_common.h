@@ -26,10 +26,12 @@ roma_result roma_app_read_exr(const char *path, roma_image *out);
 /* Reads .exr with roma_app_read_exr, anything else as PFM. */
 roma_result roma_app_read_image(const char *path, roma_image *out);
 
-/* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path. A missing file, a
+/* "builtin:NAME" (or "builtin" for the default) or a .gltf/.glb path (camera_index: which of
+ * its perspective cameras, roma_gltf_desc.camera_index). A missing file, a
  * directory, or another format is refused with the cause on stderr (and a near built-in
  * name suggested). */
-roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene);
+roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, uint32_t camera_index,
+                                roma_scene **out_scene);
 
 /* Monotonic wall clock in milliseconds. */
 double roma_app_now_ms(void);

@@ -18,7 +18,8 @@ static int has_suffix(const char *s, const char *suffix)
     return 1;
 }
 
-roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma_scene **out_scene)
+roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, uint32_t camera_index,
+                                roma_scene **out_scene)
 {
     if (strcmp(arg, "builtin") == 0)
         return roma_scene_create_builtin(NULL, logger, out_scene);
@@ -45,7 +46,7 @@ roma_result roma_app_load_scene(const char *arg, const roma_logger *logger, roma
                 arg);
         return ROMA_ERROR_UNSUPPORTED;
     }
-    roma_gltf_desc desc = {0};
+    roma_gltf_desc desc = {.camera_index = camera_index};
     if (logger)
         desc.logger = *logger;
     return roma_scene_load_gltf(arg, &desc, out_scene);

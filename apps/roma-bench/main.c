@@ -173,7 +173,7 @@ int main(int argc, char **argv)
         return 2;
     }
     roma_scene *scene = NULL;
-    roma_result r = roma_app_load_scene(scene_arg, NULL, &scene);
+    roma_result r = roma_app_load_scene(scene_arg, NULL, 0, &scene);
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-bench: cannot load %s: %s\n", scene_arg, roma_result_string(r));
         return 1;

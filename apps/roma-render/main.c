@@ -62,6 +62,10 @@ static const char *usage =
     "  --time SECONDS              an animated glTF posed at this time of its clip (both tracers;\n"
     "                              default: the rest pose)\n"
     "  --clip N                    which animation --time plays (default 0)\n"
+    "  --animation NAME|INDEX      the same by the glTF animation's name or index; without --time,\n"
+    "                              the pose at time 0\n"
+    "  --gltf-camera N             which of a glTF file's perspective cameras to use (default 0:\n"
+    "                              the first; --camera overrides)\n"
     "  --list-scenes               print the built-in scene names\n"
     "  --quiet                     no progress lines (none either when stderr is not a terminal,\n"
     "                              but a line per 10%)\n"
@@ -87,6 +91,8 @@ typedef struct options {
     uint32_t extra_light_count;
     uint32_t given;      /* GIVEN_* bits: options a tracer may ignore */
     const char *up;      /* --up; NULL = +y */
+    const char *animation; /* --animation NAME|INDEX; NULL: --clip */
+    uint32_t gltf_camera;
 } options;
 
 /* Options that only one tracer reads (a warning when the other ignores them). */
@@ -100,7 +106,7 @@ static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
     "--max-steps", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--background",
-    "--time", "--clip", "--up", "--list-scenes", "--quiet", "--help", NULL};
+    "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", NULL};
 
 enum { FORMAT_PFM = 1u << 0, FORMAT_PNG = 1u << 1, FORMAT_EXR = 1u << 2 };
 
@@ -256,6 +262,8 @@ static int parse_args(int argc, char **argv, options *o)
         } else if (strcmp(a, "--scene") == 0) o->scene = v;
         else if (strcmp(a, "--out") == 0) o->out = v;
         else if (strcmp(a, "--format") == 0) ok = parse_formats(v, &o->formats);
+        else if (strcmp(a, "--animation") == 0) o->animation = v;
+        else if (strcmp(a, "--gltf-camera") == 0) ok = parse_u32(v, 0, 1u << 20, &o->gltf_camera);
         else if (strcmp(a, "--up") == 0) {
             o->up = v;
             if (!roma_app_valid_up(v)) {
@@ -622,6 +630,49 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     return 1;
 }
 
+/* --animation NAME|INDEX: the clip by the glTF animation's name or index (then --time, or 0). */
+static int resolve_animation(options *o, const roma_scene *scene)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    const roma_scene_animation_data *a = &v.animation;
+    if (a->animation_count == 0) {
+        fprintf(stderr, "roma-render: --animation %s: the scene has no animations\n", o->animation);
+        return 0;
+    }
+    char *end;
+    unsigned long index = strtoul(o->animation, &end, 10);
+    int found = 0;
+    if (end != o->animation && !*end && o->animation[0] != '-') {
+        found = index < a->animation_count;
+    } else {
+        for (uint32_t i = 0; a->animation_names && i < a->animation_count && !found; ++i)
+            if (strcmp(a->animation_names[i], o->animation) == 0)
+                index = i, found = 1;
+    }
+    if (!found) {
+        fprintf(stderr, "roma-render: no animation '%s'; the scene has %u:", o->animation, a->animation_count);
+        for (uint32_t i = 0; i < a->animation_count; ++i)
+            fprintf(stderr, " %u%s%s%s", i, a->animation_names && a->animation_names[i][0] ? " (" : "",
+                    a->animation_names ? a->animation_names[i] : "",
+                    a->animation_names && a->animation_names[i][0] ? ")" : "");
+        fprintf(stderr, "\n");
+        const char **names = a->animation_names ? calloc(a->animation_count + 1, sizeof *names) : NULL;
+        if (names) { /* a NULL-terminated list for the suggestion */
+            memcpy(names, a->animation_names, sizeof *names * a->animation_count);
+            const char *near = roma_app_suggest(o->animation, names);
+            if (near)
+                fprintf(stderr, "did you mean %s?\n", near);
+            free(names);
+        }
+        return 0;
+    }
+    o->clip = (uint32_t)index;
+    if (o->time < 0.0f)
+        o->time = 0.0f;
+    return 1;
+}
+
 /* A copy of scene with lights appended (--light). */
 static roma_result with_lights(const roma_scene *scene, const roma_light *extra, uint32_t count, roma_scene **out)
 {
@@ -690,10 +741,14 @@ int main(int argc, char **argv)
         return 2;
     roma_scene *scene = NULL;
     double started = roma_app_now_ms();
-    roma_result r = roma_app_load_scene(o.scene, NULL, &scene);
+    roma_result r = roma_app_load_scene(o.scene, NULL, o.gltf_camera, &scene);
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-render: cannot load scene '%s': %s\n", o.scene, roma_result_string(r));
         return 1;
+    }
+    if (o.animation && !resolve_animation(&o, scene)) {
+        roma_scene_destroy(scene);
+        return 2;
     }
     if (o.time >= 0.0f) { /* both tracers render the same posed triangles */
         roma_scene *posed = NULL;

@@ -6,9 +6,12 @@
 #define ROMA_API_H
 
 #if defined(__GNUC__) || defined(__clang__)
+/** Exports a public function from the shared library: default visibility with GCC and
+ * Clang, nothing elsewhere. Callers never need it; static linking ignores it. */
 #define ROMA_API __attribute__((visibility("default")))
 #else
+/** Elsewhere ROMA_API expands to nothing. */
 #define ROMA_API
 #endif
 
-#endif /**< ROMA_API_H */
+#endif /* ROMA_API_H */

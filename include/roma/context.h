@@ -15,7 +15,8 @@
  * synchronization2, hostQueryReset, bufferDeviceAddress, fragmentStoresAndAtomics;
  * no device extension; a queue family with graphics, compute and timestamps; subgroup
  * arithmetic and ballot in compute shaders; maxUniformBufferRange >= 36,912 bytes.
- * geometryShader is optional (the raster BOM modes use it when enabled).
+ * geometryShader is optional: libroma enables it on its own device when offered; no pass
+ * needs it (the raster BOM modes use a vertex and a fragment shader).
  *
  * Threads and queues: a context and everything made from it (maps, timers) is used
  * by one thread at a time (lock around it otherwise); objects of different contexts
@@ -50,12 +51,13 @@ extern "C" {
  */
 typedef struct roma_context roma_context;
 
-/** Bits of roma_context_desc.flags. */
+/** Bits of roma_context_desc.flags. All three apply to libroma's own device only and are
+ * ignored when roma_context_desc.external is set. */
 typedef enum roma_context_flags {
     /** Enable the Khronos validation layer and route its messages to the logger;
      * creation fails with ROMA_ERROR_MISSING_FEATURE if the layer is absent. */
     ROMA_CONTEXT_VALIDATION = 1u << 0,
-    /** Never pick a CPU implementation (lavapipe). */
+    /** Never pick a CPU implementation (lavapipe): ROMA_ERROR_NO_DEVICE if no GPU qualifies. */
     ROMA_CONTEXT_REQUIRE_GPU = 1u << 1,
     /** Validation with synchronization validation (hazards between commands, across
      * submissions); implies ROMA_CONTEXT_VALIDATION. Own device only. */
@@ -83,20 +85,28 @@ typedef struct roma_external_device {
 typedef struct roma_device_requirements {
     uint32_t api_version; /**< VK_API_VERSION_1_3: the instance's apiVersion and the device's */
     VkPhysicalDeviceFeatures2 features; /**< core features to enable; pNext points to features12 */
-    VkPhysicalDeviceVulkan12Features features12; /**< Vulkan 1.2 features to enable; pNext points to features13 */
+    /** Vulkan 1.2 features to enable; pNext points to features13. */
+    VkPhysicalDeviceVulkan12Features features12;
     VkPhysicalDeviceVulkan13Features features13; /**< Vulkan 1.3 features to enable */
-    uint32_t extension_count;      /**< device extensions to enable: none today */
+    uint32_t extension_count;      /**< device extensions to enable: none today (0) */
     const char *const *extensions; /**< extension_count device extension names */
     VkQueueFlags queue_flags;      /**< the queue's family: GRAPHICS | COMPUTE, timestampValidBits > 0 */
 } roma_device_requirements;
 
-/** Fills out with what libroma needs of a device (no failure; out must not be NULL). */
+/** Fills out with what libroma needs of a device. Never fails.
+ *
+ * @param[out] out  the requirements; its pNext chain points into *out itself, so the struct
+ *                  must not be copied while the chain is used. NULL: nothing is done.
+ * @par Threads
+ * Any thread (no state). */
 ROMA_API void roma_get_device_requirements(roma_device_requirements *out);
 
 /** Settings of roma_context_create; the zero value gives libroma's own headless device. */
 typedef struct roma_context_desc {
     uint32_t flags;                       /**< roma_context_flags; unknown bits are rejected */
-    const char *device_name;              /**< substring of the device name; NULL = ROMA_DEVICE or auto */
+    /** Case-insensitive substring of the device name; NULL = ROMA_DEVICE or auto (the best
+     * kind), "" = auto. Own device only. */
+    const char *device_name;
     const roma_external_device *external; /**< NULL = libroma creates its own device */
     roma_logger logger; /**< where messages go; zero: stderr, warnings and errors only */
     /** Used for every Vulkan object libroma creates (and, own device, for the instance
@@ -111,12 +121,36 @@ typedef struct roma_context_desc {
 } roma_context_desc;
 
 /** Creates a context: on libroma's own instance and device (external NULL) or on the engine's.
- * ROMA_ERROR_INVALID_ARGUMENT (NULL out, unknown flag bits, a queue family without graphics,
- * compute and timestamps), ROMA_ERROR_NO_VULKAN, ROMA_ERROR_NO_DEVICE, ROMA_ERROR_MISSING_FEATURE
- * (named in the log), out-of-memory codes; *out_context is NULL on failure.
- */
+ * Own device: creates the instance (with validation if asked), picks the device (discrete,
+ * integrated, virtual, then CPU), creates the device and a queue. Both modes then create
+ * a command pool, a fence and a pipeline cache.
+ *
+ * @param desc  settings; NULL = the zero value (own headless device, stderr logging, no
+ *              budget). Copied: only desc->external's handles and allocation_callbacks must
+ *              outlive the context.
+ * @param[out] out_context  the new context; NULL on failure.
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: NULL out_context, unknown flag bits; external: a NULL
+ *   handle, a queue family index the device does not have, enabled_features NULL or not a
+ *   VkPhysicalDeviceFeatures2;
+ *   ROMA_ERROR_NO_VULKAN: no loader, a loader below Vulkan 1.3, or no usable driver;
+ *   ROMA_ERROR_NO_DEVICE: no device matches (name, ROMA_CONTEXT_REQUIRE_GPU, requirements);
+ *   ROMA_ERROR_MISSING_FEATURE (named in the log): validation asked for but the layer is
+ *   absent; external: the queue family lacks graphics, compute or timestamps, or the device
+ *   lacks or was created without a required feature;
+ *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
+ * @par Threads
+ * Any thread; the new context is then used by one thread at a time. */
 ROMA_API roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
-/** Waits for the device to be idle, then destroys what libroma created. Accepts NULL. */
+/** Waits for libroma's work, then destroys what libroma created: own device, vkDeviceWaitIdle
+ * and the device and instance; external device, vkQueueWaitIdle on its queue (the engine's
+ * device, instance and queue stay).
+ *
+ * @param context  the context, or NULL (nothing is done). Every object made from it (maps,
+ *                 effects, animators, timers) must have been destroyed before.
+ * @par Threads
+ * The context's thread; on an external device no other thread may use its queue during
+ * the call (vkQueueWaitIdle). */
 ROMA_API void roma_context_destroy(roma_context *context);
 
 /** The device a context runs on and what libroma did with it (roma_context_get_info). */
@@ -141,35 +175,87 @@ typedef struct roma_context_info {
     uint32_t pipelines_compiled;
 } roma_context_info;
 
-/** The device and counters of a context. ROMA_ERROR_INVALID_ARGUMENT for NULL arguments. */
+/** The device and counters of a context.
+ *
+ * @param context        the context.
+ * @param[out] out_info  the device and counters now; zeroed on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL argument.
+ * @par Threads
+ * The context's thread (the counters change in its calls). */
 ROMA_API roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);
 
-/** Errors reported by the validation layer since creation (0 when validation is off). */
+/** Errors reported by the validation layer since creation.
+ *
+ * @param context  the context; NULL gives 0.
+ * @return the number of validation-layer errors (0 when validation is off).
+ * @par Threads
+ * Any thread while the context lives (an atomic counter). */
 ROMA_API uint32_t roma_context_validation_error_count(const roma_context *context);
 
-/** The context's instance (the engine's when adopted); VK_NULL_HANDLE for NULL. */
+/** The context's instance (the engine's when adopted).
+ *
+ * @param context  the context; NULL gives VK_NULL_HANDLE.
+ * @return the VkInstance, owned by the context (own device) or by the engine; valid until
+ *         roma_context_destroy.
+ * @par Threads
+ * Any thread while the context lives (reads a field set at creation). */
 ROMA_API VkInstance roma_context_instance(const roma_context *context);
-/** The context's physical device; VK_NULL_HANDLE for NULL. */
+/** The context's physical device.
+ *
+ * @param context  the context; NULL gives VK_NULL_HANDLE.
+ * @return the VkPhysicalDevice the context runs on.
+ * @par Threads
+ * Any thread while the context lives. */
 ROMA_API VkPhysicalDevice roma_context_physical_device(const roma_context *context);
-/** The context's device; VK_NULL_HANDLE for NULL. */
+/** The context's device.
+ *
+ * @param context  the context; NULL gives VK_NULL_HANDLE.
+ * @return the VkDevice, owned by the context (own device; valid until roma_context_destroy)
+ *         or by the engine.
+ * @par Threads
+ * Any thread while the context lives. */
 ROMA_API VkDevice roma_context_device(const roma_context *context);
-/** The queue libroma submits to; VK_NULL_HANDLE for NULL. */
+/** The queue libroma submits to.
+ *
+ * @param context  the context; NULL gives VK_NULL_HANDLE.
+ * @return the VkQueue. Submitting to it from another thread during libroma's blocking calls
+ *         is not allowed (Vulkan's external synchronisation of queues).
+ * @par Threads
+ * Any thread while the context lives. */
 ROMA_API VkQueue roma_context_queue(const roma_context *context);
-/** That queue's family index; 0 for NULL. */
+/** That queue's family index.
+ *
+ * @param context  the context; NULL gives UINT32_MAX.
+ * @return the queue family index of roma_context_queue.
+ * @par Threads
+ * Any thread while the context lives. */
 ROMA_API uint32_t roma_context_queue_family(const roma_context *context);
 
 /** Runs a tiny compute shader end to end (upload-free fill, readback, timestamp)
- * to prove the device, the embedded SPIR-V and the timers work. Optional. */
+ * to prove the device, the embedded SPIR-V and the timers work. Optional. Submits to the
+ * context's queue and waits.
+ *
+ * @param context          the context.
+ * @param[out] out_gpu_ms  GPU time of the fill dispatch in milliseconds; may be NULL. Set
+ *                         to 0 first, so 0 on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context; ROMA_ERROR_VULKAN
+ *         when the shader wrote wrong values; ROMA_ERROR_NOT_READY if the timestamps are not
+ *         available after the wait; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
+ *         (roma_result).
+ * @par Threads
+ * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
 
-/* --- GPU timers: timestamp queries around named passes ---
+/* --- GPU timers: timestamp queries around named passes --- */
+
+/** GPU timestamps around named scopes of recorded work (opaque).
+ *
  * Record begin/end into any command buffer of the context's queue family;
  * read after the work completed. Names are copied. Caveat measured on Mesa
  * lavapipe 22.3: its timestamps cover rasterization but not compute dispatches
  * (they are written before the dispatch runs), so on that device compute passes
- * read as near zero; roma-bench reports host-observed times beside them. */
-
-/** GPU timestamps around named scopes of recorded work (opaque). */
+ * read as near zero; roma-bench reports host-observed times beside them.
+ * A timer is used by one thread at a time, like its context. */
 typedef struct roma_gpu_timer roma_gpu_timer;
 
 /** One scope's measured time (roma_gpu_timer_read). */
@@ -178,20 +264,65 @@ typedef struct roma_gpu_timing {
     double milliseconds; /**< GPU time between the scope's begin and end */
 } roma_gpu_timing;
 
-/** A timer of max_scopes scopes (1 to 4096). ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or a
- * count outside that range, ROMA_ERROR_OUT_OF_HOST_MEMORY. */
+/** A timer of max_scopes scopes (1 to 4096): a query pool of 2 * max_scopes timestamps,
+ * reset on the host at creation (so a read before any use gives ROMA_ERROR_NOT_READY).
+ *
+ * @param context          the context whose device the queries live on; must outlive the timer.
+ * @param max_scopes       scopes per use, 1 to 4096.
+ * @param[out] out_timer   the new timer; NULL on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or a count outside
+ *         that range; ROMA_ERROR_OUT_OF_HOST_MEMORY; a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_scopes,
                                            roma_gpu_timer **out_timer);
-/** Accepts NULL. No submitted work may still write its queries. */
+/** Destroys a timer and its query pool.
+ *
+ * @param timer  the timer, or NULL (nothing is done). No submitted work may still write its
+ *               queries.
+ * @par Threads
+ * The context's thread. */
 ROMA_API void roma_gpu_timer_destroy(roma_gpu_timer *timer);
-/** Records the query reset; call once per use, before the first begin. */
+/** Records the query reset into cmd and forgets the scopes begun so far (on the host, now);
+ * call once per use, before the first begin.
+ *
+ * @param timer  the timer; NULL: nothing is done.
+ * @param cmd    a command buffer of the context's queue family in the recording state, outside
+ *               a render pass; VK_NULL_HANDLE: nothing is done.
+ * @par Threads
+ * The context's thread; cmd externally synchronised. */
 ROMA_API void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
-/** Returns a scope index, or UINT32_MAX when max_scopes is exhausted (nothing recorded). */
+/** Opens a scope: records its begin timestamp (ALL_COMMANDS stage) into cmd.
+ *
+ * @param timer  the timer.
+ * @param cmd    a command buffer of the context's queue family in the recording state.
+ * @param name   the scope's name, copied (up to 47 bytes); NULL = "".
+ * @return the scope index for roma_gpu_timer_end, or UINT32_MAX when max_scopes is exhausted
+ *         or timer or cmd is NULL (nothing recorded).
+ * @par Threads
+ * The context's thread; cmd externally synchronised. */
 ROMA_API uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cmd, const char *name);
-/** Records the end timestamp of scope (from roma_gpu_timer_begin). */
+/** Records the end timestamp of scope (from roma_gpu_timer_begin) into cmd.
+ *
+ * @param timer  the timer; NULL: nothing is done.
+ * @param cmd    a command buffer of the context's queue family; VK_NULL_HANDLE: nothing is done.
+ * @param scope  from roma_gpu_timer_begin since the last reset; UINT32_MAX, an unknown scope or
+ *               one already ended is ignored.
+ * @par Threads
+ * The context's thread; cmd externally synchronised. */
 ROMA_API void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uint32_t scope);
-/** Copies up to *count timings; *count becomes the number of scopes recorded.
- * ROMA_ERROR_NOT_READY if the GPU has not finished them. */
+/** Copies up to *count timings, in the order the scopes were begun; *count becomes the
+ * number of scopes recorded. Does not wait.
+ *
+ * @param timer             the timer.
+ * @param[out] out_timings  room for *count timings; may be NULL when *count is 0 (to ask how
+ *                          many scopes there are).
+ * @param[in,out] count     in: room in out_timings; out: scopes begun since the last reset.
+ * @return ROMA_SUCCESS; ROMA_ERROR_NOT_READY if the GPU has not finished them;
+ *         ROMA_ERROR_INVALID_ARGUMENT for a NULL timer or count, or NULL out_timings with
+ *         *count > 0; ROMA_ERROR_OUT_OF_HOST_MEMORY; a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing *out_timings,
                                          uint32_t *count);
 
@@ -199,4 +330,4 @@ ROMA_API roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing 
 }
 #endif
 
-#endif /**< ROMA_CONTEXT_H */
+#endif /* ROMA_CONTEXT_H */

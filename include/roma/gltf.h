@@ -39,6 +39,10 @@ typedef struct roma_gltf_desc {
      * 0 = ROMA_GLTF_DEFAULT_MAX_VERTICES / ROMA_GLTF_DEFAULT_MAX_TRIANGLES. */
     uint32_t max_vertices;
     uint32_t max_triangles; /**< see max_vertices */
+    /** Which perspective camera, in the order the default scene's nodes are visited, becomes the
+     * scene's camera: 0 = the first. A file with fewer is ROMA_ERROR_INVALID_ARGUMENT (the
+     * message gives how many it has); a file with none and 0 gives a scene without camera. */
+    uint32_t camera_index;
 } roma_gltf_desc;
 
 /** Default of roma_gltf_desc.max_vertices. */

@@ -35,7 +35,10 @@
  * cell can have (sqrt(3) BOM cells), so the origin clears the surface's own cells in
  * every map. Rotation samples the BOM twice per rotated cell along the map's z axis
  * (ROMA_ROTATE_SAMPLES) so that rays rarely step over one-cell-thick walls
- * (docs/accuracy.md: 0.1% of rays in a closed room, against 8.8% with one sample). */
+ * (docs/accuracy.md: 0.1% of rays in a closed room, against 8.8% with one sample).
+ *
+ * Threads: a map is used by one thread at a time, like its context (its calls share the
+ * context's state); record calls write only into the command buffer they are given. */
 #ifndef ROMA_MAP_H
 #define ROMA_MAP_H
 
@@ -56,8 +59,7 @@ extern "C" {
 #endif
 
 /** A ray-aligned occupancy map array and the scene geometry it is built from (opaque). Used by one
- * thread at a time, like its context.
- */
+ * thread at a time, like its context. */
 typedef struct roma_map roma_map;
 
 /** How the base occupancy map is voxelized. */
@@ -65,7 +67,8 @@ typedef enum roma_bom_mode {
     /** Default: the exact voxelization, in compute on every device: a cell is occupied
      * when a triangle overlaps it (separating-axis test), up to float ties. */
     ROMA_BOM_EXACT = 0,
-    ROMA_BOM_UNION3,      /**< rasterize along x, y and z at pixel centres, union (misses thin parts) */
+    /** Rasterize along x, y and z at pixel centres, union (misses thin parts). */
+    ROMA_BOM_UNION3,
     ROMA_BOM_DOMINANT,    /**< each triangle only along its dominant normal axis, pixel centres */
     /** Dominant axis rasterized conservatively (the projected triangle grown by half a
      * pixel, pixels it does not touch discarded): the exact voxelization through the
@@ -81,22 +84,44 @@ typedef struct roma_map_desc {
     uint32_t resolution;       /**< RES in {32, 64, 128, 256}; 0 = 128 */
     uint32_t angular;          /**< A in [1, 16]: A x A maps; 0 = 4 */
     roma_bom_mode bom_mode; /**< how the BOM is voxelized; 0 = ROMA_BOM_EXACT */
-    float margin_cells;        /**< padding of the grid cube around the traced volume, in cells; 0 = 1 */
+    float margin_cells;        /**< grid cube padding around the traced volume, cells, [0.5, RES/8]; 0 = 1 */
     uint32_t frames_in_flight; /**< frame slots for host-written positions, [1, 8]; 0 = 2 */
     roma_logger logger;        /**< 0 = the context's */
 } roma_map_desc;
 
-/** The scene's topology (indices) and first positions are uploaded here: the one call
+/** Creates a map for a scene: its buffers and pipelines (shared through the context).
+ * The scene's topology (indices) and first positions are uploaded here: the one call
  * of a map that submits to the context's queue and waits (not a per-frame call).
+ * The map is not built yet: record a build before tracing.
  * Supported volumes: the grid cube around the traced volume (the scene's bounds or
  * roma_map_frame_desc.volume) must lie within +-8.5e37 world units on every axis and
  * its cells be at least 1e-35 across (at RES 32, volumes at least ~3e-34 wide; at most
  * ~1.6e38 wide when centred on the origin); others are refused with
- * ROMA_ERROR_INVALID_SCENE. */
+ * ROMA_ERROR_INVALID_SCENE.
+ *
+ * @param context  the context; must outlive the map.
+ * @param desc     settings; NULL = the zero value (RES 128, A 4, exact BOM, 2 slots).
+ * @param scene    the geometry (vertex count and triangles are fixed for the map's life);
+ *                 copied: it may be destroyed after the call.
+ * @param[out] out_map  the new map; NULL on failure.
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: a NULL out_map, context or scene, a resolution other than
+ *   32/64/128/256, A above 16, an unknown bom_mode, frames_in_flight above 8, margin_cells
+ *   outside [0.5, RES/8];
+ *   ROMA_ERROR_INVALID_SCENE: scene bounds empty, not finite or outside the supported range;
+ *   ROMA_ERROR_UNSUPPORTED: the A x A maps exceed the device's maxTexelBufferElements;
+ *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                                      const roma_scene *scene, roma_map **out_map);
-/** Accepts NULL. The caller makes sure no submitted work still uses the map (the
- * blocking convenience calls below always finish theirs). */
+/** Destroys a map, its meshes and instances, and every buffer and set it handed out
+ * (roma_map_info handles are invalid afterwards).
+ *
+ * @param map  the map, or NULL (nothing is done). The caller makes sure no submitted work
+ *             still uses the map (the blocking convenience calls below always finish theirs).
+ * @par Threads
+ * The context's thread. */
 ROMA_API void roma_map_destroy(roma_map *map);
 
 /** An axis-aligned box in world space. */
@@ -111,8 +136,8 @@ typedef struct roma_box {
 typedef struct roma_map_frame_desc {
     uint32_t frame;        /**< frame counter: drives the jitter */
     uint32_t seed; /**< with frame: the jitter sequence */
-    int jitter_grid;       /**< sub-cell offset of the grid origin per frame */
-    int jitter_directions; /**< candidates jittered inside their strata (else stratum centres) */
+    int jitter_grid;       /**< non-zero: sub-cell offset of the grid origin per frame */
+    int jitter_directions; /**< non-zero: candidates jittered inside their strata (else centres) */
     /** The engine's frame slot, in [0, frames_in_flight): host data of this build goes to
      * storage of this slot. The caller makes sure the GPU finished the last command
      * buffer recorded with the same slot (its own per-frame fence) before recording. */
@@ -135,7 +160,9 @@ typedef struct roma_map_frame_desc {
 } roma_map_frame_desc;
 
 /** Records the build of this frame into cmd (a command buffer of the context's queue
- * family, outside a render pass): the frame parameters (vkCmdUpdateBuffer: they travel
+ * family, outside a render pass).
+ *
+ * What it records: the frame parameters (vkCmdUpdateBuffer: they travel
  * in the command buffer, so builds may be recorded for any number of frames in
  * flight), new positions if given, BOM clear + voxelization + rotation. It never
  * submits or waits. Synchronisation it records itself:
@@ -149,15 +176,44 @@ typedef struct roma_map_frame_desc {
  * timer may be NULL; otherwise scopes "bom" and "rotate" are added (every timer passed
  * to a map must come from a context on the map's VkDevice: ROMA_ERROR_INVALID_ARGUMENT
  * otherwise). A failed call records nothing the map depends on and keeps the previous
- * positions. */
+ * positions.
+ *
+ * @param map    the map.
+ * @param cmd    a command buffer of the context's queue family, recording; the map must
+ *               outlive its execution.
+ * @param frame  this build's settings; NULL = the zero value (slot 0, no jitter, the last
+ *               positions). Host positions are copied during the call; gpu_positions must
+ *               hold the positions when cmd executes.
+ * @param timer  may be NULL; otherwise scopes "bom" and "rotate" are added (not reset).
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: a NULL map or cmd, a timer of another VkDevice, a slot
+ *   not below frames_in_flight, both positions and gpu_positions, a vertex_count other than
+ *   the map's, a gpu_position_stride not a multiple of 4 or below 12, gpu_positions not
+ *   4-byte aligned or without volume, a volume with min above max (or NaN);
+ *   ROMA_ERROR_INVALID_SCENE: non-finite host positions, or the volume (or bounds) outside
+ *   the range roma_map_create supports;
+ *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) from the
+ *   buffers made on first use of a slot or after instances changed.
+ * @par Threads
+ * The context's thread; cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
                                            const roma_map_frame_desc *frame, roma_gpu_timer *timer);
 
-/** Convenience: records, submits and waits. */
+/** Convenience: records a build (roma_map_record_build) into a command buffer of its own,
+ * submits it to the context's queue and waits.
+ *
+ * @param map    the map.
+ * @param frame  as for roma_map_record_build; NULL = the zero value.
+ * @param timer  may be NULL; otherwise it is reset and gets the scopes "bom" and "rotate".
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map; otherwise the codes of
+ *         roma_map_record_build, or a Vulkan failure code (roma_result) of the submission.
+ * @par Threads
+ * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
                                     roma_gpu_timer *timer);
 
 /* --- Objects: meshes and their instances ---
+ *
  * Besides the scene it was made with, a map voxelizes instances of meshes added to it,
  * each with its own transform. A moving instance costs its transform: the next build
  * transforms the mesh's vertices on the GPU (one dispatch per dynamic instance); a
@@ -173,10 +229,27 @@ ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *fr
 
 #define ROMA_INSTANCE_DYNAMIC 1u /**< roma_instance_desc.flags: its transform may change */
 
-/** A mesh from a scene's triangles (its positions are the local frame; materials, lights
- * and animation data are ignored). The scene may be destroyed afterwards. */
+/** Adds a mesh from a scene's triangles (its positions are the local frame; materials,
+ * lights and animation data are ignored). Nothing is drawn until an instance uses it; the
+ * next build uploads it (through its command buffer).
+ *
+ * @param map            the map.
+ * @param mesh           the mesh's scene; copied: it may be destroyed afterwards.
+ * @param[out] out_mesh  the mesh id for roma_instance_desc.mesh (ids are not reused);
+ *                       UINT32_MAX on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL argument;
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) for its buffers.
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, uint32_t *out_mesh);
-/** Refused (ROMA_ERROR_INVALID_ARGUMENT) while instances of it remain. */
+/** Removes a mesh; its buffers are freed once frames_in_flight later builds were recorded.
+ *
+ * @param map   the map.
+ * @param mesh  an id from roma_map_add_mesh.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map, an unknown or removed
+ *         mesh, or while instances of it remain; ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_remove_mesh(roma_map *map, uint32_t mesh);
 
 /** An instance of a mesh added to a map. */
@@ -187,14 +260,37 @@ typedef struct roma_instance_desc {
 } roma_instance_desc;
 
 /** Adds an instance of a mesh (roma_map_add_mesh) at desc->transform; it is voxelized
- * from the next build. ROMA_ERROR_INVALID_ARGUMENT (NULL arguments, an unknown mesh, unknown flag
- * bits, more geometry than a map holds), ROMA_ERROR_OUT_OF_HOST_MEMORY. */
+ * from the next build.
+ *
+ * @param map                the map.
+ * @param desc               the instance; copied (an all-zero transform is the identity).
+ * @param[out] out_instance  the instance id (ids are not reused); UINT32_MAX on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT (NULL arguments, an unknown mesh, unknown
+ *         flag bits, a non-finite transform, more geometry than a map holds);
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc, uint32_t *out_instance);
 /** Removes an instance from the next build on (its storage is freed once frames_in_flight later
- * builds have been recorded). ROMA_ERROR_INVALID_ARGUMENT for a NULL map or an unknown instance.
- */
+ * builds have been recorded).
+ *
+ * @param map       the map.
+ * @param instance  an id from roma_map_add_instance.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map or an unknown or removed
+ *         instance.
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
-/** Dynamic instances only; takes effect at the next build. */
+/** Moves a dynamic instance; takes effect at the next build.
+ *
+ * @param map        the map.
+ * @param instance   an instance added with ROMA_INSTANCE_DYNAMIC.
+ * @param transform  row-major 3x4, local -> world, copied. Unlike roma_instance_desc, all zero
+ *                   is not the identity here.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments, an unknown or static
+ *         instance, or a non-finite transform (the old one stays).
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_set_instance_transform(roma_map *map, uint32_t instance, const float transform[12]);
 
 /** Sizes, grid placement and the handles for tracing from the caller's shaders (roma_map_get_info). */
@@ -212,13 +308,14 @@ typedef struct roma_map_info {
     uint64_t params_bytes; /**< device memory of the frame parameters */
     uint64_t geometry_bytes; /**< device memory of positions, indices and instances */
     /** For roma/trace.glsl in the caller's shaders (valid until the map is destroyed).
-     * By address (roma_use_addresses): */
+     * By address (roma_use_addresses): the A x A maps. */
     VkDeviceAddress maps_address;
     VkDeviceAddress params_address; /**< the frame parameters (roma_use_addresses) */
     /** Through descriptors (roma/trace_descriptors.glsl): the maps as a uniform texel
      * buffer (maps_view, R32_UINT) and the parameters as a uniform buffer, or the set
      * libroma wrote for them, for a pipeline layout whose set ROMA_TRACE_SET is
-     * trace_set_layout (or defined identically). The set is never rewritten. */
+     * trace_set_layout (or defined identically). The set is never rewritten.
+     * maps_buffer: the A x A maps. */
     VkBuffer maps_buffer;
     VkBuffer params_buffer; /**< the parameters as a uniform buffer */
     VkBufferView maps_view; /**< the maps as an R32_UINT uniform texel buffer */
@@ -227,11 +324,24 @@ typedef struct roma_map_info {
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.
- * ROMA_ERROR_INVALID_ARGUMENT for NULL arguments.
- */
+ *
+ * @param map            the map.
+ * @param[out] out_info  the information; zeroed on failure. Its handles belong to the map and
+ *                       stay valid until roma_map_destroy.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments.
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
 
-/** Candidate direction of map k this frame (unit, z >= 0); zero on failure. */
+/** Candidate direction of map k as of the last recorded build.
+ *
+ * @param map           the map.
+ * @param k             the map index, below A x A.
+ * @param[out] out_dir  the unit direction (z >= 0); zero on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or k >= A x A;
+ *         ROMA_ERROR_NOT_READY before the first build was recorded.
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
 
 /* --- Queries --- */
@@ -264,10 +374,10 @@ typedef struct roma_hit {
 
 /** How a batch of rays is traced. */
 typedef enum roma_trace_mode {
-    ROMA_TRACE_SNAPPED_ANY = 0,
-    ROMA_TRACE_SNAPPED_CLOSEST,
-    ROMA_TRACE_UNSNAPPED_ANY,
-    ROMA_TRACE_UNSNAPPED_CLOSEST
+    ROMA_TRACE_SNAPPED_ANY = 0,   /**< direction snapped to its candidate, any hit (one fetch) */
+    ROMA_TRACE_SNAPPED_CLOSEST,   /**< direction snapped to its candidate, closest hit (one fetch) */
+    ROMA_TRACE_UNSNAPPED_ANY,     /**< exact direction walked (at most max_steps texels), any hit */
+    ROMA_TRACE_UNSNAPPED_CLOSEST  /**< exact direction walked (at most max_steps texels), closest hit */
 } roma_trace_mode;
 
 /** A batch of rays traced by roma_map_record_trace on the caller's buffers. */
@@ -276,28 +386,70 @@ typedef struct roma_trace_desc {
     uint32_t max_steps;      /**< un-snapped only; 0 = 8 */
     VkDeviceAddress rays;    /**< ray_count roma_ray (buffer with SHADER_DEVICE_ADDRESS usage) */
     VkDeviceAddress hits;    /**< ray_count roma_hit */
-    uint32_t ray_count; /**< rays and hits */
+    uint32_t ray_count; /**< rays and hits; 0 records nothing */
 } roma_trace_desc;
 
 /** Records a trace of caller buffers after the build (same command buffer or a
- * later one). The caller synchronises its own writes to rays and reads of hits;
- * libroma adds the barrier between its build and the trace. */
+ * later one): one compute dispatch. The caller synchronises its own writes to rays and
+ * reads of hits; libroma adds the barrier between its build and the trace.
+ *
+ * @param map    the map; built (a build recorded) before.
+ * @param cmd    a command buffer of the context's queue family, recording.
+ * @param desc   the batch; copied. The rays and hits buffers must stay alive until cmd completes.
+ * @param timer  may be NULL; otherwise the scope "trace" is added (not reset).
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map, cmd or desc, zero rays or
+ *         hits addresses with ray_count > 0, an unknown mode, a timer of another VkDevice;
+ *         ROMA_ERROR_NOT_READY when no build was recorded yet (ray_count > 0); a Vulkan failure
+ *         code (roma_result) when a mode's pipeline is made, on its first use.
+ * @par Threads
+ * The context's thread; cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
                                            roma_gpu_timer *timer);
 
-/** Convenience for CPU callers: uploads rays, traces, downloads hits (blocking).
- * timer may be NULL; otherwise it is reset and gets the scope "trace". */
+/** Convenience for CPU callers: uploads rays, traces, downloads hits (blocking). The host
+ * staging buffers grow to the largest batch and are kept (a cache; dropped on a failure).
+ *
+ * @param map        the map; built before.
+ * @param mode       how to trace.
+ * @param max_steps  un-snapped modes: texels walked at most; 0 = 8.
+ * @param rays       ray_count rays, copied; may be NULL when ray_count is 0.
+ * @param ray_count  rays to trace; 0 does nothing and succeeds.
+ * @param[out] out_hits  ray_count hits; may be NULL when ray_count is 0.
+ * @param timer      may be NULL; otherwise it is reset and gets the scope "trace".
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map, NULL rays or out_hits with
+ *         ray_count > 0, an unknown mode, a timer of another VkDevice; ROMA_ERROR_NOT_READY
+ *         before the first build; a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,
                                     const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
                                     roma_gpu_timer *timer);
 
-/** Downloads the BOM (RES*RES*RES/32 words) or all maps (map_count*RES*RES*RES/32 words).
- * word_count must be exactly that; ROMA_ERROR_NOT_READY before the first build. */
+/** Downloads the BOM (RES*RES*RES/32 words), as left by the work submitted to the context's
+ * queue before this call (blocking: submits a copy and waits).
+ *
+ * @param map              the map.
+ * @param[out] out_words   word_count words, the BOM texel by texel (see the file comment).
+ * @param word_count       must be exactly RES*RES*RES/32.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or another word_count;
+ *         ROMA_ERROR_NOT_READY before the first build; a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
+/** Downloads all maps (map_count*RES*RES*RES/32 words, map after map), like
+ * roma_map_download_bom.
+ *
+ * @param map              the map.
+ * @param[out] out_words   word_count words.
+ * @param word_count       must be exactly map_count*RES*RES*RES/32.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or another word_count;
+ *         ROMA_ERROR_NOT_READY before the first build; a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
 
 #ifdef __cplusplus
 }
 #endif
 
-#endif /**< ROMA_MAP_H */
+#endif /* ROMA_MAP_H */

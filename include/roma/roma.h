@@ -1,6 +1,31 @@
 /** @file
  * libroma: fast approximate ray tracing of dynamic triangle scenes with a
  * Ray-aligned Occupancy Map Array. Umbrella header. */
+
+/** @mainpage libroma
+ *
+ * libroma traces rays approximately, and fast, through dynamic triangle scenes in Vulkan
+ * compute: every frame it voxelizes the scene into a binary grid and resamples it into
+ * A x A occupancy maps aligned with candidate directions (a Ray-aligned Occupancy Map
+ * Array, ROMA); a ray is then one texel fetch (snapped) or a short walk (un-snapped).
+ *
+ * Headers (roma/roma.h includes all but roma/gltf.h, roma/image.h and roma/builtin_scenes.h):
+ *  - roma/result.h: result codes and the log callback;
+ *  - roma/context.h: the Vulkan context (own or the engine's device) and GPU timers;
+ *  - roma/scene.h, roma/gltf.h: immutable triangle scenes, from arrays or glTF files
+ *    (library roma_gltf);
+ *  - roma/map.h: the map array, its build, instances, and batch traces;
+ *  - roma/trace_types.h: what the C API and the engine's shaders (roma/trace.glsl) share;
+ *  - roma/ao_effect.h, roma/light_effect.h: AO and shadowed direct light on the engine's
+ *    G-buffer, recorded into its command buffers;
+ *  - roma/animation.h: glTF skins and node animations played on the GPU;
+ *  - roma/effects.h: the plan of passes a frame of effects runs;
+ *  - roma/camera.h, roma/sampling.h: camera and sample sequences shared with the reference;
+ *  - roma/image.h, roma/builtin_scenes.h: images, metrics and test scenes (roma_tools).
+ *
+ * Threads: a context and every object made from it are used by one thread at a time (lock
+ * around them otherwise); objects of different contexts are independent. Scenes are
+ * immutable and may be read from any number of threads. */
 #ifndef ROMA_ROMA_H
 #define ROMA_ROMA_H
 
@@ -19,6 +44,7 @@
 #define ROMA_VERSION_MAJOR 0
 /** Minor version. */
 #define ROMA_VERSION_MINOR 1
+/** Patch version. */
 #define ROMA_VERSION_PATCH 0
 
-#endif /**< ROMA_ROMA_H */
+#endif /* ROMA_ROMA_H */

@@ -156,6 +156,7 @@ typedef struct roma_scene_animation_data {
     const roma_scene_anim_channel *channels; /**< animation channels of every clip */
     uint32_t channel_count; /**< entries of channels */
     uint32_t animation_count; /**< clips */
+    const char *const *animation_names; /**< animation_count names ("" when unnamed), or NULL */
     const float *times; /**< key times of every channel, seconds */
     const float *values; /**< key values of every channel */
 } roma_scene_animation_data;

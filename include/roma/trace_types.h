@@ -5,29 +5,43 @@
  * roma/trace.glsl. It holds only what an engine's shaders need to trace: the layout of
  * a map's parameter buffer (roma_grid_params, then roma_map_frame per map), the limits,
  * the bindings of the descriptor-based trace set and the bits of roma_hit.info.
- * libroma's own push-constant layouts are not here. */
+ * libroma's own push-constant layouts are not here. Declarations only: no object, no
+ * thread rule. */
 #ifndef ROMA_TRACE_TYPES_H
 #define ROMA_TRACE_TYPES_H
 
 #if defined(__STDC__) || defined(__cplusplus)
 #include <stdint.h>
+/** A 16-byte vector member: float[4] in C, vec4 in GLSL. @param name the member's name */
 #define ROMA_VEC4(name) float name[4]
+/** A 16-byte unsigned vector member: uint32_t[4] in C, uvec4 in GLSL. @param name the member */
 #define ROMA_UVEC4(name) uint32_t name[4]
+/** A buffer device address member: uint64_t in C, uvec2 in GLSL. @param name the member */
 #define ROMA_U64(name) uint64_t name
+/** Opens a shared struct: a typedef'd struct in C, a plain struct in GLSL.
+ * @param name the struct's name */
 #define ROMA_STRUCT_BEGIN(name) typedef struct name {
+/** Closes a shared struct (C: names the typedef). @param name the struct's name */
 #define ROMA_STRUCT_END(name) } name;
 #else
+/** A 16-byte vector member: vec4 in GLSL. @param name the member's name */
 #define ROMA_VEC4(name) vec4 name
+/** A 16-byte unsigned vector member: uvec4 in GLSL. @param name the member's name */
 #define ROMA_UVEC4(name) uvec4 name
 /** Buffer device addresses as uvec2 (GL_EXT_buffer_reference_uvec2): same 8-byte
- * size and alignment as the C uint64_t, and no shaderInt64 needed. */
+ * size and alignment as the C uint64_t, and no shaderInt64 needed. @param name the member */
 #define ROMA_U64(name) uvec2 name
+/** Opens a shared struct (GLSL). @param name the struct's name */
 #define ROMA_STRUCT_BEGIN(name) struct name {
+/** Closes a shared struct (GLSL). @param name the struct's name */
 #define ROMA_STRUCT_END(name) };
 #endif
 
+/** Largest RES (roma_map_desc.resolution): 256. */
 #define ROMA_MAX_RESOLUTION 256
+/** 32-bit words per BOM or map texel at ROMA_MAX_RESOLUTION (RES / 32). */
 #define ROMA_MAX_WORDS (ROMA_MAX_RESOLUTION / 32)
+/** Largest A (roma_map_desc.angular): at most 16 x 16 maps. */
 #define ROMA_MAX_ANGULAR 16
 
 /** Placement of the BOM grid this frame (world space). */
@@ -44,13 +58,13 @@ ROMA_STRUCT_END(roma_grid_params)
  * coordinates: b = map_to_bom_0.xyz * m.x + map_to_bom_1.xyz * m.y + map_to_bom_2.xyz * m.z
  * + map_to_bom_3.xyz (same evaluation order). */
 ROMA_STRUCT_BEGIN(roma_map_frame)
-    ROMA_VEC4(to_map_0);
-    ROMA_VEC4(to_map_1);
-    ROMA_VEC4(to_map_2);
-    ROMA_VEC4(map_to_bom_0);
-    ROMA_VEC4(map_to_bom_1);
-    ROMA_VEC4(map_to_bom_2);
-    ROMA_VEC4(map_to_bom_3);
+    ROMA_VEC4(to_map_0);  /**< world -> map cell x: xyz row, w offset */
+    ROMA_VEC4(to_map_1);  /**< world -> map cell y: xyz row, w offset */
+    ROMA_VEC4(to_map_2);  /**< world -> map cell z: xyz row, w offset */
+    ROMA_VEC4(map_to_bom_0); /**< xyz: BOM cell coordinates per map x */
+    ROMA_VEC4(map_to_bom_1); /**< xyz: BOM cell coordinates per map y */
+    ROMA_VEC4(map_to_bom_2); /**< xyz: BOM cell coordinates per map z */
+    ROMA_VEC4(map_to_bom_3); /**< xyz: BOM cell coordinates of map cell (0,0,0) */
     ROMA_VEC4(dir);       /**< xyz: candidate direction (unit, z >= 0); w: world size of a cell along it */
     ROMA_VEC4(cell);      /**< world cell size along map x, y, z */
 ROMA_STRUCT_END(roma_map_frame)
@@ -63,13 +77,17 @@ ROMA_STRUCT_END(roma_map_frame)
  * maps as a uniform texel buffer (R32_UINT) and the parameters as a uniform block of
  * ROMA_PARAMS_BLOCK_BYTES. */
 #define ROMA_TRACE_BINDING_MAPS 0
+/** Binding of the parameters (uniform block, ROMA_PARAMS_BLOCK_BYTES) in set ROMA_TRACE_SET. */
 #define ROMA_TRACE_BINDING_PARAMS 1
+/** Number of bindings of the trace set. */
 #define ROMA_TRACE_BINDINGS 2
 
 /** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the
  * ray was folded (its direction had z < 0 and was traced backwards in the map of -d). */
 #define ROMA_HIT_FLAG 1u
+/** The map index a hit or miss used, from roma_hit.info. @param info roma_hit.info */
 #define ROMA_HIT_MAP(info) (((info) >> 8) & 0xffu)
+/** Bit of roma_hit.info: the ray was folded (traced backwards in the map of -d). */
 #define ROMA_HIT_FOLDED 0x10000u
 
-#endif /**< ROMA_TRACE_TYPES_H */
+#endif /* ROMA_TRACE_TYPES_H */

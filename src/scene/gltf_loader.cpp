@@ -250,8 +250,10 @@ struct Range {
 
 class Loader {
 public:
-    Loader(const roma_logger *log, std::string file, uint32_t max_vertices, uint32_t max_triangles)
-        : log_(log), file_(std::move(file)), max_vertices_(max_vertices), max_triangles_(max_triangles)
+    Loader(const roma_logger *log, std::string file, uint32_t max_vertices, uint32_t max_triangles,
+           uint32_t camera_index)
+        : log_(log), file_(std::move(file)), max_vertices_(max_vertices), max_triangles_(max_triangles),
+          camera_index_(camera_index)
     {
     }
 
@@ -279,6 +281,8 @@ private:
     const roma_logger *log_;
     std::string file_;
     uint32_t max_vertices_, max_triangles_;
+    uint32_t camera_index_;       /* roma_gltf_desc.camera_index */
+    uint32_t cameras_seen_ = 0;   /* perspective cameras met in the walk */
     uint64_t zero_elements_ = 0; /* read from accessors without a buffer view, every use counted */
     tinygltf::Model m_;
 
@@ -734,7 +738,7 @@ void Loader::read_skins()
 void Loader::add_camera(int node)
 {
     int ci = m_.nodes[(size_t)node].camera;
-    if (ci < 0 || has_camera_)
+    if (ci < 0)
         return;
     if ((size_t)ci >= m_.cameras.size())
         fail(ROMA_ERROR_INVALID_SCENE, "node %d refers to camera %d, which does not exist", node, ci);
@@ -761,6 +765,9 @@ void Loader::add_camera(int node)
         camera_.target[k] = (float)(eye[k] + f[k] / fl);
         camera_.up[k] = (float)(u[k] / ul);
     }
+    /* Counted whether or not it is the one asked for; the asked one is kept. */
+    if (cameras_seen_++ != camera_index_)
+        return;
     double yfov = c.perspective.yfov;
     camera_.fovy_deg = yfov > 0.0 && yfov < 3.14159 ? (float)(yfov * 180.0 / 3.14159265358979323846) : 0.0f;
     has_camera_ = true;
@@ -1158,6 +1165,10 @@ void Loader::attach_animation(roma_scene *scene)
     ad.channels = channels.data();
     ad.channel_count = (uint32_t)channels.size();
     ad.animation_count = (uint32_t)m_.animations.size();
+    std::vector<const char *> names;
+    for (const tinygltf::Animation &an : m_.animations)
+        names.push_back(an.name.c_str());
+    ad.animation_names = names.empty() ? nullptr : names.data();
     ad.times = times.data();
     ad.values = values.data();
     roma_result r = roma_scene_set_animation_data(scene, &ad, log_);
@@ -1230,6 +1241,10 @@ roma_result Loader::load(const unsigned char *data, size_t size, const char *bas
     }
     if (idx_.empty())
         fail(ROMA_ERROR_EMPTY_SCENE, "no triangles in the default scene");
+    if (camera_index_ > 0 && camera_index_ >= cameras_seen_)
+        fail(ROMA_ERROR_INVALID_ARGUMENT, "camera %u asked for (roma_gltf_desc.camera_index), the file has %u "
+             "perspective camera%s (0 to %d)", camera_index_, cameras_seen_, cameras_seen_ == 1 ? "" : "s",
+             (int)cameras_seen_ - 1);
     return finish(out);
 }
 
@@ -1239,8 +1254,9 @@ roma_result load_guarded(const unsigned char *data, size_t size, const char *bas
     const roma_logger *log = desc ? &desc->logger : nullptr;
     uint32_t max_vertices = desc && desc->max_vertices ? desc->max_vertices : ROMA_GLTF_DEFAULT_MAX_VERTICES;
     uint32_t max_triangles = desc && desc->max_triangles ? desc->max_triangles : ROMA_GLTF_DEFAULT_MAX_TRIANGLES;
+    uint32_t camera_index = desc ? desc->camera_index : 0;
     try {
-        Loader loader(log, label, max_vertices, max_triangles);
+        Loader loader(log, label, max_vertices, max_triangles, camera_index);
         return loader.load(data, size, base_dir, out);
     } catch (const Failure &f) {
         return f.code;

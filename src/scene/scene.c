@@ -247,6 +247,7 @@ static void free_animation(roma_scene_animation_data *a)
     free((void *)a->channels);
     free((void *)a->times);
     free((void *)a->values);
+    free((void *)a->animation_names); /* one block: the pointers, then the strings */
     memset(a, 0, sizeof *a);
 }
 
@@ -600,7 +601,28 @@ roma_result roma_scene_set_animation_data(roma_scene *scene, const roma_scene_an
     DUP_OR_NULL(times, times, sizeof(float))
     DUP_OR_NULL(values, values, sizeof(float))
 #undef DUP_OR_NULL
-    if (!(ok_nodes && ok_skins && ok_joint_nodes && ok_inverse_binds && ok_vertex_node && ok_vertex_skin &&
+    /* Names: one block holding the pointers and then the strings. */
+    a.animation_names = NULL;
+    int ok_names = 1;
+    if (data->animation_names && data->animation_count) {
+        size_t bytes = sizeof(char *) * data->animation_count;
+        for (uint32_t i = 0; i < data->animation_count; ++i)
+            bytes += strlen(data->animation_names[i] ? data->animation_names[i] : "") + 1;
+        char **block = malloc(bytes);
+        ok_names = block != NULL;
+        if (block) {
+            char *text = (char *)(block + data->animation_count);
+            for (uint32_t i = 0; i < data->animation_count; ++i) {
+                const char *n = data->animation_names[i] ? data->animation_names[i] : "";
+                size_t len = strlen(n) + 1;
+                memcpy(text, n, len);
+                block[i] = text;
+                text += len;
+            }
+            a.animation_names = (const char *const *)block;
+        }
+    }
+    if (!(ok_names && ok_nodes && ok_skins && ok_joint_nodes && ok_inverse_binds && ok_vertex_node && ok_vertex_skin &&
           ok_vertex_joints && ok_vertex_weights && ok_vertex_rest_local && ok_channels && ok_times &&
           ok_values)) {
         free_animation(&a);

@@ -323,6 +323,24 @@ grep -q "the scene has 3: 0 (Survey) 1 (Walk) 2 (Run)" "$dir/says.err" || fail "
 says "--gltf-camera 1" "the file has 1 perspective camera" --scene "$ROMA_SCENES_DIR/2CylinderEngine.glb" \
   --gltf-camera 1 --out "$dir/x13"
 
+# PNG pictures: --background paints the pixels that see nothing, --exposure scales, and
+# --tonemap reinhard maps c to c / (1 + c); the PFM keeps the exact values.
+"$render" --scene "$ROMA_SCENES_DIR/spot.glb" --effects ao --size 32x24 --spp 4 --quiet --background 0,0,1 \
+  --exposure 0.5 --tonemap reinhard --out "$dir/png" >/dev/null 2>"$dir/png.err"
+expect_status 0 $? "roma-render --background --exposure --tonemap" || cat "$dir/png.err" >&2
+python3 "$(dirname "$0")/check_png_tone.py" "$dir/png/ao.png" "$dir/png/ao.pfm" "$dir/png/coverage.pfm" \
+  || fail "the PNG does not show the background, exposure and tone map asked for"
+says "--tonemap filmic" "valid: clamp, reinhard" --tonemap filmic --out "$dir/x14"
+
+# The default camera of a scene without one fills the picture: the bunny covers 29% of it
+# (libroma's bounding-sphere framing: 14%).
+"$render" --scene "$ROMA_SCENES_DIR/bunny.glb" --effects ao --size 64x48 --spp 1 --quiet --out "$dir/framed" \
+  >/dev/null 2>"$dir/framed.err"
+"$compare" "$dir/framed/coverage.pfm" "$dir/framed/coverage.pfm" >"$dir/framed.cmp" 2>&1
+covered=$(metric "$dir/framed.cmp" mean_a)
+awk -v c="${covered:-0}" 'BEGIN { exit !(c >= 0.28 && c <= 0.9) }' \
+  || fail "the default camera frames the bunny at ${covered:-none} of the picture, expected 0.28 to 0.9"
+
 # An unwritable stats file or a malformed number is an error, not a silent success.
 "$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"
 expect_status 1 $? "roma-render with an unwritable --stats path"

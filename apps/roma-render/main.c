@@ -21,7 +21,8 @@ static const char *usage =
     "usage: roma-render [options]\n"
     "  --scene FILE|builtin:NAME   glTF 2.0 file (.gltf/.glb) or a built-in scene (default builtin:cornell)\n"
     "  --camera ex,ey,ez,tx,ty,tz,fovy   eye, target and vertical field of view in degrees\n"
-    "                              (y up; default: the scene's camera, else one framing its bounds)\n"
+    "                              (y up; default: the scene's camera, else one whose picture the\n"
+    "                              scene's bounding box fills to 90%)\n"
     "  --size WxH                  image size in pixels (default 640x480)\n"
     "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
     "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU\n"
@@ -55,6 +56,8 @@ static const char *usage =
     "                              sRGB), exr (OpenEXR, linear 32-bit float); default pfm,png\n"
     "  --stats FILE.json           write device, scene size, settings, timings and notes\n"
     "  --exposure E                PNG only: linear values times E before sRGB (default 1)\n"
+    "  --tonemap clamp|reinhard    PNG only: clip at 1, or c / (1 + c) per channel after the\n"
+    "                              exposure, which keeps bright areas apart (default clamp)\n"
     "  --background R,G,B          PNG only: colour (sRGB, 0..1) of pixels that see no geometry\n"
     "                              (default 0.12,0.13,0.16, so white models stand out)\n"
     "  --up +y|-y|+z               the scene's up axis, turned to +y (tabletop.gltf: -y; z-up CAD\n"
@@ -86,6 +89,7 @@ typedef struct options {
     uint32_t formats;    /* FORMAT_* bits */
     float ao_radius_auto; /* 1: ao_radius was derived from the scene */
     float exposure;
+    int reinhard;        /* --tonemap reinhard */
     float background[3];
     roma_light extra_lights[16];
     uint32_t extra_light_count;
@@ -105,7 +109,8 @@ enum {
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
     "--max-steps", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
-    "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--background",
+    "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
+    "--background",
     "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", NULL};
 
 enum { FORMAT_PFM = 1u << 0, FORMAT_PNG = 1u << 1, FORMAT_EXR = 1u << 2 };
@@ -272,6 +277,13 @@ static int parse_args(int argc, char **argv, options *o)
             }
         }
         else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
+        else if (strcmp(a, "--tonemap") == 0) {
+            o->reinhard = strcmp(v, "reinhard") == 0;
+            if (!o->reinhard && strcmp(v, "clamp") != 0) {
+                fprintf(stderr, "roma-render: unknown tone map '%s' (valid: clamp, reinhard)\n", v);
+                return 0;
+            }
+        }
         else if (strcmp(a, "--background") == 0)
             ok = parse_floats(v, o->background, 3) && o->background[0] >= 0.0f && o->background[1] >= 0.0f &&
                  o->background[2] >= 0.0f && o->background[0] <= 1.0f && o->background[1] <= 1.0f &&
@@ -457,11 +469,14 @@ static roma_result write_png(const options *o, const roma_image *img, const roma
     float exposure = scale * o->exposure;
     int mask = coverage && coverage->pixels && coverage->width == img->width && coverage->height == img->height;
     for (size_t i = 0; i < (size_t)img->width * img->height; ++i)
-        for (uint32_t c = 0; c < 3; ++c)
-            shown.pixels[3 * i + c] = mask && !(coverage->pixels[i * coverage->channels] > 0.0f)
-                                          ? srgb_to_linear(o->background[c]) / exposure
-                                          : img->pixels[i * img->channels + (img->channels == 1 ? 0 : c)];
-    r = roma_app_write_png(&shown, path, ROMA_PNG_SRGB, exposure);
+        for (uint32_t c = 0; c < 3; ++c) {
+            float v = exposure * img->pixels[i * img->channels + (img->channels == 1 ? 0 : c)];
+            if (o->reinhard)
+                v = v > 0.0f ? v / (1.0f + v) : 0.0f;
+            shown.pixels[3 * i + c] =
+                mask && !(coverage->pixels[i * coverage->channels] > 0.0f) ? srgb_to_linear(o->background[c]) : v;
+        }
+    r = roma_app_write_png(&shown, path, ROMA_PNG_SRGB, 1.0f);
     roma_image_free(&shown);
     return r;
 }
@@ -630,6 +645,58 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     return 1;
 }
 
+/* The default camera of a scene without one: libroma's direction (front, upper right) and
+ * target (the bounds' centre), at the distance where the vertices fill 90% of the picture in
+ * its tighter direction (the bounding sphere, libroma's rule, leaves a model covering about
+ * 15% of the pixels). */
+static roma_camera frame_tight(const roma_scene_view *sv, float aspect)
+{
+    roma_camera cam;
+    roma_camera_frame_bounds(sv->bounds_min, sv->bounds_max, aspect, &cam);
+    roma_camera_frame f;
+    if (!roma_camera_make_frame(&cam, 1, 1, &f) || sv->vertex_count == 0)
+        return cam;
+    float t_y = tanf(0.5f * cam.fovy_deg * 3.14159265f / 180.0f), t_x = t_y * aspect;
+    float centre[3] = {cam.target[0], cam.target[1], cam.target[2]}, distance = 0.0f;
+    /* Twice: the distance that fits every vertex, then the centre moved sideways to the middle
+     * of what the picture shows, and the distance again. */
+    for (int pass = 0; pass < 2; ++pass) {
+        distance = 0.0f;
+        for (uint32_t k = 0; k < sv->vertex_count; ++k) {
+            float o[3];
+            for (int i = 0; i < 3; ++i)
+                o[i] = sv->positions[3 * k + i] - centre[i];
+            float x = fabsf(o[0] * f.right[0] + o[1] * f.right[1] + o[2] * f.right[2]);
+            float y = fabsf(o[0] * f.up[0] + o[1] * f.up[1] + o[2] * f.up[2]);
+            float z = o[0] * f.forward[0] + o[1] * f.forward[1] + o[2] * f.forward[2];
+            /* its depth, distance + z, must be at least x / (0.9 t_x) and y / (0.9 t_y) */
+            distance = fmaxf(distance, fmaxf(x / (0.9f * t_x), y / (0.9f * t_y)) - z);
+        }
+        if (!(distance > 0.0f) || !isfinite(distance))
+            return cam;
+        if (pass == 1)
+            break;
+        float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (uint32_t k = 0; k < sv->vertex_count; ++k) {
+            float o[3];
+            for (int i = 0; i < 3; ++i)
+                o[i] = sv->positions[3 * k + i] - centre[i];
+            float depth = distance + o[0] * f.forward[0] + o[1] * f.forward[1] + o[2] * f.forward[2];
+            float p[2] = {(o[0] * f.right[0] + o[1] * f.right[1] + o[2] * f.right[2]) / depth,
+                          (o[0] * f.up[0] + o[1] * f.up[1] + o[2] * f.up[2]) / depth};
+            for (int a = 0; a < 2; ++a)
+                lo[a] = fminf(lo[a], p[a]), hi[a] = fmaxf(hi[a], p[a]);
+        }
+        for (int i = 0; i < 3; ++i)
+            centre[i] += distance * (0.5f * (lo[0] + hi[0]) * f.right[i] + 0.5f * (lo[1] + hi[1]) * f.up[i]);
+    }
+    for (int i = 0; i < 3; ++i) {
+        cam.target[i] = centre[i];
+        cam.eye[i] = centre[i] - f.forward[i] * distance;
+    }
+    return cam;
+}
+
 /* --animation NAME|INDEX: the clip by the glTF animation's name or index (then --time, or 0). */
 static int resolve_animation(options *o, const roma_scene *scene)
 {
@@ -787,8 +854,10 @@ int main(int argc, char **argv)
                       .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
     say_what_happens(&o, &sv, &run.notes);
     roma_camera cam = o.camera;
-    if (!o.has_camera)
-        roma_scene_default_camera(scene, (float)o.width / (float)o.height, &cam);
+    if (!o.has_camera && sv.has_camera)
+        cam = sv.camera;
+    else if (!o.has_camera)
+        cam = frame_tight(&sv, (float)o.width / (float)o.height);
     struct stat out_stat;
     const int out_existed = stat(o.out, &out_stat) == 0;
     if (!roma_app_make_dir(o.out)) {

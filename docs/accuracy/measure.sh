@@ -51,7 +51,7 @@ row() {
 }
 
 echo "== Ambient occlusion, RES 128, A = 4 (MAE target <= 0.05): MAE, mean ROMA, mean reference, relative bias, relative MAE"
-for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.glb|--ao-radius inf" \
+for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.glb|--ao-radius inf --camera 0.172454447,0.265031695,0.239383832,-0.0168405008,0.110154003,-0.0015369989,45" \
             "engine|$scenes_dir/2CylinderEngine.glb|--ao-radius inf"; do
   IFS='|' read -r name scene extra <<<"$spec"
   # shellcheck disable=SC2086

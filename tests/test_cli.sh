@@ -341,6 +341,16 @@ covered=$(metric "$dir/framed.cmp" mean_a)
 awk -v c="${covered:-0}" 'BEGIN { exit !(c >= 0.28 && c <= 0.9) }' \
   || fail "the default camera frames the bunny at ${covered:-none} of the picture, expected 0.28 to 0.9"
 
+# roma-bench --accuracy --small times one run: it must not claim medians of 3.
+bench=$(dirname "$compare")/roma-bench
+if [ -x "$bench" ]; then
+  bench_run=("$bench")
+  [ -n "${ROMA_TOOL_PRELOAD:-}" ] && bench_run=(env "LD_PRELOAD=$ROMA_TOOL_PRELOAD" "$bench")
+  "${bench_run[@]}" --accuracy --small --ao-radius 0.5 >"$dir/bench.out" 2>&1 || fail "roma-bench --accuracy --small failed"
+  grep -q "runs: 1 (one run: no median)" "$dir/bench.out" || fail "roma-bench --accuracy --small does not say it ran once"
+  grep -q "median of 1 runs\|runs: 3" "$dir/bench.out" && fail "roma-bench --accuracy --small still speaks of medians"
+fi
+
 # An unwritable stats file or a malformed number is an error, not a silent success.
 "$render" --size 8x8 --spp 1 --quiet --out "$dir/nostats" --stats "$dir/no/such/dir/stats.json" >/dev/null 2>"$dir/nostats.err"
 expect_status 1 $? "roma-render with an unwritable --stats path"

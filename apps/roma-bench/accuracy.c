@@ -27,11 +27,16 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         status = 1;
         goto done;
     }
+    char how[64];
+    if (d->runs == 1)
+        snprintf(how, sizeof how, "one run");
+    else
+        snprintf(how, sizeof how, "median of %u runs", d->runs);
     printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
-           "time per frame = host-observed render time / frames (median of %u runs); error against Embree\n"
+           "time per frame = host-observed render time / frames (%s); error against Embree\n"
            "on the same points and samples, over the pixels that see geometry.\n\n"
            "| RES | A | ms per frame | MAE | bias |\n|---|---|---|---|---|\n",
-           w, h, samples, d->spp, d->frames, (double)d->radius, d->runs);
+           w, h, samples, d->spp, d->frames, (double)d->radius, how);
     int have_ref = 0;
     for (int ri = 0; ri < d->res_count; ++ri)
         for (int ai = 0; ai < d->angular_count; ++ai) {

@@ -197,8 +197,10 @@ int main(int argc, char **argv)
     roma_context_get_info(ctx, &info);
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);
-    printf("device: %s | scene: %s (%u triangles) | runs: %u (medians)\n", info.device_name, scene_arg,
-           sv.triangle_count, runs);
+    /* --accuracy --small times one run per setting: say so, not the --runs it ignores. */
+    uint32_t shown_runs = accuracy && small ? 1 : runs;
+    printf("device: %s | scene: %s (%u triangles) | runs: %u (%s)\n", info.device_name, scene_arg,
+           sv.triangle_count, shown_runs, shown_runs == 1 ? "one run: no median" : "medians");
     FILE *csv = csv_path ? fopen(csv_path, "w") : NULL;
     if (csv)
         fprintf(csv, "kind,name,res,angular,value,unit\n");

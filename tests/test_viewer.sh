@@ -115,6 +115,50 @@ else
   [ -s "$dir/window.png" ] || fail "no picture from the window run"
 fi
 
+# 3b. Scripted windows (tests/viewer/*.script): an orbit of 60 frames ends with a finite
+#     picture; turning an effect off drops its pass and changes the picture; a 1x1 window,
+#     minimising and a malformed file dropped in leave the viewer running.
+scripts=$(cd "$(dirname "$0")/viewer" && pwd)
+printf '{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}]' >"$dir/malformed.gltf"
+windowed() { # NAME SCRIPT: run it in a window under Xvfb, stats in $dir/NAME.json
+  local name=$1 script=$2
+  (cd "$dir" && xvfb-run -a -s "-screen 0 800x600x24" "$viewer" --validation --size 160x120 --script "$script" \
+     --stats "$dir/$name.json" --linear "$dir/$name.pfm") >"$dir/$name.out" 2>&1
+}
+json() { # FILE KEY: a top-level value of a stats file
+  python3 -c 'import json, sys; v = json.load(open(sys.argv[1]))[sys.argv[2]]; print(" ".join(v) if isinstance(v, list) else v)' "$1" "$2"
+}
+if command -v xvfb-run >/dev/null; then
+  windowed orbit "$scripts/orbit.script" || { cat "$dir/orbit.out" >&2; fail "the scripted orbit failed"; }
+  frames=$(json "$dir/orbit.json" frames)
+  [ "${frames:-0}" -ge 64 ] || fail "the orbit ran ${frames:-no} frames, expected at least 64"
+  "$compare" "$dir/orbit.pfm" "$dir/orbit.pfm" >"$dir/orbit.cmp" 2>&1
+  grep -q "^non_finite" "$dir/orbit.cmp" && fail "the picture after the orbit has NaN or infinite pixels"
+  grep -q "^pixels  *19200" "$dir/orbit.cmp" || fail "the picture after the orbit is not 160x120"
+
+  windowed all "$scripts/still.script" || { cat "$dir/all.out" >&2; fail "the still script failed"; }
+  for effect in ao direct; do
+    windowed "${effect}_off" "$scripts/${effect}_off.script" || { cat "$dir/${effect}_off.out" >&2; fail "$effect off failed"; }
+  done
+  passes_all=$(json "$dir/all.json" passes)
+  passes_ao=$(json "$dir/ao_off.json" passes)
+  passes_direct=$(json "$dir/direct_off.json" passes)
+  case " $passes_all " in *" ao "*) ;; *) fail "the composed view ran no ao pass ($passes_all)" ;; esac
+  case " $passes_all " in *" direct_light "*) ;; *) fail "the composed view ran no direct_light pass ($passes_all)" ;; esac
+  case " $passes_ao " in *" ao "*) fail "ao off still ran the ao pass ($passes_ao)" ;; esac
+  case " $passes_direct " in *" direct_light "*) fail "direct off still ran the direct_light pass ($passes_direct)" ;; esac
+  for effect in ao direct; do
+    "$compare" "$dir/all.pfm" "$dir/${effect}_off.pfm" >"$dir/${effect}_off.cmp" 2>&1
+    d=$(metric "$dir/${effect}_off.cmp" mean_abs)
+    awk -v d="${d:-0}" 'BEGIN { exit !(d > 0.001) }' || fail "turning $effect off did not change the picture (MAE ${d:-none})"
+  done
+
+  windowed resilience "$scripts/resilience.script" || { cat "$dir/resilience.out" >&2; fail "the resilience script failed"; }
+  [ "$(json "$dir/resilience.json" scene_failures)" = "1" ] || fail "the malformed file was not refused once"
+  grep -q "cannot open malformed.gltf" "$dir/resilience.out" || fail "the malformed file is not named in a message"
+  [ "$(json "$dir/resilience.json" validation_messages)" = "0" ] || fail "validation messages in the resilience script"
+fi
+
 # 4. Bad input.
 "$viewer" --headless --view occlusion >/dev/null 2>"$dir/view.err"
 [ $? -eq 2 ] || fail "an unknown --view does not exit with status 2"

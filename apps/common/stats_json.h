@@ -4,6 +4,10 @@
 
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct roma_json {
     FILE *f;
     int depth;
@@ -17,5 +21,9 @@ void roma_json_end_array(roma_json *j);
 void roma_json_string(roma_json *j, const char *key, const char *value);
 void roma_json_number(roma_json *j, const char *key, double value); /* non-finite -> null */
 void roma_json_int(roma_json *j, const char *key, long long value);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* ROMA_STATS_JSON_H */

@@ -19,6 +19,7 @@
 #include <roma/roma.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,6 +33,8 @@
 #include "compose_pass.h"
 #include "swapchain.h"
 #include "reference_job.h"
+#include "script.h"
+#include "stats_json.h"
 #include "ui.h"
 
 namespace {
@@ -63,6 +66,8 @@ const char *kUsage =
     "  --compare-reference  headless, AO or direct view: after the last frame, render the\n"
     "                       same view with the Embree reference (roma-render beside the\n"
     "                       viewer, --reference-spp samples, default 64) and print the MAE\n"
+    "  --script FILE        input events for tests and demos (apps/roma-viewer/script.h)\n"
+    "  --stats FILE.json    at exit: frames, the passes of the last frame, timings, messages\n"
     "  --validation         Khronos validation layer on; exit status 1 on any message\n"
     "  --device NAME        a device whose name contains NAME\n"
     "Keys: F frame the scene, Tab orbit/fly, F12 screenshot (roma-viewer-N.png), Esc quit.\n";
@@ -74,7 +79,7 @@ struct options {
     uint32_t width = 1280, height = 720;
     bool headless = false, validation = false, play = false, compare_reference = false;
     uint32_t frames = 0;
-    std::string screenshot, linear, device, up = "+y";
+    std::string screenshot, linear, device, up = "+y", script, stats;
     viewer_settings settings;
 };
 
@@ -175,6 +180,10 @@ int parse_args(int argc, char **argv, options &o)
                 std::fprintf(stderr, "roma-viewer: bad value for --up: '%s' (valid: +y, -y, +z)\n", v);
                 return 2;
             }
+        } else if (a == "--script") {
+            o.script = v;
+        } else if (a == "--stats") {
+            o.stats = v;
         } else if (a == "--device") {
             o.device = v;
         } else {
@@ -190,6 +199,10 @@ int parse_args(int argc, char **argv, options &o)
     }
     if (o.headless && !o.frames)
         o.frames = 16;
+    if (o.headless && !o.script.empty()) {
+        std::fprintf(stderr, "roma-viewer: --script drives the window; without --headless (Xvfb works)\n");
+        return 2;
+    }
     if (o.settings.view == VIEW_REFERENCE || o.settings.view == VIEW_DIFFERENCE) {
         std::fprintf(stderr, "roma-viewer: the reference views need a reference first (--compare-reference)\n");
         return 2;
@@ -243,6 +256,8 @@ struct viewer {
     reference_job job;
     view_mode compared = VIEW_AO;
     roma_image coverage{};
+    std::vector<std::string> passes; // what the last recorded frame ran
+    uint32_t scene_failures = 0;     // scenes that could not be opened (dropped files)
 };
 
 void log_to_stderr(roma_log_level level, roma_result, const char *message, void *)
@@ -596,6 +611,7 @@ void stamp(viewer &v, VkCommandBuffer cmd, uint32_t slot, uint32_t k)
 bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
 {
     const viewer_settings &s = v.s;
+    v.passes.clear();
     vkCmdResetQueryPool(cmd, v.queries, slot * kStamps, kStamps);
     stamp(v, cmd, slot, 0);
     VkDeviceAddress positions = v.gs.positions.address;
@@ -610,6 +626,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         roma_animator_pose pose{s.clip, s.time};
         if (roma_animator_record(v.animator, cmd, slot, &pose, &out) != ROMA_SUCCESS)
             return false;
+        v.passes.push_back("animate");
         positions = out.positions;
         fd.gpu_positions = out.positions;
         fd.vertex_count = v.gs.vertex_count;
@@ -618,6 +635,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     stamp(v, cmd, slot, 1);
     if (roma_map_record_build(v.map, cmd, &fd, nullptr) != ROMA_SUCCESS)
         return false;
+    v.passes.push_back("map_build");
     stamp(v, cmd, slot, 2);
     // The skinned positions, read by the G-buffer's vertex shader.
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
@@ -639,6 +657,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     draw.indices = v.gs.indices.address;
     draw.triangle_count = v.gs.triangle_count;
     gbuffer_pass_record(v.gb, cmd, draw);
+    v.passes.push_back("gbuffer");
     stamp(v, cmd, slot, 3);
     compose_pass_prepare(v.cp, cmd);
     view_mode shown = (s.view == VIEW_REFERENCE || s.view == VIEW_DIFFERENCE) ? v.compared : s.view;
@@ -661,6 +680,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         as.frame = v.frame;
         if (roma_ao_effect_record(v.ao, cmd, slot, v.map, &images, &as) != ROMA_SUCCESS)
             return false;
+        v.passes.push_back("ao");
     }
     if (want_direct) {
         roma_light_images images{};
@@ -679,6 +699,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         if (roma_light_effect_record(v.light, cmd, slot, v.map, &images, v.view.lights, v.view.light_count, &ls) !=
             ROMA_SUCCESS)
             return false;
+        v.passes.push_back("direct_light");
     }
     stamp(v, cmd, slot, 4);
     roma_map_info mi;
@@ -702,6 +723,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.bom_res = v.bom_res;
     cs.compared = v.compared;
     compose_pass_record(v.cp, cmd, cs, mi.trace_set);
+    v.passes.push_back("compose");
     v.info.grid_cell = mi.grid_cell;
     stamp(v, cmd, slot, 5);
     return true;
@@ -981,8 +1003,82 @@ std::string next_screenshot_name(viewer &v)
     return name;
 }
 
+// One frame's share of the script: the drag in progress, or the steps up to the next wait.
+// Sets moved when the camera moved; act gets the interface's actions (toggles, screenshot).
+void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &moved)
+{
+    if (sc.drag_frames > 0) {
+        float dx = sc.drag_dx / float(sc.drag_frames), dy = sc.drag_dy / float(sc.drag_frames);
+        moved |= sc.drag_button == 0 ? camera_control_rotate(v.cam, dx, dy)
+                                     : camera_control_pan(v.cam, dx, dy, float(v.gb.height));
+        sc.drag_dx -= dx, sc.drag_dy -= dy, --sc.drag_frames;
+        return;
+    }
+    if (sc.wait > 0) {
+        --sc.wait;
+        return;
+    }
+    while (sc.next < sc.steps.size()) {
+        const script_step &st = sc.steps[sc.next++];
+        auto arg = [&](size_t i) { return i < st.args.size() ? st.args[i] : std::string(); };
+        auto number = [&](size_t i) { return std::atof(arg(i).c_str()); };
+        std::printf("roma-viewer: script line %d: %s\n", st.line, st.verb.c_str());
+        if (st.verb == "wait") {
+            sc.wait = uint32_t(std::max(0.0, number(0)));
+            return;
+        } else if (st.verb == "key") {
+            if (arg(0) == "F") {
+                camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
+                                            float(v.gb.width) / float(std::max(1u, v.gb.height)));
+                moved = true;
+            } else if (arg(0) == "TAB") {
+                v.cam.fly = !v.cam.fly;
+            } else if (arg(0) == "F12") {
+                act.screenshot = true;
+            }
+        } else if (st.verb == "drag") {
+            sc.drag_button = arg(0) == "right" ? 1 : 0;
+            sc.drag_dx = float(number(1)), sc.drag_dy = float(number(2));
+            sc.drag_frames = uint32_t(std::max(1.0, number(3)));
+            return;
+        } else if (st.verb == "wheel") {
+            moved |= camera_control_zoom(v.cam, float(number(0)));
+        } else if (st.verb == "set") {
+            bool on = arg(1) == "on";
+            bool *flag = arg(0) == "ao" ? &v.s.ao_on : arg(0) == "direct" ? &v.s.direct_on
+                         : arg(0) == "accumulate" ? &v.s.accumulate : nullptr;
+            if (flag)
+                *flag = on, act.reset_accumulation = true;
+        } else if (st.verb == "view") {
+            for (uint32_t k = 0; k < VIEW_COUNT; ++k)
+                if (arg(0) == kViewNames[k])
+                    v.s.view = view_mode(k), act.reset_accumulation = true;
+        } else if (st.verb == "res" || st.verb == "angular") {
+            (st.verb == "res" ? v.s.res : v.s.angular) = uint32_t(number(0));
+            act.rebuild_map = act.reset_accumulation = true;
+        } else if (st.verb == "resize") {
+            glfwSetWindowSize(v.window, std::max(1, int(number(0))), std::max(1, int(number(1))));
+        } else if (st.verb == "minimize") {
+            glfwIconifyWindow(v.window);
+        } else if (st.verb == "restore") {
+            glfwRestoreWindow(v.window);
+        } else if (st.verb == "drop") {
+            in.dropped.push_back(arg(0));
+        } else if (st.verb == "screenshot") {
+            save_pictures(v, arg(0), "");
+        } else if (st.verb == "quit") {
+            glfwSetWindowShouldClose(v.window, GLFW_TRUE);
+            return;
+        }
+    }
+}
+
 int run_window(viewer &v)
 {
+    script sc;
+    if (!v.opt.script.empty() && !script_load(v.opt.script.c_str(), sc))
+        return 2;
+    bool scripted = !sc.steps.empty();
     input_state in;
     glfwSetWindowUserPointer(v.window, &in);
     glfwSetScrollCallback(v.window, on_scroll);
@@ -990,19 +1086,34 @@ int run_window(viewer &v)
     bool resize = false;
     auto previous = std::chrono::steady_clock::now();
     uint32_t frames_left = v.opt.frames;
+    uint32_t swapchain_failures = 0;
     int status = 0;
     while (!glfwWindowShouldClose(v.window)) {
         glfwPollEvents();
         int fw = 0, fh = 0;
         glfwGetFramebufferSize(v.window, &fw, &fh);
-        if (fw == 0 || fh == 0) { // minimised: wait, render nothing
-            glfwWaitEvents();
+        if (fw == 0 || fh == 0) { // minimised: wait, render nothing (a script goes on)
+            if (scripted) {
+                ui_actions none;
+                bool ignored = false;
+                run_script(v, sc, in, none, ignored);
+                glfwWaitEventsTimeout(0.02);
+            } else {
+                glfwWaitEvents();
+            }
             continue;
         }
         if (resize || uint32_t(fw) != v.sc.extent.width || uint32_t(fh) != v.sc.extent.height) {
             vkDeviceWaitIdle(v.base.device);
-            if (!swapchain_create(v.base, v.sc, uint32_t(fw), uint32_t(fh)))
+            if (!swapchain_create(v.base, v.sc, uint32_t(fw), uint32_t(fh))) {
+                if (++swapchain_failures > 200) { // not a minimised window: give up with a message
+                    std::fprintf(stderr, "roma-viewer: cannot make a %dx%d swapchain\n", fw, fh);
+                    return 1;
+                }
+                glfwWaitEventsTimeout(0.02);
                 continue;
+            }
+            swapchain_failures = 0;
             ImGui_ImplVulkan_SetMinImageCount(v.sc.min_image_count);
             if (!resize_images(v, v.sc.extent.width, v.sc.extent.height))
                 return 1;
@@ -1012,6 +1123,8 @@ int run_window(viewer &v)
             vkDeviceWaitIdle(v.base.device);
             if (open_scene(v, path))
                 v.accumulated = 0;
+            else
+                ++v.scene_failures; // the message is out; the previous scene stays
         }
         in.dropped.clear();
         if (!v.map) { // a dropped file loaded but its GPU objects could not be made
@@ -1035,6 +1148,8 @@ int run_window(viewer &v)
         v.info.validation_messages = v.base.validation_messages;
         ui_draw(v.s, v.timings, v.info, act);
         bool moved = handle_input(v, in, dt);
+        if (scripted)
+            run_script(v, sc, in, act, moved);
         if (act.camera_pasted) {
             roma_camera c;
             if (camera_from_string(act.camera_text, c)) {
@@ -1234,6 +1349,49 @@ int run_headless(viewer &v)
     return 0;
 }
 
+// --stats: what a script or a person needs to check a run.
+bool write_stats(const viewer &v, int status)
+{
+    FILE *f = std::fopen(v.opt.stats.c_str(), "w");
+    if (!f) {
+        std::fprintf(stderr, "roma-viewer: cannot write %s: %s\n", v.opt.stats.c_str(), std::strerror(errno));
+        return false;
+    }
+    roma_json j{};
+    j.f = f;
+    roma_json_begin_object(&j, nullptr);
+    roma_json_string(&j, "tool", "roma-viewer");
+    roma_json_string(&j, "device", v.info.device.c_str());
+    roma_json_string(&j, "scene", v.info.scene_name.c_str());
+    roma_json_int(&j, "frames", v.frame);
+    roma_json_int(&j, "width", v.gb.width);
+    roma_json_int(&j, "height", v.gb.height);
+    roma_json_string(&j, "view", kViewNames[v.s.view]);
+    roma_json_int(&j, "accumulated", v.accumulated);
+    roma_json_int(&j, "resolution", v.s.res);
+    roma_json_int(&j, "angular", v.s.angular);
+    roma_json_begin_array(&j, "passes"); // of the last recorded frame
+    for (const std::string &p : v.passes)
+        roma_json_string(&j, nullptr, p.c_str());
+    roma_json_end_array(&j);
+    roma_json_begin_object(&j, "last_frame_ms");
+    roma_json_string(&j, "clock", v.timings.clock.c_str());
+    roma_json_number(&j, "animate", v.timings.animate_ms);
+    roma_json_number(&j, "build", v.timings.build_ms);
+    roma_json_number(&j, "gbuffer", v.timings.gbuffer_ms);
+    roma_json_number(&j, "effects", v.timings.effects_ms);
+    roma_json_number(&j, "compose", v.timings.compose_ms);
+    roma_json_end_object(&j);
+    roma_json_int(&j, "scene_failures", v.scene_failures);
+    roma_json_int(&j, "validation_messages", v.base.validation_messages);
+    roma_json_int(&j, "exit_status", status);
+    roma_json_end_object(&j);
+    std::fputc('\n', f);
+    bool ok = !std::ferror(f);
+    ok = std::fclose(f) == 0 && ok;
+    return ok;
+}
+
 void destroy(viewer &v)
 {
     if (v.base.device)
@@ -1312,6 +1470,8 @@ int main(int argc, char **argv)
                 status = run_window(v);
         }
     }
+    if (!v.opt.stats.empty() && !write_stats(v, status))
+        status = 1;
     uint32_t messages = v.base.validation_messages;
     destroy(v);
     messages = std::max(messages, v.base.validation_messages);

@@ -17,7 +17,10 @@
  * every later command). Descriptor sets come from a pool per frame slot (16 records per
  * slot and frame). A record starts a new frame of its slot when its slot or the map's
  * build differs from the previous record's, and the slot's pool is reset then: the slot
- * rules of roma_map_frame_desc.slot apply (one build of the map per frame). */
+ * rules of roma_map_frame_desc.slot apply (one build of the map per frame).
+ *
+ * Threads: an effect is used by one thread at a time, like its context; records write only
+ * into the command buffer they are given and never submit or wait. */
 #ifndef ROMA_AO_EFFECT_H
 #define ROMA_AO_EFFECT_H
 
@@ -33,7 +36,8 @@
 extern "C" {
 #endif
 
-/** Defaults, resolved in one place (roma_ao_settings_resolve). */
+/** Default rays per pixel and frame. Defaults are resolved in one place
+ * (roma_ao_settings_resolve). */
 #define ROMA_DEFAULT_AO_SAMPLES 1u
 /** AO rays start this many trace cells past their (offset) origin: the cells around a
  * surface hold the surface itself (docs/accuracy.md measures the choice). */
@@ -43,20 +47,27 @@ extern "C" {
 typedef struct roma_ao_settings {
     uint32_t samples;     /**< rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
     float radius;         /**< ray length, world units; 0 = unbounded */
-    float offset_cells;   /**< origin offset along the geometric normal, trace cells; 0 = ROMA_DEFAULT_OFFSET_CELLS */
-    float skip_cells;     /**< rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
-                             negative = 0 */
+    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS. */
+    float offset_cells;
+    /** Rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
+     * negative = 0. */
+    float skip_cells;
     uint32_t seed; /**< sample sequences: the same seed as the reference gives the same rays */
     uint32_t frame;       /**< new directions every frame */
 } roma_ao_settings;
 
 /** The zero value's meaning, filled in (the one place defaults are resolved).
- * ROMA_ERROR_INVALID_ARGUMENT for NaN or infinite values or a negative radius. */
+ *
+ * @param in        the settings; NULL = the zero value (all defaults).
+ * @param[out] out  the resolved settings; zeroed on failure. May equal in.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out, NaN or infinite values,
+ *         a negative radius or offset_cells.
+ * @par Threads
+ * Any thread (pure). */
 ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
 
 /** Ambient occlusion on the engine's G-buffer images (opaque). Used by one thread at a time, like
- * its context.
- */
+ * its context. */
 typedef struct roma_ao_effect roma_ao_effect;
 
 /** Settings of roma_ao_effect_create; the zero value is the default. */
@@ -65,17 +76,28 @@ typedef struct roma_ao_effect_desc {
     roma_logger logger;        /**< 0 = the context's */
 } roma_ao_effect_desc;
 
-/** Creates the AO effect (its pipeline comes from the context's shared cache). desc may be NULL
- * (defaults). ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, or frames_in_flight above
- * ROMA_MAX_FRAMES_IN_FLIGHT; out-of-memory and ROMA_ERROR_VULKAN failures leave *out NULL.
- */
+/** Creates the AO effect: its sampler, pipeline (through the context's pipeline cache) and a
+ * descriptor pool per frame slot.
+ *
+ * @param context   the context; must outlive the effect.
+ * @param desc      settings; NULL = the zero value (2 slots, the context's logger). Copied.
+ * @param[out] out  the new effect; NULL on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, or
+ *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a
+ *         Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
-/** Accepts NULL. The caller makes sure no submitted work still uses it. */
+/** Destroys the effect.
+ *
+ * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
+ *                work still uses it.
+ * @par Threads
+ * The context's thread. */
 ROMA_API void roma_ao_effect_destroy(roma_ao_effect *effect);
 
 /** The engine's images the AO effect reads and writes (views it owns, valid while recorded work
- * runs).
- */
+ * runs). */
 typedef struct roma_ao_images {
     uint32_t width; /**< size of every image, pixels */
     uint32_t height; /**< size of every image, pixels */
@@ -86,6 +108,25 @@ typedef struct roma_ao_images {
     VkImageLayout input_layout;   /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_ao_images;
 
+/** Records the AO pass into cmd: one compute dispatch of 8 x 8 pixel groups over the images,
+ * tracing snapped any-hit rays through the map (see the file comment for the
+ * synchronisation the caller records and the slot rules).
+ *
+ * @param effect    the effect.
+ * @param cmd       a command buffer of the context's queue family, recording.
+ * @param slot      the engine's frame slot, below the effect's frames_in_flight.
+ * @param map       a map with a build recorded earlier on the queue; it and the image views
+ *                  must outlive the recorded work.
+ * @param images    the images; copied.
+ * @param settings  NULL = the zero value (defaults, roma_ao_settings_resolve).
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, a zero width or height,
+ *   no position, normal or output view, settings roma_ao_settings_resolve rejects, a slot
+ *   not below frames_in_flight, more than 16 records in one slot and frame;
+ *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
+ *   a Vulkan failure code (roma_result) when the descriptor set cannot be allocated.
+ * @par Threads
+ * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                            const roma_ao_images *images, const roma_ao_settings *settings);
 
@@ -93,4 +134,4 @@ ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuff
 }
 #endif
 
-#endif /**< ROMA_AO_EFFECT_H */
+#endif /* ROMA_AO_EFFECT_H */

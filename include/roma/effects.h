@@ -11,7 +11,8 @@
  *    scene has point or spot lights (the lights an RSM can be rendered for);
  *  - many lights: visibility of many synthetic point lights, when asked for.
  * The G-buffer runs when any pass runs. ROMA arrays are built once per frame per
- * distinct (RES, A) that some pass traces, and not at all when nothing traces. */
+ * distinct (RES, A) that some pass traces, and not at all when nothing traces.
+ * The plan is pure host computation: any thread (the scene is only read). */
 #ifndef ROMA_EFFECTS_H
 #define ROMA_EFFECTS_H
 
@@ -28,31 +29,37 @@ extern "C" {
 
 /** Effects an image can be asked for (bit flags). */
 enum {
-    ROMA_EFFECT_AO = 1u << 0,
-    ROMA_EFFECT_DIRECT = 1u << 1,
-    ROMA_EFFECT_GI = 1u << 2,
-    ROMA_EFFECT_LIGHTS = 1u << 3,
-    ROMA_EFFECT_ALL_ = (1u << 4) - 1u
+    ROMA_EFFECT_AO = 1u << 0,           /**< ambient occlusion */
+    ROMA_EFFECT_DIRECT = 1u << 1,       /**< direct light: punctual lights and area lights */
+    ROMA_EFFECT_GI = 1u << 2,           /**< one-bounce diffuse GI from point and spot lights */
+    ROMA_EFFECT_LIGHTS = 1u << 3,       /**< visibility of many synthetic point lights */
+    ROMA_EFFECT_ALL_ = (1u << 4) - 1u   /**< every known bit (for validation) */
 };
 
 /** The passes a frame of effects can run (roma_effect_plan.passes). */
 typedef enum roma_pass_kind {
-    ROMA_PASS_GBUFFER = 0,
+    ROMA_PASS_GBUFFER = 0,     /**< rasterized G-buffer: position, normals, albedo */
     ROMA_PASS_AO,              /**< snapped any-hit, hemisphere rays */
     ROMA_PASS_PUNCTUAL_LIGHTS, /**< point/spot/directional light with un-snapped shadow rays */
     ROMA_PASS_SOFT_SHADOWS,    /**< area-light samples, un-snapped shadow rays */
     ROMA_PASS_MANY_LIGHTS,     /**< visibility of many point lights, un-snapped */
     ROMA_PASS_RSM,             /**< reflective shadow maps of point/spot lights */
     ROMA_PASS_GI,              /**< snapped closest-hit bounce rays, radiance from the RSMs */
-    ROMA_PASS_COUNT
+    ROMA_PASS_COUNT            /**< number of passes (not a pass) */
 } roma_pass_kind;
 
-/** "gbuffer", "ao", "punctual_lights", "soft_shadows", "many_lights", "rsm", "gi";
- * "unknown" outside the enum. */
+/** The name of a pass, for logs and statistics.
+ *
+ * @param pass  any value; values outside the enum are allowed.
+ * @return a static string: "gbuffer", "ao", "punctual_lights", "soft_shadows",
+ *         "many_lights", "rsm", "gi"; "unknown" outside the enum.
+ * @par Threads
+ * Any thread. */
 ROMA_API const char *roma_pass_name(roma_pass_kind pass);
 
-/** Zero value: the paper's settings (RES 128; A = 4 for hemisphere rays, A = 8 for
- * rays towards lights) and 256 many lights. */
+/** What a frame of effects is asked for (roma_effect_plan_derive).
+ * Zero value: the paper's settings (RES 128; A = 4 for hemisphere rays, A = 8 for
+ * rays towards lights) and 256 many lights; no effect. */
 typedef struct roma_effect_options {
     uint32_t effects;          /**< ROMA_EFFECT_* bits asked for */
     uint32_t resolution;       /**< RES of every array: 32, 64, 128 or 256; 0 = 128 */
@@ -82,11 +89,28 @@ typedef struct roma_effect_plan {
 /** Resolves defaults and derives the plan from the scene. Rejects unknown effect
  * bits, resolutions other than 32/64/128/256, A outside 1..16 and many-light
  * counts above 65536 (ROMA_ERROR_INVALID_ARGUMENT, message through logger, which
- * may be NULL); on failure *out_plan runs nothing: zeroed, with every pass_map -1. */
+ * may be NULL); on failure *out_plan runs nothing: zeroed, with every pass_map -1.
+ * Lights with zero intensity or colour call for no pass.
+ *
+ * @param scene          the scene whose lights and emitters decide the light passes.
+ * @param options        what is asked for; NULL = the zero value (no effect).
+ * @param logger         where the rejection message goes; NULL: stderr.
+ * @param[out] out_plan  the plan.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL scene or out_plan, or the
+ *         rejected options above.
+ * @par Threads
+ * Any thread. */
 ROMA_API roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_options *options,
                                              const roma_logger *logger, roma_effect_plan *out_plan);
 
-/** 0 for a NULL plan or a pass outside the enum (a shift by 32 or more is undefined). */
+/** Whether a plan runs a pass. 0 for a NULL plan or a pass outside the enum (a shift by 32
+ * or more is undefined).
+ *
+ * @param plan  from roma_effect_plan_derive; may be NULL.
+ * @param pass  the pass.
+ * @return 1 when the plan runs pass, else 0.
+ * @par Threads
+ * Any thread (pure). */
 static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_kind pass)
 {
     return plan && (uint32_t)pass < (uint32_t)ROMA_PASS_COUNT && ((plan->passes >> (uint32_t)pass) & 1u);
@@ -96,4 +120,4 @@ static inline int roma_effect_plan_runs(const roma_effect_plan *plan, roma_pass_
 }
 #endif
 
-#endif /**< ROMA_EFFECTS_H */
+#endif /* ROMA_EFFECTS_H */

@@ -15,7 +15,8 @@
  * NaN normals in a file (some exporters write them on zero-area faces) are
  * replaced by face normals with a warning rather than rejected.
  *
- * Errors never leave a partial scene: *out_scene is NULL on failure. */
+ * Errors never leave a partial scene: *out_scene is NULL on failure. The loaders keep no
+ * state: any thread, any number at once. */
 #ifndef ROMA_GLTF_H
 #define ROMA_GLTF_H
 
@@ -50,12 +51,39 @@ typedef struct roma_gltf_desc {
 /** Default of roma_gltf_desc.max_triangles. */
 #define ROMA_GLTF_DEFAULT_MAX_TRIANGLES (1u << 25)
 
-/** path ends in .gltf or .glb (detected from content, not the name). desc may be NULL. */
+/** Loads a glTF 2.0 file into a new scene.
+ *
+ * @param path   a .gltf or .glb file (detected from content, not the name); external
+ *               buffers are resolved relative to its directory.
+ * @param desc   settings; may be NULL (the zero value: stderr, default limits, camera 0).
+ * @param[out] out_scene  the new scene, owned by the caller (roma_scene_destroy); NULL on
+ *               failure.
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: NULL path or out_scene, a camera_index the file lacks;
+ *   ROMA_ERROR_FILE_NOT_FOUND: path or an external buffer it names does not exist;
+ *   ROMA_ERROR_IO: path cannot be opened or read;
+ *   ROMA_ERROR_PARSE: malformed JSON or GLB container, an empty file;
+ *   ROMA_ERROR_UNSUPPORTED: see the file comment, a file over max_vertices or max_triangles,
+ *   a file of 4 GiB or more, a glTF version other than 2;
+ *   ROMA_ERROR_INVALID_SCENE, ROMA_ERROR_EMPTY_SCENE: unusable data, as roma_scene_create;
+ *   ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ * @par Threads
+ * Any thread. */
 ROMA_API roma_result roma_scene_load_gltf(const char *path, const roma_gltf_desc *desc,
                                           roma_scene **out_scene);
 
-/** From memory. base_dir resolves external buffers (may be NULL: external URIs are
- * then an error). The data is not kept. */
+/** Loads a glTF 2.0 file (.gltf text or .glb) from memory. The data is not kept.
+ *
+ * @param data      the file's bytes; may be NULL only when size is 0 (then ROMA_ERROR_PARSE).
+ * @param size      bytes at data.
+ * @param base_dir  directory that resolves external buffers (may be NULL: external URIs are
+ *                  then an error, ROMA_ERROR_FILE_NOT_FOUND).
+ * @param desc      settings; may be NULL (the zero value).
+ * @param[out] out_scene  the new scene, owned by the caller; NULL on failure.
+ * @return the codes of roma_scene_load_gltf but ROMA_ERROR_IO (ROMA_ERROR_INVALID_ARGUMENT
+ *         also for NULL data with a non-zero size).
+ * @par Threads
+ * Any thread. */
 ROMA_API roma_result roma_scene_load_gltf_memory(const void *data, size_t size, const char *base_dir,
                                                  const roma_gltf_desc *desc, roma_scene **out_scene);
 
@@ -63,4 +91,4 @@ ROMA_API roma_result roma_scene_load_gltf_memory(const void *data, size_t size, 
 }
 #endif
 
-#endif /**< ROMA_GLTF_H */
+#endif /* ROMA_GLTF_H */

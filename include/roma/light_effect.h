@@ -12,7 +12,10 @@
  * the reflected radiance of a diffuse surface. Pixels with w <= 0 get 0. The lights'
  * units and windows are glTF KHR_lights_punctual's, as in roma_scene (intensity in cd for
  * point and spot lights, lux for directional ones; range windows; spot cones); their
- * formulas are the reference tracer's. Synchronisation and slots: as roma_ao_effect. */
+ * formulas are the reference tracer's. Synchronisation and slots: as roma_ao_effect.
+ *
+ * Threads: an effect is used by one thread at a time, like its context; records write only
+ * into the command buffer they are given and never submit or wait. */
 #ifndef ROMA_LIGHT_EFFECT_H
 #define ROMA_LIGHT_EFFECT_H
 
@@ -29,30 +32,38 @@
 extern "C" {
 #endif
 
-/** Defaults, resolved in one place (roma_light_settings_resolve). */
-#define ROMA_DEFAULT_SHADOW_STEPS 8u        /**< the paper's un-snapped walk */
+/** Default texels an un-snapped shadow ray walks: the paper's walk. Defaults are resolved in
+ * one place (roma_light_settings_resolve). */
+#define ROMA_DEFAULT_SHADOW_STEPS 8u
 #define ROMA_DEFAULT_SHADOW_SKIP_CELLS 1.0f /**< shadow rays start one trace cell past their origin */
 #define ROMA_DEFAULT_AREA_LIGHT_SAMPLES 4u  /**< area-light samples per pixel and frame */
 
 /** Per-record light settings; the zero value is the default (roma_light_settings_resolve). */
 typedef struct roma_light_settings {
     uint32_t max_steps;   /**< texels an un-snapped shadow ray walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
-    float offset_cells;   /**< origin offset along the geometric normal, trace cells; 0 = ROMA_DEFAULT_OFFSET_CELLS */
-    float skip_cells;     /**< 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS, negative = 0 */
-    uint32_t area_samples; /**< area-light samples per pixel and frame; 0 = ROMA_DEFAULT_AREA_LIGHT_SAMPLES */
+    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS. */
+    float offset_cells;
+    /** Shadow rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS,
+     * negative = 0. */
+    float skip_cells;
+    /** Area-light samples per pixel and frame; 0 = ROMA_DEFAULT_AREA_LIGHT_SAMPLES. */
+    uint32_t area_samples;
     uint32_t seed;         /**< area-light sample sequences, as roma_ao_settings */
     uint32_t frame;        /**< new area-light samples every frame */
 } roma_light_settings;
 
-/** The zero value's meaning filled in (the one place defaults are resolved). in may be NULL (all
- * defaults). ROMA_ERROR_INVALID_ARGUMENT for a NULL out or a negative or non-finite offset, or a
- * non-finite skip.
- */
+/** The zero value's meaning filled in (the one place defaults are resolved).
+ *
+ * @param in        the settings; NULL = the zero value (all defaults).
+ * @param[out] out  the resolved settings; zeroed on failure. May equal in.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out or a negative or non-finite
+ *         offset, or a non-finite skip.
+ * @par Threads
+ * Any thread (pure). */
 ROMA_API roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out);
 
 /** Direct light with ROMA shadows on the engine's G-buffer images (opaque). Used by one thread at a
- * time, like its context.
- */
+ * time, like its context. */
 typedef struct roma_light_effect roma_light_effect;
 
 /** Area lights: the emissive triangles of `scene` (materials with emission), sampled in
@@ -62,7 +73,14 @@ typedef struct roma_light_effect roma_light_effect;
  * scene without emitters removes it); a failure keeps it. The emitters are copied (the
  * scene may be destroyed afterwards) and stay where the scene puts them. Call it between
  * frames, when no submitted work of this effect is still running (it frees the old
- * buffers). ROMA_ERROR_INVALID_ARGUMENT for a NULL effect; out of memory errors. */
+ * buffers).
+ *
+ * @param effect  the effect.
+ * @param scene   the scene whose emissive triangles become the area lights; NULL removes them.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL effect;
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) for the buffers.
+ * @par Threads
+ * The context's thread; the scene may be read by other threads meanwhile. */
 ROMA_API roma_result roma_light_effect_set_area_lights(roma_light_effect *effect, const roma_scene *scene);
 
 /** Settings of roma_light_effect_create; the zero value is the default. */
@@ -71,13 +89,24 @@ typedef struct roma_light_effect_desc {
     roma_logger logger;        /**< 0 = the context's */
 } roma_light_effect_desc;
 
-/** Creates the light effect. desc may be NULL (defaults). ROMA_ERROR_INVALID_ARGUMENT for a NULL
- * context or out, or frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; out-of-memory and
- * ROMA_ERROR_VULKAN failures leave *out NULL.
- */
+/** Creates the light effect (no area lights until roma_light_effect_set_area_lights).
+ *
+ * @param context   the context; must outlive the effect.
+ * @param desc      settings; NULL = the zero value (2 slots, the context's logger). Copied.
+ * @param[out] out  the new effect; NULL on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, or
+ *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a
+ *         Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread. */
 ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_light_effect_desc *desc,
                                               roma_light_effect **out);
-/** Accepts NULL. The caller makes sure no submitted work still uses it. */
+/** Destroys the effect and its light buffers.
+ *
+ * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
+ *                work still uses it.
+ * @par Threads
+ * The context's thread. */
 ROMA_API void roma_light_effect_destroy(roma_light_effect *effect);
 
 /** The engine's images the light effect reads and writes. */
@@ -87,14 +116,36 @@ typedef struct roma_light_images {
     VkImageView position; /**< sampled: xyz world position, w > 0 = geometry */
     VkImageView normal; /**< sampled: shading normal */
     VkImageView geometric_normal; /**< sampled, optional (VK_NULL_HANDLE: the shading normal) */
-    VkImageView output;                             /**< storage, R32G32B32A32_SFLOAT, layout GENERAL */
+    VkImageView output; /**< storage, R32G32B32A32_SFLOAT, layout GENERAL */
     VkImageLayout input_layout; /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_light_images;
 
-/** The lights are copied into the slot's storage at record time (up to 65,536; lights
+/** Records the direct-light pass into cmd: one compute dispatch of 8 x 8 pixel groups.
+ * The lights are copied into the slot's storage at record time (up to 65,536; lights
  * with zero intensity or colour are dropped, as the reference does). One record per frame:
  * a second record with the same slot and the same build of the map is refused
- * (ROMA_ERROR_INVALID_ARGUMENT). */
+ * (ROMA_ERROR_INVALID_ARGUMENT).
+ *
+ * @param effect       the effect.
+ * @param cmd          a command buffer of the context's queue family, recording.
+ * @param slot         the engine's frame slot, below the effect's frames_in_flight.
+ * @param map          a map with a build recorded earlier on the queue; it and the image views
+ *                     must outlive the recorded work.
+ * @param images       the images; copied.
+ * @param lights       light_count punctual lights, copied; may be NULL when light_count is 0
+ *                     (then only the area lights shine).
+ * @param light_count  lights, at most 65,536.
+ * @param settings     NULL = the zero value (defaults, roma_light_settings_resolve).
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, NULL lights with
+ *   light_count > 0, a zero width or height, no position, normal or output view, more than
+ *   65,536 lights, a light of unknown type or with a NaN or infinite value, settings
+ *   roma_light_settings_resolve rejects, a slot not below frames_in_flight, a second record
+ *   in one slot and frame;
+ *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
+ *   a Vulkan failure code (roma_result) for the slot's light buffer or descriptor set.
+ * @par Threads
+ * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_light_effect_record(roma_light_effect *effect, VkCommandBuffer cmd, uint32_t slot,
                                               const roma_map *map, const roma_light_images *images, const roma_light *lights,
                                               uint32_t light_count, const roma_light_settings *settings);
@@ -103,4 +154,4 @@ ROMA_API roma_result roma_light_effect_record(roma_light_effect *effect, VkComma
 }
 #endif
 
-#endif /**< ROMA_LIGHT_EFFECT_H */
+#endif /* ROMA_LIGHT_EFFECT_H */

@@ -143,7 +143,8 @@ typedef struct roma_map_frame_desc {
      * buffer recorded with the same slot (its own per-frame fence) before recording. */
     uint32_t slot;
     /** The box the grid is fitted to (plus margin_cells); geometry outside it is not
-     * traced. NULL: the bounds of the last host positions (the scene's at first). */
+     * traced. NULL: the bounds of the last host positions (the scene's at first) and of
+     * the instances. */
     const roma_box *volume;
     /** New vertex positions for this build (the map's vertex count, vertex_count must
      * equal it), from either:

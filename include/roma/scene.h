@@ -8,7 +8,10 @@
  * Every builder validates all of its input first and either returns a complete
  * scene or nothing: on failure *out_scene is NULL.
  *
- * All surfaces are two-sided Lambertian reflectors. */
+ * All surfaces are two-sided Lambertian reflectors.
+ *
+ * Threads: a scene is immutable, so any number of threads may read it (views, maps, effects)
+ * at once; roma_scene_set_animation_data and roma_scene_destroy need it to themselves. */
 #ifndef ROMA_SCENE_H
 #define ROMA_SCENE_H
 
@@ -25,8 +28,7 @@ extern "C" {
 #endif
 
 /** An immutable triangle scene with materials, lights, camera and animation data (opaque). Safe to
- * read from several threads; destroyed by one.
- */
+ * read from several threads; destroyed by one. */
 typedef struct roma_scene roma_scene;
 
 /** A diffuse material. */
@@ -37,12 +39,12 @@ typedef struct roma_material {
 
 /** Kinds of punctual light (glTF KHR_lights_punctual). */
 typedef enum roma_light_type {
-    ROMA_LIGHT_POINT = 1,
-    ROMA_LIGHT_SPOT,
-    ROMA_LIGHT_DIRECTIONAL
+    ROMA_LIGHT_POINT = 1,   /**< emits from position in every direction */
+    ROMA_LIGHT_SPOT,        /**< emits from position inside a cone around direction */
+    ROMA_LIGHT_DIRECTIONAL  /**< parallel light along direction (the sun) */
 } roma_light_type;
 
-/** Units follow KHR_lights_punctual: intensity is in candela (W/sr after
+/** A punctual light. Units follow KHR_lights_punctual: intensity is in candela (W/sr after
  * multiplying by color) for point and spot lights, in lux (W/m^2) for
  * directional lights. */
 typedef struct roma_light {
@@ -73,18 +75,35 @@ typedef struct roma_scene_desc {
     roma_logger logger; /**< where validation messages go; zero: stderr */
 } roma_scene_desc;
 
-/** Validates and copies the arrays. Rejects: NULL/zero arrays, indices >= vertex_count,
- * material indices >= material_count, NaN/Inf positions, normals or light data,
+/** Creates a scene: validates and copies the arrays. Rejects: NULL/zero arrays, indices >=
+ * vertex_count, material indices >= material_count, NaN/Inf positions, normals or light data,
  * negative colours, base colours above 1, spot cones outside 0 <= inner <= outer <= pi/2,
  * zero light directions (spot, directional), no triangle with non-zero area
  * (ROMA_ERROR_EMPTY_SCENE).
  * Zero-area triangles are kept in the arrays (they hit nothing) and counted in
  * roma_scene_view.degenerate_triangle_count; "zero area" includes slivers whose
  * squared cross product is below 1e-14 |e1|^2 |e2|^2 (sine of the angle < 1e-7).
- * Given normals of zero length fall back to the face normals, with a warning. */
+ * Given normals of zero length fall back to the face normals, with a warning. Light
+ * directions are normalised and a spot light's outer_cone_angle of 0 becomes pi/4.
+ *
+ * @param desc  the arrays and settings; nothing of it is kept (the caller keeps ownership).
+ * @param[out] out_scene  the new scene; NULL on failure. Destroy it with roma_scene_destroy.
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: NULL desc or out_scene, a NULL array with a non-zero count;
+ *   ROMA_ERROR_EMPTY_SCENE: no triangles, or none with non-zero area;
+ *   ROMA_ERROR_INVALID_SCENE: out-of-range indices, non-finite or out-of-range values, an
+ *   unknown light type, a zero light direction, a bad spot cone;
+ *   ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ * @par Threads
+ * Any thread (touches only its arguments). */
 ROMA_API roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scene);
 
-/** Accepts NULL. */
+/** Frees a scene and its arrays (views of it become invalid). Maps, effects and animators made
+ * from it copied what they need and do not depend on it.
+ *
+ * @param scene  the scene, or NULL (nothing is done).
+ * @par Threads
+ * No other thread may use the scene during or after the call. */
 ROMA_API void roma_scene_destroy(roma_scene *scene);
 
 /* Built-in test scenes: roma/builtin_scenes.h (library roma_tools). */
@@ -110,17 +129,17 @@ typedef struct roma_scene_skin {
 
 /** What an animation channel drives. */
 typedef enum roma_anim_path {
-    ROMA_ANIM_TRANSLATION = 1,
-    ROMA_ANIM_ROTATION,
-    ROMA_ANIM_SCALE,
-    ROMA_ANIM_WEIGHTS
+    ROMA_ANIM_TRANSLATION = 1, /**< the node's translation (3 floats) */
+    ROMA_ANIM_ROTATION,        /**< the node's rotation quaternion x, y, z, w (4 floats) */
+    ROMA_ANIM_SCALE,           /**< the node's scale (3 floats) */
+    ROMA_ANIM_WEIGHTS          /**< morph target weights (kept, not played) */
 } roma_anim_path;
 
 /** How an animation channel interpolates its keys. */
 typedef enum roma_anim_interp {
-    ROMA_ANIM_LINEAR = 0,
-    ROMA_ANIM_STEP,
-    ROMA_ANIM_CUBICSPLINE
+    ROMA_ANIM_LINEAR = 0,  /**< linear between keys (rotations: spherical) */
+    ROMA_ANIM_STEP,        /**< the previous key's value */
+    ROMA_ANIM_CUBICSPLINE  /**< cubic Hermite spline with in and out tangents per key */
 } roma_anim_interp;
 
 /** One animation channel: a node's translation, rotation or scale over key times. */
@@ -161,7 +180,8 @@ typedef struct roma_scene_animation_data {
     const float *values; /**< key values of every channel */
 } roma_scene_animation_data;
 
-/** Read-only view of a scene; pointers stay valid until roma_scene_destroy. */
+/** Read-only view of a scene; pointers stay valid until roma_scene_destroy (those of
+ * animation until roma_scene_set_animation_data replaces the data). */
 typedef struct roma_scene_view {
     const char *name; /**< the scene's name */
     const float *positions;           /**< 3 per vertex */
@@ -186,21 +206,46 @@ typedef struct roma_scene_view {
     roma_scene_animation_data animation; /**< skins and animations (empty for static scenes) */
 } roma_scene_view;
 
-/** Returns ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (*out_view zeroed). */
+/** A read-only view of the scene's arrays (no copy).
+ *
+ * @param scene          the scene.
+ * @param[out] out_view  the view; its pointers belong to the scene. Zeroed on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (*out_view zeroed).
+ * @par Threads
+ * Any thread, concurrently with other readers. */
 ROMA_API roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_view);
 
-/** Animation data is attached by loaders after the geometry is validated; the
- * scene copies the arrays. Rejects out-of-range node/skin/joint indices and
- * non-finite floats. Intended for loaders; engines rarely need it. */
+/** Attaches animation data, replacing the scene's (the old arrays are freed). Animation data
+ * is attached by loaders after the geometry is validated; the scene copies the arrays
+ * (per-vertex ones are vertex_count entries, each optional). Rejects out-of-range
+ * node/skin/joint indices, parent cycles, bad channels, negative weights and non-finite
+ * floats. Intended for loaders; engines rarely need it. A failure keeps the previous data.
+ *
+ * @param scene   the scene to change.
+ * @param data    the data; copied, the caller keeps ownership.
+ * @param logger  where messages go; NULL: stderr (warnings and errors).
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL scene or data, or a NULL array
+ *         with a non-zero count; ROMA_ERROR_INVALID_SCENE for invalid data;
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ * @par Threads
+ * The one call that changes a scene: no other thread may use the scene meanwhile, and views
+ * taken before see freed animation arrays. */
 ROMA_API roma_result roma_scene_set_animation_data(roma_scene *scene,
                                                    const roma_scene_animation_data *data,
                                                    const roma_logger *logger);
 
-/** Camera to use when none is given: the scene's own, or one framing the bounds. */
+/** Camera to use when none is given: the scene's own, or one framing the bounds
+ * (roma_camera_frame_bounds).
+ *
+ * @param scene   the scene; NULL leaves *out_camera zeroed.
+ * @param aspect  image width / height, for framing the bounds.
+ * @param[out] out_camera  the camera; NULL: nothing is done.
+ * @par Threads
+ * Any thread, concurrently with other readers. */
 ROMA_API void roma_scene_default_camera(const roma_scene *scene, float aspect, roma_camera *out_camera);
 
 #ifdef __cplusplus
 }
 #endif
 
-#endif /**< ROMA_SCENE_H */
+#endif /* ROMA_SCENE_H */

@@ -61,10 +61,10 @@ ROMA_STRUCT_BEGIN(roma_map_frame)
     ROMA_VEC4(to_map_0);  /**< world -> map cell x: xyz row, w offset */
     ROMA_VEC4(to_map_1);  /**< world -> map cell y: xyz row, w offset */
     ROMA_VEC4(to_map_2);  /**< world -> map cell z: xyz row, w offset */
-    ROMA_VEC4(map_to_bom_0); /**< xyz: BOM cell coordinates per map x */
-    ROMA_VEC4(map_to_bom_1); /**< xyz: BOM cell coordinates per map y */
-    ROMA_VEC4(map_to_bom_2); /**< xyz: BOM cell coordinates per map z */
-    ROMA_VEC4(map_to_bom_3); /**< xyz: BOM cell coordinates of map cell (0,0,0) */
+    ROMA_VEC4(map_to_bom_0); /**< xyz: BOM cell coordinates per unit of map x */
+    ROMA_VEC4(map_to_bom_1); /**< xyz: BOM cell coordinates per unit of map y */
+    ROMA_VEC4(map_to_bom_2); /**< xyz: BOM cell coordinates per unit of map z */
+    ROMA_VEC4(map_to_bom_3); /**< xyz: BOM cell coordinates of map point (0,0,0) */
     ROMA_VEC4(dir);       /**< xyz: candidate direction (unit, z >= 0); w: world size of a cell along it */
     ROMA_VEC4(cell);      /**< world cell size along map x, y, z */
 ROMA_STRUCT_END(roma_map_frame)

@@ -56,17 +56,27 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     pli.pPushConstantRanges = &push;
     if (vkCreatePipelineLayout(b.device, &pli, nullptr, &c.layout) != VK_SUCCESS)
         return false;
-    VkShaderModule m = vk_shader_module(b, compose_comp_spv, sizeof compose_comp_spv);
+    c.module = vk_shader_module(b, compose_comp_spv, sizeof compose_comp_spv);
+    return c.module != VK_NULL_HANDLE;
+}
+
+static VkPipeline view_pipeline(const vk_base &b, compose_pass &c, view_mode view)
+{
+    if (c.pipelines[view])
+        return c.pipelines[view];
+    uint32_t value = view;
+    VkSpecializationMapEntry entry{0, 0, sizeof value};
+    VkSpecializationInfo spec{1, &entry, sizeof value, &value};
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = m;
+    ci.stage.module = c.module;
     ci.stage.pName = "main";
+    ci.stage.pSpecializationInfo = &spec;
     ci.layout = c.layout;
-    bool ok = m && vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &ci, nullptr, &c.pipeline) == VK_SUCCESS;
-    if (m)
-        vkDestroyShaderModule(b.device, m, nullptr);
-    return ok;
+    if (vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &ci, nullptr, &c.pipelines[view]) != VK_SUCCESS)
+        c.pipelines[view] = VK_NULL_HANDLE;
+    return c.pipelines[view];
 }
 
 bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &g)
@@ -125,8 +135,11 @@ void compose_pass_destroy(const vk_base &b, compose_pass &c)
     vk_image_destroy(b, c.light);
     vk_image_destroy(b, c.accum);
     vk_image_destroy(b, c.display);
-    if (c.pipeline)
-        vkDestroyPipeline(b.device, c.pipeline, nullptr);
+    for (VkPipeline p : c.pipelines)
+        if (p)
+            vkDestroyPipeline(b.device, p, nullptr);
+    if (c.module)
+        vkDestroyShaderModule(b.device, c.module, nullptr);
     if (c.layout)
         vkDestroyPipelineLayout(b.device, c.layout, nullptr);
     if (c.pool)
@@ -152,9 +165,12 @@ void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd)
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
 }
 
-void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
+bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
                          VkDescriptorSet trace_set)
 {
+    VkPipeline pipeline = view_pipeline(b, c, s.view);
+    if (!pipeline)
+        return false;
     const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     const VkAccessFlags2 rw = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
     // The effects' storage writes, read here.
@@ -200,7 +216,7 @@ void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compo
     push.ao_on = s.ao_on;
     push.direct_on = s.direct_on;
     VkDescriptorSet sets[2] = {c.set, trace_set};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);
     vkCmdPushConstants(cmd, c.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
@@ -215,4 +231,5 @@ void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compo
     after.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | rw;
     dep.pMemoryBarriers = &after;
     vkCmdPipelineBarrier2(cmd, &dep);
+    return true;
 }

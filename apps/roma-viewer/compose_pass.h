@@ -40,7 +40,8 @@ struct compose_pass {
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet set = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VkPipeline pipelines[VIEW_COUNT] = {}; // one per view (specialization constant), made on first use
 };
 
 bool compose_pass_create(const vk_base &b, compose_pass &c);
@@ -54,5 +55,5 @@ void compose_pass_set_buffers(const vk_base &b, compose_pass &c, VkBuffer refere
 void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd);
 // trace_set: roma_map_info.trace_set of this frame's map. Leaves the display image in
 // TRANSFER_SRC_OPTIMAL.
-void compose_pass_record(const compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
+bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
                          VkDescriptorSet trace_set);

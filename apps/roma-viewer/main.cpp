@@ -722,7 +722,8 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.slice_depth = std::min(s.slice_depth, v.bom_res ? v.bom_res - 1 : 0u);
     cs.bom_res = v.bom_res;
     cs.compared = v.compared;
-    compose_pass_record(v.cp, cmd, cs, mi.trace_set);
+    if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set))
+        return false;
     v.passes.push_back("compose");
     v.info.grid_cell = mi.grid_cell;
     stamp(v, cmd, slot, 5);

@@ -9,6 +9,10 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// The view, a specialization constant: one pipeline per view, so that a CPU device does not
+// run every view's branch for every pixel (pc.view is not read).
+layout(constant_id = 0) const uint VIEW = 0u;
+
 layout(set = 0, binding = 0) uniform sampler2D g_position;
 layout(set = 0, binding = 1) uniform sampler2D g_normal;
 layout(set = 0, binding = 2) uniform sampler2D g_albedo;
@@ -87,7 +91,7 @@ void main()
     float ao = pc.ao_on != 0u ? imageLoad(ao_image, p).r : 1.0;
     vec3 irradiance = pc.direct_on != 0u ? imageLoad(light_image, p).rgb : vec3(0.0);
 
-    uint view = pc.view;
+    uint view = VIEW;
     if (view == VIEW_REFERENCE || view == VIEW_DIFFERENCE)
         view = pc.compared; // accumulate the compared quantity; show it against the reference
     vec3 value;      // linear, accumulated
@@ -139,9 +143,9 @@ void main()
     }
     imageStore(accum_image, p, vec4(mean, 1.0));
     vec3 shown = tone ? mean * pc.exposure : mean;
-    if (pc.view == VIEW_REFERENCE || pc.view == VIEW_DIFFERENCE) {
+    if (VIEW == VIEW_REFERENCE || VIEW == VIEW_DIFFERENCE) {
         vec3 ref = reference[p.y * int(pc.size.x) + p.x].rgb;
-        if (pc.view == VIEW_REFERENCE)
+        if (VIEW == VIEW_REFERENCE)
             shown = tone ? ref * pc.exposure : ref;
         else // |ROMA - reference|, max over channels, 0.25 (exposed) as white
             shown = heat(max(max(abs(mean - ref).r, abs(mean - ref).g), abs(mean - ref).b) *

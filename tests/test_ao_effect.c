@@ -280,8 +280,9 @@ int main(void)
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc af = {.frame = 1, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
         CHECK_RESULT(roma_map_record_build(map, cmd, &af, NULL), ROMA_SUCCESS);
+        /* Slot 1: a new frame of the effect with frame 0, the reference's samples 0 .. AREA_SPP - 1. */
         roma_light_settings ls = {.area_samples = AREA_SPP, .seed = SEED};
-        CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, lv.lights, lv.light_count, &ls),
+        CHECK_RESULT(roma_light_effect_record(light, cmd, 1, map, &limages, lv.lights, lv.light_count, &ls),
                      ROMA_SUCCESS);
         layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -316,6 +317,31 @@ int main(void)
     CHECK_RESULT(roma_light_effect_set_area_lights(NULL, lit), ROMA_ERROR_INVALID_ARGUMENT);
     roma_ref_destroy(lit_ref);
     roma_scene_destroy(lit);
+
+    /* Two maps in one frame: the AO of both, recorded in one command buffer with the same
+     * slot and frame, shares the slot's pool (the second record must not reset the set the
+     * first one's dispatch uses; validation would see a freed set at submit). */
+    roma_map *second = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 64, .angular = 2}, scene, &second),
+                 ROMA_SUCCESS);
+    if (second) {
+        vkResetCommandPool(dev, pool, 0);
+        vkBeginCommandBuffer(cmd, &begin);
+        layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        roma_map_frame_desc bf = {.frame = 7, .seed = 5, .jitter_grid = 1, .jitter_directions = 1, .slot = 1};
+        CHECK_RESULT(roma_map_record_build(map, cmd, &bf, NULL), ROMA_SUCCESS);
+        CHECK_RESULT(roma_map_record_build(second, cmd, &bf, NULL), ROMA_SUCCESS);
+        roma_ao_settings both = settings;
+        both.frame = 7;
+        CHECK_RESULT(roma_ao_effect_record(ao, cmd, 1, map, &images, &both), ROMA_SUCCESS);
+        CHECK_RESULT(roma_ao_effect_record(ao, cmd, 1, second, &images, &both), ROMA_SUCCESS);
+        vkEndCommandBuffer(cmd);
+        CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
+        vkQueueWaitIdle(roma_context_queue(ctx));
+        roma_map_destroy(second);
+    }
 
     /* One frame slot, 20 frames (more than a slot's 16 sets): each frame's build starts a
      * new frame of the slot, whose pool is reset; the engine waits for each frame. */

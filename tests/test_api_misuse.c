@@ -235,6 +235,19 @@ static void test_scene(roma_scene *scene)
     FAILS(roma_scene_set_animation_data(scene, &a, &logger), ROMA_ERROR_INVALID_SCENE, &log, "interpolation");
     ch.interpolation = (roma_anim_interp)3;
     FAILS(roma_scene_set_animation_data(scene, &a, &logger), ROMA_ERROR_INVALID_SCENE, &log, "interpolation");
+    ch.interpolation = ROMA_ANIM_LINEAR;
+    /* Skinned vertices without their joints and weights (the animator would read NULL). */
+    roma_scene_skin skin = {.first_joint = 0, .joint_count = 1};
+    uint32_t joint = 0;
+    float bind[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    int32_t *skinned = calloc(sv.vertex_count ? sv.vertex_count : 1, sizeof *skinned);
+    roma_scene_animation_data b = a;
+    b.skins = &skin, b.skin_count = 1, b.joint_nodes = &joint, b.inverse_binds = bind, b.joint_total = 1;
+    b.vertex_skin = skinned;
+    if (skinned)
+        FAILS(roma_scene_set_animation_data(scene, &b, &logger), ROMA_ERROR_INVALID_SCENE, &log,
+              "joints or weights are missing");
+    free(skinned);
     CHECK_RESULT(roma_scene_set_animation_data(scene, NULL, NULL), ROMA_ERROR_INVALID_ARGUMENT);
     roma_scene_get_view(scene, &sv);
     CHECK(sv.animation.nodes == kept && sv.triangle_count > 0);

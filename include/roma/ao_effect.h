@@ -15,9 +15,11 @@
  * image in GENERAL; after the pass, compute-shader storage writes to its own readers. The
  * map must have been built earlier in the queue (its build ends with a barrier that covers
  * every later command). Descriptor sets come from a pool per frame slot (16 records per
- * slot and frame). A record starts a new frame of its slot when its slot or the map's
- * build differs from the previous record's, and the slot's pool is reset then: the slot
- * rules of roma_map_frame_desc.slot apply (one build of the map per frame).
+ * slot and frame). A record starts a new frame of its slot when its slot or its
+ * settings' frame differs from the previous record's, and the slot's pool is reset then:
+ * the slot rules of roma_map_frame_desc.slot apply (the GPU has finished the slot's
+ * previous frame). Count frames in settings.frame; records of one frame (several maps,
+ * several images) keep the same frame.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. */
@@ -53,7 +55,7 @@ typedef struct roma_ao_settings {
      * negative = 0. */
     float skip_cells;
     uint32_t seed; /**< sample sequences: the same seed as the reference gives the same rays */
-    uint32_t frame;       /**< new directions every frame */
+    uint32_t frame;       /**< the engine's frame counter: new directions, and a new frame of the slot */
 } roma_ao_settings;
 
 /** The zero value's meaning, filled in (the one place defaults are resolved).

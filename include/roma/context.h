@@ -143,14 +143,15 @@ typedef struct roma_context_desc {
  * Any thread; the new context is then used by one thread at a time. */
 ROMA_API roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
 /** Waits for libroma's work, then destroys what libroma created: own device, vkDeviceWaitIdle
- * and the device and instance; external device, vkQueueWaitIdle on its queue (the engine's
- * device, instance and queue stay).
+ * and the device and instance; external device, no wait (libroma's own submissions, in
+ * creation calls and the blocking convenience calls, have all finished when those calls
+ * return) and the engine's device, instance and queue stay.
  *
  * @param context  the context, or NULL (nothing is done). Every object made from it (maps,
  *                 effects, animators, timers) must have been destroyed before.
  * @par Threads
- * The context's thread; on an external device no other thread may use its queue during
- * the call (vkQueueWaitIdle). */
+ * The context's thread. On an external device it touches neither the queue nor the
+ * engine's work, so it may run while other threads submit. */
 ROMA_API void roma_context_destroy(roma_context *context);
 
 /** The device a context runs on and what libroma did with it (roma_context_get_info). */

@@ -49,7 +49,7 @@ typedef struct roma_light_settings {
     /** Area-light samples per pixel and frame; 0 = ROMA_DEFAULT_AREA_LIGHT_SAMPLES. */
     uint32_t area_samples;
     uint32_t seed;         /**< area-light sample sequences, as roma_ao_settings */
-    uint32_t frame;        /**< new area-light samples every frame */
+    uint32_t frame;        /**< the engine's frame counter: new area-light samples, and a new frame of the slot */
 } roma_light_settings;
 
 /** The zero value's meaning filled in (the one place defaults are resolved).
@@ -123,8 +123,9 @@ typedef struct roma_light_images {
 /** Records the direct-light pass into cmd: one compute dispatch of 8 x 8 pixel groups.
  * The lights are copied into the slot's storage at record time (up to 65,536; lights
  * with zero intensity or colour are dropped, as the reference does). One record per frame:
- * a second record with the same slot and the same build of the map is refused
- * (ROMA_ERROR_INVALID_ARGUMENT).
+ * a second record with the same slot and the same settings frame is refused
+ * (ROMA_ERROR_INVALID_ARGUMENT). Frames and slots: as roma_ao_effect (count frames in
+ * settings.frame).
  *
  * @param effect       the effect.
  * @param cmd          a command buffer of the context's queue family, recording.

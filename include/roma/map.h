@@ -190,7 +190,8 @@ typedef struct roma_map_frame_desc {
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL map or cmd, a timer of another VkDevice, a slot
  *   not below frames_in_flight, both positions and gpu_positions, a vertex_count other than
  *   the map's, a gpu_position_stride not a multiple of 4 or below 12, gpu_positions not
- *   4-byte aligned or without volume, a volume with min above max (or NaN);
+ *   4-byte aligned or without volume, more than 16 GiB of gpu_positions (vertex_count x
+ *   stride), a volume with min above max (or NaN);
  *   ROMA_ERROR_INVALID_SCENE: non-finite host positions, or the volume (or bounds) outside
  *   the range roma_map_create supports;
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) from the
@@ -418,8 +419,9 @@ ROMA_API roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, c
  * @param[out] out_hits  ray_count hits; may be NULL when ray_count is 0.
  * @param timer      may be NULL; otherwise it is reset and gets the scope "trace".
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map, NULL rays or out_hits with
- *         ray_count > 0, an unknown mode, a timer of another VkDevice; ROMA_ERROR_NOT_READY
- *         before the first build; a Vulkan failure code (roma_result).
+ *         ray_count > 0, an unknown mode, a timer of another VkDevice, more rays than half the
+ *         device's maxTexelBufferElements (2^26 on lavapipe and NVIDIA: split the batch);
+ *         ROMA_ERROR_NOT_READY before the first build; a Vulkan failure code (roma_result).
  * @par Threads
  * The context's thread; no other thread may submit to the context's queue meanwhile. */
 ROMA_API roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,

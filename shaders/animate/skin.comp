@@ -21,7 +21,8 @@ vec3 transform(SkinRows rows, uint m, vec4 p)
 
 void main()
 {
-    uint i = gl_GlobalInvocationID.x;
+    // Linear across a dispatch split into rows of 65,535 groups (roma_cmd_dispatch_linear).
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
     if (i >= pc.config.x)
         return;
     roma_skin_vertex v = SkinVertices(pc.vertices).v[i];

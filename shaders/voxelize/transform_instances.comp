@@ -15,7 +15,8 @@ layout(push_constant) uniform Push { roma_instance_push pc; };
 
 void main()
 {
-    uint i = gl_GlobalInvocationID.x;
+    // Linear across a dispatch split into rows of 65,535 groups (roma_cmd_dispatch_linear).
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
     if (i >= pc.config.x)
         return;
     vec4 p = vec4(RomaLocal(pc.src).p[i].xyz, 1.0);

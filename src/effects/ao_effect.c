@@ -85,7 +85,7 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
     if (r != ROMA_SUCCESS)
         return roma_fail(&e->base.logger, r, "roma_ao_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, map, &info);
+    r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_ao_push push = {.config = {im->width, im->height, s.samples, s.frame},

@@ -99,7 +99,8 @@ void roma_image_effect_free(roma_image_effect *e)
     memset(e, 0, sizeof *e);
 }
 
-roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, const roma_map *map, roma_map_info *info)
+roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
+                                    roma_map_info *info)
 {
     if (slot >= e->frames_in_flight)
         return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: slot %u of %u", e->name, slot,
@@ -109,13 +110,13 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, const r
         return r;
     if (!map->built)
         return roma_fail(&e->logger, ROMA_ERROR_NOT_READY, "%s: record a build of the map first", e->name);
-    e->build = map->builds;
+    e->frame = frame;
     return ROMA_SUCCESS;
 }
 
 int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot)
 {
-    return slot == e->last_slot && e->build == e->last_build && e->used[slot] > 0;
+    return slot == e->last_slot && e->frame == e->last_frame && e->used[slot] > 0;
 }
 
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
@@ -126,10 +127,11 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
         vkResetDescriptorPool(e->ctx->device, e->pools[slot], 0);
         e->used[slot] = 0;
         e->last_slot = slot;
-        e->last_build = e->build;
+        e->last_frame = e->frame;
     }
     if (e->used[slot] == SETS_PER_SLOT)
-        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: more than %u records in one frame slot",
+        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: more than %u records in one frame of a slot (count frames in settings.frame)",
                          e->name, SETS_PER_SLOT);
     VkDescriptorSet set;
     VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,

@@ -14,7 +14,7 @@ typedef struct roma_image_effect {
     roma_logger logger;
     const char *name; /* for messages: "roma_ao_effect_record" */
     uint32_t frames_in_flight, last_slot, used[ROMA_MAX_FRAMES_IN_FLIGHT];
-    uint64_t last_build, build;  /* the map's build count at the last and at this record */
+    uint32_t last_frame, frame;  /* the settings' frame of the last and of this record */
     uint32_t inputs, outputs, push_size;
     VkSampler sampler;
     VkDescriptorSetLayout trace_layout, images_layout;
@@ -28,15 +28,17 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
                                    uint32_t frames_in_flight);
 void roma_image_effect_free(roma_image_effect *e);
 
-/* A record starts a new frame of its slot when the slot or the map's build changed since
- * the previous record (one build per frame and slot, the map's rule): the slot's pool is
- * reset then. roma_image_effect_same_frame says whether this record continues one. */
+/* A record starts a new frame of its slot when the slot or the settings' frame changed since
+ * the previous record (the slot rules: the GPU is done with the slot's previous frame): the
+ * slot's pool is reset then. Records of one frame (several maps) share its pool.
+ * roma_image_effect_same_frame says whether this record continues one. */
 int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 
 /* Checks slot and map, allocates and writes set 1 (views: inputs then outputs; a NULL
  * input view is replaced by fallback[i] when given), binds, pushes and dispatches
  * ceil(width / 8) x ceil(height / 8). The map's info is returned for the push. */
-roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, const roma_map *map, roma_map_info *info);
+roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
+                                    roma_map_info *info);
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height);

@@ -176,7 +176,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_light_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, map, &info);
+    r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
     if (r != ROMA_SUCCESS)
         return r;
     /* The lights live in one buffer per slot: a second record in the slot's frame would

@@ -393,6 +393,10 @@ static roma_result check_frame(roma_map *map, const roma_map_frame_desc *f)
                              "%s: gpu_position_stride %u must be a multiple of 4 and at least 12", fn, stride);
         if (f->gpu_positions % 4u)
             return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: gpu_positions is not 4-byte aligned", fn);
+        /* The gather addresses 32-bit words with a 32-bit index (gather_positions.comp). */
+        if ((uint64_t)f->vertex_count * stride > ((uint64_t)1 << 34))
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                             "%s: %u vertices of %u bytes span more than 16 GiB", fn, f->vertex_count, stride);
         if (!f->volume)
             return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                              "%s: gpu_positions needs a volume (the host cannot see their bounds)", fn);
@@ -759,6 +763,12 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
     roma_result r = check_trace(map, mode, ray_count, timer, "roma_map_trace");
     if (r != ROMA_SUCCESS || ray_count == 0)
         return r;
+    /* The rays are read through a texel buffer of 2 RGBA32F texels each. */
+    uint32_t max_texels = map->ctx->properties.limits.maxTexelBufferElements;
+    if ((uint64_t)ray_count * 2 > max_texels)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_trace: %u rays, at most %u in one call on this device (maxTexelBufferElements / 2)",
+                         ray_count, max_texels / 2);
     const VkBuffer old_rays = map->ray_staging.buffer, old_hits = map->hit_staging.buffer;
     r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
     if (r == ROMA_SUCCESS)

@@ -528,6 +528,9 @@ static roma_result validate_animation(const roma_scene *s, const roma_scene_anim
         int32_t skin = d->vertex_skin ? d->vertex_skin[v] : -1;
         if (skin < -1 || skin >= (int64_t)d->skin_count)
             ANIM_FAIL("scene '%s': vertex %u refers to skin %d of %u", name, v, skin, d->skin_count);
+        /* A skinned vertex needs its joints and weights (the animator and roma_scene_pose read them). */
+        if (skin >= 0 && (!d->vertex_joints || !d->vertex_weights))
+            ANIM_FAIL("scene '%s': vertex %u is skinned but the vertex joints or weights are missing", name, v);
         if (skin >= 0 && d->vertex_joints)
             for (int k = 0; k < 4; ++k)
                 if (d->vertex_joints[4 * (size_t)v + k] >= d->skins[skin].joint_count)

@@ -372,11 +372,11 @@ void roma_context_destroy(roma_context *ctx)
     if (!ctx)
         return;
     if (ctx->device) {
-        /* On the caller's device only our own queue submissions need to finish. */
+        /* On the caller's device nothing of ours is pending: every libroma submission (creation,
+         * blocking convenience calls) waits on its fence before returning, and the queue is the
+         * engine's to synchronise (a failed create must not wait on it either). */
         if (ctx->owns_device)
             vkDeviceWaitIdle(ctx->device);
-        else if (ctx->queue)
-            vkQueueWaitIdle(ctx->queue);
         roma_shared_pipelines_destroy(ctx);
         if (ctx->pipeline_cache)
             vkDestroyPipelineCache(ctx->device, ctx->pipeline_cache, ctx->allocator);

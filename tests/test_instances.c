@@ -259,6 +259,54 @@ static void test_frames(roma_context *ctx, roma_scene *floor, roma_scene *box)
     roma_map_destroy(map);
 }
 
+/* The geometry cap counts instances added since the last build: adding many instances of
+ * a 1,002,528-triangle mesh before any build is refused once the live triangles would pass
+ * UINT32_MAX / 12 (357,913,941): the 358th instance, and removing one makes room again. */
+static void test_geometry_cap(roma_context *ctx, roma_scene *floor)
+{
+    const uint32_t n = 708; /* n x n quads */
+    float *pos = malloc(sizeof(float) * 3 * (n + 1) * (n + 1));
+    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * n * n);
+    roma_map *map = NULL;
+    roma_scene *grid = NULL;
+    if (pos && idx) {
+        for (uint32_t y = 0; y <= n; ++y)
+            for (uint32_t x = 0; x <= n; ++x) {
+                float *p = pos + 3 * (y * (n + 1) + x);
+                p[0] = (float)x / n, p[1] = 0.0f, p[2] = (float)y / n;
+            }
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                uint32_t a = y * (n + 1) + x, *t = idx + 6 * (y * n + x);
+                t[0] = a, t[1] = a + n + 1, t[2] = a + 1, t[3] = a + 1, t[4] = a + n + 1, t[5] = a + n + 2;
+            }
+        roma_scene_desc d = {.positions = pos, .vertex_count = (n + 1) * (n + 1), .indices = idx,
+                             .triangle_count = 2 * n * n, .name = "grid"};
+        CHECK_RESULT(roma_scene_create(&d, &grid), ROMA_SUCCESS);
+    }
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 32, .angular = 1}, floor, &map), ROMA_SUCCESS);
+    uint32_t mesh = 0, first = 0, added = 0;
+    if (map && grid && roma_map_add_mesh(map, grid, &mesh) == ROMA_SUCCESS) {
+        roma_instance_desc id = {.mesh = mesh};
+        uint32_t instance;
+        while (added < 1000 && roma_map_add_instance(map, &id, &instance) == ROMA_SUCCESS) {
+            if (added == 0)
+                first = instance;
+            ++added;
+        }
+        CHECK(added == 357);
+        CHECK_RESULT(roma_map_remove_instance(map, first), ROMA_SUCCESS);
+        CHECK_RESULT(roma_map_add_instance(map, &id, &instance), ROMA_SUCCESS);
+        CHECK_RESULT(roma_map_add_instance(map, &id, &instance), ROMA_ERROR_INVALID_ARGUMENT);
+    } else {
+        CHECK(0);
+    }
+    roma_map_destroy(map);
+    roma_scene_destroy(grid);
+    free(pos);
+    free(idx);
+}
+
 int main(void)
 {
     roma_context_desc cd = {.flags = roma_test_sync_validation_flags(), .logger = roma_test_logger(&log_)};
@@ -271,6 +319,7 @@ int main(void)
         test_api(ctx, floor, box);
         test_same_bom(ctx, floor, box);
         test_frames(ctx, floor, box);
+        test_geometry_cap(ctx, floor);
     }
     roma_scene_destroy(floor);
     roma_scene_destroy(box);

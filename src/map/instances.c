@@ -152,8 +152,8 @@ roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc,
     if (r != ROMA_SUCCESS)
         return r;
     const roma_map_mesh *m = &map->meshes[desc->mesh];
-    if ((uint64_t)map->total_vertices + m->vertex_count > UINT32_MAX / 16 ||
-        (uint64_t)map->total_triangles + m->triangle_count > UINT32_MAX / 12)
+    if (map->live_vertices + m->vertex_count > UINT32_MAX / 16 ||
+        map->live_triangles + m->triangle_count > UINT32_MAX / 12)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_add_instance: too much geometry");
     if (!grow((void **)&map->instances, &map->instance_capacity, map->instance_count, sizeof *map->instances))
         return roma_fail(&map->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_map_add_instance: out of host memory");
@@ -164,6 +164,8 @@ roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc,
     in->flags = desc->flags;
     memcpy(in->transform, t, sizeof in->transform);
     map->meshes[desc->mesh].users++;
+    map->live_vertices += m->vertex_count;
+    map->live_triangles += m->triangle_count;
     map->layout_dirty = 1;
     *out_instance = map->instance_count++;
     return ROMA_SUCCESS;
@@ -177,6 +179,8 @@ roma_result roma_map_remove_instance(roma_map *map, uint32_t id)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_remove_instance: no instance %u", id);
     map->instances[id].live = 0;
     map->meshes[map->instances[id].mesh].users--;
+    map->live_vertices -= map->meshes[map->instances[id].mesh].vertex_count;
+    map->live_triangles -= map->meshes[map->instances[id].mesh].triangle_count;
     map->layout_dirty = 1;
     return ROMA_SUCCESS;
 }
@@ -204,12 +208,14 @@ roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out)
     memset(out, 0, sizeof *out);
     if (!map->layout_dirty)
         return ROMA_SUCCESS;
-    uint32_t vertices = map->vertex_count, triangles = map->triangle_count;
+    uint64_t vertices = map->vertex_count, triangles = map->triangle_count;
     for (uint32_t i = 0; i < map->instance_count; ++i)
         if (map->instances[i].live) {
             vertices += map->meshes[map->instances[i].mesh].vertex_count;
             triangles += map->meshes[map->instances[i].mesh].triangle_count;
         }
+    if (vertices > UINT32_MAX / 16 || triangles > UINT32_MAX / 12) /* add_instance keeps below this */
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "map: too much geometry in its instances");
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     roma_result r = roma_buffer_create(map->ctx, 16ull * vertices, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &out->positions);
@@ -239,8 +245,8 @@ roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out)
         v_at += m->vertex_count;
     }
     out->changed = 1;
-    out->total_vertices = vertices;
-    out->total_triangles = triangles;
+    out->total_vertices = (uint32_t)vertices;
+    out->total_triangles = (uint32_t)triangles;
     return ROMA_SUCCESS;
 }
 

@@ -215,6 +215,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     map->triangle_count = sv.triangle_count;
     map->total_vertices = sv.vertex_count;
     map->total_triangles = sv.triangle_count;
+    map->live_vertices = sv.vertex_count;
+    map->live_triangles = sv.triangle_count;
     map->indices_host = indices;
     map->frames = frames;
 

@@ -58,6 +58,9 @@ struct roma_map {
     roma_map_instance *instances;
     uint32_t instance_count, instance_capacity;
     uint32_t total_vertices, total_triangles;
+    /* Scene and live instances now, including those added since the last build: the
+     * geometry cap is checked against these (the totals above follow the builds). */
+    uint64_t live_vertices, live_triangles;
     int layout_dirty;             /* instances added or removed since the last build */
     roma_map_retired *retired;
     uint32_t retired_count, retired_capacity;

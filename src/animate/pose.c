@@ -183,10 +183,14 @@ roma_result roma_pose_eval_init(roma_pose_eval *e, const roma_scene_view *view, 
             box_add(e->node_box + 6 * (size_t)a->vertex_node[v], p);
             continue;
         }
+        int weighted = 0;
         for (int k = 0; k < 4; ++k)
-            if (a->vertex_weights[4 * (size_t)v + k] > 0.0f)
+            if (a->vertex_weights[4 * (size_t)v + k] > 0.0f) {
                 box_add(e->joint_box + 6 * ((size_t)a->skins[skin].first_joint + a->vertex_joints[4 * (size_t)v + k]),
                         p);
+                weighted = 1;
+            }
+        e->origin_vertices |= !weighted;
     }
     roma_pose_eval_pose(e, 0, 0.0f);
     return ROMA_SUCCESS;
@@ -328,6 +332,10 @@ void roma_pose_eval_bounds(const roma_pose_eval *e, roma_box *out)
         box_transform_add(e->joints + 16 * (size_t)j, e->joint_box + 6 * (size_t)j, b);
     for (uint32_t i = 0; i < e->anim.node_count; ++i)
         box_transform_add(e->world + 16 * (size_t)i, e->node_box + 6 * (size_t)i, b);
+    if (e->origin_vertices) { /* skinned with all-zero weights: at the origin, CPU and GPU alike */
+        const float origin[3] = {0.0f, 0.0f, 0.0f};
+        box_add(b, origin);
+    }
     for (int a = 0; a < 3; ++a)
         out->min[a] = b[a], out->max[a] = b[3 + a];
 }

@@ -17,6 +17,8 @@ typedef struct roma_pose_eval {
     float *clip_duration;           /* per clip */
     float *joint_box, *node_box;    /* 6 per joint / node (min xyz, max xyz) of the rest-local
                                        vertices it moves; min > max when it moves none */
+    int origin_vertices;            /* skinned vertices whose weights are all 0: they sit at the
+                                       origin in every pose (no joint moves them) */
 } roma_pose_eval;
 
 /* NULL on failure (out of memory). */

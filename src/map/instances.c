@@ -23,6 +23,16 @@ static int grow(void **items, uint32_t *capacity, uint32_t count, size_t size)
     return 1;
 }
 
+/* Room for n more retired entries, made before anything is changed, so that the retires
+ * that follow cannot fail half-way. */
+static roma_result reserve_retired(roma_map *map, uint32_t n)
+{
+    while (map->retired_capacity < map->retired_count + n)
+        if (!grow((void **)&map->retired, &map->retired_capacity, map->retired_capacity, sizeof *map->retired))
+            return roma_fail(&map->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_map: out of host memory");
+    return ROMA_SUCCESS;
+}
+
 static roma_result retire(roma_map *map, roma_buffer *buffer, struct roma_bom_voxelizer *voxelizer)
 {
     if (!grow((void **)&map->retired, &map->retired_capacity, map->retired_count, sizeof *map->retired))
@@ -115,11 +125,12 @@ roma_result roma_map_remove_mesh(roma_map *map, uint32_t id)
     if (m->users)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map_remove_mesh: mesh %u still has %u instances", id, m->users);
-    roma_result r = retire(map, &m->local, NULL);
-    if (r == ROMA_SUCCESS && m->staging.buffer)
-        r = retire(map, &m->staging, NULL);
+    roma_result r = reserve_retired(map, 2);
     if (r != ROMA_SUCCESS)
         return r;
+    retire(map, &m->local, NULL); /* cannot fail now */
+    if (m->staging.buffer)
+        retire(map, &m->staging, NULL);
     free(m->indices);
     m->indices = NULL;
     m->live = 0;
@@ -206,6 +217,13 @@ roma_result roma_map_set_instance_transform(roma_map *map, uint32_t id, const fl
 roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out)
 {
     memset(out, 0, sizeof *out);
+    /* Room for what the recording retires: new meshes' staging, and the old layout. */
+    uint32_t retiring = 3;
+    for (uint32_t m = 0; m < map->mesh_count; ++m)
+        retiring += map->meshes[m].live && map->meshes[m].staging.buffer;
+    roma_result rr = reserve_retired(map, retiring);
+    if (rr != ROMA_SUCCESS)
+        return rr;
     if (!map->layout_dirty)
         return ROMA_SUCCESS;
     uint64_t vertices = map->vertex_count, triangles = map->triangle_count;

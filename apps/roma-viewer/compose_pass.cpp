@@ -4,6 +4,30 @@
 
 #include "compose_comp_spv.h"
 
+#include <cstring>
+#include <initializer_list>
+
+namespace {
+// Set 0 of compose.comp: 0-2 G-buffer (sampled), 3-6 effect outputs, accum out, display
+// (storage images), 7-8 reference and BOM (storage buffers), 9-11 history (storage
+// images), 12 the Frame block (storage buffer).
+constexpr uint32_t kBindings = 13;
+VkDescriptorType binding_type(uint32_t i)
+{
+    return i < 3    ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+           : i < 7  ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+           : i < 9  ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+           : i < 12 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                    : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+struct frame_block { // std430, as compose.comp's Frame
+    float prev_rows[4][4];
+    float eye_angle[4];
+    uint32_t mode_cap[4];
+};
+} // namespace
+
 bool compose_pass_create(const vk_base &b, compose_pass &c)
 {
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -11,15 +35,11 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     if (vkCreateSampler(b.device, &si, nullptr, &c.sampler) != VK_SUCCESS)
         return false;
-    VkDescriptorSetLayoutBinding bindings[9];
-    for (uint32_t i = 0; i < 9; ++i)
-        bindings[i] = {i,
-                       i < 3   ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                       : i < 7 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                       1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutBinding bindings[kBindings];
+    for (uint32_t i = 0; i < kBindings; ++i)
+        bindings[i] = {i, binding_type(i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    li.bindingCount = 9;
+    li.bindingCount = kBindings;
     li.pBindings = bindings;
     if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.set_layout) != VK_SUCCESS)
         return false;
@@ -32,21 +52,26 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     li.pBindings = trace;
     if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.trace_layout) != VK_SUCCESS)
         return false;
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+    VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 14},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pi.maxSets = 1;
-    pi.poolSizeCount = 3;
+    pi.maxSets = 2;
+    pi.poolSizeCount = 4;
     pi.pPoolSizes = sizes;
     if (vkCreateDescriptorPool(b.device, &pi, nullptr, &c.pool) != VK_SUCCESS)
         return false;
+    VkDescriptorSetLayout both[2] = {c.set_layout, c.set_layout};
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     ai.descriptorPool = c.pool;
-    ai.descriptorSetCount = 1;
-    ai.pSetLayouts = &c.set_layout;
-    if (vkAllocateDescriptorSets(b.device, &ai, &c.set) != VK_SUCCESS)
+    ai.descriptorSetCount = 2;
+    ai.pSetLayouts = both;
+    if (vkAllocateDescriptorSets(b.device, &ai, c.sets) != VK_SUCCESS)
         return false;
+    for (vk_buffer &f : c.frame_data)
+        if (!vk_buffer_create(b, sizeof(frame_block), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, f))
+            return false;
     VkDescriptorSetLayout layouts[2] = {c.set_layout, c.trace_layout};
     VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 112};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -83,58 +108,86 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
 {
     vk_image_destroy(b, c.ao);
     vk_image_destroy(b, c.light);
-    vk_image_destroy(b, c.accum);
     vk_image_destroy(b, c.display);
+    for (int k = 0; k < 2; ++k) {
+        vk_image_destroy(b, c.accum[k]);
+        vk_image_destroy(b, c.positions[k]);
+        c.history_ready[k] = false;
+    }
     c.width = g.width;
     c.height = g.height;
     VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const VkFormat f32x4 = VK_FORMAT_R32G32B32A32_SFLOAT;
     if (!vk_image_create(b, c.width, c.height, VK_FORMAT_R32_SFLOAT, storage, c.ao) ||
-        !vk_image_create(b, c.width, c.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, c.light) ||
-        !vk_image_create(b, c.width, c.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, c.accum) ||
+        !vk_image_create(b, c.width, c.height, f32x4, storage, c.light) ||
         !vk_image_create(b, c.width, c.height, VK_FORMAT_R8G8B8A8_UNORM, storage, c.display))
         return false;
-    VkDescriptorImageInfo images[7] = {
-        {c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {c.sampler, g.albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {VK_NULL_HANDLE, c.ao.view, VK_IMAGE_LAYOUT_GENERAL},
-        {VK_NULL_HANDLE, c.light.view, VK_IMAGE_LAYOUT_GENERAL},
-        {VK_NULL_HANDLE, c.accum.view, VK_IMAGE_LAYOUT_GENERAL},
-        {VK_NULL_HANDLE, c.display.view, VK_IMAGE_LAYOUT_GENERAL}};
-    VkWriteDescriptorSet writes[7];
-    for (uint32_t i = 0; i < 7; ++i) {
-        writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = c.set;
-        writes[i].dstBinding = i;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = i < 3 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        writes[i].pImageInfo = &images[i];
+    for (int k = 0; k < 2; ++k)
+        if (!vk_image_create(b, c.width, c.height, f32x4, storage, c.accum[k]) ||
+            !vk_image_create(b, c.width, c.height, f32x4, VK_IMAGE_USAGE_STORAGE_BIT, c.positions[k]))
+            return false;
+    for (uint32_t k = 0; k < 2; ++k) {
+        // Parity k writes accum[k] and positions[k] and reads the other pair.
+        VkDescriptorImageInfo images[12] = {
+            {c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {c.sampler, g.albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {VK_NULL_HANDLE, c.ao.view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, c.light.view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, c.accum[k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, c.display.view, VK_IMAGE_LAYOUT_GENERAL},
+            {},
+            {},
+            {VK_NULL_HANDLE, c.accum[1 - k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, c.positions[k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, c.positions[1 - k].view, VK_IMAGE_LAYOUT_GENERAL}};
+        VkDescriptorBufferInfo frame{c.frame_data[k].buffer, 0, VK_WHOLE_SIZE};
+        VkWriteDescriptorSet writes[11];
+        uint32_t n = 0;
+        for (uint32_t i = 0; i < kBindings; ++i) {
+            if (i == 7 || i == 8)
+                continue; // the buffers: compose_pass_set_buffers
+            writes[n] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[n].dstSet = c.sets[k];
+            writes[n].dstBinding = i;
+            writes[n].descriptorCount = 1;
+            writes[n].descriptorType = binding_type(i);
+            if (i == 12)
+                writes[n].pBufferInfo = &frame;
+            else
+                writes[n].pImageInfo = &images[i];
+            ++n;
+        }
+        vkUpdateDescriptorSets(b.device, n, writes, 0, nullptr);
     }
-    vkUpdateDescriptorSets(b.device, 7, writes, 0, nullptr);
     return true;
 }
 
 void compose_pass_set_buffers(const vk_base &b, compose_pass &c, VkBuffer reference, VkBuffer bom)
 {
     VkDescriptorBufferInfo infos[2] = {{reference, 0, VK_WHOLE_SIZE}, {bom, 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet writes[2];
-    for (uint32_t i = 0; i < 2; ++i) {
+    VkWriteDescriptorSet writes[4];
+    for (uint32_t i = 0; i < 4; ++i) {
         writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = c.set;
-        writes[i].dstBinding = 7 + i;
+        writes[i].dstSet = c.sets[i / 2];
+        writes[i].dstBinding = 7 + i % 2;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[i].pBufferInfo = &infos[i];
+        writes[i].pBufferInfo = &infos[i % 2];
     }
-    vkUpdateDescriptorSets(b.device, 2, writes, 0, nullptr);
+    vkUpdateDescriptorSets(b.device, 4, writes, 0, nullptr);
 }
 
 void compose_pass_destroy(const vk_base &b, compose_pass &c)
 {
     vk_image_destroy(b, c.ao);
     vk_image_destroy(b, c.light);
-    vk_image_destroy(b, c.accum);
     vk_image_destroy(b, c.display);
+    for (int k = 0; k < 2; ++k) {
+        vk_image_destroy(b, c.accum[k]);
+        vk_image_destroy(b, c.positions[k]);
+        vk_buffer_destroy(b, c.frame_data[k]);
+    }
     for (VkPipeline p : c.pipelines)
         if (p)
             vkDestroyPipeline(b.device, p, nullptr);
@@ -183,10 +236,25 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &mb;
     vkCmdPipelineBarrier2(cmd, &dep);
-    // The accumulation image survives frames; the display image is rewritten.
-    vk_image_barrier(cmd, c.accum.image, s.accumulated ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
-                     VK_IMAGE_LAYOUT_GENERAL, cs | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, cs, rw);
+    // History: this frame writes the parity's pair (rewritten whole) and reads the other,
+    // which the last frame wrote; before the first such frame there is nothing to read.
+    const uint32_t k = s.parity & 1u, other = 1u - k;
+    uint32_t mode = c.history_ready[other] ? s.history_mode : 0u;
+    for (vk_image *img : {&c.accum[k], &c.positions[k]})
+        vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                         cs | VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    if (!c.history_ready[other]) // the reads of an unwritten pair still need a layout
+        for (vk_image *img : {&c.accum[other], &c.positions[other]})
+            vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                             VK_PIPELINE_STAGE_2_NONE, 0, cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    frame_block fb{};
+    std::memcpy(fb.prev_rows, s.prev_clip_rows, sizeof fb.prev_rows);
+    for (int i = 0; i < 3; ++i)
+        fb.eye_angle[i] = s.eye[i];
+    fb.eye_angle[3] = s.pixel_angle;
+    fb.mode_cap[0] = mode;
+    fb.mode_cap[1] = s.history_cap;
+    std::memcpy(c.frame_data[k].mapped, &fb, sizeof fb); // the slot's fence has passed: not in use
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                      VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     struct {
@@ -215,7 +283,7 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     push.offset = s.offset;
     push.ao_on = s.ao_on;
     push.direct_on = s.direct_on;
-    VkDescriptorSet sets[2] = {c.set, trace_set};
+    VkDescriptorSet sets[2] = {c.sets[k], trace_set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);
     vkCmdPushConstants(cmd, c.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
@@ -223,7 +291,9 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, cs,
                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                      VK_ACCESS_2_TRANSFER_READ_BIT);
-    // The accumulation image is read by copies (screenshots) and the next frame.
+    c.history_ready[k] = true;
+    c.current = k;
+    // The history is read by copies (screenshots) and the next frame.
     VkMemoryBarrier2 after{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     after.srcStageMask = cs;
     after.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;

@@ -30,15 +30,25 @@ struct compose_settings {
     float bom_origin[4];    // xyz corner of cell (0,0,0), w cell size
     uint32_t slice_axis, slice_depth, bom_res; // bom_res 0: nothing captured
     view_mode compared;     // VIEW_AO or VIEW_DIRECT: what the reference holds
+    // History: 0 start over, 1 still camera (each pixel's own), 2 reprojected (a moved camera)
+    uint32_t history_mode, history_cap;
+    float prev_clip_rows[4][4]; // last frame's world -> clip (mode 2)
+    float eye[3];
+    float pixel_angle;          // radians a pixel subtends
+    uint32_t parity;            // frame % 2: which history images this frame writes
 };
 
 struct compose_pass {
-    vk_image ao, light, accum, display;
+    vk_image ao, light, display;
+    vk_image accum[2], positions[2]; // history, alternating: frame parity k writes [k], reads [1 - k]
+    vk_buffer frame_data[2];         // the Frame uniform block per parity (host-written)
+    bool history_ready[2] = {};      // [k] was written since the images were made
+    uint32_t current = 0;            // the accum image the last recorded frame wrote
     uint32_t width = 0, height = 0;
     VkSampler sampler = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE, trace_layout = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkDescriptorSet sets[2] = {};    // per parity
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkShaderModule module = VK_NULL_HANDLE;
     VkPipeline pipelines[VIEW_COUNT] = {}; // one per view (specialization constant), made on first use

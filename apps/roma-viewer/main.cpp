@@ -257,6 +257,8 @@ struct viewer {
     view_mode compared = VIEW_AO;
     roma_image coverage{};
     std::vector<std::string> passes; // what the last recorded frame ran
+    bool camera_moved = false;       // since the last recorded frame: reproject the history
+    float prev_clip_rows[4][4] = {}; // the last recorded frame's world -> clip
     uint32_t scene_failures = 0;     // scenes that could not be opened (dropped files)
 };
 
@@ -722,9 +724,20 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.slice_depth = std::min(s.slice_depth, v.bom_res ? v.bom_res - 1 : 0u);
     cs.bom_res = v.bom_res;
     cs.compared = v.compared;
+    // History: start over after a change of scene, settings or size; reproject after the
+    // camera moved (at most 16 frames kept, so old light does not trail); else keep adding.
+    cs.parity = slot;
+    cs.history_mode = v.accumulated == 0 ? 0u : v.camera_moved ? 2u : 1u;
+    cs.history_cap = v.camera_moved ? 16u : 1u << 30;
+    std::memcpy(cs.prev_clip_rows, v.prev_clip_rows, sizeof cs.prev_clip_rows);
+    for (int i = 0; i < 3; ++i)
+        cs.eye[i] = cam.eye[i];
+    cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
     if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set))
         return false;
     v.passes.push_back("compose");
+    std::memcpy(v.prev_clip_rows, draw.clip_rows, sizeof v.prev_clip_rows);
+    v.camera_moved = false;
     v.info.grid_cell = mi.grid_cell;
     stamp(v, cmd, slot, 5);
     return true;
@@ -760,7 +773,8 @@ void record_readback(VkCommandBuffer cmd, void *user)
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {r->v->cp.width, r->v->cp.height, 1};
     vkCmdCopyImageToBuffer(cmd, r->v->cp.display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display, 1, &region);
-    vkCmdCopyImageToBuffer(cmd, r->v->cp.accum.image, VK_IMAGE_LAYOUT_GENERAL, r->accum, 1, &region);
+    vkCmdCopyImageToBuffer(cmd, r->v->cp.accum[r->v->cp.current].image, VK_IMAGE_LAYOUT_GENERAL, r->accum, 1,
+                           &region);
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     mb.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
     mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -1187,12 +1201,15 @@ int run_window(viewer &v)
             if (!create_map(v))
                 return 1;
         }
+        bool scene_changed = false;
         if (v.s.animated && v.s.playing && v.s.duration > 0.0f) {
             v.s.time = std::fmod(v.s.time + dt * v.s.speed, v.s.duration);
-            moved = true;
+            scene_changed = true;
         }
-        if (moved || act.reset_accumulation || !v.s.accumulate)
+        if (scene_changed || act.reset_accumulation || !v.s.accumulate)
             v.accumulated = 0;
+        else if (moved)
+            v.camera_moved = true; // the history follows the surfaces
         ImGui::Render();
 
         uint32_t slot = v.frame % kSlots;
@@ -1378,6 +1395,7 @@ bool write_stats(const viewer &v, int status)
     roma_json_int(&j, "width", v.gb.width);
     roma_json_int(&j, "height", v.gb.height);
     roma_json_string(&j, "view", kViewNames[v.s.view]);
+    roma_json_string(&j, "camera", camera_to_string(camera_control_get(v.cam)).c_str());
     roma_json_int(&j, "accumulated", v.accumulated);
     roma_json_int(&j, "resolution", v.s.res);
     roma_json_int(&j, "angular", v.s.angular);

@@ -1,8 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // The viewer's picture: the chosen view of this frame's G-buffer and effect outputs,
-// averaged over the frames since the view last changed (progressive accumulation), then
-// exposed and sRGB-encoded into the display image. The ROMA debug views trace their own
+// averaged with the history (progressive accumulation while the camera is still; while it
+// moves, the history reprojected to where each surface point was and rejected where another
+// surface was there, at most history_cap frames), then exposed and sRGB-encoded into the
+// display image. History images alternate between frames (accum_in/out, pos_in/out). The ROMA debug views trace their own
 // rays through the public GLSL (roma/trace_descriptors.glsl, set 1).
 #define ROMA_TRACE_SET 1
 #include "roma/trace_descriptors.glsl"
@@ -18,12 +20,23 @@ layout(set = 0, binding = 1) uniform sampler2D g_normal;
 layout(set = 0, binding = 2) uniform sampler2D g_albedo;
 layout(set = 0, binding = 3, r32f) uniform readonly image2D ao_image;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D light_image;
-layout(set = 0, binding = 5, rgba32f) uniform image2D accum_image;
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D accum_image; // rgb mean, a frames
 layout(set = 0, binding = 6, rgba8) uniform writeonly image2D display_image;
 // The Embree reference of the compared view, one vec4 per pixel (row 0 at the top).
 layout(std430, set = 0, binding = 7) readonly buffer Reference { vec4 reference[]; };
 // A captured base occupancy map: cell (x, y, z) is bit z & 31 of word (y * RES + x) * (RES / 32) + z / 32.
 layout(std430, set = 0, binding = 8) readonly buffer Bom { uint bom[]; };
+layout(set = 0, binding = 9, rgba32f) uniform readonly image2D accum_in;   // last frame's accum_image
+layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D pos_out;  // this frame's positions
+layout(set = 0, binding = 11, rgba32f) uniform readonly image2D pos_in;    // last frame's
+// A storage buffer: bound as a uniform buffer here, the block made lavapipe (Mesa 22.3) leak
+// memory every frame under LeakSanitizer (12 blocks in 2 frames; libroma's own uniform
+// buffers do not); the cause inside the driver was not found.
+layout(std430, set = 0, binding = 12) readonly buffer Frame {
+    vec4 prev_rows[4];  // last frame's world -> clip
+    vec4 eye_angle;     // xyz: eye; w: the angle a pixel subtends (radians)
+    uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept
+} frame;
 
 // Views (roma-viewer's view_mode).
 #define VIEW_COMPOSED 0u
@@ -83,6 +96,7 @@ void main()
     vec4 pos = texelFetch(g_position, p, 0);
     if (pos.w <= 0.0) {
         imageStore(accum_image, p, vec4(0.0));
+        imageStore(pos_out, p, vec4(0.0));
         imageStore(display_image, p, vec4(pc.background.rgb, 1.0));
         return;
     }
@@ -137,11 +151,28 @@ void main()
         value = albedo / PI * irradiance + albedo * pc.ambient.rgb * ao;
     }
     vec3 mean = value;
-    if (pc.accumulated > 0u) {
-        vec3 previous = imageLoad(accum_image, p).rgb;
-        mean = previous + (value - previous) / float(pc.accumulated + 1u);
+    float count = 1.0;
+    if (frame.mode_cap.x != 0u) {
+        ivec2 q = p;
+        if (frame.mode_cap.x == 2u) { // where this point was on last frame's picture
+            vec4 x = vec4(pos.xyz, 1.0);
+            vec4 c = vec4(dot(frame.prev_rows[0], x), dot(frame.prev_rows[1], x), dot(frame.prev_rows[2], x),
+                          dot(frame.prev_rows[3], x));
+            q = c.w > 0.0 ? ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(pc.size))) : ivec2(-1);
+        }
+        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(pc.size)))) {
+            vec4 history = imageLoad(accum_in, q);
+            vec4 was = imageLoad(pos_in, q);
+            // The same surface: within 3 pixel footprints of where this point is.
+            float tolerance = 3.0 * frame.eye_angle.w * distance(frame.eye_angle.xyz, pos.xyz);
+            if (history.a > 0.0 && was.w > 0.0 && distance(was.xyz, pos.xyz) <= tolerance) {
+                count = min(history.a, float(frame.mode_cap.y)) + 1.0;
+                mean = history.rgb + (value - history.rgb) / count;
+            }
+        }
     }
-    imageStore(accum_image, p, vec4(mean, 1.0));
+    imageStore(accum_image, p, vec4(mean, count));
+    imageStore(pos_out, p, pos);
     vec3 shown = tone ? mean * pc.exposure : mean;
     if (VIEW == VIEW_REFERENCE || VIEW == VIEW_DIFFERENCE) {
         vec3 ref = reference[p.y * int(pc.size.x) + p.x].rgb;

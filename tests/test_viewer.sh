@@ -99,6 +99,17 @@ for layer in "y 22" "y 60" "x 64"; do
   [ "${empty:-1}" -eq 0 ] || fail "slice $1 = $2: $empty surface pixels lie in cells the voxelization left empty"
 done
 
+# 1d. A glTF file's camera by index: one the file lacks is refused with the count; the
+#     stats give libroma's device memory.
+"$viewer" --headless --scene "$scenes/2CylinderEngine.glb" --gltf-camera 1 --frames 1 --size 32x24 \
+  >"$dir/gltf_camera.out" 2>&1
+[ $? -eq 1 ] || fail "--gltf-camera 1 on a file with one camera did not fail"
+grep -q "the file has 1 perspective camera" "$dir/gltf_camera.out" || fail "--gltf-camera 1: the count is not named"
+"$viewer" --headless --validation --frames 2 --size 32x24 --stats "$dir/memory.json" >/dev/null 2>&1 \
+  || fail "roma-viewer --stats failed"
+python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["libroma_device_memory_bytes"] > 1000000' \
+  "$dir/memory.json" || fail "the stats do not give libroma's device memory"
+
 # 2. An animated, skinned glTF played: validation clean, a picture written.
 "$viewer" --headless --validation --scene "$scenes/CesiumMan.glb" --play --frames 6 --size 96x96 \
   --screenshot "$dir/cesium.png" >"$dir/cesium.out" 2>&1 \

@@ -50,6 +50,7 @@ const char *kUsage =
     "  --camera ex,ey,ez,tx,ty,tz,fovy   start camera (the string roma-render takes)\n"
     "  --size WxH           window or image size (default 1280x720)\n"
     "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
+    "  --gltf-camera N      which of a glTF file's perspective cameras to start from (default 0)\n"
     "  --view NAME          composed, ao, direct, albedo, normal, map, hit-distance\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
@@ -80,6 +81,7 @@ struct options {
     bool headless = false, validation = false, play = false, compare_reference = false;
     uint32_t frames = 0;
     std::string screenshot, linear, device, up = "+y", script, stats;
+    uint32_t gltf_camera = 0;
     viewer_settings settings;
 };
 
@@ -174,6 +176,8 @@ int parse_args(int argc, char **argv, options &o)
             o.screenshot = v;
         } else if (a == "--linear") {
             o.linear = v;
+        } else if (a == "--gltf-camera") {
+            ok = parse_u32(v, 0, 1u << 20, o.gltf_camera);
         } else if (a == "--up") {
             o.up = v;
             if (!roma_app_valid_up(v)) {
@@ -372,6 +376,7 @@ bool open_scene(viewer &v, const std::string &name)
     } else {
         roma_gltf_desc gd{};
         gd.logger = logger;
+        gd.camera_index = v.opt.gltf_camera;
         r = roma_scene_load_gltf(name.c_str(), &gd, &scene);
     }
     if (r != ROMA_SUCCESS) {
@@ -736,6 +741,9 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set))
         return false;
     v.passes.push_back("compose");
+    roma_context_info ci;
+    if (roma_context_get_info(v.ctx, &ci) == ROMA_SUCCESS)
+        v.info.device_memory = ci.device_memory_in_use;
     std::memcpy(v.prev_clip_rows, draw.clip_rows, sizeof v.prev_clip_rows);
     v.camera_moved = false;
     v.info.grid_cell = mi.grid_cell;
@@ -1413,6 +1421,7 @@ bool write_stats(const viewer &v, int status)
     roma_json_end_object(&j);
     roma_json_int(&j, "scene_failures", v.scene_failures);
     roma_json_int(&j, "validation_messages", v.base.validation_messages);
+    roma_json_int(&j, "libroma_device_memory_bytes", (long long)v.info.device_memory);
     roma_json_int(&j, "exit_status", status);
     roma_json_end_object(&j);
     std::fputc('\n', f);

@@ -49,6 +49,7 @@ struct viewer_info {
     uint32_t vertices = 0, triangles = 0, lights = 0, area_light_triangles = 0;
     uint32_t width = 0, height = 0, accumulated = 0;
     uint64_t map_bytes = 0;
+    uint64_t device_memory = 0;       // what libroma's objects hold (roma_context_info)
     float grid_cell = 0;
     uint32_t validation_messages = 0;
     std::string plan; // libroma's effect plan for this scene, and what the viewer runs of it

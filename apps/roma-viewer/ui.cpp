@@ -86,6 +86,7 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         }
         ImGui::Text("%u maps, %.1f MiB, cell %.4g", s.angular * s.angular, double(info.map_bytes) / (1 << 20),
                     double(info.grid_cell));
+        ImGui::Text("libroma holds %.1f MiB of device memory", double(info.device_memory) / (1 << 20));
     }
     if (ImGui::CollapsingHeader("What the rays see")) {
         const char *axes[3] = {"x", "y", "z"};

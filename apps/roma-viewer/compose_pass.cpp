@@ -2,6 +2,7 @@
 
 #include <roma/trace_types.h>
 
+#include "atrous_comp_spv.h"
 #include "compose_comp_spv.h"
 
 #include <cstring>
@@ -82,7 +83,53 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     if (vkCreatePipelineLayout(b.device, &pli, nullptr, &c.layout) != VK_SUCCESS)
         return false;
     c.module = vk_shader_module(b, compose_comp_spv, sizeof compose_comp_spv);
-    return c.module != VK_NULL_HANDLE;
+    if (!c.module)
+        return false;
+    // The a-trous filter: G-buffer position and normal, source, destination, display.
+    VkDescriptorSetLayoutBinding ab[5];
+    for (uint32_t i = 0; i < 5; ++i)
+        ab[i] = {i, i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo ali{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    ali.bindingCount = 5;
+    ali.pBindings = ab;
+    if (vkCreateDescriptorSetLayout(b.device, &ali, nullptr, &c.atrous_set_layout) != VK_SUCCESS)
+        return false;
+    VkDescriptorPoolSize asz[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 12},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 18}};
+    VkDescriptorPoolCreateInfo api{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    api.maxSets = 6;
+    api.poolSizeCount = 2;
+    api.pPoolSizes = asz;
+    if (vkCreateDescriptorPool(b.device, &api, nullptr, &c.atrous_pool) != VK_SUCCESS)
+        return false;
+    VkDescriptorSetLayout six[6] = {c.atrous_set_layout, c.atrous_set_layout, c.atrous_set_layout,
+                                    c.atrous_set_layout, c.atrous_set_layout, c.atrous_set_layout};
+    VkDescriptorSetAllocateInfo aai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    aai.descriptorPool = c.atrous_pool;
+    aai.descriptorSetCount = 6;
+    aai.pSetLayouts = six;
+    if (vkAllocateDescriptorSets(b.device, &aai, &c.atrous_sets[0][0]) != VK_SUCCESS)
+        return false;
+    VkPushConstantRange apush{VK_SHADER_STAGE_COMPUTE_BIT, 0, 48};
+    VkPipelineLayoutCreateInfo apli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    apli.setLayoutCount = 1;
+    apli.pSetLayouts = &c.atrous_set_layout;
+    apli.pushConstantRangeCount = 1;
+    apli.pPushConstantRanges = &apush;
+    if (vkCreatePipelineLayout(b.device, &apli, nullptr, &c.atrous_layout) != VK_SUCCESS)
+        return false;
+    VkShaderModule am = vk_shader_module(b, atrous_comp_spv, sizeof atrous_comp_spv);
+    VkComputePipelineCreateInfo aci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    aci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    aci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    aci.stage.module = am;
+    aci.stage.pName = "main";
+    aci.layout = c.atrous_layout;
+    bool ok = am && vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &aci, nullptr, &c.atrous) == VK_SUCCESS;
+    if (am)
+        vkDestroyShaderModule(b.device, am, nullptr);
+    return ok;
 }
 
 static VkPipeline view_pipeline(const vk_base &b, compose_pass &c, view_mode view)
@@ -122,10 +169,33 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
         !vk_image_create(b, c.width, c.height, f32x4, storage, c.light) ||
         !vk_image_create(b, c.width, c.height, VK_FORMAT_R8G8B8A8_UNORM, storage, c.display))
         return false;
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 2; ++k) {
+        vk_image_destroy(b, c.t[k]);
         if (!vk_image_create(b, c.width, c.height, f32x4, storage, c.accum[k]) ||
-            !vk_image_create(b, c.width, c.height, f32x4, VK_IMAGE_USAGE_STORAGE_BIT, c.positions[k]))
+            !vk_image_create(b, c.width, c.height, f32x4, VK_IMAGE_USAGE_STORAGE_BIT, c.positions[k]) ||
+            !vk_image_create(b, c.width, c.height, f32x4, storage, c.t[k]))
             return false;
+    }
+    for (uint32_t k = 0; k < 2; ++k)
+        for (uint32_t it = 0; it < 3; ++it) {
+            // accum[k] -> t0 -> t1 -> t0 (and the display)
+            VkImageView from = it == 0 ? c.accum[k].view : c.t[(it + 1) % 2].view, to = c.t[it % 2].view;
+            VkDescriptorImageInfo ai[5] = {{c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                           {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                           {VK_NULL_HANDLE, from, VK_IMAGE_LAYOUT_GENERAL},
+                                           {VK_NULL_HANDLE, to, VK_IMAGE_LAYOUT_GENERAL},
+                                           {VK_NULL_HANDLE, c.display.view, VK_IMAGE_LAYOUT_GENERAL}};
+            VkWriteDescriptorSet aw[5];
+            for (uint32_t i = 0; i < 5; ++i) {
+                aw[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+                aw[i].dstSet = c.atrous_sets[k][it];
+                aw[i].dstBinding = i;
+                aw[i].descriptorCount = 1;
+                aw[i].descriptorType = i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+                aw[i].pImageInfo = &ai[i];
+            }
+            vkUpdateDescriptorSets(b.device, 5, aw, 0, nullptr);
+        }
     for (uint32_t k = 0; k < 2; ++k) {
         // Parity k writes accum[k] and positions[k] and reads the other pair.
         VkDescriptorImageInfo images[12] = {
@@ -186,8 +256,17 @@ void compose_pass_destroy(const vk_base &b, compose_pass &c)
     for (int k = 0; k < 2; ++k) {
         vk_image_destroy(b, c.accum[k]);
         vk_image_destroy(b, c.positions[k]);
+        vk_image_destroy(b, c.t[k]);
         vk_buffer_destroy(b, c.frame_data[k]);
     }
+    if (c.atrous)
+        vkDestroyPipeline(b.device, c.atrous, nullptr);
+    if (c.atrous_layout)
+        vkDestroyPipelineLayout(b.device, c.atrous_layout, nullptr);
+    if (c.atrous_pool)
+        vkDestroyDescriptorPool(b.device, c.atrous_pool, nullptr);
+    if (c.atrous_set_layout)
+        vkDestroyDescriptorSetLayout(b.device, c.atrous_set_layout, nullptr);
     for (VkPipeline p : c.pipelines)
         if (p)
             vkDestroyPipeline(b.device, p, nullptr);
@@ -288,11 +367,51 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);
     vkCmdPushConstants(cmd, c.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
+    if (s.filter) {
+        // Three a-trous iterations (steps 1, 2, 4) over this frame's accumulation; the last
+        // one rewrites the display image's covered pixels. Each reads what the one before wrote.
+        for (vk_image *img : {&c.t[0], &c.t[1]})
+            vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, cs, 0, cs,
+                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        struct {
+            uint32_t size[2];
+            int32_t step;
+            uint32_t last;
+            float exposure, pixel_angle, pad[2];
+            float eye[4];
+        } ap{};
+        static_assert(sizeof ap == 48, "the push block of atrous.comp");
+        ap.size[0] = c.width, ap.size[1] = c.height;
+        ap.exposure = s.tone ? s.exposure : 0.0f;
+        ap.pixel_angle = s.pixel_angle;
+        for (int i = 0; i < 3; ++i)
+            ap.eye[i] = s.eye[i];
+        // The last dispatch's writes, read (and t0 and the display written again) now.
+        VkMemoryBarrier2 step_barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        step_barrier.srcStageMask = cs;
+        step_barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+        step_barrier.dstStageMask = cs;
+        step_barrier.dstAccessMask = rw;
+        VkDependencyInfo step_dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        step_dep.memoryBarrierCount = 1;
+        step_dep.pMemoryBarriers = &step_barrier;
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.atrous);
+        for (uint32_t it = 0; it < 3; ++it) {
+            vkCmdPipelineBarrier2(cmd, &step_dep);
+            ap.step = 1 << it;
+            ap.last = it == 2;
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.atrous_layout, 0, 1, &c.atrous_sets[k][it],
+                                    0, nullptr);
+            vkCmdPushConstants(cmd, c.atrous_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof ap, &ap);
+            vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
+        }
+    }
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, cs,
                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                      VK_ACCESS_2_TRANSFER_READ_BIT);
     c.history_ready[k] = true;
     c.current = k;
+    c.filtered = s.filter;
     // The history is read by copies (screenshots) and the next frame.
     VkMemoryBarrier2 after{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     after.srcStageMask = cs;

@@ -36,6 +36,8 @@ struct compose_settings {
     float eye[3];
     float pixel_angle;          // radians a pixel subtends
     uint32_t parity;            // frame % 2: which history images this frame writes
+    bool filter;                // run the a-trous filter (a moving camera: little history)
+    bool tone;                  // the view's values are radiance (exposure applies)
 };
 
 struct compose_pass {
@@ -44,6 +46,7 @@ struct compose_pass {
     vk_buffer frame_data[2];         // the Frame uniform block per parity (host-written)
     bool history_ready[2] = {};      // [k] was written since the images were made
     uint32_t current = 0;            // the accum image the last recorded frame wrote
+    bool filtered = false;           // the last recorded frame shows t[0], the filtered picture
     uint32_t width = 0, height = 0;
     VkSampler sampler = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE, trace_layout = VK_NULL_HANDLE;
@@ -52,6 +55,13 @@ struct compose_pass {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkShaderModule module = VK_NULL_HANDLE;
     VkPipeline pipelines[VIEW_COUNT] = {}; // one per view (specialization constant), made on first use
+    // The a-trous filter (atrous.comp): 3 iterations per parity, ping-ponging through t.
+    vk_image t[2];                    // t[0] ends with the filtered picture (linear)
+    VkDescriptorSetLayout atrous_set_layout = VK_NULL_HANDLE;
+    VkDescriptorPool atrous_pool = VK_NULL_HANDLE;
+    VkDescriptorSet atrous_sets[2][3] = {};
+    VkPipelineLayout atrous_layout = VK_NULL_HANDLE;
+    VkPipeline atrous = VK_NULL_HANDLE;
 };
 
 bool compose_pass_create(const vk_base &b, compose_pass &c);

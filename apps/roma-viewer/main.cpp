@@ -738,6 +738,12 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     for (int i = 0; i < 3; ++i)
         cs.eye[i] = cam.eye[i];
     cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
+    // The spatial filter while there is little history: a moving camera, or the first frames
+    // after a change; only for the views of light (not the debug views, whose values are labels).
+    cs.tone = shown == VIEW_COMPOSED || shown == VIEW_DIRECT;
+    cs.filter = v.s.filter && (cs.history_mode == 2u || v.accumulated < 4) &&
+                (shown == VIEW_COMPOSED || shown == VIEW_DIRECT || shown == VIEW_AO) &&
+                s.view != VIEW_REFERENCE && s.view != VIEW_DIFFERENCE;
     if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set))
         return false;
     v.passes.push_back("compose");
@@ -781,8 +787,9 @@ void record_readback(VkCommandBuffer cmd, void *user)
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {r->v->cp.width, r->v->cp.height, 1};
     vkCmdCopyImageToBuffer(cmd, r->v->cp.display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display, 1, &region);
-    vkCmdCopyImageToBuffer(cmd, r->v->cp.accum[r->v->cp.current].image, VK_IMAGE_LAYOUT_GENERAL, r->accum, 1,
-                           &region);
+    // What the picture shows: the filtered values when the filter ran, else the accumulation.
+    const vk_image &shown = r->v->cp.filtered ? r->v->cp.t[0] : r->v->cp.accum[r->v->cp.current];
+    vkCmdCopyImageToBuffer(cmd, shown.image, VK_IMAGE_LAYOUT_GENERAL, r->accum, 1, &region);
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     mb.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
     mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -1069,7 +1076,7 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
         } else if (st.verb == "set") {
             bool on = arg(1) == "on";
             bool *flag = arg(0) == "ao" ? &v.s.ao_on : arg(0) == "direct" ? &v.s.direct_on
-                         : arg(0) == "accumulate" ? &v.s.accumulate : nullptr;
+                         : arg(0) == "accumulate" ? &v.s.accumulate : arg(0) == "filter" ? &v.s.filter : nullptr;
             if (flag)
                 *flag = on, act.reset_accumulation = true;
         } else if (st.verb == "view") {

@@ -26,6 +26,7 @@ struct viewer_settings {
     float ambient = 0.2f;            // sky radiance in the composed view (scaled by AO)
     float background[3] = {0.11f, 0.12f, 0.15f};
     bool accumulate = true;          // still camera: average frames
+    bool filter = true;              // a-trous filter while there is little history
     // debug
     uint32_t slice_axis = 1, slice_depth = 8; // y = 8: near the floor at RES 128
     uint32_t reference_spp = 64;

@@ -36,6 +36,8 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
                                                      ImGuiSliderFlags_Logarithmic);
         out.reset_accumulation |= ImGui::SliderFloat("sky (ambient x AO)", &s.ambient, 0.0f, 2.0f);
         out.reset_accumulation |= ImGui::Checkbox("accumulate while still", &s.accumulate);
+        ImGui::SameLine();
+        ImGui::Checkbox("filter while moving", &s.filter);
     }
     if (ImGui::CollapsingHeader("Effects", ImGuiTreeNodeFlags_DefaultOpen)) {
         out.reset_accumulation |= ImGui::Checkbox("ambient occlusion", &s.ao_on);

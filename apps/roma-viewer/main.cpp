@@ -542,9 +542,10 @@ void start_reference(viewer &v)
 {
     v.compared = v.s.view == VIEW_DIRECT ? VIEW_DIRECT : VIEW_AO;
     std::string camera = camera_to_string(camera_control_get(v.cam));
+    bool was_running = v.job.running;
     if (!reference_job_start(v.job, reference_tool_path(), camera, v.gb.width, v.gb.height, v.s.reference_spp,
                              effective_ao_radius(v), v.info.scene_name))
-        v.info.reference_status = v.job.message;
+        v.info.reference_status = was_running ? "a reference render is still running" : v.job.message;
     else
         v.info.reference_status = "rendering the reference: " + v.job.command;
     v.info.reference_ready = false;

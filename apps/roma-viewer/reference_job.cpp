@@ -33,10 +33,8 @@ static std::string shell_quote(const std::string &s)
 bool reference_job_start(reference_job &job, const std::string &tool, const std::string &camera, uint32_t width,
                          uint32_t height, uint32_t spp, float ao_radius, const std::string &scene)
 {
-    if (job.running) {
-        job.message = "a reference render is still running";
+    if (job.running) // its worker may still write job.message: leave it alone
         return false;
-    }
     reference_job_cleanup(job);
     char folder[] = "/tmp/roma-viewer-reference-XXXXXX";
     if (!mkdtemp(folder)) {

@@ -21,7 +21,8 @@ struct reference_job {
 
 // roma-render beside the running executable.
 std::string reference_tool_path();
-// Starts roma-render; false (message set) if a job is still running or it cannot start.
+// Starts roma-render; false if a job is still running (message untouched) or it cannot start
+// (message set).
 bool reference_job_start(reference_job &job, const std::string &tool, const std::string &camera, uint32_t width,
                          uint32_t height, uint32_t spp, float ao_radius, const std::string &scene);
 // Once finished: joins the worker. Reads <folder>/<name>.pfm into out (caller frees).

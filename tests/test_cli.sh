@@ -167,9 +167,9 @@ EOF2
 got=$(roma_passes builtin:cornell roma_cornell) || fail "ROMA render of cornell failed"
 want="ao gbuffer gi many_lights punctual_lights rsm soft_shadows | 128x4 128x8"
 [ "$got" = "$want" ] || fail "cornell passes: got '$got', want '$want'"
-# plates: one area light, no punctual light: no punctual-light pass, no RSM, no GI.
+# plates: one area light, no punctual light: no punctual-light pass, no RSM; GI by shadow rays.
 got=$(roma_passes builtin:plates roma_plates) || fail "ROMA render of plates failed"
-want="ao gbuffer many_lights soft_shadows | 128x4 128x8"
+want="ao gbuffer gi many_lights soft_shadows | 128x4 128x8"
 [ "$got" = "$want" ] || fail "plates passes: got '$got', want '$want'"
 
 # --- Usage and bad input ---
@@ -250,8 +250,12 @@ for pattern in "direct: the scene has no light" "gi: the scene has no light" "--
 done
 grep -q '"ao_radius_from": "10% of the scene' "$dir/notes/stats.json" || fail "the stats do not say where the AO radius came from"
 "$render" --tracer roma --effects gi --threads 2 --size 16x12 --spp 1 --out "$dir/notes2" >/dev/null 2>"$dir/notes2.err"
-grep -q "gi: ROMA's GI carries only the light of point and spot lights; the scene's area lights" "$dir/notes2.err" \
-  || fail "ROMA's GI on the room does not say that the area light gives no bounce"
+"$render" --tracer embree --effects gi --gi-punctual rays --size 16x12 --spp 1 --out "$dir/notes3" >/dev/null \
+  2>"$dir/notes3.err"
+grep -q -- "--gi-punctual is a ROMA setting" "$dir/notes3.err" || fail "--gi-punctual with the reference: no note"
+"$render" --tracer roma --effects gi --gi-punctual bogus --size 16x12 --out "$dir/notes4" >/dev/null 2>"$dir/notes4.err"
+expect_status 2 $? "roma-render --gi-punctual bogus"
+grep -q "unknown gi route 'bogus'" "$dir/notes4.err" || fail "a bad --gi-punctual does not say why"
 grep -q -- "--threads sets the reference's CPU threads" "$dir/notes2.err" || fail "--threads with ROMA: no note"
 grep -q "frames 100%" "$dir/notes2.err" || fail "a ROMA render prints no progress"
 grep -q "done in" "$dir/notes2.err" || fail "roma-render does not say how long it took"

@@ -74,16 +74,17 @@ static void test_builtins(void)
     CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_PUNCTUAL_LIGHTS, ROMA_PASS_SOFT_SHADOWS));
     CHECK(p.map_count == 1 && p.maps[0].angular == 8);
 
-    /* Plates: one area light, no punctual light: soft shadows only, no RSM, no GI. */
+    /* Plates: one area light, no punctual light: soft shadows and GI (its bounce hits
+     * lit by area-light samples), no RSM. */
     p = plan_of(plates, ALL & ~(uint32_t)ROMA_EFFECT_LIGHTS);
-    CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_AO, ROMA_PASS_SOFT_SHADOWS));
+    CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_AO, ROMA_PASS_SOFT_SHADOWS, ROMA_PASS_GI));
     p = plan_of(plates, ROMA_EFFECT_GI);
-    CHECK(p.passes == 0 && p.map_count == 0); /* nothing to inject: no G-buffer either */
+    CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_GI) && p.map_count == 1 && p.maps[0].angular == 4);
 
     /* Blinds: a directional light (no RSM for it) and an area light. */
     p = plan_of(blinds, ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI);
-    CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_PUNCTUAL_LIGHTS, ROMA_PASS_SOFT_SHADOWS));
-    CHECK(p.map_count == 1);
+    CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_PUNCTUAL_LIGHTS, ROMA_PASS_SOFT_SHADOWS, ROMA_PASS_GI));
+    CHECK(p.map_count == 2);
 done:
     roma_scene_destroy(cornell);
     roma_scene_destroy(plates);
@@ -119,9 +120,11 @@ static void test_custom_scenes(void)
     p = plan_of(unlit, ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI);
     CHECK(p.passes == 0);
 
-    /* Emissive triangles alone: soft shadows, no punctual pass. */
+    /* Emissive triangles alone: soft shadows, no punctual pass; GI without an RSM. */
     p = plan_of(glow, ROMA_EFFECT_DIRECT);
     CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_SOFT_SHADOWS));
+    p = plan_of(glow, ROMA_EFFECT_GI);
+    CHECK(p.passes == PASSES(ROMA_PASS_GBUFFER, ROMA_PASS_GI));
 
     /* Equal A for every pass: one array shared by all of them. */
     roma_effect_options o = {.effects = ROMA_EFFECT_AO | ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI | ROMA_EFFECT_LIGHTS,

@@ -26,12 +26,14 @@ static const char *usage =
     "  --size WxH                  image size in pixels (default 640x480)\n"
     "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
     "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU\n"
-    "                              (gi on ROMA: light of point and spot lights, through their RSMs).\n"
+    "                              (gi on ROMA: the direct light at each bounce hit, from every light).\n"
     "                              ROMA runs only the passes the scene calls for (see the stats file)\n"
     "  --res N                     ROMA grid resolution: 32, 64, 128 or 256 (default 128)\n"
     "  --angular A                 ROMA A x A candidate directions for ao, 1..16 (default 4)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
+    "  --gi-punctual rsm|rays      ROMA gi from point and spot lights: their reflective shadow maps\n"
+    "                              (default) or one shadow ray per light at each bounce hit\n"
     "  --skip C                    ROMA shadow rays skip their first C trace cells (default 1)\n"
     "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.6)\n"
     "  --offset C                  ROMA rays start C trace cells off the surface (default 1.5)\n"
@@ -90,6 +92,7 @@ typedef struct options {
     float ao_radius_auto; /* 1: ao_radius was derived from the scene */
     float exposure;
     int reinhard;        /* --tonemap reinhard */
+    int gi_rays;         /* --gi-punctual rays */
     float background[3];
     roma_light extra_lights[16];
     uint32_t extra_light_count;
@@ -103,12 +106,13 @@ typedef struct options {
 enum {
     GIVEN_FRAMES = 1u << 0, GIVEN_RES = 1u << 1, GIVEN_ANGULAR = 1u << 2, GIVEN_SHADOW_ANGULAR = 1u << 3,
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
-    GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10
+    GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
+    GIVEN_GI_PUNCTUAL = 1u << 11
 };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
+    "--max-steps", "--gi-punctual", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
     "--background",
     "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", NULL};
@@ -277,6 +281,14 @@ static int parse_args(int argc, char **argv, options *o)
             }
         }
         else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
+        else if (strcmp(a, "--gi-punctual") == 0) {
+            o->gi_rays = strcmp(v, "rays") == 0;
+            o->given |= GIVEN_GI_PUNCTUAL;
+            if (!o->gi_rays && strcmp(v, "rsm") != 0) {
+                fprintf(stderr, "roma-render: unknown gi route '%s' (valid: rsm, rays)\n", v);
+                return 0;
+            }
+        }
         else if (strcmp(a, "--tonemap") == 0) {
             o->reinhard = strcmp(v, "reinhard") == 0;
             if (!o->reinhard && strcmp(v, "clamp") != 0) {
@@ -775,24 +787,16 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
              "for unbounded rays)", (double)o->ao_radius);
     }
     int lights = sv->light_count > 0, emitters = sv->emissive_triangle_count > 0;
-    int point_or_spot = 0;
-    for (uint32_t i = 0; i < sv->light_count; ++i)
-        point_or_spot |= sv->lights[i].type == ROMA_LIGHT_POINT || sv->lights[i].type == ROMA_LIGHT_SPOT;
     if ((o->effects & ROMA_EFFECT_DIRECT) && !lights && !emitters)
         note(n, o->quiet, "direct: the scene has no light (no punctual light, no emissive triangle): direct.pfm is "
              "black; add one with --light");
     if ((o->effects & ROMA_EFFECT_GI) && !lights && !emitters)
         note(n, o->quiet, "gi: the scene has no light to bounce: gi.pfm is black; add one with --light");
-    else if ((o->effects & ROMA_EFFECT_GI) && roma && !point_or_spot)
-        note(n, o->quiet, "gi: ROMA's GI carries only the light of point and spot lights (through their reflective "
-             "shadow maps); this scene has none, so gi.pfm is black while the reference's is not");
-    else if ((o->effects & ROMA_EFFECT_GI) && roma && (emitters || point_or_spot < lights))
-        note(n, o->quiet, "gi: ROMA's GI carries only the light of point and spot lights; the scene's %s "
-             "give no bounce here (the reference's do)", emitters ? "area lights" : "directional lights");
     static const struct { uint32_t bit; const char *name; } roma_only[] = {
         {GIVEN_FRAMES, "--frames"}, {GIVEN_RES, "--res"}, {GIVEN_ANGULAR, "--angular"},
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
-        {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"}};
+        {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
+        {GIVEN_GI_PUNCTUAL, "--gi-punctual"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,
@@ -914,7 +918,7 @@ int main(int argc, char **argv)
                             .gi_angular = o.angular, .shadow_angular = o.shadow_angular,
                             .lights_angular = o.shadow_angular, .many_light_count = o.lights},
                 .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
-                .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame,
+                .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame, .gi_punctual_rays = o.gi_rays,
                 /* The library takes 0 as its default and a negative value as none. */
                 .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
                 .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,

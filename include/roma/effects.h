@@ -7,8 +7,10 @@
  *  - direct light: one pass for point/spot/directional lights (shadow rays to
  *    each light) when the scene has any, one soft-shadow pass for area lights
  *    (emissive triangles) when it has any; a scene with neither runs no direct pass;
- *  - one-bounce diffuse GI: reflective shadow maps and the GI gather, only when the
- *    scene has point or spot lights (the lights an RSM can be rendered for);
+ *  - one-bounce diffuse GI: the GI gather when the scene has any light (the light
+ *    leaving a bounce hit is the direct light there: area-light samples and
+ *    directional lights by shadow rays), plus reflective shadow maps when it has point
+ *    or spot lights (the route the GI gather takes for them);
  *  - many lights: visibility of many synthetic point lights, when asked for.
  * The G-buffer runs when any pass runs. ROMA arrays are built once per frame per
  * distinct (RES, A) that some pass traces, and not at all when nothing traces.
@@ -31,7 +33,7 @@ extern "C" {
 enum {
     ROMA_EFFECT_AO = 1u << 0,           /**< ambient occlusion */
     ROMA_EFFECT_DIRECT = 1u << 1,       /**< direct light: punctual lights and area lights */
-    ROMA_EFFECT_GI = 1u << 2,           /**< one-bounce diffuse GI from point and spot lights */
+    ROMA_EFFECT_GI = 1u << 2,           /**< one-bounce diffuse GI from every light */
     ROMA_EFFECT_LIGHTS = 1u << 3,       /**< visibility of many synthetic point lights */
     ROMA_EFFECT_ALL_ = (1u << 4) - 1u   /**< every known bit (for validation) */
 };
@@ -44,7 +46,7 @@ typedef enum roma_pass_kind {
     ROMA_PASS_SOFT_SHADOWS,    /**< area-light samples, un-snapped shadow rays */
     ROMA_PASS_MANY_LIGHTS,     /**< visibility of many point lights, un-snapped */
     ROMA_PASS_RSM,             /**< reflective shadow maps of point/spot lights */
-    ROMA_PASS_GI,              /**< snapped closest-hit bounce rays, radiance from the RSMs */
+    ROMA_PASS_GI,              /**< snapped closest-hit bounce rays, direct light at the hits */
     ROMA_PASS_COUNT            /**< number of passes (not a pass) */
 } roma_pass_kind;
 

@@ -14,6 +14,9 @@
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
 };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaLights { roma_gpu_light l[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaEmitters { roma_gpu_emitter e[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
 
 // 1 when the segment origin -> target is free between tmin and `shorten`
 // (world units) before the target: a point light next to a surface must not be
@@ -72,6 +75,68 @@ float roma_punctual_factor(roma_gpu_light light, vec3 p, vec3 gn, vec3 n, out ve
 vec3 roma_bounded_irradiance(float factor, vec3 color)
 {
     return min(factor * color, vec3(ROMA_MAX_IRRADIANCE));
+}
+
+// Shadowed irradiance at p from one punctual light: one un-snapped shadow ray from
+// origin (p offset off its surface); a point or spot light's segment ends `offset`
+// short of the light, a directional light's ray is unbounded.
+vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec3 origin, float offset,
+                              float tmin, uint max_steps)
+{
+    vec3 l;
+    float f = roma_punctual_factor(light, p, ng, n, l);
+    if (f == 0.0)
+        return vec3(0.0);
+    bool visible;
+    if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
+        roma_hit h = roma_trace_unsnapped(origin, l, tmin, 1.0 / 0.0, false, max_steps);
+        visible = (h.info & ROMA_HIT_FLAG) == 0u;
+    } else {
+        visible = roma_segment_visible(origin, light.position_type.xyz, offset, tmin, max_steps);
+    }
+    return visible ? roma_bounded_irradiance(f, light.color_intensity.rgb) : vec3(0.0);
+}
+
+// First i with cdf[i] > u (as roma_emitter_pick).
+uint roma_pick_emitter(RomaFloats cdf, uint count, float u)
+{
+    uint lo = 0u, hi = count - 1u;
+    while (lo < hi) {
+        uint mid = lo + (hi - lo) / 2u;
+        if (cdf.f[mid] > u)
+            hi = mid;
+        else
+            lo = mid + 1u;
+    }
+    return lo;
+}
+
+// Irradiance at p from one area-light sample drawn as the reference draws it
+// (u.x: the emitter, u.yz: the point, roma_triangle_sample), shadowed by one
+// un-snapped ray from origin. count > 0.
+vec3 roma_area_sample_irradiance(RomaEmitters emitters, RomaFloats cdf, uint count, vec3 u, vec3 p, vec3 ng,
+                                 vec3 n, vec3 origin, float offset, float tmin, uint max_steps)
+{
+    roma_gpu_emitter e = emitters.e[roma_pick_emitter(cdf, count, u.x)];
+    float su = sqrt(u.y);
+    float b1 = 1.0 - su, b2 = u.z * su;
+    vec3 y = e.v0_pdf.xyz + b1 * e.e1.xyz + b2 * e.e2.xyz;
+    vec3 w = y - p;
+    float d2 = dot(w, w);
+    if (!(d2 > 0.0))
+        return vec3(0.0);
+    w *= inversesqrt(d2);
+    float cos_x = dot(n, w), cos_y = abs(dot(e.normal.xyz, w));
+    if (cos_x <= 0.0 || dot(ng, w) <= 0.0 || cos_y <= 0.0)
+        return vec3(0.0);
+    // The light's end is offset off the emitter like the origin is off the
+    // surface, so that segments arriving at a grazing angle do not run
+    // through the cells of the emitter or of a surface just behind it.
+    vec3 toward_p = dot(e.normal.xyz, w) < 0.0 ? e.normal.xyz : -e.normal.xyz;
+    if (!roma_segment_visible(origin, y + toward_p * offset, 0.0, tmin, max_steps))
+        return vec3(0.0);
+    float g = min(cos_x * cos_y / (d2 * e.v0_pdf.w), ROMA_MAX_IRRADIANCE);
+    return roma_bounded_irradiance(g, e.emission.rgb);
 }
 
 #endif // ROMA_LIGHTS_GLSL

@@ -306,12 +306,41 @@ ROMA_STRUCT_BEGIN(roma_rsm_view)
     ROMA_UVEC4(info);     /* x: light index (roma_gpu_light), y: size in pixels (square), zw: pixel address */
 ROMA_STRUCT_END(roma_rsm_view)
 
+/* The surfaces a bounce ray can hit (src/passes/surface_cells.c,
+ * shaders/passes/surface_cells.comp): a grid over the scene whose cells hold
+ * the lowest index of a triangle overlapping them (ROMA_GBUFFER_NO_TRIANGLE
+ * when none), so that the GI pass finds the albedo and normal of the surface a
+ * ROMA hit lies on. Written once per scene (RES^3 uints) by the exact voxelizer's
+ * overlap test, with roma_voxelize_push and the voxelizer's bindings (the
+ * cells at ROMA_VOXELIZE_BINDING_BOM, no queue). */
+
+/* What the GI pass needs at a bounce hit (one buffer, written once). */
+ROMA_STRUCT_BEGIN(roma_gi_scene)
+    ROMA_U64(cells);      /* uint per cell of the surface grid, index (z * RES + y) * RES + x */
+    ROMA_U64(indices);    /* uint x3 per triangle */
+    ROMA_U64(positions);  /* float4 per vertex */
+    ROMA_U64(normals);    /* float4 per vertex (zero: use the face normal) */
+    ROMA_U64(albedo);     /* float4 per triangle */
+    ROMA_U64(emitters);   /* roma_gpu_emitter; 0 when there are no area lights */
+    ROMA_U64(cdf);        /* float per emitter */
+    ROMA_U64(pad_);
+    ROMA_VEC4(grid);      /* xyz: corner of cell (0,0,0); w: cell size */
+    ROMA_UVEC4(config);   /* x: RES, y: emitter count, z: punctual light count, w: ROMA_GI_PUNCTUAL_* */
+ROMA_STRUCT_END(roma_gi_scene)
+
+/* How the GI pass lights a bounce hit with point and spot lights. */
+#define ROMA_GI_PUNCTUAL_RAYS 0u /* one ROMA shadow ray per light */
+#define ROMA_GI_PUNCTUAL_RSM 1u  /* the lights' reflective shadow maps (the ROMA paper's route) */
+
 ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_U64(lights);     /* roma_gpu_light */
-    ROMA_U64(views);      /* roma_rsm_view */
+    ROMA_U64(views);      /* roma_rsm_view (RSM route) */
+    ROMA_U64(scene);      /* roma_gi_scene */
+    ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: view count */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units) */
+    ROMA_UVEC4(config2);  /* x: seed, y: view count, z: max steps of the shadow rays */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units),
+                             w: tmin of the shadow rays at the hit (world units) */
 ROMA_STRUCT_END(roma_gi_push)
 
 /* ---- Interactive frames: resolve, temporal accumulation, a-trous filter

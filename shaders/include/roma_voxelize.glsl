@@ -132,9 +132,8 @@ bool roma_vox_overlaps(roma_vox_triangle t, ivec3 cell)
     return !apart;
 }
 
-// Tests the cells of column (iu, iv) that the triangle's plane can reach and marks
-// the overlapped ones.
-void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
+// The cells [x, y] of column (iu, iv) that the triangle's plane can reach.
+ivec2 roma_vox_column_span(roma_vox_triangle t, int iu, int iv)
 {
     float plane = dot(t.n, t.g0);
     // Plane depth at the column's four corners: the cells between (plus one either
@@ -151,6 +150,15 @@ void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
         k0 = t.clo.z;
         k1 = t.chi.z;
     }
+    return ivec2(k0, k1);
+}
+
+// Tests the cells of column (iu, iv) that the triangle's plane can reach and marks
+// the overlapped ones.
+void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
+{
+    ivec2 span = roma_vox_column_span(t, iu, iv);
+    int k0 = span.x, k1 = span.y;
     if (t.a == 2u) {
         // Column frame = world: one texel, the bits gathered per word, one atomic per word.
         uint base = (uint(iv) * uint(res) + uint(iu)) * words;

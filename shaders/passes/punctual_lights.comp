@@ -10,7 +10,6 @@
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaLights { roma_gpu_light l[]; };
 layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { vec4 accum[]; };
 
 layout(push_constant) uniform Push { roma_punctual_push pc; };
@@ -28,21 +27,7 @@ void main()
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
     vec3 E = vec3(0.0);
-    for (uint i = 0u; i < light_count; ++i) {
-        roma_gpu_light light = RomaLights(pc.lights).l[i];
-        vec3 l;
-        float f = roma_punctual_factor(light, p, ng, n, l);
-        if (f == 0.0)
-            continue;
-        bool visible;
-        if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-            roma_hit h = roma_trace_unsnapped(origin, l, pc.ray.y, 1.0 / 0.0, false, max_steps);
-            visible = (h.info & ROMA_HIT_FLAG) == 0u;
-        } else {
-            visible = roma_segment_visible(origin, light.position_type.xyz, offset, pc.ray.y, max_steps);
-        }
-        if (visible)
-            E += roma_bounded_irradiance(f, light.color_intensity.rgb);
-    }
+    for (uint i = 0u; i < light_count; ++i)
+        E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
     accum[pixel] += vec4(E, 0.0);
 }

@@ -12,27 +12,11 @@
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaEmitters { roma_gpu_emitter e[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
 layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { vec4 accum[]; };
 
 layout(push_constant) uniform Push { roma_soft_shadows_push pc; };
 
 const uint DIM_DIRECT_AREA = 2u;
-
-// First i with cdf[i] > u (as roma_emitter_pick).
-uint pick_emitter(uint count, float u)
-{
-    uint lo = 0u, hi = count - 1u;
-    while (lo < hi) {
-        uint mid = lo + (hi - lo) / 2u;
-        if (RomaFloats(pc.cdf).f[mid] > u)
-            hi = mid;
-        else
-            lo = mid + 1u;
-    }
-    return lo;
-}
 
 void main()
 {
@@ -50,27 +34,10 @@ void main()
     vec3 acc = vec3(0.0);
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k;
-        roma_gpu_emitter e = RomaEmitters(pc.emitters).e[pick_emitter(emitter_count,
-                                                                      roma_random(seed, pixel, s, DIM_DIRECT_AREA))];
-        float su = sqrt(roma_random(seed, pixel, s, DIM_DIRECT_AREA + 1u));
-        float b1 = 1.0 - su, b2 = roma_random(seed, pixel, s, DIM_DIRECT_AREA + 2u) * su;
-        vec3 y = e.v0_pdf.xyz + b1 * e.e1.xyz + b2 * e.e2.xyz;
-        vec3 w = y - p;
-        float d2 = dot(w, w);
-        if (!(d2 > 0.0))
-            continue;
-        w *= inversesqrt(d2);
-        float cos_x = dot(n, w), cos_y = abs(dot(e.normal.xyz, w));
-        if (cos_x <= 0.0 || dot(ng, w) <= 0.0 || cos_y <= 0.0)
-            continue;
-        // The light's end is offset off the emitter like the origin is off the
-        // surface, so that segments arriving at a grazing angle do not run
-        // through the cells of the emitter or of a surface just behind it.
-        vec3 toward_p = dot(e.normal.xyz, w) < 0.0 ? e.normal.xyz : -e.normal.xyz;
-        if (!roma_segment_visible(origin, y + toward_p * offset, 0.0, pc.ray.y, max_steps))
-            continue;
-        float g = min(cos_x * cos_y / (d2 * e.v0_pdf.w), ROMA_MAX_IRRADIANCE);
-        acc += roma_bounded_irradiance(g, e.emission.rgb);
+        vec3 u = vec3(roma_random(seed, pixel, s, DIM_DIRECT_AREA), roma_random(seed, pixel, s, DIM_DIRECT_AREA + 1u),
+                      roma_random(seed, pixel, s, DIM_DIRECT_AREA + 2u));
+        acc += roma_area_sample_irradiance(RomaEmitters(pc.emitters), RomaFloats(pc.cdf), emitter_count, u, p, ng, n,
+                                           origin, offset, pc.ray.y, max_steps);
     }
     accum[pixel] += vec4(acc, 0.0);
 }

@@ -88,8 +88,9 @@ roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_o
         add_pass(p, ROMA_PASS_PUNCTUAL_LIGHTS, o.resolution, o.shadow_angular);
     if ((o.effects & ROMA_EFFECT_DIRECT) && v.emissive_triangle_count)
         add_pass(p, ROMA_PASS_SOFT_SHADOWS, o.resolution, o.shadow_angular);
-    if ((o.effects & ROMA_EFFECT_GI) && rsm_lights) {
-        add_pass(p, ROMA_PASS_RSM, 0, 0);
+    if ((o.effects & ROMA_EFFECT_GI) && (punctual || v.emissive_triangle_count)) {
+        if (rsm_lights)
+            add_pass(p, ROMA_PASS_RSM, 0, 0);
         add_pass(p, ROMA_PASS_GI, o.resolution, o.gi_angular);
     }
     if (o.effects & ROMA_EFFECT_LIGHTS) {

@@ -11,6 +11,7 @@
 #include "passes/pixel_pass.h"
 #include "passes/rsm_views.h"
 #include "passes/scene_buffers.h"
+#include "passes/surface_cells.h"
 
 #define PI_F 3.14159265358979323846f
 
@@ -35,6 +36,8 @@ typedef struct renderer {
     roma_rsm_views rsm_views;
     uint32_t rsm_size;
     roma_buffer views_buffer;
+    roma_surface_cells surfaces; /* GI: the triangle in each cell, built on the first frame */
+    roma_buffer gi_scene;        /* roma_gi_scene */
     roma_buffer accum[ROMA_PASS_COUNT];
     roma_buffer mask;
     roma_gpu_timer *timer;
@@ -72,6 +75,36 @@ static int effect_traced(const renderer *R, int e)
     }
 }
 
+/* The GI pass, its surface grid (at the RES of the map it traces) and what its
+ * shader reads at a hit. */
+static roma_result create_gi(renderer *R, const roma_scene *scene)
+{
+    roma_context *ctx = R->ctx;
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    roma_result r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), 1, &R->gi);
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_create(ctx, &R->geometry, v.bounds_min, v.bounds_max,
+                                      R->plan.maps[R->plan.pass_map[ROMA_PASS_GI]].resolution, &R->surfaces);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, sizeof(roma_gi_scene),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                               ROMA_MEMORY_UPLOAD, &R->gi_scene);
+    if (r != ROMA_SUCCESS)
+        return r;
+    const roma_surface_cells *c = &R->surfaces;
+    roma_gi_scene gs = {
+        .cells = c->cells.address, .indices = R->geometry.indices.address,
+        .positions = R->geometry.positions.address, .normals = R->geometry.normals.address,
+        .albedo = R->geometry.albedo.address, .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
+        .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
+        .config = {c->resolution, R->lights.emitter_count, R->lights.light_count,
+                   R->desc->gi_punctual_rays ? ROMA_GI_PUNCTUAL_RAYS : ROMA_GI_PUNCTUAL_RSM},
+    };
+    memcpy(R->gi_scene.mapped, &gs, sizeof gs);
+    return ROMA_SUCCESS;
+}
+
 static roma_result create_resources(renderer *R, const roma_scene *scene)
 {
     roma_context *ctx = R->ctx;
@@ -93,7 +126,8 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     const int lit = roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
                     roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM) ||
                     roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS) ||
-                    roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS);
+                    roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS) ||
+                    roma_effect_plan_runs(&R->plan, ROMA_PASS_GI);
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_data_create(ctx, scene, d->many_light_positions, R->plan.many_light_count, &R->lights);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO))
@@ -105,7 +139,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_MANY_LIGHTS))
         r = roma_pixel_pass_create(ctx, "many_lights.comp", sizeof(roma_many_lights_push), 1, &R->many);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_GI))
-        r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), 1, &R->gi);
+        r = create_gi(R, scene);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM)) {
         r = roma_rsm_views_plan(R->lights.lights.mapped, R->lights.light_count, R->rsm_size, R->near_plane,
                                 &ctx->logger, &R->rsm_views);
@@ -161,6 +195,8 @@ static void destroy_resources(renderer *R)
     roma_pixel_pass_destroy(&R->soft);
     roma_pixel_pass_destroy(&R->many);
     roma_pixel_pass_destroy(&R->gi);
+    roma_surface_cells_destroy(&R->surfaces);
+    roma_buffer_destroy(ctx, &R->gi_scene);
     roma_pixel_list_destroy(&R->list);
     for (uint32_t v = 0; v < ROMA_MAX_RSM_VIEWS; ++v)
         roma_gbuffer_destroy(R->rsm[v]);
@@ -243,10 +279,13 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             break;
         }
         case ROMA_PASS_GI: {
+            if (f == 0)
+                roma_surface_cells_record(&R->surfaces, cmd); /* the scene stands still: once */
             roma_gi_push push = {
-                .lights = R->lights.lights.address, .views = R->views_buffer.address,
+                .lights = R->lights.lights.address, .views = R->views_buffer.address, .scene = R->gi_scene.address,
                 .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->rsm_views.count, 0, 0}, .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, 0},
+                .config2 = {d->seed, R->rsm_views.count, steps, 0},
+                .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, skip_cells * m->trace_cell},
             };
             r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
             break;
@@ -460,6 +499,8 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     roma_result r = roma_effect_plan_derive(scene, &desc->options, log, &stats->plan);
     if (r != ROMA_SUCCESS)
         return r;
+    if (desc->gi_punctual_rays) /* point and spot lights reach GI by shadow rays: no RSM */
+        stats->plan.passes &= ~(1u << ROMA_PASS_RSM);
     if (roma_effect_plan_runs(&stats->plan, ROMA_PASS_MANY_LIGHTS) && !desc->many_light_positions)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: many-light positions missing");
 

@@ -52,6 +52,11 @@ typedef struct roma_effect_render_desc {
      * its RSM texel holds plus this many trace cells. 0 (the default) measured best:
      * a closest hit lies on the entry face of its cell, in front of the surface. */
     float rsm_tolerance_cells;
+    /* GI from point and spot lights: 0 = through their reflective shadow maps (the ROMA
+     * paper's route, the default: the more accurate of the two on cornell_spot,
+     * docs/accuracy.md), 1 = one ROMA shadow ray per light at each bounce hit (no RSM
+     * pass). Area and directional lights always take shadow rays. */
+    int gi_punctual_rays;
     uint32_t lights_per_frame;         /* many lights tested per pixel and frame; 0 = all (exact) */
     const float *many_light_positions; /* 3 floats per light; required for ROMA_EFFECT_LIGHTS */
     /* Interactive mode: one camera per frame (`camera` is then unused). The

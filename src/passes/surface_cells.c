@@ -1,0 +1,87 @@
+#include "passes/surface_cells.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "roma_shared.h"
+
+static const VkDescriptorType cell_types[3] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                               VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+
+roma_result roma_surface_cells_create(roma_context *ctx, const roma_scene_buffers *geometry, const float bounds_min[3],
+                                      const float bounds_max[3], uint32_t resolution, roma_surface_cells *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!ctx || !geometry || resolution == 0 || resolution > 256)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    /* Cubic cells over the largest extent, a few percent of margin so that surfaces
+     * on the bounds lie inside. */
+    float extent = 0.0f, centre[3];
+    for (int k = 0; k < 3; ++k) {
+        extent = fmaxf(extent, bounds_max[k] - bounds_min[k]);
+        centre[k] = 0.5f * (bounds_min[k] + bounds_max[k]);
+    }
+    if (!(extent > 0.0f) || !isfinite(extent))
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_SCENE, "GI surface grid: the scene bounds are empty");
+    out->cell = extent * 1.04f / (float)resolution;
+    for (int k = 0; k < 3; ++k)
+        out->origin[k] = centre[k] - 0.5f * (float)resolution * out->cell;
+    out->resolution = resolution;
+    out->triangle_count = geometry->triangle_count;
+    const VkDeviceSize bytes = (VkDeviceSize)resolution * resolution * resolution * sizeof(uint32_t);
+    roma_result r = roma_buffer_create(ctx, bytes,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       ROMA_MEMORY_DEVICE, &out->cells);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create_typed(ctx, "surface_cells.comp", cell_types, 3,
+                                               sizeof(roma_voxelize_push), &out->pipeline);
+    if (r == ROMA_SUCCESS)
+        r = roma_descriptor_set_create(ctx, &out->pipeline, cell_types, 3, &out->set);
+    if (r != ROMA_SUCCESS) {
+        out->ctx = ctx;
+        roma_surface_cells_destroy(out);
+        return r;
+    }
+    out->ctx = ctx;
+    roma_descriptor_write_buffer(ctx, &out->set, ROMA_VOXELIZE_BINDING_POSITIONS, cell_types[0],
+                                 geometry->positions.buffer);
+    roma_descriptor_write_buffer(ctx, &out->set, ROMA_VOXELIZE_BINDING_INDICES, cell_types[1],
+                                 geometry->indices.buffer);
+    roma_descriptor_write_buffer(ctx, &out->set, ROMA_VOXELIZE_BINDING_BOM, cell_types[2], out->cells.buffer);
+    return ROMA_SUCCESS;
+}
+
+void roma_surface_cells_destroy(roma_surface_cells *cells)
+{
+    if (cells->ctx) {
+        roma_descriptor_set_destroy(cells->ctx, &cells->set);
+        roma_compute_pipeline_destroy(cells->ctx, &cells->pipeline);
+        roma_buffer_destroy(cells->ctx, &cells->cells);
+    }
+    memset(cells, 0, sizeof *cells);
+}
+
+void roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd)
+{
+    vkCmdFillBuffer(cmd, cells->cells.buffer, 0, VK_WHOLE_SIZE, ROMA_GBUFFER_NO_TRIANGLE);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_voxelize_push push;
+    memset(&push, 0, sizeof push);
+    for (int k = 0; k < 3; ++k)
+        push.grid.origin[k] = cells->origin[k];
+    push.grid.origin[3] = cells->cell;
+    push.grid.inv_cell[0] = 1.0f / cells->cell;
+    push.grid.dims[0] = cells->resolution;
+    push.config[0] = cells->triangle_count;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->pipeline.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->pipeline.layout, 0, 1, &cells->set.set, 0,
+                            NULL);
+    vkCmdPushConstants(cmd, cells->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    roma_cmd_dispatch_linear(cmd, cells->triangle_count, ROMA_VOXELIZE_WORKGROUP_SIZE);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}

@@ -338,7 +338,7 @@ ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_U64(scene);      /* roma_gi_scene */
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: view count, z: max steps of the shadow rays */
+    ROMA_UVEC4(config2);  /* x: seed, y: RSM view count, z: max steps of the shadow rays */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units),
                              w: tmin of the shadow rays at the hit (world units) */
 ROMA_STRUCT_END(roma_gi_push)

@@ -30,6 +30,13 @@ layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer 
 
 layout(push_constant) uniform Push { roma_gi_push gi; };
 
+// Which routes a frame takes, as constants so that the other is compiled out (code that
+// never runs still costs a SIMD CPU device registers: the RSM route alone ran at half
+// speed with the surface code present): hits find their surface in the grid and are lit
+// by shadow rays (some light needs it), and point and spot lights are read from RSMs.
+layout(constant_id = 0) const bool ROMA_GI_SURFACES = true;
+layout(constant_id = 1) const bool ROMA_GI_RSM = true;
+
 const uint DIM_GI_BOUNCE = 5u;
 const uint DIM_GI_AREA = 7u;
 const float INV_PI = 0.31830988618379067;
@@ -186,7 +193,9 @@ void main()
         return;
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     vec3 origin = g.position_t.xyz + ng * gi.ray.x;
-    roma_gi_scene S = RomaGiScene(gi.scene).s;
+    roma_gi_scene S;
+    if (ROMA_GI_SURFACES)
+        S = RomaGiScene(gi.scene).s;
     roma_grid_params grid = roma_fetch_grid();
     vec3 acc = vec3(0.0);
     for (uint k = 0u; k < spp; ++k) {
@@ -198,13 +207,15 @@ void main()
         roma_hit h = roma_trace_snapped(origin, dir, gi.ray.y, 1.0 / 0.0, true);
         if ((h.info & ROMA_HIT_FLAG) == 0u)
             continue;
-        // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
         roma_map_frame f = roma_fetch_frame(ROMA_HIT_MAP(h.info));
         bool folded = (h.info & ROMA_HIT_FOLDED) != 0u;
-        vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
-        float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
-        acc += hit_radiance(S, grid, f, vec3(floor(m.xy), c), origin, dir, h.t, pixel, s);
-        if (S.config.w == ROMA_GI_PUNCTUAL_RSM) {
+        if (ROMA_GI_SURFACES) {
+            // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
+            vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
+            float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
+            acc += hit_radiance(S, grid, f, vec3(floor(m.xy), c), origin, dir, h.t, pixel, s);
+        }
+        if (ROMA_GI_RSM) {
             // A snapped ray travels along its candidate direction (reversed when folded).
             vec3 cand = f.dir.xyz * (folded ? -1.0 : 1.0);
             acc += rsm_radiance(origin + cand * h.t);

@@ -82,8 +82,17 @@ static roma_result create_gi(renderer *R, const roma_scene *scene)
     roma_context *ctx = R->ctx;
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    roma_result r = roma_pixel_pass_create(ctx, "gi.comp", sizeof(roma_gi_push), 1, &R->gi);
-    if (r == ROMA_SUCCESS)
+    /* Hits need their surface (the grid) for every light but point and spot lights
+     * through RSMs, which hold the surfaces they light. */
+    int directional = 0;
+    const roma_gpu_light *lights = R->lights.lights.mapped;
+    for (uint32_t i = 0; i < R->lights.light_count; ++i)
+        directional |= (uint32_t)lights[i].position_type[3] == ROMA_GPU_LIGHT_DIRECTIONAL;
+    const int surfaces = R->lights.emitter_count || directional || R->desc->gi_punctual_rays;
+    const int rsm = roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM);
+    const uint32_t routes[2] = {(uint32_t)surfaces, (uint32_t)rsm}; /* gi.comp's constants */
+    roma_result r = roma_pixel_pass_create_spec(ctx, "gi.comp", sizeof(roma_gi_push), 1, routes, 2, &R->gi);
+    if (r == ROMA_SUCCESS && surfaces)
         r = roma_surface_cells_create(ctx, &R->geometry, v.bounds_min, v.bounds_max,
                                       R->plan.maps[R->plan.pass_map[ROMA_PASS_GI]].resolution, &R->surfaces);
     if (r == ROMA_SUCCESS)
@@ -279,7 +288,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             break;
         }
         case ROMA_PASS_GI: {
-            if (f == 0)
+            if (f == 0 && R->surfaces.ctx)
                 roma_surface_cells_record(&R->surfaces, cmd); /* the scene stands still: once */
             roma_gi_push push = {
                 .lights = R->lights.lights.address, .views = R->views_buffer.address, .scene = R->gi_scene.address,

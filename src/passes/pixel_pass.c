@@ -33,9 +33,16 @@ static const VkDescriptorType pixel_types[ROMA_PIXEL_BINDINGS] = {
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out)
 {
+    return roma_pixel_pass_create_spec(ctx, module, push_size, traces, NULL, 0, out);
+}
+
+roma_result roma_pixel_pass_create_spec(roma_context *ctx, const char *module, uint32_t push_size, int traces,
+                                        const uint32_t *constants, uint32_t constant_count, roma_pixel_pass *out)
+{
     memset(out, 0, sizeof *out);
     const uint32_t bindings = traces ? ROMA_PIXEL_BINDINGS : 0;
-    roma_result r = roma_compute_pipeline_create_typed(ctx, module, pixel_types, bindings, push_size, &out->pipeline);
+    roma_result r = roma_compute_pipeline_create_spec(ctx, module, pixel_types, bindings, push_size, constants,
+                                                      constant_count, &out->pipeline);
     if (r != ROMA_SUCCESS)
         return r;
     out->ctx = ctx;

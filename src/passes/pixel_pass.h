@@ -37,6 +37,11 @@ typedef struct roma_pixel_pass {
  * roma_pixel_bindings.glsl. On failure *out is zeroed. */
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out);
+/* The same with specialization constants 0..constant_count-1 (uint32 each), so that
+ * the branches a frame never takes are compiled out (on SIMD CPU devices code that is
+ * not run still costs registers). */
+roma_result roma_pixel_pass_create_spec(roma_context *ctx, const char *module, uint32_t push_size, int traces,
+                                        const uint32_t *constants, uint32_t constant_count, roma_pixel_pass *out);
 /* Accepts a zeroed pass. */
 void roma_pixel_pass_destroy(roma_pixel_pass *pass);
 

@@ -1,6 +1,7 @@
 # Convenience front end over CMake. The two set-up commands of the README:
 #   make run    install missing packages, build, render the default scene with the Embree
-#               reference and with ROMA (every effect) into out/, compare them in out/compare/
+#               reference and with ROMA (the effects it calls for: AO, direct light, GI) into
+#               out/, compare them in out/compare/
 #   make test   install missing packages, build, run the test suite (ctest, lavapipe, validation on)
 #   make test-sanitize   the same suite, Debug build with ASan + UBSan in build-asan (CI runs it too)
 #   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
@@ -27,16 +28,15 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	$(BUILD)/apps/roma-render --scene builtin:cornell --effects ao,direct,gi,lights --tracer embree \
+	$(BUILD)/apps/roma-render --scene builtin:cornell --tracer embree \
 	    --size 480x360 --spp 64 --ao-radius 0.5 --out $(OUT)/reference --stats $(OUT)/reference/stats.json
-	$(BUILD)/apps/roma-render --scene builtin:cornell --effects ao,direct,gi,lights --tracer roma \
+	$(BUILD)/apps/roma-render --scene builtin:cornell --tracer roma \
 	    --size 480x360 --spp 16 --frames 4 --ao-radius 0.5 --out $(OUT)/roma --stats $(OUT)/roma/stats.json
 	mkdir -p $(OUT)/compare
-	set -e; for e in ao direct gi composed lights; do \
-	    exposure=1; [ $$e = lights ] && exposure=0.00390625; \
+	set -e; for e in ao direct gi composed; do \
 	    echo "== $$e: ROMA (left) against the Embree reference (right), over covered pixels"; \
 	    $(BUILD)/apps/roma-compare $(OUT)/roma/$$e.pfm $(OUT)/reference/$$e.pfm \
-	        --mask $(OUT)/reference/coverage.pfm --exposure $$exposure \
+	        --mask $(OUT)/reference/coverage.pfm \
 	        --side-by-side $(OUT)/compare/$$e.png --heatmap $(OUT)/compare/$${e}_error.png; \
 	done
 

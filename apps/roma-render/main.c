@@ -24,7 +24,8 @@ static const char *usage =
     "                              (y up; default: the scene's camera, else one whose picture the\n"
     "                              scene's bounding box fills to 90%)\n"
     "  --size WxH                  image size in pixels (default 640x480)\n"
-    "  --effects LIST              comma-separated: ao,direct,gi,lights (default ao)\n"
+    "  --effects LIST              comma-separated: ao,direct,gi,lights (default: what the scene\n"
+    "                              calls for: ao, plus direct and gi when it has lights; printed)\n"
     "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU\n"
     "                              (gi on ROMA: the direct light at each bounce hit, from every light).\n"
     "                              ROMA runs only the passes the scene calls for (see the stats file)\n"
@@ -107,7 +108,7 @@ enum {
     GIVEN_FRAMES = 1u << 0, GIVEN_RES = 1u << 1, GIVEN_ANGULAR = 1u << 2, GIVEN_SHADOW_ANGULAR = 1u << 3,
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
-    GIVEN_GI_PUNCTUAL = 1u << 11
+    GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12
 };
 
 static const char *const option_names[] = {
@@ -246,7 +247,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->scene = "builtin:cornell";
     o->out = "out";
     o->tracer = "embree";
-    o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1;
+    o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1; /* effects: see say_what_happens */
     o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8, o->max_steps = 8;
     o->skip = o->ao_skip = -1.0f;
     o->formats = FORMAT_PFM | FORMAT_PNG;
@@ -317,7 +318,7 @@ static int parse_args(int argc, char **argv, options *o)
             char tail;
             ok = sscanf(v, "%ux%u%c", &w, &h, &tail) == 2 && w >= 1 && h >= 1 && w <= 16384 && h <= 16384;
             o->width = w, o->height = h;
-        } else if (strcmp(a, "--effects") == 0) ok = parse_effects(v, &o->effects);
+        } else if (strcmp(a, "--effects") == 0) ok = parse_effects(v, &o->effects), o->given |= GIVEN_EFFECTS;
         else if (strcmp(a, "--spp") == 0) ok = parse_u32(v, 1, 1u << 20, &o->spp);
         else if (strcmp(a, "--frames") == 0) ok = parse_u32(v, 1, 1u << 20, &o->frames), o->given |= GIVEN_FRAMES;
         else if (strcmp(a, "--lights") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights);
@@ -592,6 +593,13 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_int(&j, "added_lights", o->extra_light_count);
     roma_json_int(&j, "many_lights", o->lights);
     roma_json_int(&j, "seed", o->seed);
+    char effects[64] = "";
+    static const char *const effect_names[] = {"ao", "direct", "gi", "lights"};
+    for (int e = 0; e < 4; ++e)
+        if (o->effects & (1u << e))
+            snprintf(effects + strlen(effects), sizeof effects - strlen(effects), "%s%s", effects[0] ? "," : "",
+                     effect_names[e]);
+    roma_json_string(&j, "effects", effects);
     if (strcmp(o->tracer, "roma") == 0) {
         roma_json_int(&j, "resolution", o->res);
         roma_json_int(&j, "angular", o->angular);
@@ -780,13 +788,20 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
     int roma = strcmp(o->tracer, "roma") == 0;
     float dx = sv->bounds_max[0] - sv->bounds_min[0], dy = sv->bounds_max[1] - sv->bounds_min[1],
           dz = sv->bounds_max[2] - sv->bounds_min[2];
+    int lights = sv->light_count > 0, emitters = sv->emissive_triangle_count > 0;
+    if (!(o->given & GIVEN_EFFECTS)) {
+        /* What the scene calls for; many lights are synthetic, so only on request. */
+        o->effects = ROMA_EFFECT_AO | (lights || emitters ? ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI : 0u);
+        note(n, o->quiet, "effects: %s (what the scene calls for%s; --effects to choose, lights for many "
+             "synthetic point lights)", o->effects & ROMA_EFFECT_GI ? "ao, direct, gi" : "ao",
+             o->effects & ROMA_EFFECT_GI ? ": it has lights" : ": it has no light, so no direct or gi");
+    }
     if ((o->effects & ROMA_EFFECT_AO) && !(o->given & GIVEN_AO_RADIUS)) {
         o->ao_radius = 0.1f * sqrtf(dx * dx + dy * dy + dz * dz);
         o->ao_radius_auto = 1;
         note(n, o->quiet, "AO radius %.4g: 10%% of the scene's diagonal (--ao-radius R to choose, --ao-radius inf "
              "for unbounded rays)", (double)o->ao_radius);
     }
-    int lights = sv->light_count > 0, emitters = sv->emissive_triangle_count > 0;
     if ((o->effects & ROMA_EFFECT_DIRECT) && !lights && !emitters)
         note(n, o->quiet, "direct: the scene has no light (no punctual light, no emissive triangle): direct.pfm is "
              "black; add one with --light");

@@ -22,7 +22,7 @@
 #define SEED 11
 #define RADIUS 0.5f /* the room is closed: unbounded rays would all be occluded */
 #define AREA_SPP 16
-#define AREA_MAX_ERROR 0.035 /* measured 3.18% (means 0.0947 against 0.0944) */
+#define AREA_MAX_ERROR 0.039 /* measured 3.34% (means 0.0945 against 0.0944) */
 
 typedef struct image {
     VkImage image;
@@ -229,10 +229,11 @@ int main(void)
     printf("%u covered pixels, %u spp: mean AO ROMA %.4f, Embree %.4f, mean |difference| %.4f\n", n, SPP,
            mean_roma / n, mean_ref / n, err / n);
     CHECK(n > W * H / 2 && background_ok);
-    /* Measured: mean |difference| 0.0707, means 0.7367 vs 0.7750 (the internal AO pass
-     * measures 0.0744 on this room at radius 0.5: test_ao_pass). */
-    CHECK(err / n <= 0.075);
-    CHECK(fabs(mean_roma - mean_ref) / n <= 0.042);
+    /* Measured: mean |difference| 0.0744, means 0.7181 vs 0.7750 (with the blind skip of
+     * the rays' start, before the exact walk of roma_ray_start.glsl: 0.0707, 0.7367; the
+     * walk seals the room's corners and darkens a band one cell wide along them). */
+    CHECK(err / n <= 0.080);
+    CHECK(fabs(mean_roma - mean_ref) / n <= 0.062);
 
     /* Direct light: ROMA's shadowed irradiance times albedo / pi against the reference's
      * reflected radiance (one spot light: no area-light samples, so no noise). */
@@ -257,9 +258,10 @@ int main(void)
     printf("direct light from %u light(s): mean |difference| %.2f%% of the mean radiance; %u of %u pixels lit on one "
            "side only\n", sv.light_count, 100.0 * light_err / light_ref, lit_differ, n);
     CHECK(sv.light_count == 1 && light_ref > 0.0);
-    /* Measured: 2.50% and 35 of 3,072 pixels (shadow edges a trace cell off). */
-    CHECK(light_err / light_ref <= 0.03);
-    CHECK(lit_differ <= 40);
+    /* Measured: 3.64% and 45 of 3,072 pixels (shadow edges a trace cell off; 2.50% and 35
+     * with the blind skip of the rays' start). */
+    CHECK(light_err / light_ref <= 0.042);
+    CHECK(lit_differ <= 50);
 
     /* Area lights: the built-in "cornell" is the same room with its ceiling quad emitting
      * (same triangles, so the same map and G-buffer serve). The spot and AREA_SPP samples

@@ -7,6 +7,7 @@
 #define ROMA_TRACE_SET 0
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
+#include "roma_ray_start.glsl"
 #include "roma_sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -34,6 +35,7 @@ void main()
     vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
     uint pixel = xy.y * width + xy.x, seed = pc.config2.x, open = 0u;
     precise vec3 origin = position.xyz + ng * pc.ray.x;
+    roma_use_ray_start(pc.bom);
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k;
         vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, 0u),
@@ -41,6 +43,9 @@ void main()
         // Below the geometric surface counts as occluded, as in the reference.
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
+            continue;
+        // The skipped start, walked exactly (roma_ray_start.glsl).
+        if (roma_ray_start_blocked(origin, dir, min(pc.ray.z, pc.ray.y)))
             continue;
         roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
         open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;

@@ -10,6 +10,7 @@
 
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
+#include "roma_ray_start.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
@@ -18,9 +19,10 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ro
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaEmitters { roma_gpu_emitter e[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
 
-// 1 when the segment origin -> target is free between tmin and `shorten`
-// (world units) before the target: a point light next to a surface must not be
-// hidden by that surface's cells. tmin skips the cells right at the origin.
+// 1 when the segment origin -> target is free between 0 and `shorten` (world
+// units) before the target: a point light next to a surface must not be hidden by
+// that surface's cells. The ROMA query skips its first tmin, walked exactly instead
+// (roma_ray_start.glsl).
 bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
                           float tmin, uint max_steps)
 {
@@ -29,6 +31,8 @@ bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
     float tmax = d - shorten;
     if (!(tmax > tmin))
         return true;
+    if (roma_ray_start_blocked(origin, v, min(tmin, tmax)))
+        return false;
     roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);
     return (h.info & ROMA_HIT_FLAG) == 0u;
 }
@@ -89,8 +93,8 @@ vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec
         return vec3(0.0);
     bool visible;
     if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-        roma_hit h = roma_trace_unsnapped(origin, l, tmin, 1.0 / 0.0, false, max_steps);
-        visible = (h.info & ROMA_HIT_FLAG) == 0u;
+        visible = !roma_ray_start_blocked(origin, l, tmin) &&
+                  (roma_trace_unsnapped(origin, l, tmin, 1.0 / 0.0, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
     } else {
         visible = roma_segment_visible(origin, light.position_type.xyz, offset, tmin, max_steps);
     }

@@ -227,6 +227,8 @@ ROMA_STRUCT_END(roma_pixel_list_push)
 /* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
+    ROMA_U64(bom);        /* this frame's BOM (roma_ray_start.glsl), 0: rays skip their start blind */
+    ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world) */
@@ -264,7 +266,7 @@ ROMA_STRUCT_END(roma_gpu_emitter)
 
 ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_U64(lights);     /* roma_gpu_light */
-    ROMA_U64(pad_);
+    ROMA_U64(bom);        /* this frame's BOM: the rays' skipped start walked exactly (0: not walked) */
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_punctual_push)
@@ -274,7 +276,7 @@ ROMA_STRUCT_BEGIN(roma_light_images_push)
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(emitters);   /* roma_gpu_emitter; 0 when there are no area lights */
     ROMA_U64(cdf);        /* float per emitter */
-    ROMA_U64(pad_);
+    ROMA_U64(bom);        /* the map's BOM: the shadow rays' skipped start walked exactly */
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: area samples, w: frame */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
@@ -283,6 +285,8 @@ ROMA_STRUCT_END(roma_light_images_push)
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(emitters);   /* roma_gpu_emitter */
     ROMA_U64(cdf);        /* float per emitter */
+    ROMA_U64(bom);        /* as roma_punctual_push */
+    ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
@@ -291,6 +295,8 @@ ROMA_STRUCT_END(roma_soft_shadows_push)
 ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_U64(positions);  /* vec4 per light */
     ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
+    ROMA_U64(bom);        /* as roma_punctual_push */
+    ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
@@ -336,7 +342,7 @@ ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(views);      /* roma_rsm_view (RSM route) */
     ROMA_U64(scene);      /* roma_gi_scene */
-    ROMA_U64(pad_);
+    ROMA_U64(bom);        /* as roma_punctual_push */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: RSM view count, z: max steps of the shadow rays */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units),

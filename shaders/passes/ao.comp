@@ -5,6 +5,7 @@
 // unoccluded count to accum so that frames accumulate (the caller clears it before
 // frame 0). Every buffer is bound (set 0: the trace set's two bindings, then these).
 #include "roma_pixel_bindings.glsl"
+#include "roma_ray_start.glsl"
 #include "roma_sampling.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
@@ -22,6 +23,7 @@ void main()
     roma_gbuffer_pixel g = roma_gbuffer[pixel];
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
+    roma_use_ray_start(pc.bom);
     uint seed = pc.config2.x, open = 0u;
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k; // new directions every frame, as in the reference
@@ -30,6 +32,9 @@ void main()
         // Below the geometric surface counts as occluded, as in the reference.
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
+            continue;
+        // The skipped start, walked exactly: no ray passes a wall it starts next to.
+        if (roma_ray_start_blocked(origin, dir, min(pc.ray.z, pc.ray.y)))
             continue;
         roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
         open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;

@@ -88,6 +88,22 @@ vec3 map_to_world(roma_grid_params grid, roma_map_frame f, vec3 q)
     return grid.origin.xyz + b * grid.origin.w;
 }
 
+// The surface at p, or one surface cell around it.
+uint find_surface_around(roma_gi_scene S, vec3 centre)
+{
+    uint tri = surface_at(S, centre);
+    if (tri != ROMA_GBUFFER_NO_TRIANGLE)
+        return tri;
+    const vec3 around[6] = vec3[](vec3(-1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0),
+                                  vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
+    for (int i = 0; i < 6; ++i) {
+        uint tri = surface_at(S, centre + around[i] * S.grid.w);
+        if (tri != ROMA_GBUFFER_NO_TRIANGLE)
+            return tri;
+    }
+    return ROMA_GBUFFER_NO_TRIANGLE;
+}
+
 // The surface of a snapped hit: the occupied rotated cell is map cell `cell` of the
 // texel column the ray was moved to, and its bit is set because a point on its axis
 // falls in an occupied BOM cell. Look along that axis in the surface grid, then one
@@ -101,24 +117,14 @@ uint find_surface(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }
-    const vec3 around[6] = vec3[](vec3(-1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0),
-                                  vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
-    for (int i = 0; i < 6; ++i) {
-        uint tri = surface_at(S, centre + around[i] * S.grid.w);
-        if (tri != ROMA_GBUFFER_NO_TRIANGLE)
-            return tri;
-    }
-    return ROMA_GBUFFER_NO_TRIANGLE;
+    return find_surface_around(S, centre);
 }
 
-// Radiance leaving the surface a bounce ray (origin, dir) hit, in map cell `cell` of
-// frame f at distance t, towards the ray's origin: its albedo / pi times the direct
-// irradiance there (the RSM route adds point and spot lights in rsm_radiance).
-vec3 hit_radiance(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3 cell, vec3 origin, vec3 dir,
-                  float t, uint pixel, uint s)
+// Radiance leaving triangle tri, which a bounce ray (origin, dir) hit near h at distance
+// t, towards the ray's origin: its albedo / pi times the direct irradiance there (the
+// RSM route adds point and spot lights in rsm_radiance).
+vec3 hit_radiance(roma_gi_scene S, uint tri, vec3 h, vec3 origin, vec3 dir, float t, uint pixel, uint s)
 {
-    vec3 h;
-    uint tri = find_surface(S, grid, f, cell, h);
     if (tri == ROMA_GBUFFER_NO_TRIANGLE)
         return vec3(0.0);
     vec3 albedo = RomaVec4s(S.albedo).v[tri].rgb;
@@ -172,7 +178,8 @@ vec3 hit_radiance(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3
             // of reach of a bounded walk: a snapped any-hit ray sees them all.
             vec3 l;
             float factor = roma_punctual_factor(light, y, ng, n, l);
-            if (factor > 0.0 && (roma_trace_snapped(o, l, tmin, 1.0 / 0.0, false).info & ROMA_HIT_FLAG) == 0u)
+            if (factor > 0.0 && !roma_ray_start_blocked(o, l, tmin) &&
+                (roma_trace_snapped(o, l, tmin, 1.0 / 0.0, false).info & ROMA_HIT_FLAG) == 0u)
                 E += roma_bounded_irradiance(factor, light.color_intensity.rgb);
         } else if (!rsm) {
             E += roma_punctual_irradiance(light, y, ng, n, o, offset, tmin, max_steps);
@@ -197,6 +204,7 @@ void main()
     if (ROMA_GI_SURFACES)
         S = RomaGiScene(gi.scene).s;
     roma_grid_params grid = roma_fetch_grid();
+    roma_use_ray_start(gi.bom);
     vec3 acc = vec3(0.0);
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k;
@@ -204,6 +212,18 @@ void main()
                                                                  roma_random(seed, pixel, s, DIM_GI_BOUNCE + 1u)));
         if (dot(dir, ng) <= 0.0)
             continue;
+        // The skipped start, walked exactly: a surface there is the hit (no ray passes a
+        // wall it starts next to); its point is the middle of the BOM cell it enters.
+        float tw = roma_ray_start_hit(origin, dir, gi.ray.y);
+        if (tw >= 0.0) {
+            if (ROMA_GI_SURFACES) {
+                vec3 hw = origin + normalize(dir) * (tw + 0.5 * grid.origin.w);
+                acc += hit_radiance(S, find_surface_around(S, hw), hw, origin, dir, tw, pixel, s);
+            }
+            if (ROMA_GI_RSM)
+                acc += rsm_radiance(origin + normalize(dir) * tw);
+            continue;
+        }
         roma_hit h = roma_trace_snapped(origin, dir, gi.ray.y, 1.0 / 0.0, true);
         if ((h.info & ROMA_HIT_FLAG) == 0u)
             continue;
@@ -213,7 +233,9 @@ void main()
             // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
             vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
             float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
-            acc += hit_radiance(S, grid, f, vec3(floor(m.xy), c), origin, dir, h.t, pixel, s);
+            vec3 centre;
+            uint tri = find_surface(S, grid, f, vec3(floor(m.xy), c), centre);
+            acc += hit_radiance(S, tri, centre, origin, dir, h.t, pixel, s);
         }
         if (ROMA_GI_RSM) {
             // A snapped ray travels along its candidate direction (reversed when folded).

@@ -36,6 +36,7 @@ void main()
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
+    roma_use_ray_start(pc.bom);
     // The mask is for evaluation (exact mode): every light tested, in order.
     bool write_mask = (pc.mask.x | pc.mask.y) != 0u && tested == light_count;
     uint first = tested == light_count ? 0u

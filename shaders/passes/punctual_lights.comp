@@ -26,6 +26,7 @@ void main()
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
+    roma_use_ray_start(pc.bom);
     vec3 E = vec3(0.0);
     for (uint i = 0u; i < light_count; ++i)
         E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);

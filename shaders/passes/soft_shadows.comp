@@ -31,6 +31,7 @@ void main()
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
+    roma_use_ray_start(pc.bom);
     vec3 acc = vec3(0.0);
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k;

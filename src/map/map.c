@@ -835,6 +835,11 @@ static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out
     return r;
 }
 
+VkDeviceAddress roma_map_bom_address(const roma_map *map)
+{
+    return map ? map->bom.address : 0;
+}
+
 roma_result roma_map_download_bom(roma_map *map, uint32_t *out, uint64_t word_count)
 {
     return map ? download(map, &map->bom, out, word_count)

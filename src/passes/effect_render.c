@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "map/map_internal.h"
 #include "passes/ao.h"
 #include "passes/denoiser.h"
 #include "passes/gbuffer.h"
@@ -247,20 +248,22 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             continue;
         const roma_map_info *m = &info[plan->pass_map[p]];
         const float offset = offset_cells * m->trace_cell;
+        const VkDeviceAddress bom = d->blind_ray_start ? 0 : roma_map_bom_address(R->maps[plan->pass_map[p]]);
         scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
         switch ((roma_pass_kind)p) {
         case ROMA_PASS_AO: {
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
                 .offset = offset, .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f,
-                .seed = d->seed, .accum = R->accum[p].buffer,
+                .seed = d->seed, .accum = R->accum[p].buffer, .bom = bom,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
         }
         case ROMA_PASS_PUNCTUAL_LIGHTS: {
             roma_punctual_push push = {
-                .lights = R->lights.lights.address, .config = {d->width, d->height, R->lights.light_count, steps},
+                .lights = R->lights.lights.address, .bom = bom,
+                .config = {d->width, d->height, R->lights.light_count, steps},
                 .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
             r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
@@ -268,7 +271,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         }
         case ROMA_PASS_SOFT_SHADOWS: {
             roma_soft_shadows_push push = {
-                .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address,
+                .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address, .bom = bom,
                 .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
@@ -280,7 +283,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             uint32_t tested = d->lights_per_frame && d->lights_per_frame < n ? d->lights_per_frame : n;
             int last = f + 1 == (d->frames ? d->frames : 1);
             roma_many_lights_push push = {
-                .positions = R->lights.positions.address, .mask = last ? R->mask.address : 0,
+                .positions = R->lights.positions.address, .mask = last ? R->mask.address : 0, .bom = bom,
                 .config = {d->width, d->height, n, lights_steps},
                 .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
@@ -292,6 +295,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 roma_surface_cells_record(&R->surfaces, cmd); /* the scene stands still: once */
             roma_gi_push push = {
                 .lights = R->lights.lights.address, .views = R->views_buffer.address, .scene = R->gi_scene.address,
+                .bom = bom,
                 .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->rsm_views.count, steps, 0},
                 .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, skip_cells * m->trace_cell},

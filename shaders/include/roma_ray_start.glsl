@@ -1,0 +1,84 @@
+// The start of a ray that leaves a surface: an exact walk through the base occupancy
+// map (3D DDA, Amanatides-Woo) over the distance the ROMA query skips (its tmin).
+//
+// ROMA queries skip their first trace cells because the rotated maps smear a surface
+// over about a trace cell around it, so a ray would meet the cells of the surface it
+// leaves. A wall within that distance was skipped too: in a closed room, rays starting
+// next to a corner passed through the other wall (light leaks, bright seams). The BOM
+// has no smear: a ray offset off its surface (1.5 trace cells = 2.6 BOM cells, above the
+// cells a plane occupies) meets no cell of its own surface on the skipped part, so an
+// occupied BOM cell there is another surface and blocks the ray (docs/accuracy.md).
+//
+// Call roma_use_ray_start() once (after including the trace functions, whose grid it
+// reads) before the tracing; an address of 0 turns the walk off.
+#ifndef ROMA_RAY_START_GLSL
+#define ROMA_RAY_START_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+#include "roma_shared.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaBomWords { uint w[]; };
+
+uvec2 roma_start_bom_ = uvec2(0u);
+roma_grid_params roma_start_grid_;
+
+// bom: this frame's BOM words (the map's, built with the maps traced), or 0.
+void roma_use_ray_start(uvec2 bom)
+{
+    roma_start_bom_ = bom;
+    roma_start_grid_ = roma_fetch_grid();
+}
+
+// Distance along normalize(dir) at which origin + normalize(dir) * [0, tmax] enters its
+// first occupied BOM cell, or -1 when it meets none.
+float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
+{
+    if (roma_start_bom_ == uvec2(0u) || !(tmax > 0.0))
+        return -1.0;
+    RomaBomWords words = RomaBomWords(roma_start_bom_);
+    float inv_cell = roma_start_grid_.inv_cell.x;
+    int res = int(roma_start_grid_.dims.x);
+    uint per_texel = roma_start_grid_.dims.y;
+    vec3 g = (origin - roma_start_grid_.origin.xyz) * inv_cell;
+    vec3 d = normalize(dir);
+    float tg = tmax * inv_cell; // grid units
+    ivec3 cell = ivec3(floor(g));
+    ivec3 step = ivec3(sign(d));
+    vec3 inv = 1.0 / abs(d); // +inf on axis-parallel components
+    vec3 next = (vec3(cell) + max(vec3(step), vec3(0.0)) - g) / d;
+    next = vec3(d.x != 0.0 ? next.x : 1.0 / 0.0, d.y != 0.0 ? next.y : 1.0 / 0.0, d.z != 0.0 ? next.z : 1.0 / 0.0);
+    // A segment of length L crosses at most 3 * ceil(L) + 1 cells (bounded for odd skips).
+    int cells = min(3 * int(ceil(tg)) + 1, 64);
+    float t = 0.0;
+    for (int i = 0; i < cells && t <= tg; ++i) {
+        if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(res)))) {
+            uint word = words.w[(uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5)];
+            if ((word & (1u << uint(cell.z & 31))) != 0u)
+                return t / inv_cell;
+        }
+        if (next.x <= next.y && next.x <= next.z) {
+            t = next.x;
+            next.x += inv.x;
+            cell.x += step.x;
+        } else if (next.y <= next.z) {
+            t = next.y;
+            next.y += inv.y;
+            cell.y += step.y;
+        } else {
+            t = next.z;
+            next.z += inv.z;
+            cell.z += step.z;
+        }
+    }
+    return -1.0;
+}
+
+// True when an occupied BOM cell lies on origin + normalize(dir) * [0, tmax].
+bool roma_ray_start_blocked(vec3 origin, vec3 dir, float tmax)
+{
+    return roma_ray_start_hit(origin, dir, tmax) >= 0.0;
+}
+
+#endif // ROMA_RAY_START_GLSL

@@ -12,6 +12,13 @@
 #include "roma/trace_descriptors.glsl"
 #include "roma_ray_start.glsl"
 
+// Shadow rays walk their first ROMA_START_WALK skip lengths exactly (4 trace cells at the
+// default skip of one): a ray that starts next to a wall and leaves at a shallow angle to
+// it crosses the wall several cells along, where the rotated maps of a wall one cell thick
+// can have holes. Measured on test_closed_rooms (a light behind the wall): 15 of 46
+// surface pixels within 10 cm of the wall lit with one skip length, 3 with four.
+const float ROMA_START_WALK = 4.0;
+
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
 };
@@ -21,8 +28,8 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 
 // 1 when the segment origin -> target is free between 0 and `shorten` (world
 // units) before the target: a point light next to a surface must not be hidden by
-// that surface's cells. The ROMA query skips its first tmin, walked exactly instead
-// (roma_ray_start.glsl).
+// that surface's cells. The ROMA query skips its first tmin; the start is walked
+// exactly instead (roma_ray_start.glsl), over ROMA_START_WALK * tmin.
 bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
                           float tmin, uint max_steps)
 {
@@ -31,7 +38,7 @@ bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
     float tmax = d - shorten;
     if (!(tmax > tmin))
         return true;
-    if (roma_ray_start_blocked(origin, v, min(tmin, tmax)))
+    if (roma_ray_start_blocked(origin, v, min(ROMA_START_WALK * tmin, tmax)))
         return false;
     roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);
     return (h.info & ROMA_HIT_FLAG) == 0u;
@@ -93,7 +100,7 @@ vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec
         return vec3(0.0);
     bool visible;
     if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-        visible = !roma_ray_start_blocked(origin, l, tmin) &&
+        visible = !roma_ray_start_blocked(origin, l, ROMA_START_WALK * tmin) &&
                   (roma_trace_unsnapped(origin, l, tmin, 1.0 / 0.0, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
     } else {
         visible = roma_segment_visible(origin, light.position_type.xyz, offset, tmin, max_steps);

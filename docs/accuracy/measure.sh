@@ -50,25 +50,28 @@ row() {
   awk -v m="$mae" -v a="$a" -v b="$b" 'BEGIN { printf "%.4f  %.4f  %.4f  %+.3f  %.3f\n", m, a, b, (a - b) / b, m / b }'
 }
 
-echo "== Ambient occlusion, RES 128, A = 4 (MAE target <= 0.05): MAE, mean ROMA, mean reference, relative bias, relative MAE"
+echo "== Ambient occlusion, RES 128, A = 4 (MAE target <= 0.05), rays' start walked (default) or blind: MAE, mean ROMA, mean reference, relative bias, relative MAE"
 for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.glb|--ao-radius inf --camera 0.172454447,0.265031695,0.239383832,-0.0168405008,0.110154003,-0.0015369989,45" \
             "engine|$scenes_dir/2CylinderEngine.glb|--ao-radius inf"; do
   IFS='|' read -r name scene extra <<<"$spec"
   # shellcheck disable=SC2086
   ref "$name" "$scene" ao $extra
-  for skip in 0 1 1.5 1.6 1.75 2; do
+  for skip in 0 1 1.6 2; do
     # shellcheck disable=SC2086
     roma "$name" "skip$skip" "$scene" ao --ao-skip $skip $extra
-    printf "%-8s ao-skip %-4s " "$name" "$skip"
+    printf "%-8s walk  ao-skip %-4s " "$name" "$skip"
     row "$name" "skip$skip" ao
   done
+  # The rule before the walk: the skipped start not looked at.
+  # shellcheck disable=SC2086
+  roma "$name" "blind" "$scene" ao --ray-start blind $extra
+  printf "%-8s blind ao-skip %-4s " "$name" 1.6
+  row "$name" "blind" ao
   # The origin offset at the default skip.
-  for offset in 1.75 2; do
-    # shellcheck disable=SC2086
-    roma "$name" "offset$offset" "$scene" ao --offset $offset $extra
-    printf "%-8s offset  %-4s " "$name" "$offset"
-    row "$name" "offset$offset" ao
-  done
+  # shellcheck disable=SC2086
+  roma "$name" "offset1.75" "$scene" ao --offset 1.75 $extra
+  printf "%-8s walk  offset  %-4s " "$name" 1.75
+  row "$name" "offset1.75" ao
 done
 
 echo "== Direct light (area + punctual), RES 128, A = 8, 8 steps, skip 1: same columns"
@@ -80,8 +83,11 @@ for spec in "cornell|builtin:cornell" "blinds|builtin:blinds" "plates|builtin:pl
   row "${name}_direct" default direct
 done
 
-echo "== One-bounce GI from the spot light's RSM, RES 128, A = 4 (cornell_spot): same columns"
-ref cornell_spot_gi builtin:cornell_spot gi
-roma cornell_spot_gi default builtin:cornell_spot gi
-printf "%-8s %-12s " cornell_spot gi
-row cornell_spot_gi default gi
+echo "== One-bounce GI, RES 128, A = 4: same columns"
+for spec in "cornell|builtin:cornell" "cornell_spot|builtin:cornell_spot" "blinds|builtin:blinds"; do
+  IFS='|' read -r name scene <<<"$spec"
+  ref "${name}_gi" "$scene" gi
+  roma "${name}_gi" default "$scene" gi
+  printf "%-12s %-8s " "$name" gi
+  row "${name}_gi" default gi
+done

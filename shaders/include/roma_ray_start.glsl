@@ -19,16 +19,35 @@
 
 #include "roma_shared.h"
 
+// The BOM's words: bound at ROMA_PIXEL_BINDING_BOM of the trace set when the includer
+// defines ROMA_RAY_START_BOUND (libroma's own passes: bound loads are the fast ones on CPU
+// devices), else reached through the address given to roma_use_ray_start.
+#ifdef ROMA_RAY_START_BOUND
+layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_BOM) readonly buffer RomaBoundBom {
+    uint roma_bom_words[];
+};
+#else
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaBomWords { uint w[]; };
+#endif
 
 uvec2 roma_start_bom_ = uvec2(0u);
 roma_grid_params roma_start_grid_;
 
-// bom: this frame's BOM words (the map's, built with the maps traced), or 0.
+// bom: this frame's BOM (the map's, built with the maps traced): its address, or any
+// non-zero value when it is bound; 0 turns the walk off.
 void roma_use_ray_start(uvec2 bom)
 {
     roma_start_bom_ = bom;
     roma_start_grid_ = roma_fetch_grid();
+}
+
+uint roma_start_word_(uint index)
+{
+#ifdef ROMA_RAY_START_BOUND
+    return roma_bom_words[index];
+#else
+    return RomaBomWords(roma_start_bom_).w[index];
+#endif
 }
 
 // Distance along normalize(dir) at which origin + normalize(dir) * [0, tmax] enters its
@@ -37,7 +56,6 @@ float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
 {
     if (roma_start_bom_ == uvec2(0u) || !(tmax > 0.0))
         return -1.0;
-    RomaBomWords words = RomaBomWords(roma_start_bom_);
     float inv_cell = roma_start_grid_.inv_cell.x;
     int res = int(roma_start_grid_.dims.x);
     uint per_texel = roma_start_grid_.dims.y;
@@ -54,7 +72,7 @@ float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
     float t = 0.0;
     for (int i = 0; i < cells && t <= tg; ++i) {
         if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(res)))) {
-            uint word = words.w[(uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5)];
+            uint word = roma_start_word_((uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
             if ((word & (1u << uint(cell.z & 31))) != 0u)
                 return t / inv_cell;
         }

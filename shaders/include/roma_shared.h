@@ -204,12 +204,14 @@ ROMA_STRUCT_END(roma_gbuffer_pixel)
 #define ROMA_PIXEL_WORKGROUP_Y 8
 
 /* Every tracing pass binds set 0: the trace set's two bindings, then (storage buffers)
- * the G-buffer, the covered-pixel list and the pass's accumulator (one element per pixel,
- * added to). On CPU devices address-based loads cost several times more. */
+ * the G-buffer, the covered-pixel list, the pass's accumulator (one element per pixel,
+ * added to) and the map's BOM (the exact walk of the rays' start, roma_ray_start.glsl).
+ * On CPU devices address-based loads cost several times more. */
 #define ROMA_PIXEL_BINDING_GBUFFER 2
 #define ROMA_PIXEL_BINDING_LIST 3
 #define ROMA_PIXEL_BINDING_ACCUM 4
-#define ROMA_PIXEL_BINDINGS 5
+#define ROMA_PIXEL_BINDING_BOM 5
+#define ROMA_PIXEL_BINDINGS 6
 
 /* ---- Covered-pixel list (src/passes/pixel_list.c, shaders/passes/pixel_list*.comp) ----
  * The pixels whose G-buffer sees geometry, built once per frame; every tracing pass runs

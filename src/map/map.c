@@ -840,6 +840,11 @@ VkDeviceAddress roma_map_bom_address(const roma_map *map)
     return map ? map->bom.address : 0;
 }
 
+VkBuffer roma_map_bom_buffer(const roma_map *map)
+{
+    return map ? map->bom.buffer : VK_NULL_HANDLE;
+}
+
 roma_result roma_map_download_bom(roma_map *map, uint32_t *out, uint64_t word_count)
 {
     return map ? download(map, &map->bom, out, word_count)

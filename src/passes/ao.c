@@ -51,10 +51,11 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
     if (in->spp == 0)
         return ROMA_SUCCESS;
     roma_ao_push push = {
-        .bom = in->bom,
+        .bom = in->blind_start ? 0u : 1u,
         .config = {in->width, in->height, in->spp, in->frame},
         .config2 = {in->seed, 0, 0, 0},
         .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, 0.0f},
     };
-    return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->gbuffer_pixels, in->accum, &push);
+    return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->bom, in->gbuffer_pixels, in->accum,
+                                       &push);
 }

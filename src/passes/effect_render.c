@@ -248,14 +248,15 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             continue;
         const roma_map_info *m = &info[plan->pass_map[p]];
         const float offset = offset_cells * m->trace_cell;
-        const VkDeviceAddress bom = d->blind_ray_start ? 0 : roma_map_bom_address(R->maps[plan->pass_map[p]]);
+        const VkBuffer bom_buffer = roma_map_bom_buffer(R->maps[plan->pass_map[p]]);
+        const uint64_t bom = d->blind_ray_start ? 0u : 1u; /* the walk reads the bound BOM */
         scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
         switch ((roma_pass_kind)p) {
         case ROMA_PASS_AO: {
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
                 .offset = offset, .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f,
-                .seed = d->seed, .accum = R->accum[p].buffer, .bom = bom,
+                .seed = d->seed, .accum = R->accum[p].buffer, .bom = bom_buffer, .blind_start = d->blind_ray_start,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
@@ -266,7 +267,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, R->lights.light_count, steps},
                 .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_SOFT_SHADOWS: {
@@ -275,7 +276,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_MANY_LIGHTS: {
@@ -287,7 +288,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, n, lights_steps},
                 .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_GI: {
@@ -300,7 +301,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config2 = {d->seed, R->rsm_views.count, steps, 0},
                 .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, skip_cells * m->trace_cell},
             };
-            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         default:

@@ -28,7 +28,7 @@ static void record_out_barrier(VkCommandBuffer cmd)
 
 static const VkDescriptorType pixel_types[ROMA_PIXEL_BINDINGS] = {
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
 
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out)
@@ -68,7 +68,7 @@ static roma_result pass_set(roma_pixel_pass *pass, const roma_pixel_binding *key
     for (uint32_t i = 0; i < pass->set_count; ++i) {
         const roma_pixel_binding *b = &pass->sets[i];
         if (b->maps == key_in->maps && b->params == key_in->params && b->gbuffer == key_in->gbuffer &&
-            b->list == key_in->list && b->accum == key_in->accum) {
+            b->list == key_in->list && b->accum == key_in->accum && b->bom == key_in->bom) {
             *out = b->set.set;
             return ROMA_SUCCESS;
         }
@@ -85,8 +85,8 @@ static roma_result pass_set(roma_pixel_pass *pass, const roma_pixel_binding *key
     roma_descriptor_write_view(ctx, &key.set, ROMA_TRACE_BINDING_MAPS, pixel_types[ROMA_TRACE_BINDING_MAPS], key.maps);
     roma_descriptor_write_buffer(ctx, &key.set, ROMA_TRACE_BINDING_PARAMS, pixel_types[ROMA_TRACE_BINDING_PARAMS],
                                  key.params);
-    const VkBuffer buffers[3] = {key.gbuffer, key.list, key.accum};
-    for (uint32_t b = 0; b < 3; ++b)
+    const VkBuffer buffers[4] = {key.gbuffer, key.list, key.accum, key.bom};
+    for (uint32_t b = 0; b < 4; ++b)
         roma_descriptor_write_buffer(ctx, &key.set, ROMA_PIXEL_BINDING_GBUFFER + b,
                                      pixel_types[ROMA_PIXEL_BINDING_GBUFFER + b], buffers[b]);
     pass->sets[pass->set_count++] = key;
@@ -113,15 +113,16 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
 }
 
 roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
-                                        const roma_map_info *map, VkBuffer gbuffer, VkBuffer accum,
+                                        const roma_map_info *map, VkBuffer bom, VkBuffer gbuffer, VkBuffer accum,
                                         const void *push)
 {
     if (!pass->ctx || !cmd || !push || !list || !list->buffer.buffer || !pass->binding_count || !map ||
-        !map->maps_view || !gbuffer || !accum)
+        !map->maps_view || !bom || !gbuffer || !accum)
         return pass->ctx ? roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                                     "%s: list, map, G-buffer and accumulator are required", pass->name)
+                                     "%s: list, map, BOM, G-buffer and accumulator are required", pass->name)
                          : ROMA_ERROR_INVALID_ARGUMENT;
-    const roma_pixel_binding key = {map->maps_view, map->params_buffer, gbuffer, list->buffer.buffer, accum, {0}};
+    const roma_pixel_binding key = {map->maps_view, map->params_buffer, gbuffer, list->buffer.buffer, accum, bom,
+                                    {0}};
     VkDescriptorSet set = VK_NULL_HANDLE;
     roma_result r = pass_set(pass, &key, &set);
     if (r != ROMA_SUCCESS)

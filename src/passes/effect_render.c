@@ -545,6 +545,7 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         stats->pass_bytes[p] = R.accum[p].size;
     if (R.mask.buffer)
         stats->pass_bytes[ROMA_PASS_MANY_LIGHTS] += R.mask.size;
+    stats->pass_bytes[ROMA_PASS_GI] += R.surfaces.cells.size + R.gi_scene.size; /* the surface grid */
     if (R.gbuffer)
         stats->pass_bytes[ROMA_PASS_GBUFFER] = n * sizeof(roma_gbuffer_pixel);
     stats->pass_bytes[ROMA_PASS_RSM] =

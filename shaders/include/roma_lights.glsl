@@ -16,8 +16,10 @@
 // default skip of one): a ray that starts next to a wall and leaves at a shallow angle to
 // it crosses the wall several cells along, where the rotated maps of a wall one cell thick
 // can have holes. Measured on test_closed_rooms (a light behind the wall): 15 of 46
-// surface pixels within 10 cm of the wall lit with one skip length, 3 with four.
+// surface pixels within 10 cm of the wall lit with one skip length, 3 with four. A pass
+// may walk less (roma_start_walk).
 const float ROMA_START_WALK = 4.0;
+float roma_start_walk = ROMA_START_WALK;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
@@ -38,7 +40,7 @@ bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
     float tmax = d - shorten;
     if (!(tmax > tmin))
         return true;
-    if (roma_ray_start_blocked(origin, v, min(ROMA_START_WALK * tmin, tmax)))
+    if (roma_ray_start_blocked(origin, v, min(roma_start_walk * tmin, tmax)))
         return false;
     roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);
     return (h.info & ROMA_HIT_FLAG) == 0u;
@@ -100,7 +102,7 @@ vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec
         return vec3(0.0);
     bool visible;
     if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-        visible = !roma_ray_start_blocked(origin, l, ROMA_START_WALK * tmin) &&
+        visible = !roma_ray_start_blocked(origin, l, roma_start_walk * tmin) &&
                   (roma_trace_unsnapped(origin, l, tmin, 1.0 / 0.0, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
     } else {
         visible = roma_segment_visible(origin, light.position_type.xyz, offset, tmin, max_steps);

@@ -51,7 +51,9 @@ typedef struct roma_ao_settings {
     float radius;         /**< ray length, world units; 0 = unbounded */
     /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS. */
     float offset_cells;
-    /** Rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
+    /** The ROMA query of a ray starts this far past the origin, trace cells; the part skipped
+     * is walked exactly through the map's base occupancy map instead, so that no ray passes
+     * a wall it starts next to. 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
      * negative = 0. */
     float skip_cells;
     uint32_t seed; /**< sample sequences: the same seed as the reference gives the same rays */

@@ -43,8 +43,9 @@ typedef struct roma_light_settings {
     uint32_t max_steps;   /**< texels an un-snapped shadow ray walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
     /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS. */
     float offset_cells;
-    /** Shadow rays start this far past the origin, trace cells; 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS,
-     * negative = 0. */
+    /** The ROMA query of a shadow ray starts this far past the origin, trace cells; four times
+     * that is walked exactly through the map's base occupancy map first, so that no ray passes
+     * a wall it starts next to. 0 = ROMA_DEFAULT_SHADOW_SKIP_CELLS, negative = 0. */
     float skip_cells;
     /** Area-light samples per pixel and frame; 0 = ROMA_DEFAULT_AREA_LIGHT_SAMPLES. */
     uint32_t area_samples;

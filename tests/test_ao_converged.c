@@ -10,7 +10,7 @@
  * closed), bunny and 2CylinderEngine (unbounded).
  *
  * Each scene twice: with the default ray start (the skipped start of every ray walked
- * exactly through the BOM, roma_ray_start.glsl: no ray passes a wall it starts next
+ * exactly through the BOM, roma/ray_start.glsl: no ray passes a wall it starts next
  * to) and with the blind skip it replaced (blind_ray_start). The target holds for the
  * blind skip; the walk misses it on 2CylinderEngine, whose cooling fins stand closer
  * than two BOM cells: the BOM closes the gaps between them, and a ray that cannot pass

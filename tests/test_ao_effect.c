@@ -230,7 +230,7 @@ int main(void)
            mean_roma / n, mean_ref / n, err / n);
     CHECK(n > W * H / 2 && background_ok);
     /* Measured: mean |difference| 0.0744, means 0.7181 vs 0.7750 (with the blind skip of
-     * the rays' start, before the exact walk of roma_ray_start.glsl: 0.0707, 0.7367; the
+     * the rays' start, before the exact walk of roma/ray_start.glsl: 0.0707, 0.7367; the
      * walk seals the room's corners and darkens a band one cell wide along them). */
     CHECK(err / n <= 0.080);
     CHECK(fabs(mean_roma - mean_ref) / n <= 0.062);

@@ -14,7 +14,6 @@
 #include <string.h>
 
 #include "harness.h"
-#include "map/map_internal.h"
 #include "passes/scene_buffers.h"
 #include "passes/ao.h"
 #include "passes/gbuffer.h"
@@ -149,7 +148,7 @@ static void run(roma_context *ctx)
         }
         roma_ao_pass_inputs in = {
             .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = W, .height = H,
-            .map = &info, .list = &list, .bom = roma_map_bom_buffer(map),
+            .map = &info, .list = &list, .bom = info.bom_buffer,
             .offset = offset, .radius = RADIUS, .spp = SPP, .frame = f, .seed = SEED,
             .accum = accum.buffer,
         };

@@ -1,5 +1,5 @@
 /* Closed rooms stay dark: no ROMA ray passes a wall it starts next to
- * (shaders/include/roma_ray_start.glsl).
+ * (include/roma/ray_start.glsl).
  *
  * Rooms: the built-in cornell, and a closed box room (2 x 2 x 3, a block on the floor)
  * axis-aligned and turned off the grid axes (30 degrees about (1, 2, 3)). Every wall is a

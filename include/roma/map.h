@@ -323,6 +323,12 @@ typedef struct roma_map_info {
     VkBufferView maps_view; /**< the maps as an R32_UINT uniform texel buffer */
     VkDescriptorSet trace_set; /**< a set holding maps_view and params_buffer */
     VkDescriptorSetLayout trace_set_layout; /**< trace_set's layout (compute stage) */
+    /** The base occupancy map of this frame (storage buffer; layout in roma/ray_start.glsl),
+     * for the exact walk of a ray's skipped start that keeps rays from passing a wall they
+     * start next to: its address (roma_use_ray_start) and the buffer, for shaders that bind
+     * it. Written by each build, like the maps. */
+    VkDeviceAddress bom_address;
+    VkBuffer bom_buffer; /**< the same BOM as a buffer */
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.

@@ -7,7 +7,7 @@
 #define ROMA_TRACE_SET 0
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
-#include "roma_ray_start.glsl"
+#include "roma/ray_start.glsl"
 #include "roma_sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -44,7 +44,7 @@ void main()
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
             continue;
-        // The skipped start, walked exactly (roma_ray_start.glsl).
+        // The skipped start, walked exactly (roma/ray_start.glsl).
         if (roma_ray_start_blocked(origin, dir, min(pc.ray.z, pc.ray.y)))
             continue;
         roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);

@@ -10,7 +10,7 @@
 
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
-#include "roma_ray_start.glsl"
+#include "roma/ray_start.glsl"
 
 // Shadow rays walk their first ROMA_START_WALK skip lengths exactly (4 trace cells at the
 // default skip of one): a ray that starts next to a wall and leaves at a shallow angle to
@@ -31,7 +31,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 // 1 when the segment origin -> target is free between 0 and `shorten` (world
 // units) before the target: a point light next to a surface must not be hidden by
 // that surface's cells. The ROMA query skips its first tmin; the start is walked
-// exactly instead (roma_ray_start.glsl), over ROMA_START_WALK * tmin.
+// exactly instead (roma/ray_start.glsl), over ROMA_START_WALK * tmin.
 bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
                           float tmin, uint max_steps)
 {

@@ -205,7 +205,7 @@ ROMA_STRUCT_END(roma_gbuffer_pixel)
 
 /* Every tracing pass binds set 0: the trace set's two bindings, then (storage buffers)
  * the G-buffer, the covered-pixel list, the pass's accumulator (one element per pixel,
- * added to) and the map's BOM (the exact walk of the rays' start, roma_ray_start.glsl).
+ * added to) and the map's BOM (the exact walk of the rays' start, roma/ray_start.glsl).
  * On CPU devices address-based loads cost several times more. */
 #define ROMA_PIXEL_BINDING_GBUFFER 2
 #define ROMA_PIXEL_BINDING_LIST 3
@@ -229,7 +229,7 @@ ROMA_STRUCT_END(roma_pixel_list_push)
 /* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
-    ROMA_U64(bom);        /* this frame's BOM (roma_ray_start.glsl), 0: rays skip their start blind */
+    ROMA_U64(bom);        /* this frame's BOM (roma/ray_start.glsl), 0: rays skip their start blind */
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed */

@@ -4,9 +4,9 @@
 // dispatch over the pixel list), spp snapped any-hit rays through the ROMA maps; adds the
 // unoccluded count to accum so that frames accumulate (the caller clears it before
 // frame 0). Every buffer is bound (set 0: the trace set's two bindings, then these).
-#define ROMA_RAY_START_BOUND 1 // the BOM at ROMA_PIXEL_BINDING_BOM (roma_ray_start.glsl)
+#include "roma_bound_bom.glsl"
 #include "roma_pixel_bindings.glsl"
-#include "roma_ray_start.glsl"
+#include "roma/ray_start.glsl"
 #include "roma_sampling.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;

@@ -15,7 +15,7 @@
 // texel plus a tolerance, and reflects albedo/pi * E towards the pixel).
 // Adds L(y) to accum (the resolve multiplies by the pixel's albedo and divides
 // by spp * frames: cosine sampling cancels cos/pi).
-#define ROMA_RAY_START_BOUND 1 // the BOM at ROMA_PIXEL_BINDING_BOM (roma_ray_start.glsl)
+#include "roma_bound_bom.glsl"
 #include "roma_camera.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"

@@ -8,7 +8,7 @@
 // light counts when it is in front of the shading normal and its segment is
 // free in the ROMA maps (un-snapped, bounded steps). Adds (visible, tested) to
 // accum; with a mask address, also writes the bit of every visible light.
-#define ROMA_RAY_START_BOUND 1 // the BOM at ROMA_PIXEL_BINDING_BOM (roma_ray_start.glsl)
+#include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
 #include "roma_pixel_bindings.glsl"

@@ -5,7 +5,7 @@
 // Direct light from point, spot and directional lights: per pixel and light,
 // one un-snapped shadow ray through the ROMA maps; the irradiance is added to
 // accum so that frames (new jitter each) average out the voxelization.
-#define ROMA_RAY_START_BOUND 1 // the BOM at ROMA_PIXEL_BINDING_BOM (roma_ray_start.glsl)
+#include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_pixel_bindings.glsl"
 

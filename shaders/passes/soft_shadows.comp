@@ -6,7 +6,7 @@
 // pixel, drawn exactly as the reference draws them (dimensions 2-4, sample
 // frame * spp + k), each with an un-snapped shadow ray of bounded steps.
 // The irradiance estimates are added to accum (divide by spp * frames).
-#define ROMA_RAY_START_BOUND 1 // the BOM at ROMA_PIXEL_BINDING_BOM (roma_ray_start.glsl)
+#include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
 #include "roma_pixel_bindings.glsl"

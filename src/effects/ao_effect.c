@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
-#include "map/map_internal.h"
 #include "roma_shared.h"
 #include "util/log.h"
 #include "vulkan/vk_internal.h"
@@ -89,7 +88,7 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
     r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
     if (r != ROMA_SUCCESS)
         return r;
-    roma_ao_push push = {.bom = roma_map_bom_address(map),
+    roma_ao_push push = {.bom = info.bom_address,
                          .config = {im->width, im->height, s.samples, s.frame},
                          .config2 = {s.seed, 0, 0, 0},
                          .ray = {s.offset_cells * info.trace_cell, s.radius > 0.0f ? s.radius : INFINITY,

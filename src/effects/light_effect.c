@@ -9,7 +9,6 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
-#include "map/map_internal.h"
 #include "passes/light_data.h"
 #include "roma_shared.h"
 #include "scene/emitters.h"
@@ -200,7 +199,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     uint32_t packed = 0;
     for (uint32_t i = 0; i < light_count; ++i)
         packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)buf->mapped + packed);
-    roma_light_images_push push = {.lights = buf->address, .bom = roma_map_bom_address(map),
+    roma_light_images_push push = {.lights = buf->address, .bom = info.bom_address,
                                    .emitters = e->emitter_count ? e->emitters.address : 0,
                                    .cdf = e->emitter_count ? e->cdf.address : 0,
                                    .config = {im->width, im->height, packed, s.max_steps},

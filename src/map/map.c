@@ -622,6 +622,8 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->grid_cell = map->grid.origin[3];
     out->trace_cell = map->grid.origin[3] * 1.7320508f;
     out->bom_bytes = map->bom.size;
+    out->bom_address = map->bom.address;
+    out->bom_buffer = map->bom.buffer;
     out->maps_bytes = map->maps.size;
     out->params_bytes = map->params.size;
     out->geometry_bytes = map->positions.size + map->indices.size;
@@ -833,16 +835,6 @@ static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out
         memcpy(out, staging.mapped, src->size);
     roma_buffer_destroy(map->ctx, &staging);
     return r;
-}
-
-VkDeviceAddress roma_map_bom_address(const roma_map *map)
-{
-    return map ? map->bom.address : 0;
-}
-
-VkBuffer roma_map_bom_buffer(const roma_map *map)
-{
-    return map ? map->bom.buffer : VK_NULL_HANDLE;
 }
 
 roma_result roma_map_download_bom(roma_map *map, uint32_t *out, uint64_t word_count)

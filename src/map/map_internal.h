@@ -117,12 +117,6 @@ void roma_map_instances_bounds(const roma_map *map, float bmin[3], float bmax[3]
 /* Releases what the builds recorded so far no longer use; at map destruction, everything. */
 void roma_map_instances_release(roma_map *map, int all);
 
-/* The BOM's device address (this frame's words after a build: the passes' exact
- * walk over the start of their rays, shaders/include/roma_ray_start.glsl). */
-VkDeviceAddress roma_map_bom_address(const roma_map *map);
-/* The same buffer, for passes that bind it (ROMA_PIXEL_BINDING_BOM). */
-VkBuffer roma_map_bom_buffer(const roma_map *map);
-
 /* This frame's parameters, for the C mirror in tests. */
 roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid,
                                       const roma_map_frame **frames);

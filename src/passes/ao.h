@@ -25,8 +25,8 @@ typedef struct roma_ao_pass_inputs {
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */
-    /* The map's BOM (roma_map_bom_buffer), bound: the skipped start is walked through it
-     * exactly, an occupied cell blocking the ray (roma_ray_start.glsl). */
+    /* The map's BOM (roma_map_info.bom_buffer), bound: the skipped start is walked through it
+     * exactly, an occupied cell blocking the ray (roma/ray_start.glsl). */
     VkBuffer bom;
     int blind_start;                /* 1: the start is skipped unseen (the rule before the walk) */
     uint32_t spp, frame, seed;

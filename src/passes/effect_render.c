@@ -4,7 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "map/map_internal.h"
 #include "passes/ao.h"
 #include "passes/denoiser.h"
 #include "passes/gbuffer.h"
@@ -248,7 +247,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             continue;
         const roma_map_info *m = &info[plan->pass_map[p]];
         const float offset = offset_cells * m->trace_cell;
-        const VkBuffer bom_buffer = roma_map_bom_buffer(R->maps[plan->pass_map[p]]);
+        const VkBuffer bom_buffer = m->bom_buffer;
         const uint64_t bom = d->blind_ray_start ? 0u : 1u; /* the walk reads the bound BOM */
         scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
         switch ((roma_pass_kind)p) {

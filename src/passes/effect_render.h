@@ -47,7 +47,7 @@ typedef struct roma_effect_render_desc {
                                           negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = ROMA_DEFAULT_SHADOW_STEPS (8, paper) */
     /* 1: rays skip their first cells without looking (the rule before the exact walk of
-     * roma_ray_start.glsl, which keeps rays from passing a wall they start next to). */
+     * roma/ray_start.glsl, which keeps rays from passing a wall they start next to). */
     int blind_ray_start;
     uint32_t lights_max_steps;         /* un-snapped rays of the many-lights pass; 0 = 16 */
     uint32_t rsm_size;                 /* reflective shadow map views, square; 0 = 256 */

@@ -4,6 +4,7 @@
 // through the installed roma/trace_descriptors.glsl (set 0: roma_map_info.trace_set).
 #define ROMA_TRACE_SET 0
 #include "roma/trace_descriptors.glsl"
+#include "roma/ray_start.glsl" // compiles against the installed headers (the probe's rays start at tmin 0)
 
 layout(local_size_x = 8) in;
 

@@ -52,7 +52,7 @@ install)
   prefix="$work/prefix"
   cmake --install "$build" --prefix "$prefix" >/dev/null
   for f in include/roma/roma.h include/roma/api.h include/roma/trace.glsl include/roma/trace_descriptors.glsl \
-           include/roma/trace_types.h lib/libroma.so lib/cmake/roma/romaConfig.cmake \
+           include/roma/trace_types.h include/roma/ray_start.glsl lib/libroma.so lib/cmake/roma/romaConfig.cmake \
            lib/cmake/roma/romaConfigVersion.cmake lib/pkgconfig/roma.pc bin/roma-render bin/roma-viewer; do
     [ -e "$prefix/$f" ] || fail "cmake --install did not install $f"
   done

@@ -1,54 +1,53 @@
-// The start of a ray that leaves a surface: an exact walk through the base occupancy
-// map (3D DDA, Amanatides-Woo) over the distance the ROMA query skips (its tmin).
+// libroma: the start of a ray that leaves a surface, walked exactly through the map's base
+// occupancy map (BOM, a 3D DDA, Amanatides-Woo) over the distance a ROMA query skips (its
+// tmin).
 //
-// ROMA queries skip their first trace cells because the rotated maps smear a surface
-// over about a trace cell around it, so a ray would meet the cells of the surface it
-// leaves. A wall within that distance was skipped too: in a closed room, rays starting
-// next to a corner passed through the other wall (light leaks, bright seams). The BOM
-// has no smear: a ray offset off its surface (1.5 trace cells = 2.6 BOM cells, above the
+// ROMA queries skip their first trace cells because the rotated maps smear a surface over
+// about a trace cell around it, so a ray would meet the cells of the surface it leaves. A
+// wall within that distance is skipped too: in a closed room, rays starting next to a
+// corner pass through the other wall (light leaks, bright seams). The BOM has no smear: a
+// ray offset off its surface (roma_offset_origin, 1.5 trace cells = 2.6 BOM cells, above the
 // cells a plane occupies) meets no cell of its own surface on the skipped part, so an
-// occupied BOM cell there is another surface and blocks the ray (docs/accuracy.md).
+// occupied BOM cell there is another surface and blocks the ray:
 //
-// Call roma_use_ray_start() once (after including the trace functions, whose grid it
-// reads) before the tracing; an address of 0 turns the walk off.
+//     roma_use_ray_start(pc.roma_bom);                 // roma_map_info.bom_address, as uvec2
+//     if (!roma_ray_start_blocked(origin, dir, tmin))  // tmin: the skip of the query below
+//         h = roma_trace_snapped(origin, dir, tmin, tmax, false);
+//
+// Include after roma/trace.glsl or roma/trace_descriptors.glsl (the grid comes through
+// roma_fetch_grid()). The BOM's words come by address, or through your own
+//     uint roma_fetch_bom_word(uint index);
+// defined before including this file with ROMA_RAY_START_FETCH defined (then any non-zero
+// value given to roma_use_ray_start turns the walk on). BOM layout: RES x RES texels of
+// RES / 32 words, texel (x, y) at word (y * RES + x) * (RES / 32); cell z is bit z % 32 of
+// the texel's word z / 32; cell (x, y, z) covers grid.origin + [x, x+1) * cell size, ...
+// (roma_grid_params, this frame's placement). Valid after the build that wrote it, like
+// the maps.
 #ifndef ROMA_RAY_START_GLSL
 #define ROMA_RAY_START_GLSL
 
+#include "roma/trace_types.h"
+
+#ifndef ROMA_RAY_START_FETCH
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
-
-#include "roma_shared.h"
-
-// The BOM's words: bound at ROMA_PIXEL_BINDING_BOM of the trace set when the includer
-// defines ROMA_RAY_START_BOUND (libroma's own passes: bound loads are the fast ones on CPU
-// devices), else reached through the address given to roma_use_ray_start.
-#ifdef ROMA_RAY_START_BOUND
-layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_BOM) readonly buffer RomaBoundBom {
-    uint roma_bom_words[];
-};
-#else
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaBomWords { uint w[]; };
 #endif
 
 uvec2 roma_start_bom_ = uvec2(0u);
 roma_grid_params roma_start_grid_;
 
-// bom: this frame's BOM (the map's, built with the maps traced): its address, or any
-// non-zero value when it is bound; 0 turns the walk off.
+// bom: the BOM's address (roma_map_info.bom_address; with ROMA_RAY_START_FETCH, any
+// non-zero value); 0 turns the walk off.
 void roma_use_ray_start(uvec2 bom)
 {
     roma_start_bom_ = bom;
     roma_start_grid_ = roma_fetch_grid();
 }
 
-uint roma_start_word_(uint index)
-{
-#ifdef ROMA_RAY_START_BOUND
-    return roma_bom_words[index];
-#else
-    return RomaBomWords(roma_start_bom_).w[index];
+#ifndef ROMA_RAY_START_FETCH
+uint roma_fetch_bom_word(uint index) { return RomaBomWords(roma_start_bom_).w[index]; }
 #endif
-}
 
 // Distance along normalize(dir) at which origin + normalize(dir) * [0, tmax] enters its
 // first occupied BOM cell, or -1 when it meets none.
@@ -72,7 +71,7 @@ float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
     float t = 0.0;
     for (int i = 0; i < cells && t <= tg; ++i) {
         if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(res)))) {
-            uint word = roma_start_word_((uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
+            uint word = roma_fetch_bom_word((uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
             if ((word & (1u << uint(cell.z & 31))) != 0u)
                 return t / inv_cell;
         }

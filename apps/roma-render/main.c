@@ -33,6 +33,8 @@ static const char *usage =
     "  --angular A                 ROMA A x A candidate directions for ao, 1..16 (default 4)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
+    "  --ao-method roma|voxel-dda  ROMA ao through the ROMA maps (default), or every ray walked exactly\n"
+    "                              through the voxel grid (a baseline: the voxelization's own error)\n"
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
@@ -98,6 +100,7 @@ typedef struct options {
     int reinhard;        /* --tonemap reinhard */
     int gi_rays;         /* --gi-punctual rays */
     int blind_start;     /* --ray-start blind */
+    int ao_dda;          /* --ao-method voxel-dda */
     float background[3];
     roma_light extra_lights[16];
     uint32_t extra_light_count;
@@ -112,12 +115,12 @@ enum {
     GIVEN_FRAMES = 1u << 0, GIVEN_RES = 1u << 1, GIVEN_ANGULAR = 1u << 2, GIVEN_SHADOW_ANGULAR = 1u << 3,
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
-    GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13
+    GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14
 };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--gi-punctual", "--ray-start", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
+    "--max-steps", "--gi-punctual", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
     "--background",
     "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", NULL};
@@ -286,6 +289,14 @@ static int parse_args(int argc, char **argv, options *o)
             }
         }
         else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
+        else if (strcmp(a, "--ao-method") == 0) {
+            o->ao_dda = strcmp(v, "voxel-dda") == 0;
+            o->given |= GIVEN_AO_METHOD;
+            if (!o->ao_dda && strcmp(v, "roma") != 0) {
+                fprintf(stderr, "roma-render: unknown ao method '%s' (valid: roma, voxel-dda)\n", v);
+                return 0;
+            }
+        }
         else if (strcmp(a, "--ray-start") == 0) {
             o->blind_start = strcmp(v, "blind") == 0;
             o->given |= GIVEN_RAY_START;
@@ -823,7 +834,7 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_FRAMES, "--frames"}, {GIVEN_RES, "--res"}, {GIVEN_ANGULAR, "--angular"},
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
-        {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}};
+        {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,
@@ -946,7 +957,7 @@ int main(int argc, char **argv)
                             .lights_angular = o.shadow_angular, .many_light_count = o.lights},
                 .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
                 .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame, .gi_punctual_rays = o.gi_rays,
-                .blind_ray_start = o.blind_start,
+                .blind_ray_start = o.blind_start, .ao_exact_traversal = o.ao_dda,
                 /* The library takes 0 as its default and a negative value as none. */
                 .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
                 .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,

@@ -67,6 +67,11 @@ for spec in "cornell|builtin:cornell|--ao-radius 0.5" "bunny|$scenes_dir/bunny.g
   roma "$name" "blind" "$scene" ao --ray-start blind $extra
   printf "%-8s blind ao-skip %-4s " "$name" 1.6
   row "$name" "blind" ao
+  # The baseline: every ray walked exactly through the BOM (no ROMA maps).
+  # shellcheck disable=SC2086
+  roma "$name" "voxel-dda" "$scene" ao --ao-method voxel-dda $extra
+  printf "%-8s voxel-dda     %-4s " "$name" "-"
+  row "$name" "voxel-dda" ao
   # The origin offset at the default skip.
   # shellcheck disable=SC2086
   roma "$name" "offset1.75" "$scene" ao --offset 1.75 $extra

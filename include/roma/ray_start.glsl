@@ -50,8 +50,10 @@ uint roma_fetch_bom_word(uint index) { return RomaBomWords(roma_start_bom_).w[in
 #endif
 
 // Distance along normalize(dir) at which origin + normalize(dir) * [0, tmax] enters its
-// first occupied BOM cell, or -1 when it meets none.
-float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
+// first occupied BOM cell, or -1 when it meets none within max_cells cells (the exact
+// voxel traversal of the BOM, Amanatides-Woo: the same voxels as ROMA without snapping,
+// rotation or bounded steps).
+float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
 {
     if (roma_start_bom_ == uvec2(0u) || !(tmax > 0.0))
         return -1.0;
@@ -66,11 +68,17 @@ float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
     vec3 inv = 1.0 / abs(d); // +inf on axis-parallel components
     vec3 next = (vec3(cell) + max(vec3(step), vec3(0.0)) - g) / d;
     next = vec3(d.x != 0.0 ? next.x : 1.0 / 0.0, d.y != 0.0 ? next.y : 1.0 / 0.0, d.z != 0.0 ? next.z : 1.0 / 0.0);
-    // A segment of length L crosses at most 3 * ceil(L) + 1 cells (bounded for odd skips).
-    int cells = min(3 * int(ceil(tg)) + 1, 64);
+    // A segment of length L crosses at most 3 * ceil(L) + 1 cells; an unbounded ray leaves
+    // the grid within 3 * RES + 1.
+    int cells = min(tg < float(3 * res) ? 3 * int(ceil(tg)) + 1 : 3 * res + 1, max_cells);
     float t = 0.0;
+    bool entered = false;
     for (int i = 0; i < cells && t <= tg; ++i) {
-        if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(res)))) {
+        bool inside = all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(res)));
+        if (!inside && entered)
+            break; // out of the grid for good: it is convex
+        entered = entered || inside;
+        if (inside) {
             uint word = roma_fetch_bom_word((uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
             if ((word & (1u << uint(cell.z & 31))) != 0u)
                 return t / inv_cell;
@@ -90,6 +98,12 @@ float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
         }
     }
     return -1.0;
+}
+
+// The skipped start of a ray (tmax: the skip): the walk above, at most 64 cells.
+float roma_ray_start_hit(vec3 origin, vec3 dir, float tmax)
+{
+    return roma_bom_walk(origin, dir, tmax, 64);
 }
 
 // True when an occupied BOM cell lies on origin + normalize(dir) * [0, tmax].

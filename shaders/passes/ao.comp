@@ -15,6 +15,11 @@ layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer 
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
 
+// A baseline for the accuracy study: rays walked exactly through the BOM from the origin to
+// their end (no ROMA maps: no snapping, no rotation), so that the voxelization's own error
+// shows apart from ROMA's. A constant, so that ROMA's pass carries none of its code.
+layout(constant_id = 0) const bool ROMA_AO_EXACT_TRAVERSAL = false;
+
 void main()
 {
     uint spp = pc.config.z, frame = pc.config.w;
@@ -34,6 +39,10 @@ void main()
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
             continue;
+        if (ROMA_AO_EXACT_TRAVERSAL) {
+            open += roma_bom_walk(origin, dir, pc.ray.y, 1 << 20) < 0.0 ? 1u : 0u;
+            continue;
+        }
         // The skipped start, walked exactly: no ray passes a wall it starts next to.
         if (roma_ray_start_blocked(origin, dir, min(pc.ray.z, pc.ray.y)))
             continue;

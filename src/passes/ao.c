@@ -13,6 +13,11 @@ struct roma_ao_pass {
 
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
 {
+    return roma_ao_pass_create_mode(ctx, 0, out);
+}
+
+roma_result roma_ao_pass_create_mode(roma_context *ctx, int exact_traversal, roma_ao_pass **out)
+{
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     *out = NULL;
@@ -22,7 +27,8 @@ roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
     if (!pass)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_pass_create: out of memory");
     pass->ctx = ctx;
-    roma_result r = roma_pixel_pass_create(ctx, "ao.comp", sizeof(roma_ao_push), 1, &pass->pass);
+    const uint32_t exact = exact_traversal ? 1u : 0u; /* ao.comp's constant 0 */
+    roma_result r = roma_pixel_pass_create_spec(ctx, "ao.comp", sizeof(roma_ao_push), 1, &exact, 1, &pass->pass);
     if (r != ROMA_SUCCESS) {
         roma_ao_pass_destroy(pass);
         return r;

@@ -35,6 +35,9 @@ typedef struct roma_ao_pass_inputs {
 } roma_ao_pass_inputs;
 
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out);
+/* The same with exact_traversal = 1: a baseline that walks every ray exactly through the
+ * map's BOM from its origin to its end (3D DDA) instead of tracing the ROMA maps. */
+roma_result roma_ao_pass_create_mode(roma_context *ctx, int exact_traversal, roma_ao_pass **out);
 /* Accepts NULL. */
 void roma_ao_pass_destroy(roma_ao_pass *pass);
 

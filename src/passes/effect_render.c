@@ -140,7 +140,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_data_create(ctx, scene, d->many_light_positions, R->plan.many_light_count, &R->lights);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO))
-        r = roma_ao_pass_create(ctx, &R->ao);
+        r = roma_ao_pass_create_mode(ctx, d->ao_exact_traversal, &R->ao);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS))
         r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), 1, &R->punctual);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS))

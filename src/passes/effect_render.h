@@ -46,6 +46,9 @@ typedef struct roma_effect_render_desc {
     float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
                                           negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = ROMA_DEFAULT_SHADOW_STEPS (8, paper) */
+    /* 1: AO by exact traversal of the BOM (3D DDA from each ray's origin to its end, no
+     * ROMA maps): the baseline that separates the voxelization's error from ROMA's. */
+    int ao_exact_traversal;
     /* 1: rays skip their first cells without looking (the rule before the exact walk of
      * roma/ray_start.glsl, which keeps rays from passing a wall they start next to). */
     int blind_ray_start;

@@ -68,9 +68,15 @@ float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
     vec3 inv = 1.0 / abs(d); // +inf on axis-parallel components
     vec3 next = (vec3(cell) + max(vec3(step), vec3(0.0)) - g) / d;
     next = vec3(d.x != 0.0 ? next.x : 1.0 / 0.0, d.y != 0.0 ? next.y : 1.0 / 0.0, d.z != 0.0 ? next.z : 1.0 / 0.0);
-    // A segment of length L crosses at most 3 * ceil(L) + 1 cells; an unbounded ray leaves
-    // the grid within 3 * RES + 1.
-    int cells = min(tg < float(3 * res) ? 3 * int(ceil(tg)) + 1 : 3 * res + 1, max_cells);
+    // The cells a segment crosses: one per step of its end cell's index from the start's,
+    // plus the first (SIMD devices run every lane to the group's largest count, so the
+    // exact count, not a bound); an unbounded ray leaves the grid within 3 * RES + 1.
+    int cells = 3 * res + 1;
+    if (tg < float(3 * res)) {
+        ivec3 last = ivec3(floor(g + d * tg));
+        cells = abs(last.x - cell.x) + abs(last.y - cell.y) + abs(last.z - cell.z) + 1;
+    }
+    cells = min(cells, max_cells);
     float t = 0.0;
     bool entered = false;
     for (int i = 0; i < cells && t <= tg; ++i) {

@@ -179,7 +179,7 @@ vec3 hit_radiance(roma_gi_scene S, uint tri, vec3 h, vec3 origin, vec3 dir, floa
             // of reach of a bounded walk: a snapped any-hit ray sees them all.
             vec3 l;
             float factor = roma_punctual_factor(light, y, ng, n, l);
-            if (factor > 0.0 && !roma_ray_start_blocked(o, l, tmin) &&
+            if (factor > 0.0 && !roma_ray_start_blocked(o, l, roma_start_walk * tmin) &&
                 (roma_trace_snapped(o, l, tmin, 1.0 / 0.0, false).info & ROMA_HIT_FLAG) == 0u)
                 E += roma_bounded_irradiance(factor, light.color_intensity.rgb);
         } else if (!rsm) {

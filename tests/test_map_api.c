@@ -69,6 +69,7 @@ int main(void)
     CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
     CHECK_RESULT(roma_map_get_info(map, &info), ROMA_SUCCESS);
     CHECK(info.maps_address != 0 && info.params_address != 0);
+    CHECK(info.bom_address != 0 && info.bom_buffer != VK_NULL_HANDLE); /* roma/ray_start.glsl's BOM */
     CHECK_NEAR(info.trace_cell, info.grid_cell * sqrtf(3.0f), 1e-6);
     for (uint32_t k = 0; k < info.map_count; ++k) {
         CHECK_RESULT(roma_map_candidate(map, k, dir), ROMA_SUCCESS);

@@ -107,7 +107,8 @@ static roma_scene *box_room(const float rot[9], int with_light)
     return scene;
 }
 
-/* blind: 1 the blind skip, 2 AO by exact traversal of the BOM (the study's baseline). */
+/* blind: 1 the blind skip, 2 AO by exact traversal of the BOM (the study's baseline; asked
+ * with the blind skip too, which the traversal has no use for and must not turn off). */
 static roma_result render(roma_context *ctx, const roma_scene *scene, uint32_t effects, int blind,
                           roma_gbuffer_pixel *px, roma_effect_images *img)
 {
@@ -117,7 +118,7 @@ static roma_result render(roma_context *ctx, const roma_scene *scene, uint32_t e
     if (!v.has_camera)
         roma_scene_default_camera(scene, (float)W / (float)H, &cam);
     roma_effect_render_desc d = {.camera = cam, .width = W, .height = H, .options = {.effects = effects},
-                                 .spp = 16, .frames = 8, .seed = 5, .out_gbuffer = px, .blind_ray_start = blind == 1,
+                                 .spp = 16, .frames = 8, .seed = 5, .out_gbuffer = px, .blind_ray_start = blind != 0,
                                  .ao_exact_traversal = blind == 2};
     roma_effect_stats st;
     return roma_effect_render(ctx, scene, &d, img, &st);
@@ -130,7 +131,9 @@ static void ao_leaks(roma_context *ctx, const char *name, const roma_scene *scen
     roma_effect_images img;
     memset(&img, 0, sizeof img);
     *share = 1.0, *max = 1.0f;
-    if (px && render(ctx, scene, ROMA_EFFECT_AO, blind, px, &img) == ROMA_SUCCESS && img.ao.pixels) {
+    roma_result r = px ? render(ctx, scene, ROMA_EFFECT_AO, blind, px, &img) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    CHECK_RESULT(r, ROMA_SUCCESS);
+    if (r == ROMA_SUCCESS && img.ao.pixels) {
         uint32_t covered = 0, bright = 0;
         *max = 0.0f;
         for (uint32_t i = 0; i < W * H; ++i) {
@@ -187,7 +190,11 @@ static void test_light_outside(roma_context *ctx, const char *name, const float 
         roma_gbuffer_pixel *px = calloc(W * H, sizeof *px);
         roma_effect_images img;
         memset(&img, 0, sizeof img);
-        if (px && render(ctx, scene, ROMA_EFFECT_DIRECT, blind, px, &img) == ROMA_SUCCESS && img.direct.pixels) {
+        CHECK(px != NULL);
+        roma_result r = px ? render(ctx, scene, ROMA_EFFECT_DIRECT, blind, px, &img) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
+        CHECK_RESULT(r, ROMA_SUCCESS);
+        CHECK(r != ROMA_SUCCESS || img.direct.pixels != NULL);
+        if (r == ROMA_SUCCESS && img.direct.pixels) {
             double near_sum = 0.0;
             uint32_t near = 0, near_lit = 0, band = 0, band_lit = 0, far = 0, far_lit = 0;
             for (uint32_t i = 0; i < W * H; ++i) {
@@ -236,7 +243,11 @@ static void test_gi_outside(roma_context *ctx, const char *name, const float rot
         roma_gbuffer_pixel *px = calloc(W * H, sizeof *px);
         roma_effect_images img;
         memset(&img, 0, sizeof img);
-        if (px && render(ctx, scene, ROMA_EFFECT_GI, blind, px, &img) == ROMA_SUCCESS && img.gi.pixels) {
+        CHECK(px != NULL);
+        roma_result r = px ? render(ctx, scene, ROMA_EFFECT_GI, blind, px, &img) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
+        CHECK_RESULT(r, ROMA_SUCCESS);
+        CHECK(r != ROMA_SUCCESS || img.gi.pixels != NULL);
+        if (r == ROMA_SUCCESS && img.gi.pixels) {
             uint32_t covered = 0;
             for (uint32_t i = 0; i < W * H; ++i)
                 if (isfinite(px[i].position_t[3])) {

@@ -49,7 +49,9 @@ extern "C" {
 typedef struct roma_ao_settings {
     uint32_t samples;     /**< rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
     float radius;         /**< ray length, world units; 0 = unbounded */
-    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS. */
+    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS.
+     * Below about 1 trace cell the exact walk of the skipped start meets the cells of the
+     * surface itself and blocks most rays (darker, not leaking). */
     float offset_cells;
     /** The ROMA query of a ray starts this far past the origin, trace cells; the part skipped
      * is walked exactly through the map's base occupancy map instead, so that no ray passes

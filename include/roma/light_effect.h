@@ -41,7 +41,9 @@ extern "C" {
 /** Per-record light settings; the zero value is the default (roma_light_settings_resolve). */
 typedef struct roma_light_settings {
     uint32_t max_steps;   /**< texels an un-snapped shadow ray walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
-    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS. */
+    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS.
+     * Below about 1 trace cell the exact walk of the skipped start meets the cells of the
+     * surface itself and blocks most rays (darker, not leaking). */
     float offset_cells;
     /** The ROMA query of a shadow ray starts this far past the origin, trace cells; four times
      * that is walked exactly through the map's base occupancy map first, so that no ray passes

@@ -8,7 +8,8 @@
 // corner pass through the other wall (light leaks, bright seams). The BOM has no smear: a
 // ray offset off its surface (roma_offset_origin, 1.5 trace cells = 2.6 BOM cells, above the
 // cells a plane occupies) meets no cell of its own surface on the skipped part, so an
-// occupied BOM cell there is another surface and blocks the ray:
+// occupied BOM cell there is another surface and blocks the ray (an offset below about one
+// trace cell would let the walk meet the surface's own cells and block rays wrongly):
 //
 //     roma_use_ray_start(pc.roma_bom);                 // roma_map_info.bom_address, as uvec2
 //     if (!roma_ray_start_blocked(origin, dir, tmin))  // tmin: the skip of the query below

@@ -38,8 +38,9 @@ bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
     vec3 v = target - origin;
     float d = length(v);
     float tmax = d - shorten;
+    // A segment shorter than the skip is walked whole: the ROMA query would skip all of it.
     if (!(tmax > tmin))
-        return true;
+        return !(tmax > 0.0) || !roma_ray_start_blocked(origin, v, tmax);
     if (roma_ray_start_blocked(origin, v, min(roma_start_walk * tmin, tmax)))
         return false;
     roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);

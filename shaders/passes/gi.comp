@@ -214,7 +214,8 @@ void main()
         if (dot(dir, ng) <= 0.0)
             continue;
         // The skipped start, walked exactly: a surface there is the hit (no ray passes a
-        // wall it starts next to); its point is the middle of the BOM cell it enters.
+        // wall it starts next to); its point lies half a BOM cell along the ray past where
+        // the ray enters that cell.
         float tw = roma_ray_start_hit(origin, dir, gi.ray.y);
         if (tw >= 0.0) {
             if (ROMA_GI_SURFACES) {

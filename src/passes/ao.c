@@ -9,6 +9,7 @@
 struct roma_ao_pass {
     roma_context *ctx;
     roma_pixel_pass pass;
+    int exact_traversal;
 };
 
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
@@ -27,6 +28,7 @@ roma_result roma_ao_pass_create_mode(roma_context *ctx, int exact_traversal, rom
     if (!pass)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_pass_create: out of memory");
     pass->ctx = ctx;
+    pass->exact_traversal = exact_traversal != 0;
     const uint32_t exact = exact_traversal ? 1u : 0u; /* ao.comp's constant 0 */
     roma_result r = roma_pixel_pass_create_spec(ctx, "ao.comp", sizeof(roma_ao_push), 1, &exact, 1, &pass->pass);
     if (r != ROMA_SUCCESS) {
@@ -57,7 +59,8 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
     if (in->spp == 0)
         return ROMA_SUCCESS;
     roma_ao_push push = {
-        .bom = in->blind_start ? 0u : 1u,
+        /* the exact traversal walks the whole ray through the BOM: it has no blind start */
+        .bom = (in->blind_start && !pass->exact_traversal) ? 0u : 1u,
         .config = {in->width, in->height, in->spp, in->frame},
         .config2 = {in->seed, 0, 0, 0},
         .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, 0.0f},

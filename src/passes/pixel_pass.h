@@ -1,7 +1,8 @@
 /* A compute pass with one invocation per pixel (8 x 8 workgroups) whose input is a
  * push-constant block and, for the passes that trace (AO, the light passes, GI), set 0
  * with the map's maps and parameters (roma/trace_descriptors.glsl), the G-buffer, the
- * covered-pixel list and the pass's accumulator (roma_pixel_bindings.glsl). One set is made
+ * covered-pixel list, the pass's accumulator and the map's BOM for the exact walk of the
+ * rays' start (roma_pixel_bindings.glsl, ROMA_PIXEL_BINDING_BOM). One set is made
  * for each combination of those buffers a pass is recorded with (at most
  * ROMA_PIXEL_PASS_MAX_SETS) and never rewritten, so recordings in flight stay valid.
  * Recording makes earlier writes of the G-buffer (fragment/compute), the ROMA

@@ -1,6 +1,7 @@
 /* roma-bench --accuracy: what accuracy costs in time. Ambient occlusion rendered
- * by ROMA (passes/effect_render.h) for every RES x A, and by the exact traversal of
- * the same voxels for every RES (the baseline that shows the voxelization's own error),
+ * by ROMA (passes/effect_render.h) for every RES x A, and for every RES by two baselines:
+ * the exact traversal of the same voxels (the voxelization's own error) and the distance
+ * field built from them every frame and sphere-traced (the ROMA paper's comparator),
  * timed per frame (G-buffer once, then per frame: the array rebuilt with new jitter and
  * the AO pass, from submit to fence on the host), against the Embree reference on the
  * same surface points and the same samples. */
@@ -106,21 +107,28 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
            "time per frame = host-observed render time / frames (%s); error against Embree\n"
            "on the same points and samples, over the pixels that see geometry.\n\n"
-           "| method | RES | A | ms per frame | MAE | bias |\n|---|---|---|---|---|---|\n",
+           "| method | RES | A | ms per frame | of which DF build (timestamps) | MAE | bias |\n"
+           "|---|---|---|---|---|---|---|\n",
            w, h, samples, d->spp, d->frames, (double)d->radius, how);
     int have_ref = 0;
     double roma_ms_128_4 = 0.0, roma_mae_128_4 = NAN; /* all frames at the defaults */
     for (int ri = 0; ri < d->res_count; ++ri)
-        for (int ai = 0; ai <= d->angular_count; ++ai) {
-            /* After the A list: the exact traversal, with one map (it reads only the BOM; the
-             * one-map rotation it does not need stays in its time). */
-            const int dda = ai == d->angular_count;
+        for (int ai = 0; ai <= d->angular_count + 1; ++ai) {
+            /* After the A list: the baselines, with one map (they read only the BOM; the
+             * one-map rotation they do not need stays in their time). */
+            const roma_ao_method method = ai < d->angular_count    ? ROMA_AO_METHOD_ROMA
+                                          : ai == d->angular_count ? ROMA_AO_METHOD_VOXEL_DDA
+                                                                   : ROMA_AO_METHOD_DISTANCE_FIELD;
+            const int dda = method != ROMA_AO_METHOD_ROMA;
+            const char *names[3] = {"ROMA", "voxel traversal", "distance field"};
+            const char *tags[3] = {"ao", "voxel-dda", "distance-field"};
             const uint32_t angular = dda ? 1u : d->angular[ai];
+            double df_ms = 0.0;
             roma_effect_render_desc rd = {
                 .camera = cam, .width = w, .height = h,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = d->res[ri], .ao_angular = angular},
                 .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = px,
-                .ao_exact_traversal = dda,
+                .ao_method = method,
             };
             roma_effect_images img;
             roma_effect_stats st;
@@ -133,6 +141,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                 times[k] = (roma_app_now_ms() - t0) / d->frames;
                 if (r != ROMA_SUCCESS)
                     break;
+                if (k == 0)
+                    df_ms = st.distance_field_ms / d->frames;
                 if (!have_ref) {
                     /* The G-buffer does not depend on RES or A: one reference for all. */
                     for (size_t i = 0; i < (size_t)w * h; ++i)
@@ -153,8 +163,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                 roma_effect_images_free(&img);
             }
             if (r != ROMA_SUCCESS) {
-                fprintf(stderr, "roma-bench: AO at RES %u, A %u%s failed: %s\n", d->res[ri], angular,
-                        dda ? " (voxel traversal)" : "", roma_result_string(r));
+                fprintf(stderr, "roma-bench: AO (%s) at RES %u, A %u failed: %s\n", names[method], d->res[ri],
+                        angular, roma_result_string(r));
                 status = 1;
                 continue;
             }
@@ -167,12 +177,18 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             char a_text[12] = "-";
             if (!dda)
                 snprintf(a_text, sizeof a_text, "%u", angular);
-            printf("| %s | %u | %s | %.1f | %.4f | %+.4f |\n", dda ? "voxel traversal" : "ROMA", d->res[ri], a_text,
-                   ms, mae, b);
+            char df_text[16] = "-";
+            if (method == ROMA_AO_METHOD_DISTANCE_FIELD)
+                snprintf(df_text, sizeof df_text, "%.1f", df_ms);
+            printf("| %s | %u | %s | %.1f | %s | %.4f | %+.4f |\n", names[method], d->res[ri], a_text, ms, df_text,
+                   mae, b);
             if (csv) {
-                const char *tag = dda ? "voxel-dda" : "ao";
+                const char *tag = tags[method];
                 fprintf(csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, d->res[ri], angular, ms);
                 fprintf(csv, "accuracy,%s mae,%u,%u,%.6f,\n", tag, d->res[ri], angular, mae);
+                if (method == ROMA_AO_METHOD_DISTANCE_FIELD)
+                    fprintf(csv, "accuracy,%s build ms per frame (timestamps),%u,%u,%.6f,ms\n", tag, d->res[ri],
+                            angular, df_ms);
             }
         }
     if (have_ref && embree_equal_time(ref, px, ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, times, csv))

@@ -232,9 +232,26 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(bom);        /* this frame's BOM (roma/ray_start.glsl), 0: rays skip their start blind */
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed */
-    ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world) */
+    ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps */
+    ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world),
+                             w: distance field baseline: least step (cells) */
 ROMA_STRUCT_END(roma_ao_push)
+
+/* ---- Distance field baseline (src/baselines/distance_field.c, shaders/baselines/df_*.comp) ----
+ * The accuracy study's comparator of the ROMA paper's Table 2: from the BOM, every cell's
+ * Euclidean distance (in cells) to the centre of the nearest occupied cell, by 3D jump
+ * flooding: seeds (each cell's nearest occupied cell so far, packed x | y << 10 | z << 20),
+ * one pass per step RES/2, ..., 1, then the distances as float16 pairs. Cells are indexed as
+ * the BOM's bits: (y * RES + x) * RES + z. */
+#define ROMA_DF_WORKGROUP_SIZE 64
+#define ROMA_DF_BINDING_BOM 0
+#define ROMA_DF_BINDING_SEEDS_IN 1
+#define ROMA_DF_BINDING_SEEDS_OUT 2
+#define ROMA_DF_BINDING_DISTANCES 3
+#define ROMA_DF_NO_SEED 0xffffffffu
+ROMA_STRUCT_BEGIN(roma_df_push)
+    ROMA_UVEC4(config);   /* x: RES, y: jump step (cells), z: RES^3 */
+ROMA_STRUCT_END(roma_df_push)
 
 /* ---- Light passes (src/passes/effect_render.c, shaders/passes/{punctual_lights,soft_shadows,many_lights}.comp) ---- */
 

@@ -15,10 +15,15 @@ layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer 
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
 
-// A baseline for the accuracy study: rays walked exactly through the BOM from the origin to
-// their end (no ROMA maps: no snapping, no rotation), so that the voxelization's own error
-// shows apart from ROMA's. A constant, so that ROMA's pass carries none of its code.
-layout(constant_id = 0) const bool ROMA_AO_EXACT_TRAVERSAL = false;
+// What the rays trace (roma_ao_method, src/passes/ao.h): 0 the ROMA maps; the accuracy
+// study's baselines 1 the BOM, each ray walked exactly from the origin to its end (no
+// snapping, no rotation: the voxelization's own error apart from ROMA's), 2 the distance
+// field built from the BOM, bound in its place, sphere-traced. A constant, so that ROMA's
+// pass carries none of their code.
+layout(constant_id = 0) const uint ROMA_AO_METHOD = 0u;
+
+#define ROMA_DF_WORD(i) roma_bom_words[i]
+#include "roma_distance_field.glsl"
 
 void main()
 {
@@ -30,6 +35,7 @@ void main()
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
     roma_use_ray_start(pc.bom);
+    roma_grid_params grid = roma_fetch_grid();
     uint seed = pc.config2.x, open = 0u;
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k; // new directions every frame, as in the reference
@@ -39,8 +45,12 @@ void main()
         precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
         if (below <= 0.0)
             continue;
-        if (ROMA_AO_EXACT_TRAVERSAL) {
+        if (ROMA_AO_METHOD == 1u) {
             open += roma_bom_walk(origin, dir, pc.ray.y, 1 << 20) < 0.0 ? 1u : 0u;
+            continue;
+        }
+        if (ROMA_AO_METHOD == 2u) {
+            open += roma_df_occluded(grid, origin, dir, pc.ray.y, pc.config2.y, pc.ray.w) ? 0u : 1u;
             continue;
         }
         // The skipped start, walked exactly: no ray passes a wall it starts next to.

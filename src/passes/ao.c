@@ -9,28 +9,28 @@
 struct roma_ao_pass {
     roma_context *ctx;
     roma_pixel_pass pass;
-    int exact_traversal;
+    roma_ao_method method;
 };
 
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out)
 {
-    return roma_ao_pass_create_mode(ctx, 0, out);
+    return roma_ao_pass_create_mode(ctx, ROMA_AO_METHOD_ROMA, out);
 }
 
-roma_result roma_ao_pass_create_mode(roma_context *ctx, int exact_traversal, roma_ao_pass **out)
+roma_result roma_ao_pass_create_mode(roma_context *ctx, roma_ao_method method, roma_ao_pass **out)
 {
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     *out = NULL;
-    if (!ctx)
+    if (!ctx || (unsigned)method > ROMA_AO_METHOD_DISTANCE_FIELD)
         return ROMA_ERROR_INVALID_ARGUMENT;
     roma_ao_pass *pass = calloc(1, sizeof *pass);
     if (!pass)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_pass_create: out of memory");
     pass->ctx = ctx;
-    pass->exact_traversal = exact_traversal != 0;
-    const uint32_t exact = exact_traversal ? 1u : 0u; /* ao.comp's constant 0 */
-    roma_result r = roma_pixel_pass_create_spec(ctx, "ao.comp", sizeof(roma_ao_push), 1, &exact, 1, &pass->pass);
+    pass->method = method;
+    const uint32_t constant = (uint32_t)method; /* ao.comp's constant 0 */
+    roma_result r = roma_pixel_pass_create_spec(ctx, "ao.comp", sizeof(roma_ao_push), 1, &constant, 1, &pass->pass);
     if (r != ROMA_SUCCESS) {
         roma_ao_pass_destroy(pass);
         return r;
@@ -59,11 +59,11 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
     if (in->spp == 0)
         return ROMA_SUCCESS;
     roma_ao_push push = {
-        /* the exact traversal walks the whole ray through the BOM: it has no blind start */
-        .bom = (in->blind_start && !pass->exact_traversal) ? 0u : 1u,
+        /* the baselines trace the whole ray through the bound BOM or field: no blind start */
+        .bom = (in->blind_start && pass->method == ROMA_AO_METHOD_ROMA) ? 0u : 1u,
         .config = {in->width, in->height, in->spp, in->frame},
-        .config2 = {in->seed, 0, 0, 0},
-        .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, 0.0f},
+        .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, ROMA_AO_DF_MIN_STEP},
+        .config2 = {in->seed, ROMA_AO_DF_MAX_STEPS, 0, 0},
     };
     return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->bom, in->gbuffer_pixels, in->accum,
                                        &push);

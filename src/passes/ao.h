@@ -26,7 +26,8 @@ typedef struct roma_ao_pass_inputs {
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */
     /* The map's BOM (roma_map_info.bom_buffer), bound: the skipped start is walked through it
-     * exactly, an occupied cell blocking the ray (roma/ray_start.glsl). */
+     * exactly, an occupied cell blocking the ray (roma/ray_start.glsl). With
+     * ROMA_AO_METHOD_DISTANCE_FIELD: the field's distances instead. */
     VkBuffer bom;
     int blind_start;                /* 1: the start is skipped unseen (the rule before the walk) */
     uint32_t spp, frame, seed;
@@ -34,10 +35,26 @@ typedef struct roma_ao_pass_inputs {
     VkBuffer accum;
 } roma_ao_pass_inputs;
 
+/* What the AO rays trace: ROMA, or one of the accuracy study's baselines. */
+typedef enum roma_ao_method {
+    ROMA_AO_METHOD_ROMA = 0,
+    /* every ray walked exactly through the map's BOM from its origin to its end (3D DDA,
+     * Amanatides-Woo): the same voxels without snapping, rotation or bounded steps */
+    ROMA_AO_METHOD_VOXEL_DDA = 1,
+    /* every ray sphere-traced from its origin through the distance field built from the
+     * map's BOM (baselines/distance_field.h), bound in the BOM's place, at most
+     * ROMA_AO_DF_MAX_STEPS steps of at least ROMA_AO_DF_MIN_STEP cells */
+    ROMA_AO_METHOD_DISTANCE_FIELD = 2,
+} roma_ao_method;
+
+/* The ROMA paper's baseline takes up to 64 steps; half a cell as the least step keeps the
+ * rays of a closed room inside (docs/accuracy-vs-time.md). */
+#define ROMA_AO_DF_MAX_STEPS 64u
+#define ROMA_AO_DF_MIN_STEP 0.5f
+
 roma_result roma_ao_pass_create(roma_context *ctx, roma_ao_pass **out);
-/* The same with exact_traversal = 1: a baseline that walks every ray exactly through the
- * map's BOM from its origin to its end (3D DDA) instead of tracing the ROMA maps. */
-roma_result roma_ao_pass_create_mode(roma_context *ctx, int exact_traversal, roma_ao_pass **out);
+/* The same for a method other than ROMA's. */
+roma_result roma_ao_pass_create_mode(roma_context *ctx, roma_ao_method method, roma_ao_pass **out);
 /* Accepts NULL. */
 void roma_ao_pass_destroy(roma_ao_pass *pass);
 

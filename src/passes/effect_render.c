@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "baselines/distance_field.h"
 #include "passes/ao.h"
 #include "passes/denoiser.h"
 #include "passes/gbuffer.h"
@@ -30,6 +31,7 @@ typedef struct renderer {
     roma_gpu_timer *build_timers[ROMA_PASS_COUNT]; /* one per map: its "bom" and "rotate" scopes */
     roma_light_data lights;
     roma_ao_pass *ao;
+    roma_distance_field distance_field; /* ROMA_AO_METHOD_DISTANCE_FIELD: built every frame */
     roma_pixel_pass punctual, soft, many, gi;
     roma_pixel_list list; /* covered pixels of the current G-buffer, for every tracing pass */
     roma_gbuffer *rsm[ROMA_MAX_RSM_VIEWS];
@@ -140,7 +142,14 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_data_create(ctx, scene, d->many_light_positions, R->plan.many_light_count, &R->lights);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO))
-        r = roma_ao_pass_create_mode(ctx, d->ao_exact_traversal, &R->ao);
+        r = roma_ao_pass_create_mode(ctx, d->ao_method, &R->ao);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO) &&
+        d->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD) {
+        roma_map_info info;
+        r = roma_map_get_info(R->maps[R->plan.pass_map[ROMA_PASS_AO]], &info);
+        if (r == ROMA_SUCCESS)
+            r = roma_distance_field_create(ctx, info.bom_buffer, info.resolution, &R->distance_field);
+    }
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS))
         r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), 1, &R->punctual);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS))
@@ -211,6 +220,7 @@ static void destroy_resources(renderer *R)
         roma_gbuffer_destroy(R->rsm[v]);
     roma_buffer_destroy(ctx, &R->views_buffer);
     roma_ao_pass_destroy(R->ao);
+    roma_distance_field_destroy(&R->distance_field);
     roma_light_data_destroy(ctx, &R->lights);
     roma_gpu_timer_destroy(R->timer);
     roma_gbuffer_destroy(R->gbuffer);
@@ -252,10 +262,18 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
         switch ((roma_pass_kind)p) {
         case ROMA_PASS_AO: {
+            VkBuffer bound = bom_buffer;
+            if (R->distance_field.ctx) {
+                /* The baseline's generation: from this frame's BOM, in the AO pass's time. */
+                uint32_t scope = roma_gpu_timer_begin(R->timer, cmd, "distance field");
+                roma_distance_field_record(&R->distance_field, cmd);
+                roma_gpu_timer_end(R->timer, cmd, scope);
+                bound = R->distance_field.distances.buffer;
+            }
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
                 .offset = offset, .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f,
-                .seed = d->seed, .accum = R->accum[p].buffer, .bom = bom_buffer, .blind_start = d->blind_ray_start,
+                .seed = d->seed, .accum = R->accum[p].buffer, .bom = bound, .blind_start = d->blind_ray_start,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
@@ -403,6 +421,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
         for (int p = 0; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p)
             if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p))
                 stats->pass_ms[p] += scope_ms(R->timer, roma_pass_name((roma_pass_kind)p));
+        if (r == ROMA_SUCCESS && R->distance_field.ctx)
+            stats->distance_field_ms += scope_ms(R->timer, "distance field");
         if (r == ROMA_SUCCESS && d->progress)
             d->progress((float)(f + 1) / (float)frames, d->progress_user_data);
     }
@@ -505,6 +525,9 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) ||
         !(desc->rsm_tolerance_cells >= 0.0f) || !isfinite(desc->rsm_tolerance_cells) || desc->rsm_size > 4096)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
+    if ((unsigned)desc->ao_method > ROMA_AO_METHOD_DISTANCE_FIELD)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: unknown AO method %u",
+                         (unsigned)desc->ao_method);
     for (uint32_t f = 0; desc->camera_path && f < (desc->frames ? desc->frames : 1); ++f)
         if (!roma_camera_make_frame(&desc->camera_path[f], desc->width, desc->height, &cf))
             return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: camera %u of the path is degenerate", f);
@@ -545,6 +568,8 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     if (R.mask.buffer)
         stats->pass_bytes[ROMA_PASS_MANY_LIGHTS] += R.mask.size;
     stats->pass_bytes[ROMA_PASS_GI] += R.surfaces.cells.size + R.gi_scene.size; /* the surface grid */
+    if (R.distance_field.ctx)
+        stats->distance_field_bytes = roma_distance_field_bytes(&R.distance_field, &stats->distance_field_build_bytes);
     if (R.gbuffer)
         stats->pass_bytes[ROMA_PASS_GBUFFER] = n * sizeof(roma_gbuffer_pixel);
     stats->pass_bytes[ROMA_PASS_RSM] =

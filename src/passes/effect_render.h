@@ -24,6 +24,7 @@
 #include "roma/effects.h"
 #include "roma/image.h"
 #include "roma/map.h"
+#include "passes/ao.h"
 #include "roma_shared.h"
 
 /* ROMA_DEFAULT_AO_SKIP_CELLS (roma/ao_effect.h): AO and GI rays skip their first 1.6 trace
@@ -46,9 +47,11 @@ typedef struct roma_effect_render_desc {
     float ao_skip_cells;               /* the same for AO and GI bounce rays; 0 = ROMA_DEFAULT_AO_SKIP_CELLS,
                                           negative = none */
     uint32_t max_steps;                /* un-snapped shadow rays of direct light; 0 = ROMA_DEFAULT_SHADOW_STEPS (8, paper) */
-    /* 1: AO by exact traversal of the BOM (3D DDA from each ray's origin to its end, no
-     * ROMA maps): the baseline that separates the voxelization's error from ROMA's. */
-    int ao_exact_traversal;
+    /* What AO rays trace (passes/ao.h): ROMA (0, the default) or a baseline of the accuracy
+     * study: the exact traversal of the BOM (3D DDA from each ray's origin to its end, no
+     * ROMA maps: the voxelization's error apart from ROMA's), or the distance field built
+     * from the BOM every frame and sphere-traced (the ROMA paper's comparator). */
+    roma_ao_method ao_method;
     /* 1: rays skip their first cells without looking (the rule before the exact walk of
      * roma/ray_start.glsl, which keeps rays from passing a wall they start next to). */
     int blind_ray_start;
@@ -99,6 +102,10 @@ typedef struct roma_effect_stats {
     double build_ms[ROMA_PASS_COUNT];  /* per array in plan.maps: BOM + rotation, summed over frames */
     roma_map_info map_info[ROMA_PASS_COUNT];
     uint64_t pass_bytes[ROMA_PASS_COUNT]; /* GPU memory of each pass's own buffers */
+    /* ROMA_AO_METHOD_DISTANCE_FIELD: the field's builds (GPU timestamps summed over frames,
+     * also in the AO pass's time), its memory and the seeds' while building. */
+    double distance_field_ms;
+    uint64_t distance_field_bytes, distance_field_build_bytes;
 } roma_effect_stats;
 
 roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const roma_effect_render_desc *desc,

@@ -29,8 +29,9 @@ static const char *usage =
     "  RES 128, A 4) against Embree (BVH rebuild + AO at the same points and samples), 1 and\n"
     "  4 spp. --small: a quick smoke run.\n"
     "  --accuracy: instead, what accuracy costs in time: AO rendered by ROMA for every RES x A\n"
+    "  and by the baselines for every RES (exact voxel traversal, distance field sphere tracing)\n"
     "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
-    "  frame and error against Embree on the same samples.\n";
+    "  frame and error against Embree on the same samples, and Embree at equal time.\n";
 
 static double timer_ms(roma_gpu_timer *timer, const char *name)
 {

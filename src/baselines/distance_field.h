@@ -1,4 +1,4 @@
-/* A baseline of the accuracy study (docs/accuracy-vs-time.md): the distance field the
+/* A baseline of the accuracy study (docs/benchmark.md): the distance field the
  * ROMA paper compares against (its Table 2), built from a map's BOM on the GPU every
  * frame by 3D jump flooding and sphere-traced (shaders/include/roma_distance_field.glsl).
  * Each cell holds the Euclidean distance, in cells, from its centre to the centre of the

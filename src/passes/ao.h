@@ -47,8 +47,9 @@ typedef enum roma_ao_method {
     ROMA_AO_METHOD_DISTANCE_FIELD = 2,
 } roma_ao_method;
 
-/* The ROMA paper's baseline takes up to 64 steps; half a cell as the least step keeps the
- * rays of a closed room inside (docs/accuracy-vs-time.md). */
+/* The ROMA paper's baseline takes up to 64 steps. With half a cell as the least step a ray
+ * can clip only the corner of an occupied cell: closed rooms leak on under 0.5% of their
+ * pixels (tests/test_closed_rooms.c). */
 #define ROMA_AO_DF_MAX_STEPS 64u
 #define ROMA_AO_DF_MIN_STEP 0.5f
 

@@ -34,6 +34,7 @@
 #include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/effects.h"
+#include "roma/gi_effect.h"
 #include "roma/light_effect.h"
 #include "roma/map.h"
 #include "roma/result.h"

@@ -301,6 +301,17 @@ ROMA_STRUCT_BEGIN(roma_light_images_push)
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
 ROMA_STRUCT_END(roma_light_images_push)
 
+/* The public GI effect (roma/gi_effect.h, shaders/effects/gi_images.comp). */
+ROMA_STRUCT_BEGIN(roma_gi_images_push)
+    ROMA_U64(scene);      /* roma_gi_scene of the slot (its lights are the record's) */
+    ROMA_U64(lights);     /* roma_gpu_light */
+    ROMA_U64(bom);        /* the map's BOM: the rays' skipped start walked exactly */
+    ROMA_U64(pad_);
+    ROMA_UVEC4(config);   /* x: width, y: height, z: samples, w: frame */
+    ROMA_UVEC4(config2);  /* x: seed, y: max steps of the shadow rays at a hit */
+    ROMA_VEC4(ray);       /* x: origin offset, y: the bounce rays' tmin, z: the shadow rays' tmin (world) */
+ROMA_STRUCT_END(roma_gi_images_push)
+
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(emitters);   /* roma_gpu_emitter */
     ROMA_U64(cdf);        /* float per emitter */

@@ -142,17 +142,6 @@ roma_result roma_light_effect_set_area_lights(roma_light_effect *e, const roma_s
     return ROMA_SUCCESS;
 }
 
-static int light_finite(const roma_light *l)
-{
-    const float v[] = {l->position[0], l->position[1], l->position[2], l->direction[0], l->direction[1],
-                       l->direction[2], l->color[0], l->color[1], l->color[2], l->intensity, l->range,
-                       l->inner_cone_angle, l->outer_cone_angle};
-    for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
-        if (!isfinite(v[i]))
-            return 0;
-    return l->type >= ROMA_LIGHT_POINT && l->type <= ROMA_LIGHT_DIRECTIONAL;
-}
-
 roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                      const roma_light_images *im, const roma_light *lights, uint32_t light_count,
                                      const roma_light_settings *settings_in)
@@ -168,7 +157,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_record: %u lights, at most %u",
                          light_count, MAX_LIGHTS);
     for (uint32_t i = 0; i < light_count; ++i)
-        if (!light_finite(&lights[i]))
+        if (!roma_light_valid(&lights[i]))
             return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                              "roma_light_effect_record: light %u has an unknown type or a NaN or infinite value", i);
     roma_light_settings s;

@@ -19,6 +19,17 @@ static roma_result upload(roma_context *ctx, const void *data, size_t size, roma
     return r;
 }
 
+int roma_light_valid(const roma_light *l)
+{
+    const float v[] = {l->position[0], l->position[1], l->position[2], l->direction[0], l->direction[1],
+                       l->direction[2], l->color[0], l->color[1], l->color[2], l->intensity, l->range,
+                       l->inner_cone_angle, l->outer_cone_angle};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
+        if (!isfinite(v[i]))
+            return 0;
+    return l->type >= ROMA_LIGHT_POINT && l->type <= ROMA_LIGHT_DIRECTIONAL;
+}
+
 /* The reference's expressions (src/reference/estimators.c), evaluated once here. */
 int roma_light_pack(const roma_light *l, roma_gpu_light *out)
 {

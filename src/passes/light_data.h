@@ -19,6 +19,8 @@ typedef struct roma_light_data {
 /* One light as the shaders read it (the reference's expressions, evaluated once); 0 when
  * it gives no light (zero intensity or colour, or no direction), and nothing is written. */
 int roma_light_pack(const roma_light *light, roma_gpu_light *out);
+/* 1 when a light given to a public effect has a known type and finite values. */
+int roma_light_valid(const roma_light *light);
 
 roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const float *many_positions,
                                    uint32_t many_count, roma_light_data *out);

@@ -1,0 +1,168 @@
+/** @file
+ * libroma: one-bounce diffuse global illumination with ROMA rays on the engine's own
+ * G-buffer images, recorded into the engine's command buffer.
+ *
+ * Per pixel, `samples` cosine-weighted bounce rays leave the surface (the reference
+ * tracer's sample dimensions 5 and 6) as snapped closest-hit ROMA queries through the map;
+ * the skipped start of each is walked exactly through the map's base occupancy map, so no
+ * bounce passes a wall it starts next to. A hit is a voxel, not a surface: a surface grid
+ * built from the scene given to roma_gi_effect_set_scene names the triangle there, whose
+ * albedo and normals give the light leaving the hit point: the direct light there, from
+ * the punctual lights of the record (one un-snapped ROMA shadow ray each; directional
+ * lights one snapped ray) and from the scene's emissive triangles (one sample per bounce,
+ * dimensions 7-9), as the reference tracer computes it. The emission of a surface a
+ * bounce hits is not added (it is direct light at the pixel).
+ *
+ * Inputs as for roma_light_effect (roma_light_images). Output: an RGBA32F storage image
+ * the engine owns: rgb = the irradiance E (W/m^2 per channel) that reaches the surface
+ * from one bounce off the scene; a = 0. Multiply by albedo / pi for the reflected
+ * radiance of a diffuse surface. Pixels with w <= 0 get 0. Each record is one frame's
+ * estimate; accumulate or filter over frames in the engine.
+ *
+ * Geometry: the bounce hits find their surfaces in the scene given to set_scene, which
+ * should hold the triangles the map was made from, where they are. Surfaces that move
+ * (animation, instances) are not followed: call set_scene again with the moved scene (the
+ * grid is rebuilt, RES^3 cells, at the next record). Point and spot lights are lit by
+ * shadow rays; the reflective shadow maps of the ROMA paper (libroma's offline renderer)
+ * need a rasterization of the light's view, which is the engine's to make.
+ *
+ * Threads: an effect is used by one thread at a time, like its context; records write only
+ * into the command buffer they are given and never submit or wait. Frame slots: as
+ * roma_ao_effect. */
+#ifndef ROMA_GI_EFFECT_H
+#define ROMA_GI_EFFECT_H
+
+#include "roma/api.h"
+
+#include <stdint.h>
+#include <vulkan/vulkan.h>
+
+#include "roma/context.h"
+#include "roma/light_effect.h"
+#include "roma/map.h"
+#include "roma/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Default bounce rays per pixel and frame. Defaults are resolved in one place
+ * (roma_gi_settings_resolve). */
+#define ROMA_DEFAULT_GI_SAMPLES 1u
+/** Default resolution of the surface grid the bounce hits look their surface up in. */
+#define ROMA_DEFAULT_GI_SURFACE_RESOLUTION 128u
+
+/** Per-record GI settings; the zero value is the default (roma_gi_settings_resolve). */
+typedef struct roma_gi_settings {
+    uint32_t samples; /**< bounce rays per pixel and frame; 0 = ROMA_DEFAULT_GI_SAMPLES */
+    /** Origin offset along the geometric normal, trace cells, >= 0; 0 = ROMA_DEFAULT_OFFSET_CELLS
+     * (for the bounce rays and the shadow rays at their hits). */
+    float offset_cells;
+    /** The ROMA query of a bounce ray starts this far past its origin, trace cells, the
+     * part skipped walked exactly through the base occupancy map. 0 =
+     * ROMA_DEFAULT_AO_SKIP_CELLS, negative = 0. */
+    float skip_cells;
+    /** The same for the shadow rays at a bounce hit (four skips walked exactly). 0 =
+     * ROMA_DEFAULT_SHADOW_SKIP_CELLS, negative = 0. */
+    float shadow_skip_cells;
+    uint32_t max_steps; /**< texels a shadow ray at a hit walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
+    uint32_t seed;      /**< sample sequences, as roma_ao_settings */
+    uint32_t frame;     /**< the engine's frame counter: new directions, and a new frame of the slot */
+} roma_gi_settings;
+
+/** The zero value's meaning filled in (the one place defaults are resolved).
+ *
+ * @param in        the settings; NULL = the zero value (all defaults).
+ * @param[out] out  the resolved settings; zeroed on failure. May equal in.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out, a negative or
+ *         non-finite offset, or a non-finite skip.
+ * @par Threads
+ * Any thread (pure). */
+ROMA_API roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_settings *out);
+
+/** One-bounce GI on the engine's G-buffer images (opaque). Used by one thread at a time, like
+ * its context. */
+typedef struct roma_gi_effect roma_gi_effect;
+
+/** Settings of roma_gi_effect_create; the zero value is the default. */
+typedef struct roma_gi_effect_desc {
+    uint32_t frames_in_flight;   /**< [1, 8]; 0 = 2 */
+    /** Surface grid resolution, 32 to 256; 0 = ROMA_DEFAULT_GI_SURFACE_RESOLUTION. At least
+     * the map's RES: a hit looks one grid cell around itself. */
+    uint32_t surface_resolution;
+    roma_logger logger;          /**< 0 = the context's */
+} roma_gi_effect_desc;
+
+/** Creates the GI effect. Until roma_gi_effect_set_scene gives it surfaces, its output is 0.
+ *
+ * @param context   the context; must outlive the effect.
+ * @param desc      settings; NULL = the zero value. Copied.
+ * @param[out] out  the new effect; NULL on failure.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, frames_in_flight
+ *         above ROMA_MAX_FRAMES_IN_FLIGHT or a surface resolution outside [32, 256];
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
+ * @par Threads
+ * The context's thread. */
+ROMA_API roma_result roma_gi_effect_create(roma_context *context, const roma_gi_effect_desc *desc,
+                                           roma_gi_effect **out);
+
+/** Destroys the effect and its buffers.
+ *
+ * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
+ *                work still uses it.
+ * @par Threads
+ * The context's thread. */
+ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
+
+/** The surfaces bounce rays light: the scene's triangles (positions, normals, each
+ * triangle's material albedo) and its emissive triangles as area lights, copied to the
+ * GPU; the surface grid over the scene's bounds is built by the next record (into its
+ * command buffer: submit the command buffers in the order they were recorded). Replaces
+ * the previous scene (NULL removes it); a failure keeps it. Call it between frames, when
+ * no submitted work of this effect is still running.
+ *
+ * @param effect  the effect.
+ * @param scene   the scene, or NULL; nothing of it is kept.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL effect; ROMA_ERROR_INVALID_SCENE
+ *         for a scene with empty bounds; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure
+ *         code (roma_result).
+ * @par Threads
+ * The context's thread; the scene may be read by other threads meanwhile. */
+ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma_scene *scene);
+
+/** Records the GI pass into cmd: when the scene changed, the surface grid's build (a fill
+ * and one compute dispatch), then one compute dispatch of 8 x 8 pixel groups. The lights
+ * are copied into the slot's storage at record time (up to 65,536; as
+ * roma_light_effect_record). One record per frame slot and settings frame. Synchronisation
+ * as roma_ao_effect: the map's build and the images' writes must be made visible to
+ * compute shader reads first; the output is written by the compute stage.
+ *
+ * @param effect       the effect.
+ * @param cmd          a command buffer of the context's queue family, recording.
+ * @param slot         the engine's frame slot, below the effect's frames_in_flight.
+ * @param map          a map with a build recorded earlier on the queue; it and the image views
+ *                     must outlive the recorded work.
+ * @param images       the images (as roma_light_effect's); copied.
+ * @param lights       light_count punctual lights, copied; may be NULL when light_count is 0.
+ * @param light_count  lights, at most 65,536.
+ * @param settings     NULL = the zero value (defaults, roma_gi_settings_resolve).
+ * @return ROMA_SUCCESS;
+ *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, NULL lights with
+ *   light_count > 0, a zero width or height, no position, normal or output view, more than
+ *   65,536 lights, a light of unknown type or with a NaN or infinite value, settings
+ *   roma_gi_settings_resolve rejects, a slot not below frames_in_flight, a second record
+ *   in one slot and frame;
+ *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
+ *   a Vulkan failure code (roma_result) for the slot's buffers or descriptor set.
+ * @par Threads
+ * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
+ROMA_API roma_result roma_gi_effect_record(roma_gi_effect *effect, VkCommandBuffer cmd, uint32_t slot,
+                                           const roma_map *map, const roma_light_images *images,
+                                           const roma_light *lights, uint32_t light_count,
+                                           const roma_gi_settings *settings);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROMA_GI_EFFECT_H */

@@ -1,0 +1,56 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+// One-bounce diffuse GI on an engine's G-buffer images (roma_gi_effect): per pixel,
+// samples cosine-weighted bounce rays (dimensions 5 and 6, pixel y * width + x, sample
+// frame * samples + k) through the map bound at set 0, each hit lit as in
+// roma_gi_bounce.glsl; writes E = pi * the mean radiance of the hits (cosine sampling
+// cancels cos / pi).
+#define ROMA_TRACE_SET 0
+#include "roma_lights.glsl"
+#include "roma_sampling.glsl"
+#include "roma_gi_bounce.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform sampler2D roma_gi_position;
+layout(set = 1, binding = 1) uniform sampler2D roma_gi_normal;
+layout(set = 1, binding = 2) uniform sampler2D roma_gi_geometric_normal;
+layout(set = 1, binding = 3, rgba32f) uniform writeonly image2D roma_gi_output;
+
+layout(push_constant) uniform Push { roma_gi_images_push pc; };
+
+void main()
+{
+    uvec2 xy = gl_GlobalInvocationID.xy;
+    uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w;
+    if (xy.x >= width || xy.y >= height)
+        return;
+    ivec2 at = ivec2(xy);
+    vec4 position = texelFetch(roma_gi_position, at, 0);
+    if (!(position.w > 0.0) || pc.scene == uvec2(0u)) {
+        imageStore(roma_gi_output, at, vec4(0.0));
+        return;
+    }
+    vec3 n = normalize(texelFetch(roma_gi_normal, at, 0).xyz);
+    vec3 ng = normalize(texelFetch(roma_gi_geometric_normal, at, 0).xyz);
+    vec3 origin = position.xyz + ng * pc.ray.x;
+    roma_use_ray_start(pc.bom);
+    roma_grid_params grid = roma_fetch_grid();
+    roma_gi_scene S = RomaGiScene(pc.scene).s;
+    uint seed = pc.config2.x, pixel = xy.y * width + xy.x;
+    roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights);
+    vec3 acc = vec3(0.0);
+    for (uint k = 0u; k < samples; ++k) {
+        uint s = frame * samples + k;
+        vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE),
+                                                                 roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE + 1u)));
+        if (dot(dir, ng) <= 0.0)
+            continue;
+        bool hit;
+        vec3 hit_point;
+        acc += roma_gi_bounce(S, P, grid, origin, dir, pc.ray.y, true, pixel, s, hit, hit_point);
+    }
+    imageStore(roma_gi_output, at, vec4(acc * (3.14159265358979 / float(samples)), 0.0));
+}

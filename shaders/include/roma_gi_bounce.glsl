@@ -1,0 +1,187 @@
+// One-bounce GI's bounce hits (passes/gi.comp and the public roma_gi_effect's
+// effects/gi_images.comp): a snapped closest hit is a cell, not a surface; the surface
+// grid of roma_gi_scene names the triangle in the cells around it, which gives the point
+// where the ray meets that triangle's plane, its normals and its albedo, and the light
+// leaving that point is the direct light there, as the reference computes it: one
+// area-light sample (dimensions 7-9) and directional lights through ROMA shadow rays,
+// point and spot lights by shadow rays too (ROMA_GI_PUNCTUAL_RAYS) or left to the caller.
+// Include after roma_lights.glsl (and the BOM's fetch, roma/ray_start.glsl).
+#ifndef ROMA_GI_BOUNCE_GLSL
+#define ROMA_GI_BOUNCE_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGiScene { roma_gi_scene s; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaUints { uint u[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaVec4s { vec4 v[]; };
+
+const uint ROMA_DIM_GI_BOUNCE = 5u;
+const uint ROMA_DIM_GI_AREA = 7u;
+const float ROMA_GI_INV_PI = 0.31830988618379067;
+
+// How a bounce hit is lit: the shadow rays' origin offset and skip (world units), their
+// most steps, the sample seed and the punctual lights (roma_gpu_light).
+struct roma_gi_shading {
+    float offset, shadow_tmin;
+    uint max_steps, seed;
+    uvec2 lights;
+};
+
+// The triangle the surface grid holds at p, or ROMA_GBUFFER_NO_TRIANGLE.
+uint roma_gi_surface_at(roma_gi_scene S, vec3 p)
+{
+    vec3 g = (p - S.grid.xyz) / S.grid.w;
+    float res = float(S.config.x);
+    if (!(all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(res)))))
+        return ROMA_GBUFFER_NO_TRIANGLE;
+    uvec3 c = uvec3(g);
+    return RomaUints(S.cells).u[(c.z * S.config.x + c.y) * S.config.x + c.x];
+}
+
+// The world point at map coordinates q of map frame f (roma_map_frame: map -> BOM
+// cell coordinates -> world).
+vec3 roma_gi_map_to_world(roma_grid_params grid, roma_map_frame f, vec3 q)
+{
+    vec3 b = f.map_to_bom_0.xyz * q.x + f.map_to_bom_1.xyz * q.y + f.map_to_bom_2.xyz * q.z + f.map_to_bom_3.xyz;
+    return grid.origin.xyz + b * grid.origin.w;
+}
+
+// The surface at p, or one surface cell around it.
+uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
+{
+    uint tri = roma_gi_surface_at(S, centre);
+    if (tri != ROMA_GBUFFER_NO_TRIANGLE)
+        return tri;
+    const vec3 around[6] = vec3[](vec3(-1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0),
+                                  vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
+    for (int i = 0; i < 6; ++i) {
+        uint tri = roma_gi_surface_at(S, centre + around[i] * S.grid.w);
+        if (tri != ROMA_GBUFFER_NO_TRIANGLE)
+            return tri;
+    }
+    return ROMA_GBUFFER_NO_TRIANGLE;
+}
+
+// The surface of a snapped hit: the occupied rotated cell is map cell `cell` of the
+// texel column the ray was moved to, and its bit is set because a point on its axis
+// falls in an occupied BOM cell. Look along that axis in the surface grid, then one
+// surface cell around its middle. cell: map coordinates of the cell's lower corner.
+uint roma_gi_find_surface(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3 cell, out vec3 centre)
+{
+    centre = roma_gi_map_to_world(grid, f, cell + vec3(0.5));
+    const float along[5] = float[](0.5, 0.25, 0.75, 0.0, 1.0);
+    for (int i = 0; i < 5; ++i) {
+        uint tri = roma_gi_surface_at(S, roma_gi_map_to_world(grid, f, cell + vec3(0.5, 0.5, along[i])));
+        if (tri != ROMA_GBUFFER_NO_TRIANGLE)
+            return tri;
+    }
+    return roma_gi_find_surface_around(S, centre);
+}
+
+// Radiance leaving triangle tri, which a bounce ray (origin, dir) hit near h at distance
+// t, towards the ray's origin: its albedo / pi times the direct irradiance there (with
+// S.config.w == ROMA_GI_PUNCTUAL_RSM point and spot lights are left to the caller's RSMs).
+vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, vec3 origin, vec3 dir, float t,
+                          uint pixel, uint s)
+{
+    if (tri == ROMA_GBUFFER_NO_TRIANGLE)
+        return vec3(0.0);
+    vec3 albedo = RomaVec4s(S.albedo).v[tri].rgb;
+    if (!any(greaterThan(albedo, vec3(0.0))))
+        return vec3(0.0);
+    uvec3 k = uvec3(RomaUints(S.indices).u[3u * tri], RomaUints(S.indices).u[3u * tri + 1u],
+                    RomaUints(S.indices).u[3u * tri + 2u]);
+    vec3 a = RomaVec4s(S.positions).v[k.x].xyz, b = RomaVec4s(S.positions).v[k.y].xyz,
+         c = RomaVec4s(S.positions).v[k.z].xyz;
+    vec3 ng = cross(b - a, c - a);
+    float area2 = length(ng);
+    if (!(area2 > 0.0))
+        return vec3(0.0);
+    ng /= area2;
+    if (dot(ng, dir) > 0.0)
+        ng = -ng; // the side the ray arrives from
+    // The point: where the ray meets the triangle's plane when that is near the hit,
+    // otherwise the hit moved onto the plane.
+    float dn = dot(ng, dir);
+    float tp = dot(ng, a - origin) / dn;
+    vec3 y = (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) ? origin + dir * tp : h - ng * dot(ng, h - a);
+    // Shading normal: the vertex normals at y, when the mesh has them.
+    vec3 n = ng;
+    vec3 n0 = RomaVec4s(S.normals).v[k.x].xyz;
+    if (dot(n0, n0) > 0.0) {
+        vec3 e1 = b - a, e2 = c - a, q = y - a;
+        float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), q1 = dot(q, e1), q2 = dot(q, e2);
+        float den = d11 * d22 - d12 * d12;
+        float v = (d22 * q1 - d12 * q2) / den, w = (d11 * q2 - d12 * q1) / den;
+        vec3 ns = (1.0 - v - w) * n0 + v * RomaVec4s(S.normals).v[k.y].xyz + w * RomaVec4s(S.normals).v[k.z].xyz;
+        if (dot(ns, ns) > 0.0 && den > 0.0) {
+            ns = normalize(ns);
+            n = dot(ns, ng) < 0.0 ? -ns : ns;
+        }
+    }
+    float offset = P.offset, tmin = P.shadow_tmin;
+    uint max_steps = P.max_steps, seed = P.seed;
+    vec3 o = y + ng * offset;
+    vec3 E = vec3(0.0);
+    if (S.config.y > 0u) {
+        vec3 u = vec3(roma_random(seed, pixel, s, ROMA_DIM_GI_AREA), roma_random(seed, pixel, s, ROMA_DIM_GI_AREA + 1u),
+                      roma_random(seed, pixel, s, ROMA_DIM_GI_AREA + 2u));
+        E += roma_area_sample_irradiance(RomaEmitters(S.emitters), RomaFloats(S.cdf), S.config.y, u, y, ng, n, o,
+                                         offset, tmin, max_steps);
+    }
+    bool rsm = S.config.w == ROMA_GI_PUNCTUAL_RSM;
+    for (uint i = 0u; i < S.config.z; ++i) {
+        roma_gpu_light light = RomaLights(P.lights).l[i];
+        if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
+            // The sun's occluders are anywhere between the hit and the scene's edge, out
+            // of reach of a bounded walk: a snapped any-hit ray sees them all.
+            vec3 l;
+            float factor = roma_punctual_factor(light, y, ng, n, l);
+            if (factor > 0.0 && !roma_ray_start_blocked(o, l, roma_start_walk * tmin) &&
+                (roma_trace_snapped(o, l, tmin, 1.0 / 0.0, false).info & ROMA_HIT_FLAG) == 0u)
+                E += roma_bounded_irradiance(factor, light.color_intensity.rgb);
+        } else if (!rsm) {
+            E += roma_punctual_irradiance(light, y, ng, n, o, offset, tmin, max_steps);
+        }
+    }
+    return albedo * ROMA_GI_INV_PI * E;
+}
+
+// One bounce ray's radiance from the surface it hits (origin: offset off the surface;
+// tmin: the skip, walked exactly through the BOM first: a surface there is the hit, at
+// half a BOM cell along the ray past where the ray enters it). Returns 0 on a miss;
+// hit_point: where the ray hit (for the caller's RSMs), valid when hit.
+vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, roma_grid_params grid, vec3 origin, vec3 dir, float tmin,
+                    bool surfaces, uint pixel, uint s, out bool hit, out vec3 hit_point)
+{
+    hit = false;
+    hit_point = origin;
+    float tw = roma_ray_start_hit(origin, dir, tmin);
+    if (tw >= 0.0) {
+        hit = true;
+        hit_point = origin + normalize(dir) * tw;
+        if (!surfaces)
+            return vec3(0.0);
+        vec3 hw = origin + normalize(dir) * (tw + 0.5 * grid.origin.w);
+        return roma_gi_hit_radiance(S, P, roma_gi_find_surface_around(S, hw), hw, origin, dir, tw, pixel, s);
+    }
+    roma_hit h = roma_trace_snapped(origin, dir, tmin, 1.0 / 0.0, true);
+    if ((h.info & ROMA_HIT_FLAG) == 0u)
+        return vec3(0.0);
+    hit = true;
+    roma_map_frame f = roma_fetch_frame(ROMA_HIT_MAP(h.info));
+    bool folded = (h.info & ROMA_HIT_FOLDED) != 0u;
+    // A snapped ray travels along its candidate direction (reversed when folded).
+    hit_point = origin + f.dir.xyz * (folded ? -1.0 : 1.0) * h.t;
+    if (!surfaces)
+        return vec3(0.0);
+    // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
+    vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
+    float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
+    vec3 centre;
+    uint tri = roma_gi_find_surface(S, grid, f, vec3(floor(m.xy), c), centre);
+    return roma_gi_hit_radiance(S, P, tri, centre, origin, dir, h.t, pixel, s);
+}
+
+#endif // ROMA_GI_BOUNCE_GLSL

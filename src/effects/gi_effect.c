@@ -1,0 +1,231 @@
+/* roma_gi_effect: one-bounce GI on the engine's G-buffer images (shaders/effects/
+ * gi_images.comp). The scene's surfaces (geometry, albedo, area lights and the surface grid
+ * the bounce hits look up, passes/surface_cells.h) are set between frames; the punctual
+ * lights and the roma_gi_scene record that points at them live in host-visible buffers
+ * per frame slot. */
+#include "roma/gi_effect.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "effects/image_effect.h"
+#include "passes/light_data.h"
+#include "passes/scene_buffers.h"
+#include "passes/surface_cells.h"
+#include "roma/ao_effect.h"
+#include "roma_shared.h"
+#include "util/log.h"
+
+#define MAX_LIGHTS 65536u
+
+/* What set_scene uploads: replaced as a whole. */
+typedef struct gi_surfaces {
+    roma_scene_buffers geometry;
+    roma_light_data emitters; /* the scene's area lights (its punctual lights come per record) */
+    roma_surface_cells grid;
+} gi_surfaces;
+
+struct roma_gi_effect {
+    roma_image_effect base;
+    uint32_t surface_resolution;
+    gi_surfaces surfaces; /* geometry.triangle_count == 0: no scene */
+    int grid_pending;     /* the next record builds the grid */
+    roma_buffer lights[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_buffer scene[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_gi_scene per slot */
+};
+
+roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_settings *out)
+{
+    roma_gi_settings s = in ? *in : (roma_gi_settings){0};
+    if (out)
+        memset(out, 0, sizeof *out);
+    if (!out)
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_settings_resolve: out is NULL");
+    if (!isfinite(s.offset_cells) || s.offset_cells < 0.0f || !isfinite(s.skip_cells) ||
+        !isfinite(s.shadow_skip_cells))
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_gi_settings: offset_cells must be finite and not negative, the skips finite");
+    if (s.samples == 0)
+        s.samples = ROMA_DEFAULT_GI_SAMPLES;
+    if (s.max_steps == 0)
+        s.max_steps = ROMA_DEFAULT_SHADOW_STEPS;
+    if (s.offset_cells == 0.0f)
+        s.offset_cells = ROMA_DEFAULT_OFFSET_CELLS;
+    s.skip_cells = s.skip_cells < 0.0f ? 0.0f : s.skip_cells > 0.0f ? s.skip_cells : ROMA_DEFAULT_AO_SKIP_CELLS;
+    s.shadow_skip_cells = s.shadow_skip_cells < 0.0f   ? 0.0f
+                          : s.shadow_skip_cells > 0.0f ? s.shadow_skip_cells
+                                                       : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
+    *out = s;
+    return ROMA_SUCCESS;
+}
+
+static void surfaces_free(roma_context *ctx, gi_surfaces *s)
+{
+    roma_surface_cells_destroy(&s->grid);
+    roma_light_data_destroy(ctx, &s->emitters);
+    roma_scene_buffers_destroy(ctx, &s->geometry);
+    memset(s, 0, sizeof *s);
+}
+
+roma_result roma_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *desc_in, roma_gi_effect **out)
+{
+    roma_gi_effect_desc desc = desc_in ? *desc_in : (roma_gi_effect_desc){0};
+    const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
+    if (!out)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_create: out is NULL");
+    *out = NULL;
+    if (!ctx)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_create: context is NULL");
+    if (desc.frames_in_flight == 0)
+        desc.frames_in_flight = 2;
+    if (desc.surface_resolution == 0)
+        desc.surface_resolution = ROMA_DEFAULT_GI_SURFACE_RESOLUTION;
+    if (desc.frames_in_flight > ROMA_MAX_FRAMES_IN_FLIGHT)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_create: frames_in_flight %u outside [1, %u]",
+                         desc.frames_in_flight, ROMA_MAX_FRAMES_IN_FLIGHT);
+    if (desc.surface_resolution < 32 || desc.surface_resolution > 256)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_gi_effect_create: surface_resolution %u outside [32, 256]", desc.surface_resolution);
+    roma_gi_effect *e = calloc(1, sizeof *e);
+    if (!e)
+        return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_gi_effect_create: out of host memory");
+    e->surface_resolution = desc.surface_resolution;
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_gi_effect_record", "gi_images.comp", 3, 1,
+                                           sizeof(roma_gi_images_push), desc.frames_in_flight);
+    if (r != ROMA_SUCCESS) {
+        free(e);
+        return r;
+    }
+    *out = e;
+    return ROMA_SUCCESS;
+}
+
+void roma_gi_effect_destroy(roma_gi_effect *e)
+{
+    if (!e)
+        return;
+    roma_context *ctx = e->base.ctx;
+    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s) {
+        roma_buffer_destroy(ctx, &e->lights[s]);
+        roma_buffer_destroy(ctx, &e->scene[s]);
+    }
+    surfaces_free(ctx, &e->surfaces);
+    roma_image_effect_free(&e->base);
+    free(e);
+}
+
+roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
+{
+    const roma_logger *log = e ? &e->base.logger : NULL;
+    if (!e)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_set_scene: effect is NULL");
+    roma_context *ctx = e->base.ctx;
+    if (!scene) {
+        surfaces_free(ctx, &e->surfaces);
+        e->grid_pending = 0;
+        return ROMA_SUCCESS;
+    }
+    /* Built aside, swapped in only when complete: a failure keeps the previous scene. */
+    gi_surfaces s;
+    memset(&s, 0, sizeof s);
+    roma_scene_view v;
+    roma_result r = roma_scene_get_view(scene, &v);
+    if (r == ROMA_SUCCESS)
+        r = roma_scene_buffers_create(ctx, scene, &s.geometry);
+    if (r == ROMA_SUCCESS)
+        r = roma_light_data_create(ctx, scene, NULL, 0, &s.emitters);
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_create(ctx, &s.geometry, v.bounds_min, v.bounds_max, e->surface_resolution, &s.grid);
+    if (r != ROMA_SUCCESS) {
+        surfaces_free(ctx, &s);
+        return roma_fail(log, r, "roma_gi_effect_set_scene: cannot upload the scene's surfaces");
+    }
+    surfaces_free(ctx, &e->surfaces);
+    e->surfaces = s;
+    e->grid_pending = 1;
+    return ROMA_SUCCESS;
+}
+
+/* Makes buf hold at least bytes of host-visible storage (the slot's previous use has
+ * completed, so it may be replaced). */
+static roma_result slot_buffer(roma_context *ctx, roma_buffer *buf, VkDeviceSize bytes)
+{
+    if (buf->size >= bytes)
+        return ROMA_SUCCESS;
+    roma_buffer_destroy(ctx, buf);
+    return roma_buffer_create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                              ROMA_MEMORY_UPLOAD, buf);
+}
+
+roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                  const roma_light_images *im, const roma_light *lights, uint32_t light_count,
+                                  const roma_gi_settings *settings_in)
+{
+    const roma_logger *log = e ? &e->base.logger : NULL;
+    if (!e || !cmd || !map || !im || (light_count && !lights))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_record: %s is NULL",
+                         !e ? "effect" : !cmd ? "cmd" : !map ? "map" : !im ? "images" : "lights");
+    if (!im->width || !im->height || !im->position || !im->normal || !im->output)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_gi_effect_record: width, height, position, normal and output are required");
+    if (light_count > MAX_LIGHTS)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_record: %u lights, at most %u", light_count,
+                         MAX_LIGHTS);
+    for (uint32_t i = 0; i < light_count; ++i)
+        if (!roma_light_valid(&lights[i]))
+            return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                             "roma_gi_effect_record: light %u has an unknown type or a NaN or infinite value", i);
+    roma_gi_settings s;
+    roma_result r = roma_gi_settings_resolve(settings_in, &s);
+    if (r != ROMA_SUCCESS)
+        return roma_fail(log, r, "roma_gi_effect_record: invalid settings");
+    roma_map_info info;
+    r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
+    if (r != ROMA_SUCCESS)
+        return r;
+    /* The lights and the scene record live in buffers per slot: a second record in the
+     * slot's frame would overwrite what the first one's dispatch reads. */
+    if (roma_image_effect_same_frame(&e->base, slot))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_gi_effect_record: one record per frame slot (slot %u was recorded this frame)", slot);
+    roma_context *ctx = e->base.ctx;
+    r = slot_buffer(ctx, &e->lights[slot], sizeof(roma_gpu_light) * (VkDeviceSize)(light_count ? light_count : 1));
+    if (r == ROMA_SUCCESS)
+        r = slot_buffer(ctx, &e->scene[slot], sizeof(roma_gi_scene));
+    if (r != ROMA_SUCCESS)
+        return r;
+    uint32_t packed = 0;
+    for (uint32_t i = 0; i < light_count; ++i)
+        packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)e->lights[slot].mapped + packed);
+    const gi_surfaces *sf = &e->surfaces;
+    const int have_scene = sf->geometry.triangle_count > 0;
+    if (have_scene) {
+        const roma_surface_cells *c = &sf->grid;
+        roma_gi_scene gs = {
+            .cells = c->cells.address, .indices = sf->geometry.indices.address,
+            .positions = sf->geometry.positions.address, .normals = sf->geometry.normals.address,
+            .albedo = sf->geometry.albedo.address, .emitters = sf->emitters.emitters.address,
+            .cdf = sf->emitters.cdf.address,
+            .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
+            .config = {c->resolution, sf->emitters.emitter_count, packed, ROMA_GI_PUNCTUAL_RAYS},
+        };
+        memcpy(e->scene[slot].mapped, &gs, sizeof gs);
+        if (e->grid_pending) {
+            roma_surface_cells_record(&e->surfaces.grid, cmd);
+            e->grid_pending = 0;
+        }
+    }
+    roma_gi_images_push push = {
+        .scene = have_scene ? e->scene[slot].address : 0, .lights = e->lights[slot].address,
+        .bom = info.bom_address,
+        .config = {im->width, im->height, s.samples, s.frame},
+        .config2 = {s.seed, s.max_steps, 0, 0},
+        .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, s.shadow_skip_cells * info.trace_cell,
+                0},
+    };
+    const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
+                                  im->output};
+    return roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
+                                      im->height);
+}

@@ -11,15 +11,16 @@
 namespace {
 // Set 0 of compose.comp: 0-2 G-buffer (sampled), 3-6 effect outputs, accum out, display
 // (storage images), 7-8 reference and BOM (storage buffers), 9-11 history (storage
-// images), 12 the Frame block (storage buffer).
-constexpr uint32_t kBindings = 13;
+// images), 12 the Frame block (storage buffer), 13 the GI output (storage image).
+constexpr uint32_t kBindings = 14;
 VkDescriptorType binding_type(uint32_t i)
 {
     return i < 3    ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
            : i < 7  ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
            : i < 9  ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
            : i < 12 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-                    : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+           : i < 13 ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                    : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
 struct frame_block { // std430, as compose.comp's Frame
@@ -54,7 +55,7 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.trace_layout) != VK_SUCCESS)
         return false;
     VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 14},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 16},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
                                      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -155,6 +156,7 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
 {
     vk_image_destroy(b, c.ao);
     vk_image_destroy(b, c.light);
+    vk_image_destroy(b, c.gi);
     vk_image_destroy(b, c.display);
     for (int k = 0; k < 2; ++k) {
         vk_image_destroy(b, c.accum[k]);
@@ -167,6 +169,7 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
     const VkFormat f32x4 = VK_FORMAT_R32G32B32A32_SFLOAT;
     if (!vk_image_create(b, c.width, c.height, VK_FORMAT_R32_SFLOAT, storage, c.ao) ||
         !vk_image_create(b, c.width, c.height, f32x4, storage, c.light) ||
+        !vk_image_create(b, c.width, c.height, f32x4, storage, c.gi) ||
         !vk_image_create(b, c.width, c.height, VK_FORMAT_R8G8B8A8_UNORM, storage, c.display))
         return false;
     for (int k = 0; k < 2; ++k) {
@@ -198,7 +201,7 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
         }
     for (uint32_t k = 0; k < 2; ++k) {
         // Parity k writes accum[k] and positions[k] and reads the other pair.
-        VkDescriptorImageInfo images[12] = {
+        VkDescriptorImageInfo images[kBindings] = {
             {c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {c.sampler, g.albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
@@ -210,9 +213,11 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
             {},
             {VK_NULL_HANDLE, c.accum[1 - k].view, VK_IMAGE_LAYOUT_GENERAL},
             {VK_NULL_HANDLE, c.positions[k].view, VK_IMAGE_LAYOUT_GENERAL},
-            {VK_NULL_HANDLE, c.positions[1 - k].view, VK_IMAGE_LAYOUT_GENERAL}};
+            {VK_NULL_HANDLE, c.positions[1 - k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {},
+            {VK_NULL_HANDLE, c.gi.view, VK_IMAGE_LAYOUT_GENERAL}};
         VkDescriptorBufferInfo frame{c.frame_data[k].buffer, 0, VK_WHOLE_SIZE};
-        VkWriteDescriptorSet writes[11];
+        VkWriteDescriptorSet writes[kBindings];
         uint32_t n = 0;
         for (uint32_t i = 0; i < kBindings; ++i) {
             if (i == 7 || i == 8)
@@ -252,6 +257,7 @@ void compose_pass_destroy(const vk_base &b, compose_pass &c)
 {
     vk_image_destroy(b, c.ao);
     vk_image_destroy(b, c.light);
+    vk_image_destroy(b, c.gi);
     vk_image_destroy(b, c.display);
     for (int k = 0; k < 2; ++k) {
         vk_image_destroy(b, c.accum[k]);
@@ -294,6 +300,8 @@ void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd)
     vk_image_barrier(cmd, c.ao.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before, 0,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
     vk_image_barrier(cmd, c.light.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before, 0,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
+    vk_image_barrier(cmd, c.gi.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before, 0,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
 }
 
@@ -340,9 +348,9 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
         float ambient[4], background[4], bom_origin[4];
         uint32_t size[2], view, accumulated;
         float exposure, debug_length, offset;
-        uint32_t ao_on, direct_on, slice_axis, slice_depth, bom_res, compared;
+        uint32_t ao_on, direct_on, slice_axis, slice_depth, bom_res, compared, gi_on;
     } push{};
-    static_assert(sizeof push == 100, "the push block of compose.comp");
+    static_assert(sizeof push == 104, "the push block of compose.comp");
     for (int i = 0; i < 3; ++i) {
         push.ambient[i] = s.ambient[i];
         push.background[i] = s.background[i];
@@ -362,6 +370,7 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     push.offset = s.offset;
     push.ao_on = s.ao_on;
     push.direct_on = s.direct_on;
+    push.gi_on = s.gi_on;
     VkDescriptorSet sets[2] = {c.sets[k], trace_set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);

@@ -1,4 +1,4 @@
-// roma-viewer: the effect outputs (AO, direct irradiance), the accumulation image and
+// roma-viewer: the effect outputs (AO, direct and indirect irradiance), the accumulation image and
 // the display image, and the compute pass that turns them into the picture.
 #pragma once
 
@@ -15,6 +15,7 @@ enum view_mode : uint32_t {
     VIEW_BOM_SLICE,    // a layer of a captured base occupancy map over the scene
     VIEW_REFERENCE,    // the Embree reference of the compared view
     VIEW_DIFFERENCE,   // |ROMA - reference| as a heat map
+    VIEW_GI,           // one-bounce indirect light
     VIEW_COUNT
 };
 
@@ -26,7 +27,7 @@ struct compose_settings {
     float exposure;
     float debug_length;
     float offset;
-    bool ao_on, direct_on;
+    bool ao_on, direct_on, gi_on;
     float bom_origin[4];    // xyz corner of cell (0,0,0), w cell size
     uint32_t slice_axis, slice_depth, bom_res; // bom_res 0: nothing captured
     view_mode compared;     // VIEW_AO or VIEW_DIRECT: what the reference holds
@@ -41,7 +42,7 @@ struct compose_settings {
 };
 
 struct compose_pass {
-    vk_image ao, light, display;
+    vk_image ao, light, gi, display;
     vk_image accum[2], positions[2]; // history, alternating: frame parity k writes [k], reads [1 - k]
     vk_buffer frame_data[2];         // the Frame uniform block per parity (host-written)
     bool history_ready[2] = {};      // [k] was written since the images were made

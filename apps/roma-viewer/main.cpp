@@ -15,6 +15,7 @@
 #include <roma/builtin_scenes.h>
 #include <roma/gltf.h>
 #include <roma/image.h>
+#include <roma/gi_effect.h>
 #include <roma/light_effect.h>
 #include <roma/roma.h>
 
@@ -51,7 +52,7 @@ const char *kUsage =
     "  --size WxH           window or image size (default 1280x720)\n"
     "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
     "  --gltf-camera N      which of a glTF file's perspective cameras to start from (default 0)\n"
-    "  --view NAME          composed, ao, direct, albedo, normal, map, hit-distance\n"
+    "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
@@ -105,8 +106,8 @@ bool parse_float(const char *s, float lo, float hi, float &out)
     return true;
 }
 
-const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",
-                                     "map",      "hit-distance", "bom-slice", "reference", "difference"};
+const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",    "map",
+                                     "hit-distance", "bom-slice", "reference", "difference", "gi"};
 
 int parse_args(int argc, char **argv, options &o)
 {
@@ -143,7 +144,7 @@ int parse_args(int argc, char **argv, options &o)
                 if (!std::strcmp(v, kViewNames[k]))
                     o.settings.view = static_cast<view_mode>(k), ok = true;
             if (!ok) {
-                std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, albedo, "
+                std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, gi, albedo, "
                                      "normal, map, hit-distance, bom-slice)\n", v);
                 return 2;
             }
@@ -239,6 +240,7 @@ struct viewer {
     roma_animator *animator = nullptr;
     roma_ao_effect *ao = nullptr;
     roma_light_effect *light = nullptr;
+    roma_gi_effect *gi = nullptr;
     gbuffer_pass gb;
     compose_pass cp;
     VkCommandPool pool = VK_NULL_HANDLE;
@@ -357,9 +359,10 @@ void describe_plan(viewer &v)
     }
     text += "\n" + std::to_string(plan.map_count) + " ROMA arrays. The viewer runs the G-buffer, AO (roma_ao_effect)";
     text += v.view.light_count || v.view.emissive_triangle_count
-                ? " and direct light from punctual and area lights (roma_light_effect)"
-                : " (no lights in the scene: no direct light)";
-    text += " on one array; many lights and GI are not in the public effect API yet.";
+                ? ", direct light from punctual and area lights (roma_light_effect) and one-bounce GI"
+                  " (roma_gi_effect, its hits lit by shadow rays)"
+                : " (no lights in the scene: no direct light, no GI)";
+    text += " on one array; many lights are not in the public effect API yet.";
     v.info.plan = text;
 }
 
@@ -404,7 +407,8 @@ bool open_scene(viewer &v, const std::string &name)
     v.info.area_light_triangles = v.view.emissive_triangle_count;
     if (!upload_scene(v) || !create_map(v))
         return false;
-    if (roma_light_effect_set_area_lights(v.light, scene) != ROMA_SUCCESS)
+    if (roma_light_effect_set_area_lights(v.light, scene) != ROMA_SUCCESS ||
+        roma_gi_effect_set_scene(v.gi, scene) != ROMA_SUCCESS)
         return false;
     v.s.animated = false;
     if (v.view.animation.animation_count > 0 && v.view.animation.vertex_node) {
@@ -484,8 +488,11 @@ bool create_libroma(viewer &v)
     ad.frames_in_flight = kSlots;
     roma_light_effect_desc ld{};
     ld.frames_in_flight = kSlots;
+    roma_gi_effect_desc gd{};
+    gd.frames_in_flight = kSlots;
     return roma_ao_effect_create(v.ctx, &ad, &v.ao) == ROMA_SUCCESS &&
-           roma_light_effect_create(v.ctx, &ld, &v.light) == ROMA_SUCCESS;
+           roma_light_effect_create(v.ctx, &ld, &v.light) == ROMA_SUCCESS &&
+           roma_gi_effect_create(v.ctx, &gd, &v.gi) == ROMA_SUCCESS;
 }
 
 bool resize_images(viewer &v, uint32_t width, uint32_t height)
@@ -672,6 +679,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     bool want_ao = s.ao_on && (shown == VIEW_COMPOSED || shown == VIEW_AO);
     bool lit = v.view.light_count > 0 || v.view.emissive_triangle_count > 0;
     bool want_direct = s.direct_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
+    bool want_gi = s.gi_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_GI);
     if (want_ao) {
         roma_ao_images images{};
         images.width = v.gb.width;
@@ -709,6 +717,26 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
             return false;
         v.passes.push_back("direct_light");
     }
+    if (want_gi) {
+        roma_light_images images{};
+        images.width = v.gb.width;
+        images.height = v.gb.height;
+        images.position = v.gb.position.view;
+        images.normal = v.gb.normal.view;
+        images.output = v.cp.gi.view;
+        roma_gi_settings gs{};
+        gs.samples = s.gi_samples;
+        gs.max_steps = s.max_steps;
+        gs.offset_cells = s.offset;
+        gs.skip_cells = s.ao_skip;
+        gs.shadow_skip_cells = s.shadow_skip;
+        gs.seed = 1;
+        gs.frame = v.frame;
+        if (roma_gi_effect_record(v.gi, cmd, slot, v.map, &images, v.view.lights, v.view.light_count, &gs) !=
+            ROMA_SUCCESS)
+            return false;
+        v.passes.push_back("gi");
+    }
     stamp(v, cmd, slot, 4);
     roma_map_info mi;
     roma_map_get_info(v.map, &mi);
@@ -724,6 +752,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.offset = (s.offset > 0.0f ? s.offset : ROMA_DEFAULT_OFFSET_CELLS) * mi.trace_cell;
     cs.ao_on = want_ao;
     cs.direct_on = want_direct;
+    cs.gi_on = want_gi;
     for (int i = 0; i < 4; ++i)
         cs.bom_origin[i] = v.bom_origin[i];
     cs.slice_axis = s.slice_axis;
@@ -1076,7 +1105,7 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
             moved |= camera_control_zoom(v.cam, float(number(0)));
         } else if (st.verb == "set") {
             bool on = arg(1) == "on";
-            bool *flag = arg(0) == "ao" ? &v.s.ao_on : arg(0) == "direct" ? &v.s.direct_on
+            bool *flag = arg(0) == "ao" ? &v.s.ao_on : arg(0) == "direct" ? &v.s.direct_on : arg(0) == "gi" ? &v.s.gi_on
                          : arg(0) == "accumulate" ? &v.s.accumulate : arg(0) == "filter" ? &v.s.filter : nullptr;
             if (flag)
                 *flag = on, act.reset_accumulation = true;
@@ -1456,6 +1485,7 @@ void destroy(viewer &v)
     free_scene(v);
     roma_ao_effect_destroy(v.ao);
     roma_light_effect_destroy(v.light);
+    roma_gi_effect_destroy(v.gi);
     roma_context_destroy(v.ctx);
     gbuffer_pass_destroy(v.base, v.gb);
     compose_pass_destroy(v.base, v.cp);

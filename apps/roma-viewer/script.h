@@ -4,7 +4,7 @@
 //   key F | key TAB | key F12    press a key (frame the scene, orbit/fly, screenshot)
 //   drag left|right DX DY N      drag with a mouse button by (DX, DY) pixels over N frames
 //   wheel STEPS                  scroll
-//   set ao|direct|accumulate|filter on|off
+//   set ao|direct|gi|accumulate|filter on|off
 //   view NAME                    as --view (composed, ao, direct, albedo, normal, map, ...)
 //   res R | angular A            the ROMA array
 //   resize W H                   the window (1 1 is allowed)

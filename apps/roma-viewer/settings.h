@@ -13,7 +13,8 @@ struct viewer_settings {
     // ROMA array (a change makes a new map: pipelines are shared, so it is quick)
     uint32_t res = 128, angular = 4;
     // effects
-    bool ao_on = true, direct_on = true;
+    bool ao_on = true, direct_on = true, gi_on = true;
+    uint32_t gi_samples = 1;         // bounce rays per pixel and frame
     uint32_t ao_samples = 4;
     float ao_radius = 0.0f;          // 0: from the scene size (auto_ao_radius)
     float auto_ao_radius = 1.0f;

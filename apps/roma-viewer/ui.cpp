@@ -9,7 +9,7 @@ namespace {
 const char *kViews[VIEW_COUNT] = {"composed", "ambient occlusion", "direct light", "albedo", "normal",
                                   "ROMA map per pixel (ray along the normal)", "ROMA hit distance along the normal",
                                   "base occupancy map slice (captured)", "reference (Embree)",
-                                  "difference to the reference"};
+                                  "difference to the reference", "indirect light (one bounce)"};
 const uint32_t kResolutions[4] = {32, 64, 128, 256};
 } // namespace
 
@@ -43,6 +43,8 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         out.reset_accumulation |= ImGui::Checkbox("ambient occlusion", &s.ao_on);
         ImGui::SameLine();
         out.reset_accumulation |= ImGui::Checkbox("direct light", &s.direct_on);
+        ImGui::SameLine();
+        out.reset_accumulation |= ImGui::Checkbox("GI", &s.gi_on);
         int samples = static_cast<int>(s.ao_samples);
         if (ImGui::SliderInt("AO rays per pixel", &samples, 1, 64)) {
             s.ao_samples = static_cast<uint32_t>(samples);

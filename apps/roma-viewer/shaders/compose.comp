@@ -37,6 +37,7 @@ layout(std430, set = 0, binding = 12) readonly buffer Frame {
     vec4 eye_angle;     // xyz: eye; w: the angle a pixel subtends (radians)
     uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept
 } frame;
+layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // indirect irradiance
 
 // Views (roma-viewer's view_mode).
 #define VIEW_COMPOSED 0u
@@ -49,6 +50,7 @@ layout(std430, set = 0, binding = 12) readonly buffer Frame {
 #define VIEW_BOM_SLICE 7u
 #define VIEW_REFERENCE 8u
 #define VIEW_DIFFERENCE 9u
+#define VIEW_GI 10u
 
 layout(push_constant) uniform Push {
     vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
@@ -66,6 +68,7 @@ layout(push_constant) uniform Push {
     uint slice_depth;    // cell index along the axis
     uint bom_res;        // 0: nothing captured
     uint compared;       // the reference's quantity: VIEW_AO or VIEW_DIRECT (0: none)
+    uint gi_on;
 } pc;
 
 const float PI = 3.14159265358979;
@@ -104,6 +107,7 @@ void main()
     vec3 albedo = texelFetch(g_albedo, p, 0).rgb;
     float ao = pc.ao_on != 0u ? imageLoad(ao_image, p).r : 1.0;
     vec3 irradiance = pc.direct_on != 0u ? imageLoad(light_image, p).rgb : vec3(0.0);
+    vec3 indirect = pc.gi_on != 0u ? imageLoad(gi_image, p).rgb : vec3(0.0);
 
     uint view = VIEW;
     if (view == VIEW_REFERENCE || view == VIEW_DIFFERENCE)
@@ -130,6 +134,8 @@ void main()
         tone = false;
     } else if (view == VIEW_DIRECT) {
         value = albedo / PI * irradiance;
+    } else if (view == VIEW_GI) {
+        value = albedo / PI * indirect;
     } else if (view == VIEW_ALBEDO) {
         value = albedo;
         tone = false;
@@ -148,7 +154,7 @@ void main()
             value = hit ? heat(h.t / pc.debug_length) : vec3(0.0);
         tone = false;
     } else {
-        value = albedo / PI * irradiance + albedo * pc.ambient.rgb * ao;
+        value = albedo / PI * (irradiance + indirect) + albedo * pc.ambient.rgb * ao;
     }
     vec3 mean = value;
     float count = 1.0;

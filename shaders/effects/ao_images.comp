@@ -5,6 +5,11 @@
 // the unoccluded fraction into an R32F storage image. Samples as in passes/ao.comp and
 // the reference tracer.
 #define ROMA_TRACE_SET 0
+// The map's BOM, bound after the images (image_effect.c), for the exact walk of the
+// rays' start: bound loads are several times faster than loads by address on CPU devices.
+#define ROMA_BOM_SET 1
+#define ROMA_BOM_BINDING 4
+#include "roma_bound_bom.glsl"
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
 #include "roma/ray_start.glsl"

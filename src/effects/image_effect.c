@@ -21,9 +21,10 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     e->inputs = inputs;
     e->outputs = outputs;
     e->push_size = push_size;
-    VkDescriptorType types[ROMA_IMAGE_EFFECT_MAX_IMAGES];
+    VkDescriptorType types[ROMA_IMAGE_EFFECT_MAX_IMAGES + 1];
     for (uint32_t i = 0; i < inputs + outputs; ++i)
         types[i] = i < inputs ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    types[inputs + outputs] = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER; /* the map's BOM */
     VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
                               .magFilter = VK_FILTER_NEAREST,
                               .minFilter = VK_FILTER_NEAREST,
@@ -34,7 +35,7 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_layout_create(ctx, roma_trace_binding_types, ROMA_TRACE_BINDINGS, &e->trace_layout);
     if (r == ROMA_SUCCESS)
-        r = roma_descriptor_layout_create(ctx, types, inputs + outputs, &e->images_layout);
+        r = roma_descriptor_layout_create(ctx, types, inputs + outputs + 1, &e->images_layout);
     if (r == ROMA_SUCCESS) {
         VkDescriptorSetLayout sets[2] = {e->trace_layout, e->images_layout};
         VkPushConstantRange push = {VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size};
@@ -63,11 +64,12 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     }
     if (shader)
         vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
-    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs * SETS_PER_SLOT},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, outputs * SETS_PER_SLOT}};
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs * SETS_PER_SLOT},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, outputs * SETS_PER_SLOT},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, SETS_PER_SLOT}};
     VkDescriptorPoolCreateInfo poi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                       .maxSets = SETS_PER_SLOT,
-                                      .poolSizeCount = 2,
+                                      .poolSizeCount = 3,
                                       .pPoolSizes = sizes};
     for (uint32_t s = 0; s < frames_in_flight && r == ROMA_SUCCESS; ++s)
         r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &poi, ctx->allocator, &e->pools[s]),
@@ -145,7 +147,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     e->used[slot]++;
     VkImageLayout in_layout = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     VkDescriptorImageInfo infos[ROMA_IMAGE_EFFECT_MAX_IMAGES];
-    VkWriteDescriptorSet writes[ROMA_IMAGE_EFFECT_MAX_IMAGES];
+    VkWriteDescriptorSet writes[ROMA_IMAGE_EFFECT_MAX_IMAGES + 1];
     for (uint32_t i = 0; i < e->inputs + e->outputs; ++i) {
         int input = i < e->inputs;
         infos[i] = (VkDescriptorImageInfo){input ? e->sampler : VK_NULL_HANDLE, views[i],
@@ -158,7 +160,15 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
                                                                    : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                                            .pImageInfo = &infos[i]};
     }
-    vkUpdateDescriptorSets(e->ctx->device, e->inputs + e->outputs, writes, 0, NULL);
+    const uint32_t n = e->inputs + e->outputs;
+    VkDescriptorBufferInfo bom = {info->bom_buffer, 0, VK_WHOLE_SIZE};
+    writes[n] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                       .dstSet = set,
+                                       .dstBinding = n,
+                                       .descriptorCount = 1,
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                       .pBufferInfo = &bom};
+    vkUpdateDescriptorSets(e->ctx->device, n + 1, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);

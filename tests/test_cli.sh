@@ -93,6 +93,8 @@ fi
 if expect_status 0 $? "roma-compare ao.pfm ao.pfm"; then
   v=$(metric "$dir/same.out" mean_abs) || fail "roma-compare printed no mean_abs"
   [ "${v:-x}" = "0" ] || fail "mean_abs of an image with itself is '${v:-}', expected 0"
+  v=$(metric "$dir/same.out" flip) || fail "roma-compare printed no flip"
+  [ "${v:-x}" = "0" ] || fail "FLIP of an image with itself is '${v:-}', expected 0"
 fi
 
 "$compare" "$out/ao.pfm" "$out/direct.pfm" >"$dir/mismatch.out" 2>"$dir/mismatch.err"
@@ -107,13 +109,15 @@ expect_status 2 $? "roma-compare with one image"
 "$compare" "$out/direct.pfm" "$out/composed.pfm" --mask "$out/coverage.pfm" --heatmap "$dir/heat.png" \
   --json "$dir/compare.json" --threshold 1000 >"$dir/people.cmp" 2>&1
 expect_status 0 $? "roma-compare with --threshold 1000" || cat "$dir/people.cmp" >&2
-for key in "^A  " "^B  " "^relative .*mean_abs / mean_b" "^bias .*mean_a - mean_b" "^heat_scale " "^pass: "; do
+for key in "^A  " "^B  " "^relative .*mean_abs / mean_b" "^bias .*mean_a - mean_b" "^flip .*LDR-FLIP" "^heat_scale " \
+  "^pass: "; do
   grep -q "$key" "$dir/people.cmp" || fail "roma-compare does not print '$key'"
 done
 python3 - "$dir/compare.json" <<'PY' || fail "roma-compare --json is not the figures as JSON"
 import json, sys
 j = json.load(open(sys.argv[1]))
 assert j["result"] == "pass" and j["pixels"] > 0 and abs(j["bias"] - (j["mean_a"] - j["mean_b"])) < 1e-6, j
+assert 0.0 < j["flip"] < 1.0, j
 PY
 "$compare" "$out/direct.pfm" "$out/composed.pfm" --threshold 0 >"$dir/threshold.cmp" 2>&1
 expect_status 3 $? "roma-compare --threshold 0 on images that differ"

@@ -18,6 +18,8 @@ static const char *usage =
     "  The heat map shows |A-B| (max over channels) with S as white (default: the max error).\n"
     "  A 12-pixel strip under the heat map is its legend: black (0) to white (S), left to right.\n"
     "  --side-by-side writes A and B next to each other, tone-mapped with exposure E (default 1).\n"
+    "  flip: the mean LDR-FLIP (0: no visible difference, 1: the largest) of the images as\n"
+    "  displayed: times E, clamped to [0, 1], seen at 67 pixels per degree.\n"
     "  --threshold T: exit status 3 when the mean absolute error is above T (a pass/fail check).\n"
     "  --json writes the figures as JSON.\n"
     "  Output: one line per figure, its key first (scripts read the first two columns), then\n"
@@ -124,8 +126,23 @@ int main(int argc, char **argv)
             status = 1;
         }
     }
-    double relative = 0.0, bias = 0.0;
+    double relative = 0.0, bias = 0.0, flip = 0.0;
     float scale = 1.0f;
+    int flip_ok = 0;
+    if (status == 0) {
+        /* FLIP sees the images as displayed: times the exposure. */
+        roma_image shown[2] = {{0}, {0}};
+        int copied = 1;
+        for (int k = 0; k < 2 && copied; ++k) {
+            copied = roma_image_alloc(&shown[k], img[k].width, img[k].height, img[k].channels) == ROMA_SUCCESS;
+            for (size_t i = 0; copied && i < (size_t)img[k].width * img[k].height * img[k].channels; ++i)
+                shown[k].pixels[i] = img[k].pixels[i] * exposure;
+        }
+        flip_ok = copied && roma_image_flip(&shown[1], &shown[0], mask_path ? &mask : NULL, 0.0f, &flip, NULL) ==
+                                ROMA_SUCCESS;
+        roma_image_free(&shown[0]);
+        roma_image_free(&shown[1]);
+    }
     if (status == 0) {
         relative = m.mean_b != 0.0 ? m.mean_abs_error / fabs(m.mean_b) : 0.0;
         bias = m.mean_a - m.mean_b;
@@ -142,6 +159,8 @@ int main(int argc, char **argv)
         printf("above_%-7g %-12.6g fraction of pixels whose error (max over channels) is above %g\n", tolerance,
                m.fraction_above, tolerance);
         printf("mean_a        %-12.6g mean of A\nmean_b        %-12.6g mean of B\n", m.mean_a, m.mean_b);
+        if (flip_ok)
+            printf("flip          %-12.6g mean LDR-FLIP of A and B times %g, clamped to [0, 1]\n", flip, exposure);
         if (m.non_finite)
             printf("non_finite    %-12llu pixels skipped: NaN or infinite in A or B\n",
                    (unsigned long long)m.non_finite);
@@ -193,6 +212,8 @@ int main(int argc, char **argv)
             roma_json_number(&j, "fraction_above", m.fraction_above);
             roma_json_number(&j, "mean_a", m.mean_a);
             roma_json_number(&j, "mean_b", m.mean_b);
+            if (flip_ok)
+                roma_json_number(&j, "flip", flip);
             roma_json_int(&j, "non_finite", (long long)m.non_finite);
             if (threshold >= 0.0f) {
                 roma_json_number(&j, "threshold", threshold);

@@ -110,6 +110,34 @@ ROMA_API roma_result roma_image_compare(const roma_image *a, const roma_image *b
  * Any thread. */
 ROMA_API roma_result roma_image_abs_diff(const roma_image *a, const roma_image *b, roma_image *out_diff);
 
+/** FLIP's default observer: 0.7 m from a 0.7 m wide monitor of 3840 pixels, 67 pixels per
+ * degree of visual angle. */
+#define ROMA_FLIP_DEFAULT_PPD 67.02f
+
+/** LDR-FLIP, the perceptual difference of Andersson et al. (HPG 2020), implemented from the
+ * paper: per pixel 0 (no visible difference) to 1, from a colour term (the images filtered by
+ * the eye's contrast sensitivity in an opponent colour space, then compared in L*a*b* with
+ * the Hunt effect) and a feature term (edges and points of the achromatic channel that one
+ * image has and the other lacks). The images are taken as displayed: linear values clamped
+ * to [0, 1] (scale radiance by an exposure first); a 1-channel image is grey. Symmetric in
+ * its two images.
+ *
+ * @param reference          first image, with pixels (1 or 3 channels).
+ * @param test               second image, same size and channels.
+ * @param mask               NULL or 1 channel of the same size: the mean counts only pixels
+ *                           with mask > 0 (the filters still see every pixel).
+ * @param pixels_per_degree  the observer (0 = ROMA_FLIP_DEFAULT_PPD); sets the filters' widths.
+ * @param[out] out_mean      the mean FLIP over the counted pixels (0 when none counts).
+ * @param[out] out_map       NULL, or zeroed then given the per-pixel FLIP (1 channel,
+ *                           roma_image_free); must not be an input.
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out_mean, images unusable or of
+ *         different shapes, a mask of the wrong shape, a negative or non-finite
+ *         pixels_per_degree, out_map equal to an input; ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ * @par Threads
+ * Any thread. */
+ROMA_API roma_result roma_image_flip(const roma_image *reference, const roma_image *test, const roma_image *mask,
+                                     float pixels_per_degree, double *out_mean, roma_image *out_map);
+
 #ifdef __cplusplus
 }
 #endif

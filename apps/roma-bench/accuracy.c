@@ -94,6 +94,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     roma_gbuffer_pixel *px = calloc((size_t)w * h, sizeof *px);
     float *ref_ao = calloc((size_t)w * h, sizeof *ref_ao);
     double *times = calloc(d->runs, sizeof *times);
+    roma_image ref_image = {0}, coverage = {0};
     int status = 0;
     if (!px || !ref_ao || !times) {
         status = 1;
@@ -106,11 +107,17 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         snprintf(how, sizeof how, "median of %u runs", d->runs);
     printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
            "time per frame = host-observed render time / frames (%s); error against Embree\n"
-           "on the same points and samples, over the pixels that see geometry.\n\n"
-           "| method | RES | A | ms per frame | of which DF build (timestamps) | MAE | bias |\n"
-           "|---|---|---|---|---|---|---|\n",
+           "on the same points and samples, over the pixels that see geometry (FLIP: LDR-FLIP\n"
+           "at 67 pixels per degree).\n\n"
+           "| method | RES | A | ms per frame | of which DF build (timestamps) | MAE | bias | FLIP |\n"
+           "|---|---|---|---|---|---|---|---|\n",
            w, h, samples, d->spp, d->frames, (double)d->radius, how);
     int have_ref = 0;
+    /* FLIP against the reference over the covered pixels (background 1, as ROMA's images). */
+    if (roma_image_alloc(&ref_image, w, h, 1) != ROMA_SUCCESS || roma_image_alloc(&coverage, w, h, 1) != ROMA_SUCCESS) {
+        status = 1;
+        goto done;
+    }
     double roma_ms_128_4 = 0.0, roma_mae_128_4 = NAN; /* all frames at the defaults */
     for (int ri = 0; ri < d->res_count; ++ri)
         for (int ai = 0; ai <= d->angular_count + 1; ++ai) {
@@ -123,7 +130,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             const char *names[3] = {"ROMA", "voxel traversal", "distance field"};
             const char *tags[3] = {"ao", "voxel-dda", "distance-field"};
             const uint32_t angular = dda ? 1u : d->angular[ai];
-            double df_ms = 0.0;
+            double df_ms = 0.0, flip = NAN;
             roma_effect_render_desc rd = {
                 .camera = cam, .width = w, .height = h,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = d->res[ri], .ao_angular = angular},
@@ -151,7 +158,13 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                                                             px[i].shading_normal, d->radius, samples, 1, (uint32_t)i)
                                         : NAN;
                     have_ref = 1;
+                    for (size_t i = 0; i < (size_t)w * h; ++i) {
+                        coverage.pixels[i] = isfinite(ref_ao[i]) ? 1.0f : 0.0f;
+                        ref_image.pixels[i] = isfinite(ref_ao[i]) ? ref_ao[i] : 1.0f;
+                    }
                 }
+                if (k == 0 && roma_image_flip(&ref_image, &img.ao, &coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
+                    flip = NAN;
                 if (k == 0)
                     for (size_t i = 0; i < (size_t)w * h; ++i) {
                         if (!isfinite(ref_ao[i]))
@@ -180,12 +193,13 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             char df_text[16] = "-";
             if (method == ROMA_AO_METHOD_DISTANCE_FIELD)
                 snprintf(df_text, sizeof df_text, "%.1f", df_ms);
-            printf("| %s | %u | %s | %.1f | %s | %.4f | %+.4f |\n", names[method], d->res[ri], a_text, ms, df_text,
-                   mae, b);
+            printf("| %s | %u | %s | %.1f | %s | %.4f | %+.4f | %.4f |\n", names[method], d->res[ri], a_text, ms,
+                   df_text, mae, b, flip);
             if (csv) {
                 const char *tag = tags[method];
                 fprintf(csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, d->res[ri], angular, ms);
                 fprintf(csv, "accuracy,%s mae,%u,%u,%.6f,\n", tag, d->res[ri], angular, mae);
+                fprintf(csv, "accuracy,%s flip,%u,%u,%.6f,\n", tag, d->res[ri], angular, flip);
                 if (method == ROMA_AO_METHOD_DISTANCE_FIELD)
                     fprintf(csv, "accuracy,%s build ms per frame (timestamps),%u,%u,%.6f,ms\n", tag, d->res[ri],
                             angular, df_ms);
@@ -194,6 +208,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     if (have_ref && embree_equal_time(ref, px, ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, times, csv))
         status = 1;
 done:
+    roma_image_free(&ref_image);
+    roma_image_free(&coverage);
     free(px);
     free(ref_ao);
     free(times);

@@ -27,6 +27,8 @@ struct frame_block { // std430, as compose.comp's Frame
     float prev_rows[4][4];
     float eye_angle[4];
     uint32_t mode_cap[4];
+    float steps_light[4];
+    float steps_tmin[4];
 };
 } // namespace
 
@@ -341,6 +343,9 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     fb.eye_angle[3] = s.pixel_angle;
     fb.mode_cap[0] = mode;
     fb.mode_cap[1] = s.history_cap;
+    fb.mode_cap[2] = s.steps_max;
+    std::memcpy(fb.steps_light, s.steps_light, sizeof fb.steps_light);
+    fb.steps_tmin[0] = s.steps_tmin;
     std::memcpy(c.frame_data[k].mapped, &fb, sizeof fb); // the slot's fence has passed: not in use
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                      VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);

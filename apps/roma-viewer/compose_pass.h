@@ -16,6 +16,7 @@ enum view_mode : uint32_t {
     VIEW_REFERENCE,    // the Embree reference of the compared view
     VIEW_DIFFERENCE,   // |ROMA - reference| as a heat map
     VIEW_GI,           // one-bounce indirect light
+    VIEW_STEPS,        // texels an un-snapped shadow ray to the first light walks (heat map)
     VIEW_COUNT
 };
 
@@ -36,6 +37,11 @@ struct compose_settings {
     float prev_clip_rows[4][4]; // last frame's world -> clip (mode 2)
     float eye[3];
     float pixel_angle;          // radians a pixel subtends
+    // The steps view: the light its shadow rays go to (xyz: position, or direction of travel
+    // of a sun's light; w: 0 none, 1 a position, 2 a direction), their skip and most steps.
+    float steps_light[4];
+    float steps_tmin;
+    uint32_t steps_max;
     uint32_t parity;            // frame % 2: which history images this frame writes
     bool filter;                // run the a-trous filter (a moving camera: little history)
     bool tone;                  // the view's values are radiance (exposure applies)

@@ -52,11 +52,12 @@ const char *kUsage =
     "  --size WxH           window or image size (default 1280x720)\n"
     "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
     "  --gltf-camera N      which of a glTF file's perspective cameras to start from (default 0)\n"
-    "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance\n"
+    "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance, steps\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
+    "  --max-steps N        texels an un-snapped shadow ray walks (default 8, the paper's)\n"
     "  --exposure E         (default 1.2)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
     "  --headless           no window: render --frames frames and exit\n"
@@ -107,7 +108,7 @@ bool parse_float(const char *s, float lo, float hi, float &out)
 }
 
 const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",    "map",
-                                     "hit-distance", "bom-slice", "reference", "difference", "gi"};
+                                     "hit-distance", "bom-slice", "reference", "difference", "gi", "steps"};
 
 int parse_args(int argc, char **argv, options &o)
 {
@@ -145,7 +146,7 @@ int parse_args(int argc, char **argv, options &o)
                     o.settings.view = static_cast<view_mode>(k), ok = true;
             if (!ok) {
                 std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, gi, albedo, "
-                                     "normal, map, hit-distance, bom-slice)\n", v);
+                                     "normal, map, hit-distance, bom-slice, steps)\n", v);
                 return 2;
             }
         } else if (a == "--res") {
@@ -154,6 +155,8 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 16, o.settings.angular);
         } else if (a == "--ao-samples") {
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
+        } else if (a == "--max-steps") {
+            ok = parse_u32(v, 1, 1024, o.settings.max_steps);
         } else if (a == "--area-samples") {
             ok = parse_u32(v, 1, 1024, o.settings.area_samples);
         } else if (a == "--ao-radius") {
@@ -767,6 +770,16 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     std::memcpy(cs.prev_clip_rows, v.prev_clip_rows, sizeof cs.prev_clip_rows);
     for (int i = 0; i < 3; ++i)
         cs.eye[i] = cam.eye[i];
+    // The steps view: the scene's first punctual light, the light effect's skip and steps.
+    for (uint32_t i = 0; i < v.view.light_count && cs.steps_light[3] == 0.0f; ++i) {
+        const roma_light &l = v.view.lights[i];
+        bool sun = l.type == ROMA_LIGHT_DIRECTIONAL;
+        for (int k = 0; k < 3; ++k)
+            cs.steps_light[k] = sun ? l.direction[k] : l.position[k];
+        cs.steps_light[3] = sun ? 2.0f : 1.0f;
+    }
+    cs.steps_tmin = (s.shadow_skip > 0.0f ? s.shadow_skip : ROMA_DEFAULT_SHADOW_SKIP_CELLS) * mi.trace_cell;
+    cs.steps_max = s.max_steps;
     cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
     // The spatial filter while there is little history: a moving camera, or the first frames
     // after a change; only for the views of light (not the debug views, whose values are labels).

@@ -9,7 +9,8 @@ namespace {
 const char *kViews[VIEW_COUNT] = {"composed", "ambient occlusion", "direct light", "albedo", "normal",
                                   "ROMA map per pixel (ray along the normal)", "ROMA hit distance along the normal",
                                   "base occupancy map slice (captured)", "reference (Embree)",
-                                  "difference to the reference", "indirect light (one bounce)"};
+                                  "difference to the reference", "indirect light (one bounce)",
+                                  "un-snapped steps to the first light (magenta: gave up)"};
 const uint32_t kResolutions[4] = {32, 64, 128, 256};
 } // namespace
 

@@ -242,10 +242,15 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     return hit;
 }
 
+// Texels the last roma_trace_unsnapped call of this invocation walked (debug views: a ray
+// that walked max_steps without a hit gave up and counts as unoccluded).
+uint roma_unsnapped_steps = 0u;
+
 // Un-snapped query: the exact direction walked through the selected map's texels
 // (2D DDA in the map's xy plane), at most max_steps texels.
 roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest, uint max_steps)
 {
+    roma_unsnapped_steps = 0u;
     roma_grid_params grid = roma_fetch_grid();
     uint res = grid.dims.x, words = grid.dims.y;
     vec3 dn;
@@ -286,6 +291,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     int iy = int(clamp(floor(py), 0.0, fres - 1.0));
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
+        roma_unsnapped_steps = step + 1u;
         precise float tx = dm.x > 0.0 ? (float(ix + 1) - m0.x) / dm.x
                          : dm.x < 0.0 ? (float(ix) - m0.x) / dm.x : 1.0 / 0.0;
         precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) / dm.y

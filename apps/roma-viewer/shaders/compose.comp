@@ -35,7 +35,10 @@ layout(set = 0, binding = 11, rgba32f) uniform readonly image2D pos_in;    // la
 layout(std430, set = 0, binding = 12) readonly buffer Frame {
     vec4 prev_rows[4];  // last frame's world -> clip
     vec4 eye_angle;     // xyz: eye; w: the angle a pixel subtends (radians)
-    uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept
+    uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept;
+                        // z: the steps view's most steps
+    vec4 steps_light;   // the steps view's light: xyz position (w = 1) or direction of travel (w = 2)
+    vec4 steps_tmin;    // x: the skip of its shadow rays (world units)
 } frame;
 layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // indirect irradiance
 
@@ -51,6 +54,7 @@ layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // ind
 #define VIEW_REFERENCE 8u
 #define VIEW_DIFFERENCE 9u
 #define VIEW_GI 10u
+#define VIEW_STEPS 11u
 
 layout(push_constant) uniform Push {
     vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
@@ -141,6 +145,26 @@ void main()
         tone = false;
     } else if (view == VIEW_NORMAL) {
         value = 0.5 * n + 0.5;
+        tone = false;
+    } else if (view == VIEW_STEPS) {
+        // One un-snapped shadow ray to the scene's first punctual light (the ROMA part of the
+        // light effect's shadow ray, without the walk of its start): how many map texels it
+        // walked (heat: black none, white the most); blocked rays dimmed; rays that walked every step without a hit gave up and count
+        // as lit: magenta (where light can leak in from far occluders).
+        value = albedo * 0.35;
+        if (frame.steps_light.w > 0.0) {
+            vec3 o = pos.xyz + n * pc.offset;
+            bool sun = frame.steps_light.w > 1.5;
+            vec3 d = sun ? -frame.steps_light.xyz : frame.steps_light.xyz - o;
+            float tmax = sun ? 1.0 / 0.0 : length(d) - pc.offset;
+            uint most = max(frame.mode_cap.z, 1u);
+            if (dot(d, n) > 0.0 && tmax > frame.steps_tmin.x) {
+                roma_hit h = roma_trace_unsnapped(o, d, frame.steps_tmin.x, tmax, false, most);
+                bool hit = (h.info & ROMA_HIT_FLAG) != 0u;
+                float walked = float(roma_unsnapped_steps) / float(most);
+                value = !hit && roma_unsnapped_steps >= most ? vec3(1.0, 0.0, 1.0) : heat(walked) * (hit ? 0.5 : 1.0);
+            }
+        }
         tone = false;
     } else if (view == VIEW_MAP || view == VIEW_HIT_DISTANCE) {
         // One ROMA ray along the normal: which map (candidate direction) serves it, and

@@ -132,7 +132,7 @@ ROMA_API roma_result roma_image_abs_diff(const roma_image *a, const roma_image *
  *                           roma_image_free); must not be an input.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out_mean, images unusable or of
  *         different shapes, a mask of the wrong shape, a negative or non-finite
- *         pixels_per_degree, out_map equal to an input; ROMA_ERROR_OUT_OF_HOST_MEMORY.
+ *         pixels_per_degree, out_map equal to an input (left as it was); ROMA_ERROR_OUT_OF_HOST_MEMORY.
  * @par Threads
  * Any thread. */
 ROMA_API roma_result roma_image_flip(const roma_image *reference, const roma_image *test, const roma_image *mask,

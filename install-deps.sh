@@ -10,6 +10,7 @@ packages=(
   clang libclang-rt-14-dev
   libimgui-dev xvfb xauth
   doxygen dpkg-dev
+  gnuplot-nox
 )
 
 missing=()

@@ -14,6 +14,7 @@
 
 #include "app_common.h"
 #include "passes/effect_render.h"
+#include "plot.h"
 #include "reference_internal.h"
 
 /* Embree's AO at the G-buffer's points with spp samples, on every core. */
@@ -37,16 +38,20 @@ static void embree_ao_pixel(void *ctx, uint32_t i)
  * it reaches in the time ROMA takes for its samples at RES 128, A 4 (roma_ms, 0: not run). */
 static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, const float *ref_ao, uint32_t w,
                              uint32_t h, const roma_bench_accuracy_desc *d, double roma_ms, double roma_mae,
-                             double *times, FILE *csv)
+                             const roma_image *ref_image, const roma_image *coverage, double *times, FILE *csv,
+                             roma_bench_point *points, int *point_count)
 {
     const size_t n = (size_t)w * h;
     float *ao = malloc(n * sizeof *ao);
-    if (!ao)
+    roma_image image = {0};
+    if (!ao || roma_image_alloc(&image, w, h, 1) != ROMA_SUCCESS) {
+        free(ao);
         return 1;
+    }
     const uint32_t total = d->spp * d->frames;
     printf("\nEmbree at the same points (%u threads), samples 0 .. spp - 1 of the same sequences; error\n"
            "against its own %u-sample image (its noise only); time for the whole image (%s):\n\n"
-           "| Embree spp | ms | MAE |\n|---|---|---|\n",
+           "| Embree spp | ms | MAE | FLIP |\n|---|---|---|---|\n",
            ref->thread_count, total, d->runs == 1 ? "one run" : "median of runs");
     double best_mae = NAN;
     uint32_t best_spp = 0;
@@ -64,11 +69,19 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
                 sum += fabs((double)ao[i] - ref_ao[i]);
                 ++covered;
             }
-        double mae = covered ? sum / covered : NAN;
-        printf("| %u | %.1f | %.4f |\n", spp, ms, mae);
+        double mae = covered ? sum / covered : NAN, flip = NAN;
+        for (size_t i = 0; i < n; ++i)
+            image.pixels[i] = isfinite(ref_ao[i]) ? ao[i] : 1.0f;
+        if (roma_image_flip(ref_image, &image, coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
+            flip = NAN;
+        printf("| %u | %.1f | %.4f | %.4f |\n", spp, ms, mae, flip);
         if (csv)
-            fprintf(csv, "accuracy,embree ao ms,%u,0,%.6f,ms\naccuracy,embree ao mae,%u,0,%.6f,\n", spp, ms, spp,
-                    mae);
+            fprintf(csv, "accuracy,embree ao ms,%u,0,%.6f,ms\naccuracy,embree ao mae,%u,0,%.6f,\n"
+                         "accuracy,embree ao flip,%u,0,%.6f,\n", spp, ms, spp, mae, spp, flip);
+        roma_bench_point *pt = &points[(*point_count)++];
+        snprintf(pt->series, sizeof pt->series, "Embree (spp)");
+        snprintf(pt->label, sizeof pt->label, "%u", spp);
+        pt->ms = ms, pt->mae = mae, pt->flip = flip;
         if (ms <= roma_ms) {
             best_mae = mae;
             best_spp = spp;
@@ -81,6 +94,7 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
     else if (roma_ms > 0.0)
         printf("\nIn ROMA's time for its %u samples at RES 128, A 4 (%.0f ms) Embree traces less than one sample.\n",
                total, roma_ms);
+    roma_image_free(&image);
     free(ao);
     return 0;
 }
@@ -94,9 +108,13 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     roma_gbuffer_pixel *px = calloc((size_t)w * h, sizeof *px);
     float *ref_ao = calloc((size_t)w * h, sizeof *ref_ao);
     double *times = calloc(d->runs, sizeof *times);
+    /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
+    const int max_points = d->res_count * (d->angular_count + 2) + 32;
+    roma_bench_point *points = calloc((size_t)max_points, sizeof *points);
+    int point_count = 0;
     roma_image ref_image = {0}, coverage = {0};
     int status = 0;
-    if (!px || !ref_ao || !times) {
+    if (!px || !ref_ao || !times || !points) {
         status = 1;
         goto done;
     }
@@ -195,6 +213,13 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                 snprintf(df_text, sizeof df_text, "%.1f", df_ms);
             printf("| %s | %u | %s | %.1f | %s | %.4f | %+.4f | %.4f |\n", names[method], d->res[ri], a_text, ms,
                    df_text, mae, b, flip);
+            roma_bench_point *pt = &points[point_count++];
+            if (dda)
+                snprintf(pt->series, sizeof pt->series, "%s", names[method]);
+            else
+                snprintf(pt->series, sizeof pt->series, "ROMA A %u", angular);
+            snprintf(pt->label, sizeof pt->label, "%u", d->res[ri]);
+            pt->ms = ms * d->frames, pt->mae = mae, pt->flip = flip;
             if (csv) {
                 const char *tag = tags[method];
                 fprintf(csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, d->res[ri], angular, ms);
@@ -205,9 +230,32 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                             angular, df_ms);
             }
         }
-    if (have_ref && embree_equal_time(ref, px, ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, times, csv))
+    if (have_ref && embree_equal_time(ref, px, ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, &ref_image, &coverage,
+                                      times, csv, points, &point_count))
         status = 1;
+    /* Embree at the reference's own sample count is the reference (error 0): on no front. */
+    roma_bench_print_fronts(points, point_count);
+    /* Equal time and equal error against ROMA's defaults (RES 128, A 4), or the nearest run. */
+    int anchor = -1;
+    for (int i = 0; i < point_count; ++i) {
+        int defaults = strcmp(points[i].series, "ROMA A 4") == 0 && strcmp(points[i].label, "128") == 0;
+        if (defaults || (anchor < 0 && strcmp(points[i].series, "ROMA A 4") == 0))
+            anchor = i;
+        if (defaults)
+            break;
+    }
+    roma_bench_print_equal(points, point_count, anchor);
+    if (d->plot_path) {
+        char title[160], x_label[160];
+        snprintf(title, sizeof title, "Ambient occlusion, %ux%u, %u samples per pixel: error against time", w, h,
+                 samples);
+        snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baselines: %u frames of %u samples)",
+                 d->frames, d->spp);
+        if (roma_bench_plot(points, point_count, title, x_label, d->plot_path))
+            status = 1;
+    }
 done:
+    free(points);
     roma_image_free(&ref_image);
     roma_image_free(&coverage);
     free(px);

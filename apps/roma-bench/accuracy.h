@@ -11,9 +11,10 @@ typedef struct roma_bench_accuracy_desc {
     float radius;
     const uint32_t *res, *angular;
     int res_count, angular_count;
+    const char *plot_path; /* NULL, or the PNG of error against time (gnuplot) */
 } roma_bench_accuracy_desc;
 
-/* Prints the table (and CSV rows); returns 0 on success. */
+/* Prints the table, the Pareto fronts (and CSV rows, the plot); returns 0 on success. */
 int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                         const roma_bench_accuracy_desc *desc, FILE *csv);
 

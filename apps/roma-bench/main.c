@@ -19,7 +19,7 @@
 
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
-    "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R] [--accuracy]\n"
+    "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R] [--accuracy [--plot FILE.png]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
@@ -31,7 +31,8 @@ static const char *usage =
     "  --accuracy: instead, what accuracy costs in time: AO rendered by ROMA for every RES x A\n"
     "  and by the baselines for every RES (exact voxel traversal, distance field sphere tracing)\n"
     "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
-    "  frame and error against Embree on the same samples, and Embree at equal time.\n";
+    "  frame and error against Embree on the same samples, and Embree at equal time; the\n"
+    "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot).\n";
 
 static double timer_ms(roma_gpu_timer *timer, const char *name)
 {
@@ -133,7 +134,7 @@ static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_
 
 int main(int argc, char **argv)
 {
-    const char *scene_arg = "builtin:cornell", *csv_path = NULL;
+    const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
     int res_n = 3, ang_n = 3, accuracy = 0, small = 0;
     float ao_radius = 0.0f;
@@ -164,10 +165,15 @@ int main(int argc, char **argv)
         else if (v && strcmp(a, "--res") == 0) res_n = parse_list(v, res_list, 4), ++i;
         else if (v && strcmp(a, "--angular") == 0) ang_n = parse_list(v, ang_list, 4), ++i;
         else if (v && strcmp(a, "--csv") == 0) csv_path = v, ++i;
+        else if (v && strcmp(a, "--plot") == 0) plot_path = v, ++i;
         else {
             fprintf(stderr, "roma-bench: bad argument %s\n%s", a, usage);
             return 2;
         }
+    }
+    if (plot_path && !accuracy) {
+        fprintf(stderr, "roma-bench: --plot draws the --accuracy run\n");
+        return 2;
     }
     if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
         fputs(usage, stderr);
@@ -210,6 +216,7 @@ int main(int argc, char **argv)
             .width = small ? 32 : 160, .height = small ? 24 : 120, .spp = small ? 32 : 64,
             .frames = small ? 2 : 16, .runs = small ? 1 : runs, .radius = ao_radius,
             .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
+            .plot_path = plot_path,
         };
         int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
         if (csv)

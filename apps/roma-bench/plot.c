@@ -1,0 +1,186 @@
+/* Error-against-time plots of roma-bench --accuracy, drawn by gnuplot (a Debian package;
+ * install-deps.sh installs gnuplot-nox): the script and its data go down a pipe, so no
+ * temporary files are left behind. */
+#include "plot.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double error_of(const roma_bench_point *p, int use_flip)
+{
+    return use_flip ? p->flip : p->mae;
+}
+
+static int plottable(const roma_bench_point *p, int use_flip)
+{
+    double e = error_of(p, use_flip);
+    return isfinite(e) && e > 0.0 && isfinite(p->ms) && p->ms > 0.0;
+}
+
+void roma_bench_pareto(const roma_bench_point *points, int count, int use_flip, int *on_front)
+{
+    for (int i = 0; i < count; ++i) {
+        on_front[i] = plottable(&points[i], use_flip);
+        for (int j = 0; j < count && on_front[i]; ++j) {
+            if (j == i || !plottable(&points[j], use_flip))
+                continue;
+            double ei = error_of(&points[i], use_flip), ej = error_of(&points[j], use_flip);
+            if ((points[j].ms <= points[i].ms && ej < ei) || (points[j].ms < points[i].ms && ej <= ei))
+                on_front[i] = 0;
+        }
+    }
+}
+
+/* Indices of the front, fastest first; returns how many. */
+static int front_order(const roma_bench_point *points, int count, int use_flip, int *order)
+{
+    int *on = calloc((size_t)count, sizeof *on), n = 0;
+    if (!on)
+        return 0;
+    roma_bench_pareto(points, count, use_flip, on);
+    for (int i = 0; i < count; ++i)
+        if (on[i]) {
+            int k = n++;
+            while (k > 0 && points[order[k - 1]].ms > points[i].ms) {
+                order[k] = order[k - 1];
+                --k;
+            }
+            order[k] = i;
+        }
+    free(on);
+    return n;
+}
+
+void roma_bench_print_fronts(const roma_bench_point *points, int count)
+{
+    int *order = malloc((size_t)(count ? count : 1) * sizeof *order);
+    if (!order)
+        return;
+    printf("\nPareto fronts (no other setting is as fast with a lower error), fastest first:\n\n"
+           "| front | by | method | setting | ms for the image | error |\n|---|---|---|---|---|---|\n");
+    for (int use_flip = 0; use_flip < 2; ++use_flip) {
+        int n = front_order(points, count, use_flip, order);
+        for (int k = 0; k < n; ++k) {
+            const roma_bench_point *p = &points[order[k]];
+            printf("| front | %s | %s | %s | %.1f | %.4f |\n", use_flip ? "FLIP" : "MAE", p->series, p->label, p->ms,
+                   error_of(p, use_flip));
+        }
+    }
+    free(order);
+}
+
+void roma_bench_print_equal(const roma_bench_point *points, int count, int anchor)
+{
+    if (anchor < 0 || anchor >= count)
+        return;
+    const roma_bench_point *a = &points[anchor];
+    printf("\nAgainst %s at %s (%.1f ms for the image, MAE %.4f, FLIP %.4f): each method's best setting\n"
+           "in that time (equal time) and its fastest setting with that error or less (equal error):\n\n"
+           "| method | equal time: MAE | setting | equal time: FLIP | setting | equal MAE: ms | setting "
+           "| equal FLIP: ms | setting |\n|---|---|---|---|---|---|---|---|---|\n",
+           a->series, a->label, a->ms, a->mae, a->flip);
+    for (int i = 0; i < count; ++i) {
+        int first = 1; /* one row per series, at its first point */
+        for (int j = 0; j < i; ++j)
+            first &= strcmp(points[j].series, points[i].series) != 0;
+        if (!first)
+            continue;
+        printf("| %s ", points[i].series);
+        for (int kind = 0; kind < 4; ++kind) {
+            int use_flip = kind & 1, equal_error = kind >> 1, best = -1;
+            for (int j = 0; j < count; ++j) {
+                const roma_bench_point *p = &points[j];
+                if (strcmp(p->series, points[i].series) != 0 || !plottable(p, use_flip))
+                    continue;
+                if (!equal_error && p->ms <= a->ms &&
+                    (best < 0 || error_of(p, use_flip) < error_of(&points[best], use_flip)))
+                    best = j;
+                if (equal_error && error_of(p, use_flip) <= error_of(a, use_flip) &&
+                    (best < 0 || p->ms < points[best].ms))
+                    best = j;
+            }
+            if (best < 0)
+                printf("| - | - ");
+            else if (!equal_error)
+                printf("| %.4f | %s ", error_of(&points[best], use_flip), points[best].label);
+            else
+                printf("| %.1f | %s ", points[best].ms, points[best].label);
+        }
+        printf("|\n");
+    }
+}
+
+/* One panel: a curve per series with its settings written beside the points, and the front
+ * as the staircase of the best error reachable in a given time. */
+static void write_panel(FILE *gp, const roma_bench_point *points, int count, int use_flip, const char *x_label,
+                        int *order)
+{
+    const char *name = use_flip ? "FLIP" : "MAE";
+    fprintf(gp, "set xlabel \"%s\"\nset ylabel \"%s against the reference\"\n", x_label, name);
+    /* Series in order of first appearance, each an inline data block. */
+    char seen[16][32];
+    int series = 0;
+    for (int i = 0; i < count && series < 16; ++i) {
+        int known = 0;
+        for (int s = 0; s < series; ++s)
+            known |= strcmp(seen[s], points[i].series) == 0;
+        if (known)
+            continue;
+        snprintf(seen[series], sizeof seen[series], "%s", points[i].series);
+        fprintf(gp, "$%s%d << EOD\n", name, series);
+        for (int j = 0; j < count; ++j)
+            if (strcmp(points[j].series, seen[series]) == 0 && plottable(&points[j], use_flip))
+                fprintf(gp, "%.6g %.6g \"%s\"\n", points[j].ms, error_of(&points[j], use_flip), points[j].label);
+        fprintf(gp, "EOD\n");
+        ++series;
+    }
+    int n = front_order(points, count, use_flip, order);
+    fprintf(gp, "$%sfront << EOD\n", name);
+    for (int k = 0; k < n; ++k)
+        fprintf(gp, "%.6g %.6g\n", points[order[k]].ms, error_of(&points[order[k]], use_flip));
+    fprintf(gp, "EOD\nplot ");
+    for (int s = 0; s < series; ++s)
+        fprintf(gp, "$%s%d using 1:2 with linespoints lt %d lw 2 pt 7 title \"%s\", "
+                    "$%s%d using 1:2:3 with labels offset char 0.9,0.6 font \",8\" tc rgb \"gray30\" notitle, ",
+                name, s, s + 1, seen[s], name, s);
+    fprintf(gp, "$%sfront using 1:2 with steps dt 2 lw 1.5 lc rgb \"black\" title \"Pareto front\", "
+                "$%sfront using 1:2 with points pt 6 ps 2 lc rgb \"black\" notitle\n",
+            name, name);
+}
+
+int roma_bench_plot(const roma_bench_point *points, int count, const char *title, const char *x_label,
+                    const char *png_path)
+{
+    /* The strings go into double-quoted gnuplot strings. */
+    const char *texts[3] = {title, x_label, png_path};
+    for (int t = 0; t < 3; ++t)
+        if (!texts[t] || strpbrk(texts[t], "\"\\\n`")) {
+            fprintf(stderr, "roma-bench: cannot plot: quotes, backslashes or newlines in \"%s\"\n",
+                    texts[t] ? texts[t] : "(null)");
+            return 1;
+        }
+    int *order = malloc((size_t)(count ? count : 1) * sizeof *order);
+    FILE *gp = order ? popen("gnuplot 2>&1", "w") : NULL;
+    if (!gp) {
+        fprintf(stderr, "roma-bench: cannot start gnuplot\n");
+        free(order);
+        return 1;
+    }
+    fprintf(gp, "set terminal pngcairo size 1400,560 font \",10\"\nset output \"%s\"\n"
+                "set multiplot layout 1,2 title \"%s\"\nset logscale xy\nset grid\n"
+                "set key bottom left font \",9\"\n",
+            png_path, title);
+    write_panel(gp, points, count, 0, x_label, order);
+    write_panel(gp, points, count, 1, x_label, order);
+    fprintf(gp, "unset multiplot\nset output\n");
+    int status = pclose(gp);
+    free(order);
+    if (status != 0) {
+        fprintf(stderr, "roma-bench: gnuplot failed (status %d); install-deps.sh installs gnuplot-nox\n", status);
+        return 1;
+    }
+    printf("\nplot: %s\n", png_path);
+    return 0;
+}

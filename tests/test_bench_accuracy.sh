@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# roma-bench --accuracy, small: it runs end to end on the CI device; its Pareto fronts are
+# the settings no other setting beats in both time and error (recomputed here from the
+# printed tables); --plot draws a PNG through gnuplot; Embree's rows carry FLIP.
+# Usage: test_bench_accuracy.sh ROMA_BENCH SCRATCH_DIR
+set -u
+
+if [ $# -ne 2 ]; then
+  echo "usage: $0 ROMA_BENCH SCRATCH_DIR" >&2
+  exit 2
+fi
+bench=$1
+dir=$2
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+rm -rf "$dir" && mkdir -p "$dir"
+# Under the sanitizers the tool runs with the ASan runtime preloaded; gnuplot, which it
+# starts, gets a clean environment (a shim first on PATH).
+bench_run=("$bench")
+if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then
+  bench_run=(env "LD_PRELOAD=$ROMA_TOOL_PRELOAD" "$bench")
+  mkdir -p "$dir/bin"
+  printf '#!/bin/sh\nexec env -u LD_PRELOAD "%s" "$@"\n' "$(command -v gnuplot)" >"$dir/bin/gnuplot"
+  chmod +x "$dir/bin/gnuplot"
+  export PATH="$dir/bin:$PATH"
+fi
+
+"${bench_run[@]}" --small --accuracy --ao-radius 0.5 --csv "$dir/accuracy.csv" --plot "$dir/accuracy.png" \
+  >"$dir/out.txt" 2>&1 || { cat "$dir/out.txt" >&2; fail "roma-bench --accuracy --plot failed"; }
+cat "$dir/out.txt"
+
+# The PNG: its signature and a size no empty plot has (measured: about 90 KB).
+if [ -f "$dir/accuracy.png" ]; then
+  [ "$(head -c 8 "$dir/accuracy.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
+    fail "accuracy.png is not a PNG"
+  size=$(stat -c %s "$dir/accuracy.png")
+  [ "$size" -gt 20000 ] || fail "accuracy.png has $size bytes: nothing drawn?"
+else
+  fail "no accuracy.png"
+fi
+grep -q "^accuracy,embree ao flip," "$dir/accuracy.csv" || fail "no FLIP rows for Embree in the CSV"
+
+# The fronts, recomputed from the CSV: ROMA and the baselines cost frames x ms per frame,
+# Embree its ms for the image; its row at the reference's own sample count has error 0.
+python3 - "$dir/out.txt" "$dir/accuracy.csv" <<'EOF' || fail "the printed Pareto fronts are not the fronts of the measured points"
+import csv, re, sys
+text = open(sys.argv[1]).read()
+frames = int(re.search(r"per frame over (\d+) frames", text).group(1))
+values = {}
+for row in csv.DictReader(open(sys.argv[2])):
+    values[(row["name"], row["res"], row["angular"])] = float(row["value"])
+points = []
+for (name, res, angular), v in values.items():
+    if name.endswith(" ms per frame"):
+        tag = name[: -len(" ms per frame")]
+        series = {"voxel-dda": "voxel traversal", "distance-field": "distance field"}.get(tag, "ROMA A " + angular)
+        points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
+    elif name == "embree ao ms":
+        points.append(("Embree (spp)", res, v, values[("embree ao mae", res, angular)], values[("embree ao flip", res, angular)]))
+printed = {"MAE": [], "FLIP": []}
+for line in text.splitlines():
+    if line.startswith("| front | MAE |") or line.startswith("| front | FLIP |"):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        printed[cells[1]].append((cells[2], cells[3]))
+ok = len(points) >= 8
+for k, name in ((3, "MAE"), (4, "FLIP")):
+    usable = [p for p in points if p[k] > 0]
+    front = [p for p in usable if not any(
+        (q[2] <= p[2] and q[k] < p[k]) or (q[2] < p[2] and q[k] <= p[k]) for q in usable)]
+    front.sort(key=lambda p: p[2])
+    want = [(p[0], p[1]) for p in front]
+    print(name, "front:", want)
+    ok = ok and want == printed[name] and len(want) >= 2
+    errors = [p[k] for p in front]
+    ok = ok and all(a > b for a, b in zip(errors, errors[1:]))
+# Equal time and equal error against ROMA A 4 (at RES 64 in the small run).
+anchor = [p for p in points if p[0] == "ROMA A 4"][0]
+rows = {}
+for line in text.splitlines():
+    cells = [c.strip() for c in line.strip().strip("|").split("|")]
+    if len(cells) == 9 and cells[0] in {p[0] for p in points}:
+        rows[cells[0]] = cells
+for series in {p[0] for p in points}:
+    mine = [p for p in points if p[0] == series]
+    want = []
+    for k in (3, 4):
+        fit = [p for p in mine if p[2] <= anchor[2] and p[k] > 0]
+        want.append(min(fit, key=lambda p: p[k])[1] if fit else "-")
+    for k in (3, 4):
+        fit = [p for p in mine if p[k] <= anchor[k] and p[k] > 0]
+        want.append(min(fit, key=lambda p: p[2])[1] if fit else "-")
+    got = [rows.get(series, [""] * 9)[c] for c in (2, 4, 6, 8)]
+    print(series, "equal time and error settings:", got)
+    ok = ok and got == want
+ok = ok and rows["ROMA A 4"][6] == anchor[1]  # ROMA itself reaches its own error in its own time
+sys.exit(0 if ok else 1)
+EOF
+
+# Bad use: --plot without --accuracy; a PNG gnuplot cannot write.
+"${bench_run[@]}" --small --plot "$dir/x.png" >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--plot without --accuracy should exit 2"
+
+if [ "$failures" -ne 0 ]; then
+  echo "test_bench_accuracy: $failures failure(s)" >&2
+  exit 1
+fi
+echo "test_bench_accuracy: passed"

@@ -9,6 +9,10 @@
 #                        against it (CMake package, pkg-config); then the same with the Debian
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
 #   make docs            the API reference (doxygen) in build/docs/html
+#   make study           what accuracy costs in time: the accuracy run of roma-bench on the built-in
+#                        room (about 6 minutes on 2 cores) into docs/bench and its plot into docs/images
+#                        (docs/accuracy-vs-time.md); make study-small: the same at 32x24 (test_bench_accuracy
+#                        runs that command in ctest)
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -16,7 +20,7 @@ OUT ?= out
 ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 
-.PHONY: deps configure build run test test-sanitize test-fuzz test-consumers docs clean
+.PHONY: deps configure build run test test-sanitize test-fuzz test-consumers docs study study-small clean
 
 deps:
 	./install-deps.sh
@@ -63,6 +67,16 @@ test-consumers: build
 	bash tests/consumers/run.sh core . $(BUILD)/consumers/core
 	bash tests/consumers/run.sh install $(BUILD) $(BUILD)/consumers/install
 	bash tests/consumers/run.sh deb $(BUILD) $(BUILD)/consumers/deb
+
+study: build
+	$(BUILD)/apps/roma-bench --accuracy --ao-radius 0.5 --runs 3 --csv docs/bench/cornell_accuracy.csv \
+	    --plot docs/images/accuracy_vs_time_cornell_ao.png > docs/bench/cornell_accuracy.txt
+	cat docs/bench/cornell_accuracy.txt
+
+study-small: build
+	mkdir -p $(OUT)/study
+	$(BUILD)/apps/roma-bench --small --accuracy --ao-radius 0.5 --csv $(OUT)/study/accuracy.csv \
+	    --plot $(OUT)/study/accuracy.png
 
 docs: configure
 	cmake --build $(BUILD) --target docs

@@ -60,14 +60,14 @@ for (name, res, angular), v in values.items():
         points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
     elif name == "embree ao ms":
         points.append(("Embree (spp)", res, v, values[("embree ao mae", res, angular)], values[("embree ao flip", res, angular)]))
-printed = {"MAE": [], "FLIP": []}
+printed = {"MAE": [], "FLIP": [], "MAE, GPU": [], "FLIP, GPU": []}
 for line in text.splitlines():
-    if line.startswith("| front | MAE |") or line.startswith("| front | FLIP |"):
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+    cells = [c.strip() for c in line.strip().strip("|").split("|")]
+    if cells[0] == "front" and cells[1] in printed:
         printed[cells[1]].append((cells[2], cells[3]))
 ok = len(points) >= 8
-for k, name in ((3, "MAE"), (4, "FLIP")):
-    usable = [p for p in points if p[k] > 0]
+for k, name in ((3, "MAE"), (4, "FLIP"), (3, "MAE, GPU"), (4, "FLIP, GPU")):
+    usable = [p for p in points if p[k] > 0 and not (name.endswith("GPU") and p[0].startswith("Embree"))]
     front = [p for p in usable if not any(
         (q[2] <= p[2] and q[k] < p[k]) or (q[2] < p[2] and q[k] <= p[k]) for q in usable)]
     front.sort(key=lambda p: p[2])

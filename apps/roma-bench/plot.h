@@ -15,7 +15,8 @@ typedef struct roma_bench_point {
 void roma_bench_pareto(const roma_bench_point *points, int count, int use_flip, int *on_front);
 
 /* Prints the Pareto front of both errors as table rows ("| front | MAE | series | setting | ms
- * | error |"), fastest first. */
+ * | error |"), fastest first; then those of the points whose series is not Embree's
+ * ("| front | MAE, GPU | ..."). */
 void roma_bench_print_fronts(const roma_bench_point *points, int count);
 
 /* For each series, against the point `anchor` (ROMA at its defaults): the lowest error among

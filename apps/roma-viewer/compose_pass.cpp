@@ -344,6 +344,7 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     fb.mode_cap[0] = mode;
     fb.mode_cap[1] = s.history_cap;
     fb.mode_cap[2] = s.steps_max;
+    fb.mode_cap[3] = s.map_index;
     std::memcpy(fb.steps_light, s.steps_light, sizeof fb.steps_light);
     fb.steps_tmin[0] = s.steps_tmin;
     std::memcpy(c.frame_data[k].mapped, &fb, sizeof fb); // the slot's fence has passed: not in use

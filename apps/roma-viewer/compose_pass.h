@@ -17,6 +17,7 @@ enum view_mode : uint32_t {
     VIEW_DIFFERENCE,   // |ROMA - reference| as a heat map
     VIEW_GI,           // one-bounce indirect light
     VIEW_STEPS,        // texels an un-snapped shadow ray to the first light walks (heat map)
+    VIEW_ROTATED_MAP,  // one ray-aligned map seen along its direction
     VIEW_COUNT
 };
 
@@ -42,6 +43,7 @@ struct compose_settings {
     float steps_light[4];
     float steps_tmin;
     uint32_t steps_max;
+    uint32_t map_index;         // the rotated-map view's map
     uint32_t parity;            // frame % 2: which history images this frame writes
     bool filter;                // run the a-trous filter (a moving camera: little history)
     bool tone;                  // the view's values are radiance (exposure applies)

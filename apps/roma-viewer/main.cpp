@@ -52,7 +52,8 @@ const char *kUsage =
     "  --size WxH           window or image size (default 1280x720)\n"
     "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
     "  --gltf-camera N      which of a glTF file's perspective cameras to start from (default 0)\n"
-    "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance, steps\n"
+    "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance, steps,\n"
+    "                       rotated-map (--map K: which of the A x A maps, default 0)\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
@@ -108,7 +109,8 @@ bool parse_float(const char *s, float lo, float hi, float &out)
 }
 
 const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",    "map",
-                                     "hit-distance", "bom-slice", "reference", "difference", "gi", "steps"};
+                                     "hit-distance", "bom-slice", "reference", "difference", "gi", "steps",
+                                     "rotated-map"};
 
 int parse_args(int argc, char **argv, options &o)
 {
@@ -146,7 +148,7 @@ int parse_args(int argc, char **argv, options &o)
                     o.settings.view = static_cast<view_mode>(k), ok = true;
             if (!ok) {
                 std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, gi, albedo, "
-                                     "normal, map, hit-distance, bom-slice, steps)\n", v);
+                                     "normal, map, hit-distance, bom-slice, steps, rotated-map)\n", v);
                 return 2;
             }
         } else if (a == "--res") {
@@ -155,6 +157,8 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 16, o.settings.angular);
         } else if (a == "--ao-samples") {
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
+        } else if (a == "--map") {
+            ok = parse_u32(v, 0, 255, o.settings.map_index);
         } else if (a == "--max-steps") {
             ok = parse_u32(v, 1, 1024, o.settings.max_steps);
         } else if (a == "--area-samples") {
@@ -780,6 +784,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     }
     cs.steps_tmin = (s.shadow_skip > 0.0f ? s.shadow_skip : ROMA_DEFAULT_SHADOW_SKIP_CELLS) * mi.trace_cell;
     cs.steps_max = s.max_steps;
+    cs.map_index = std::min(s.map_index, s.angular * s.angular - 1);
     cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
     // The spatial filter while there is little history: a moving camera, or the first frames
     // after a change; only for the views of light (not the debug views, whose values are labels).

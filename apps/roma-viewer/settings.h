@@ -30,6 +30,7 @@ struct viewer_settings {
     bool filter = true;              // a-trous filter while there is little history
     // debug
     uint32_t slice_axis = 1, slice_depth = 8; // y = 8: near the floor at RES 128
+    uint32_t map_index = 0;          // the rotated-map view's map (of A x A)
     uint32_t reference_spp = 64;
     // animation
     bool animated = false, playing = false;

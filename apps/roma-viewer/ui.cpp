@@ -10,7 +10,8 @@ const char *kViews[VIEW_COUNT] = {"composed", "ambient occlusion", "direct light
                                   "ROMA map per pixel (ray along the normal)", "ROMA hit distance along the normal",
                                   "base occupancy map slice (captured)", "reference (Embree)",
                                   "difference to the reference", "indirect light (one bounce)",
-                                  "un-snapped steps to the first light (magenta: gave up)"};
+                                  "un-snapped steps to the first light (magenta: gave up)",
+                                  "one rotated map along its direction"};
 const uint32_t kResolutions[4] = {32, 64, 128, 256};
 } // namespace
 
@@ -104,6 +105,11 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         if (ImGui::SliderInt("slice depth (cells)", &depth, 0, static_cast<int>(s.res) - 1)) {
             s.slice_depth = static_cast<uint32_t>(depth);
             out.reset_accumulation = true;
+        }
+        int map = static_cast<int>(s.map_index);
+        if (ImGui::SliderInt("rotated map", &map, 0, static_cast<int>(s.angular * s.angular) - 1)) {
+            s.map_index = static_cast<uint32_t>(map);
+            s.view = VIEW_ROTATED_MAP;
         }
         if (ImGui::Button("capture the occupancy map")) {
             out.capture_bom = true;

@@ -36,7 +36,7 @@ layout(std430, set = 0, binding = 12) readonly buffer Frame {
     vec4 prev_rows[4];  // last frame's world -> clip
     vec4 eye_angle;     // xyz: eye; w: the angle a pixel subtends (radians)
     uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept;
-                        // z: the steps view's most steps
+                        // z: the steps view's most steps; w: the rotated-map view's map
     vec4 steps_light;   // the steps view's light: xyz position (w = 1) or direction of travel (w = 2)
     vec4 steps_tmin;    // x: the skip of its shadow rays (world units)
 } frame;
@@ -55,6 +55,7 @@ layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // ind
 #define VIEW_DIFFERENCE 9u
 #define VIEW_GI 10u
 #define VIEW_STEPS 11u
+#define VIEW_ROTATED_MAP 12u
 
 layout(push_constant) uniform Push {
     vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
@@ -95,11 +96,37 @@ vec3 heat(float t)
     return clamp(vec3(3.0 * t, 3.0 * t - 1.0, 3.0 * t - 2.0), 0.0, 1.0);
 }
 
+// One ray-aligned map as its rays see it, looking along its candidate direction: its RES x
+// RES texels in the largest centred square (map x right, y up), each coloured by the first
+// occupied cell of its column (heat: white where the column's first cell is occupied, dark
+// red at the far end; dark blue: an empty column). Not accumulated: a new array every frame.
+void show_rotated_map(ivec2 p)
+{
+    roma_grid_params grid = roma_fetch_grid();
+    uint res = grid.dims.x, words = grid.dims.y;
+    int side = int(min(pc.size.x, pc.size.y));
+    ivec2 q = p - (ivec2(pc.size) - ivec2(side)) / 2;
+    vec3 value = pc.background.rgb;
+    if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(side)))) {
+        uint x = uint(q.x) * res / uint(side), y = uint(side - 1 - q.y) * res / uint(side);
+        uint k = min(frame.mode_cap.w, grid.dims.w - 1u);
+        int first = roma_first_cell(roma_texel_base(k, x, y, res, words), 0, int(res) - 1, true);
+        value = first < 0 ? vec3(0.02, 0.04, 0.2) : heat(1.0 - 0.8 * float(first) / float(res));
+    }
+    imageStore(accum_image, p, vec4(value, 1.0));
+    imageStore(pos_out, p, vec4(0.0));
+    imageStore(display_image, p, vec4(srgb(value), 1.0));
+}
+
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(p), pc.size)))
         return;
+    if (VIEW == VIEW_ROTATED_MAP) {
+        show_rotated_map(p);
+        return;
+    }
     vec4 pos = texelFetch(g_position, p, 0);
     if (pos.w <= 0.0) {
         imageStore(accum_image, p, vec4(0.0));

@@ -29,6 +29,7 @@ struct frame_block { // std430, as compose.comp's Frame
     uint32_t mode_cap[4];
     float steps_light[4];
     float steps_tmin[4];
+    uint32_t bom[4];
 };
 } // namespace
 
@@ -347,6 +348,9 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     fb.mode_cap[3] = s.map_index;
     std::memcpy(fb.steps_light, s.steps_light, sizeof fb.steps_light);
     fb.steps_tmin[0] = s.steps_tmin;
+    fb.steps_tmin[1] = s.ao_skip;
+    fb.bom[0] = uint32_t(s.bom_address);
+    fb.bom[1] = uint32_t(s.bom_address >> 32);
     std::memcpy(c.frame_data[k].mapped, &fb, sizeof fb); // the slot's fence has passed: not in use
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                      VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);

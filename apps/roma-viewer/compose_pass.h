@@ -18,6 +18,7 @@ enum view_mode : uint32_t {
     VIEW_GI,           // one-bounce indirect light
     VIEW_STEPS,        // texels an un-snapped shadow ray to the first light walks (heat map)
     VIEW_ROTATED_MAP,  // one ray-aligned map seen along its direction
+    VIEW_RAY_START,    // the share of AO rays whose start (offset + skip) meets another surface
     VIEW_COUNT
 };
 
@@ -44,6 +45,8 @@ struct compose_settings {
     float steps_tmin;
     uint32_t steps_max;
     uint32_t map_index;         // the rotated-map view's map
+    float ao_skip;              // the ray-start view: the AO rays' skip (world units)
+    uint64_t bom_address;       // and the map's BOM
     uint32_t parity;            // frame % 2: which history images this frame writes
     bool filter;                // run the a-trous filter (a moving camera: little history)
     bool tone;                  // the view's values are radiance (exposure applies)

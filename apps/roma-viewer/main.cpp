@@ -53,12 +53,14 @@ const char *kUsage =
     "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
     "  --gltf-camera N      which of a glTF file's perspective cameras to start from (default 0)\n"
     "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance, steps,\n"
-    "                       rotated-map (--map K: which of the A x A maps, default 0)\n"
+    "                       rotated-map (--map K: which of the A x A maps, default 0), ray-start\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
     "  --max-steps N        texels an un-snapped shadow ray walks (default 8, the paper's)\n"
+    "  --ao-skip C --offset C   AO rays' skip and every ray's origin offset, in trace cells\n"
+    "                       (default: the library's, 1.6 and 1.5)\n"
     "  --exposure E         (default 1.2)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
     "  --headless           no window: render --frames frames and exit\n"
@@ -110,7 +112,7 @@ bool parse_float(const char *s, float lo, float hi, float &out)
 
 const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",    "map",
                                      "hit-distance", "bom-slice", "reference", "difference", "gi", "steps",
-                                     "rotated-map"};
+                                     "rotated-map", "ray-start"};
 
 int parse_args(int argc, char **argv, options &o)
 {
@@ -148,7 +150,7 @@ int parse_args(int argc, char **argv, options &o)
                     o.settings.view = static_cast<view_mode>(k), ok = true;
             if (!ok) {
                 std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, gi, albedo, "
-                                     "normal, map, hit-distance, bom-slice, steps, rotated-map)\n", v);
+                                     "normal, map, hit-distance, bom-slice, steps, rotated-map, ray-start)\n", v);
                 return 2;
             }
         } else if (a == "--res") {
@@ -157,6 +159,8 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 16, o.settings.angular);
         } else if (a == "--ao-samples") {
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
+        } else if (a == "--ao-skip" || a == "--offset") {
+            ok = parse_float(v, 0.01f, 16.0f, a == "--offset" ? o.settings.offset : o.settings.ao_skip);
         } else if (a == "--map") {
             ok = parse_u32(v, 0, 255, o.settings.map_index);
         } else if (a == "--max-steps") {
@@ -785,6 +789,8 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.steps_tmin = (s.shadow_skip > 0.0f ? s.shadow_skip : ROMA_DEFAULT_SHADOW_SKIP_CELLS) * mi.trace_cell;
     cs.steps_max = s.max_steps;
     cs.map_index = std::min(s.map_index, s.angular * s.angular - 1);
+    cs.ao_skip = (s.ao_skip > 0.0f ? s.ao_skip : ROMA_DEFAULT_AO_SKIP_CELLS) * mi.trace_cell;
+    cs.bom_address = mi.bom_address;
     cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
     // The spatial filter while there is little history: a moving camera, or the first frames
     // after a change; only for the views of light (not the debug views, whose values are labels).

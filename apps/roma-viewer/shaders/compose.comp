@@ -8,6 +8,7 @@
 // rays through the public GLSL (roma/trace_descriptors.glsl, set 1).
 #define ROMA_TRACE_SET 1
 #include "roma/trace_descriptors.glsl"
+#include "roma/ray_start.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -38,7 +39,8 @@ layout(std430, set = 0, binding = 12) readonly buffer Frame {
     uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept;
                         // z: the steps view's most steps; w: the rotated-map view's map
     vec4 steps_light;   // the steps view's light: xyz position (w = 1) or direction of travel (w = 2)
-    vec4 steps_tmin;    // x: the skip of its shadow rays (world units)
+    vec4 steps_tmin;    // x: the skip of its shadow rays; y: the skip of AO rays (world units)
+    uvec4 bom;          // xy: the map's BOM address (the ray-start view's walk)
 } frame;
 layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // indirect irradiance
 
@@ -56,6 +58,7 @@ layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // ind
 #define VIEW_GI 10u
 #define VIEW_STEPS 11u
 #define VIEW_ROTATED_MAP 12u
+#define VIEW_RAY_START 13u
 
 layout(push_constant) uniform Push {
     vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
@@ -192,6 +195,26 @@ void main()
                 value = !hit && roma_unsnapped_steps >= most ? vec3(1.0, 0.0, 1.0) : heat(walked) * (hit ? 0.5 : 1.0);
             }
         }
+        tone = false;
+    } else if (view == VIEW_RAY_START) {
+        // Where the start of a ray decides: 16 AO rays leaving the surface (a fixed spiral
+        // over the hemisphere), offset off it by the origin offset and walked exactly through
+        // the BOM over the AO skip (roma/ray_start.glsl), as the AO effect does: the share
+        // whose start meets another surface and is blocked before ROMA traces it (heat:
+        // black none, white all). Bright where surfaces meet closer than the skip.
+        value = vec3(0.0);
+        roma_use_ray_start(frame.bom.xy);
+        vec3 o = pos.xyz + n * pc.offset;
+        vec3 t = normalize(abs(n.x) > 0.5 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+        vec3 b = cross(n, t);
+        uint blocked = 0u;
+        for (uint i = 0u; i < 16u; ++i) {
+            float u = (float(i) + 0.5) / 16.0, phi = float(i) * 2.39996323; // golden angle
+            float r = sqrt(u);
+            vec3 d = t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(1.0 - u);
+            blocked += roma_ray_start_blocked(o, d, frame.steps_tmin.y) ? 1u : 0u;
+        }
+        value = heat(float(blocked) / 16.0);
         tone = false;
     } else if (view == VIEW_MAP || view == VIEW_HIT_DISTANCE) {
         // One ROMA ray along the normal: which map (candidate direction) serves it, and

@@ -99,6 +99,79 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
     return 0;
 }
 
+/* Error against frames accumulated, still camera: ROMA at its defaults (RES 128, A 4, or the
+ * first of the lists) and the exact traversal at that RES rendered for 1, 2, 4 .. frames (the
+ * same seeds: k frames are the first k of the full run), against the reference; Embree's rows
+ * with the same samples (frames x spp) from the equal-time table. Appends the points (x:
+ * frames, in ms) and prints the table. */
+static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_camera *cam,
+                        const roma_bench_accuracy_desc *d, const float *ref_ao, const roma_image *ref_image,
+                        const roma_image *coverage, roma_bench_point *points, int *count, FILE *csv)
+{
+    const uint32_t w = d->width, h = d->height;
+    uint32_t res = d->res[0], angular = d->angular[0];
+    for (int i = 0; i < d->res_count; ++i)
+        res = d->res[i] == 128 ? 128 : res;
+    for (int i = 0; i < d->angular_count; ++i)
+        angular = d->angular[i] == 4 ? 4 : angular;
+    const int embree_first = *count; /* Embree's rows are already in points */
+    printf("\nError against frames accumulated (still camera, %u samples per pixel a frame, RES %u):\n\n"
+           "| frames | ROMA A %u MAE | FLIP | voxel traversal MAE | FLIP | Embree, same samples: MAE | FLIP |\n"
+           "|---|---|---|---|---|---|---|\n",
+           d->spp, res, angular);
+    for (uint32_t f = 1; f <= d->frames; f *= 2) {
+        double mae[2] = {NAN, NAN}, flip[2] = {NAN, NAN};
+        for (int m = 0; m < 2; ++m) {
+            roma_effect_render_desc rd = {
+                .camera = *cam, .width = w, .height = h,
+                .options = {.effects = ROMA_EFFECT_AO, .resolution = res, .ao_angular = m ? 1u : angular},
+                .spp = d->spp, .frames = f, .seed = 1, .ao_radius = d->radius,
+                .ao_method = m ? ROMA_AO_METHOD_VOXEL_DDA : ROMA_AO_METHOD_ROMA,
+            };
+            roma_effect_images img;
+            roma_effect_stats st;
+            roma_result r = roma_effect_render(ctx, scene, &rd, &img, &st);
+            if (r != ROMA_SUCCESS) {
+                fprintf(stderr, "roma-bench: AO over %u frames failed: %s\n", f, roma_result_string(r));
+                return 1;
+            }
+            double sum = 0.0;
+            uint32_t covered = 0;
+            for (size_t i = 0; i < (size_t)w * h; ++i)
+                if (isfinite(ref_ao[i])) {
+                    sum += fabs((double)img.ao.pixels[i] - ref_ao[i]);
+                    ++covered;
+                }
+            mae[m] = covered ? sum / covered : NAN;
+            if (roma_image_flip(ref_image, &img.ao, coverage, 0.0f, &flip[m], NULL) != ROMA_SUCCESS)
+                flip[m] = NAN;
+            roma_effect_images_free(&img);
+            roma_bench_point *pt = &points[(*count)++];
+            snprintf(pt->series, sizeof pt->series, m ? "voxel traversal, RES %u" : "ROMA A %u, RES %u",
+                     m ? res : angular, res);
+            snprintf(pt->label, sizeof pt->label, "%u", f);
+            pt->ms = f, pt->mae = mae[m], pt->flip = flip[m];
+            if (csv)
+                fprintf(csv, "frames,%s mae after %u frames,%u,%u,%.6f,\nframes,%s flip after %u frames,%u,%u,%.6f,\n",
+                        m ? "voxel-dda" : "ao", f, res, m ? 1u : angular, mae[m], m ? "voxel-dda" : "ao", f, res,
+                        m ? 1u : angular, flip[m]);
+        }
+        double emae = NAN, eflip = NAN;
+        char spp_text[16];
+        snprintf(spp_text, sizeof spp_text, "%u", f * d->spp);
+        for (int i = 0; i < embree_first; ++i)
+            if (strncmp(points[i].series, "Embree", 6) == 0 && strcmp(points[i].label, spp_text) == 0) {
+                emae = points[i].mae, eflip = points[i].flip;
+                roma_bench_point *pt = &points[(*count)++];
+                snprintf(pt->series, sizeof pt->series, "Embree, same samples");
+                snprintf(pt->label, sizeof pt->label, "%u", f);
+                pt->ms = f, pt->mae = emae, pt->flip = eflip;
+            }
+        printf("| %u | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", f, mae[0], flip[0], mae[1], flip[1], emae, eflip);
+    }
+    return 0;
+}
+
 int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                         const roma_bench_accuracy_desc *d, FILE *csv)
 {
@@ -109,7 +182,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     float *ref_ao = calloc((size_t)w * h, sizeof *ref_ao);
     double *times = calloc(d->runs, sizeof *times);
     /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (d->angular_count + 2) + 32;
+    const int max_points = d->res_count * (d->angular_count + 2) + 32 + 3 * 32; /* + the frames curves */
     roma_bench_point *points = calloc((size_t)max_points, sizeof *points);
     int point_count = 0;
     roma_image ref_image = {0}, coverage = {0};
@@ -251,7 +324,21 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                  samples);
         snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baselines: %u frames of %u samples)",
                  d->frames, d->spp);
-        if (roma_bench_plot(points, point_count, title, x_label, d->plot_path))
+        if (roma_bench_plot(points, point_count, title, x_label, 1, d->plot_path))
+            status = 1;
+    }
+    /* Error against frames: its points follow the others; plotted beside, as NAME_frames.png. */
+    const int frames_first = point_count;
+    if (have_ref && frames_curve(ctx, scene, &cam, d, ref_ao, &ref_image, &coverage, points, &point_count, csv))
+        status = 1;
+    if (d->plot_path && point_count > frames_first) {
+        char path[1024], title[160], x_label[160];
+        const char *dot = strrchr(d->plot_path, '.');
+        int stem = dot ? (int)(dot - d->plot_path) : (int)strlen(d->plot_path);
+        snprintf(path, sizeof path, "%.*s_frames.png", stem, d->plot_path);
+        snprintf(title, sizeof title, "Ambient occlusion, %ux%u: error against frames accumulated (still camera)", w, h);
+        snprintf(x_label, sizeof x_label, "frames accumulated (%u samples per pixel each)", d->spp);
+        if (roma_bench_plot(points + frames_first, point_count - frames_first, title, x_label, 0, path))
             status = 1;
     }
 done:

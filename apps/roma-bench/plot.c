@@ -128,7 +128,7 @@ void roma_bench_print_equal(const roma_bench_point *points, int count, int ancho
 /* One panel: a curve per series with its settings written beside the points, and the front
  * as the staircase of the best error reachable in a given time. */
 static void write_panel(FILE *gp, const roma_bench_point *points, int count, int use_flip, const char *x_label,
-                        int *order)
+                        int show_front, int *order)
 {
     const char *name = use_flip ? "FLIP" : "MAE";
     fprintf(gp, "set xlabel \"%s\"\nset ylabel \"%s against the reference\"\n", x_label, name);
@@ -149,7 +149,7 @@ static void write_panel(FILE *gp, const roma_bench_point *points, int count, int
         fprintf(gp, "EOD\n");
         ++series;
     }
-    int n = front_order(points, count, use_flip, order);
+    int n = show_front ? front_order(points, count, use_flip, order) : 0;
     fprintf(gp, "$%sfront << EOD\n", name);
     for (int k = 0; k < n; ++k)
         fprintf(gp, "%.6g %.6g\n", points[order[k]].ms, error_of(&points[order[k]], use_flip));
@@ -158,13 +158,16 @@ static void write_panel(FILE *gp, const roma_bench_point *points, int count, int
         fprintf(gp, "$%s%d using 1:2 with linespoints lt %d lw 2 pt 7 title \"%s\", "
                     "$%s%d using 1:2:3 with labels offset char 0.9,0.6 font \",8\" tc rgb \"gray30\" notitle, ",
                 name, s, s + 1, seen[s], name, s);
-    fprintf(gp, "$%sfront using 1:2 with steps dt 2 lw 1.5 lc rgb \"black\" title \"Pareto front\", "
-                "$%sfront using 1:2 with points pt 6 ps 2 lc rgb \"black\" notitle\n",
-            name, name);
+    if (show_front)
+        fprintf(gp, "$%sfront using 1:2 with steps dt 2 lw 1.5 lc rgb \"black\" title \"Pareto front\", "
+                    "$%sfront using 1:2 with points pt 6 ps 2 lc rgb \"black\" notitle\n",
+                name, name);
+    else
+        fprintf(gp, "NaN notitle\n");
 }
 
 int roma_bench_plot(const roma_bench_point *points, int count, const char *title, const char *x_label,
-                    const char *png_path)
+                    int show_front, const char *png_path)
 {
     /* The strings go into double-quoted gnuplot strings. */
     const char *texts[3] = {title, x_label, png_path};
@@ -185,8 +188,8 @@ int roma_bench_plot(const roma_bench_point *points, int count, const char *title
                 "set multiplot layout 1,2 title \"%s\"\nset logscale xy\nset grid\n"
                 "set key bottom left font \",9\"\n",
             png_path, title);
-    write_panel(gp, points, count, 0, x_label, order);
-    write_panel(gp, points, count, 1, x_label, order);
+    write_panel(gp, points, count, 0, x_label, show_front, order);
+    write_panel(gp, points, count, 1, x_label, show_front, order);
     fprintf(gp, "unset multiplot\nset output\n");
     int status = pclose(gp);
     free(order);

@@ -24,10 +24,10 @@ void roma_bench_print_fronts(const roma_bench_point *points, int count);
  * whose error is no higher (equal error), by MAE and by FLIP; "-" where none qualifies. */
 void roma_bench_print_equal(const roma_bench_point *points, int count, int anchor);
 
-/* Error against time, one curve per series, log-log, MAE and FLIP side by side, each
- * with its Pareto front, drawn by gnuplot into a PNG. Returns 0 on success; a message on
+/* Error against time (the points' ms), one curve per series, log-log, MAE and FLIP side
+ * by side, each with its Pareto front when show_front, drawn by gnuplot into a PNG. Returns 0 on success; a message on
  * stderr otherwise (gnuplot missing or failing, a path it cannot take). */
 int roma_bench_plot(const roma_bench_point *points, int count, const char *title, const char *x_label,
-                    const char *png_path);
+                    int show_front, const char *png_path);
 
 #endif /* ROMA_BENCH_PLOT_H */

@@ -10,7 +10,7 @@
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
 #   make docs            the API reference (doxygen) in build/docs/html
 #   make study           what accuracy costs in time: the accuracy run of roma-bench on the built-in
-#                        room (about 6 minutes on 2 cores) into docs/bench and its plot into docs/images
+#                        room (about 6 to 7 minutes on 2 cores) into docs/bench and its plot into docs/images
 #                        (docs/accuracy-vs-time.md); make study-small: the same at 32x24 (test_bench_accuracy
 #                        runs that command in ctest)
 BUILD ?= build

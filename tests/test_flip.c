@@ -127,6 +127,7 @@ int main(void)
     CHECK_RESULT(roma_image_flip(&e1, &e2, NULL, 0.0f, &mean, &e1), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK(e1.pixels != NULL && e1.pixels[N - 1] == 1.0f); /* the refused call left the input as it was */
     CHECK_RESULT(roma_image_flip(&e1, &e2, &mask, 0.0f, &mean, &mask), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(mask.pixels != NULL); /* the refused call left the mask as it was */
     roma_image_free(&map);
     roma_image_free(&mask);
     roma_image_free(&e1);

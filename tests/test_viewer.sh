@@ -107,8 +107,8 @@ if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/ref
 fi
 
 # 1b'''. The steps view: the un-snapped shadow rays to the spot that walk every step without a
-#       hit (magenta: they gave up and count as lit) are many with the paper's 8 steps and
-#       fewer with 64.
+#       hit and without reaching the light or leaving the map (magenta: they gave up and count
+#       as lit) are many with the paper's 8 steps and few with 64.
 magenta() { # PFM: the share of pure magenta pixels
   python3 -c '
 import struct, sys
@@ -124,8 +124,8 @@ done
 if [ -f "$dir/steps_8.pfm" ] && [ -f "$dir/steps_64.pfm" ]; then
   g8=$(magenta "$dir/steps_8.pfm"); g64=$(magenta "$dir/steps_64.pfm")
   echo "steps view: shadow rays to the spot that gave up: $g8 of the pixels with 8 steps, $g64 with 64"
-  # Measured: 0.879 with 8 steps, 0.0016 with 64 (19,200 pixels).
-  awk -v a="$g8" -v b="$g64" 'BEGIN { exit !(a > 0.85 && b < 0.003) }' || fail "the steps view: gave up $g8 (8), $g64 (64)"
+  # Measured: 0.859 with 8 steps, 0.0013 with 64 (19,200 pixels).
+  awk -v a="$g8" -v b="$g64" 'BEGIN { exit !(a > 0.85 && b < 0.002) }' || fail "the steps view: gave up $g8 (8), $g64 (64)"
 fi
 
 # 1b4. The rotated-map view: map 0 and map 9 of the 16 seen along their directions; the

@@ -308,7 +308,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
     roma_bench_print_fronts(points, point_count);
-    /* Equal time and equal error against ROMA's defaults (RES 128, A 4), or the nearest run. */
+    /* Equal time and equal error against ROMA's defaults (RES 128, A 4); without RES 128 in
+     * the run, ROMA A 4 at the first RES listed; without A 4, no such tables (said below). */
     int anchor = -1;
     for (int i = 0; i < point_count; ++i) {
         int defaults = strcmp(points[i].series, "ROMA A 4") == 0 && strcmp(points[i].label, "128") == 0;
@@ -317,6 +318,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         if (defaults)
             break;
     }
+    if (anchor < 0)
+        printf("\nNo equal-time or equal-error tables: they compare against ROMA at A 4, not in --angular.\n");
     roma_bench_print_equal(points, point_count, anchor);
     if (d->plot_path) {
         char title[160], x_label[160];

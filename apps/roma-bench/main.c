@@ -132,6 +132,21 @@ static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_
     return status;
 }
 
+/* Whether a file can be created or replaced at path; leaves no file behind that was not there. */
+static int writable(const char *path)
+{
+    FILE *existing = fopen(path, "rb");
+    if (existing)
+        fclose(existing);
+    FILE *f = fopen(path, "ab");
+    if (!f)
+        return 0;
+    fclose(f);
+    if (!existing)
+        remove(path);
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL;
@@ -178,6 +193,15 @@ int main(int argc, char **argv)
     if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
         fputs(usage, stderr);
         return 2;
+    }
+    /* A path that cannot be written fails now, not after minutes of measuring. */
+    if (plot_path && !writable(plot_path)) {
+        fprintf(stderr, "roma-bench: --plot %s: cannot write there\n", plot_path);
+        return 1;
+    }
+    if (csv_path && !writable(csv_path)) {
+        fprintf(stderr, "roma-bench: --csv %s: cannot write there\n", csv_path);
+        return 1;
     }
     roma_scene *scene = NULL;
     roma_result r = roma_app_load_scene(scene_arg, NULL, 0, &scene);

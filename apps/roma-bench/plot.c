@@ -4,6 +4,7 @@
 #include "plot.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -178,9 +179,14 @@ int roma_bench_plot(const roma_bench_point *points, int count, const char *title
             return 1;
         }
     int *order = malloc((size_t)(count ? count : 1) * sizeof *order);
-    FILE *gp = order ? popen("gnuplot 2>&1", "w") : NULL;
+    /* gnuplot's messages go to our stdout; its own stdout (where it writes the image when the
+     * output cannot be opened) goes nowhere. A gnuplot that exits early must not kill us with
+     * SIGPIPE while the script is still being written. */
+    void (*old_sigpipe)(int) = signal(SIGPIPE, SIG_IGN);
+    FILE *gp = order ? popen("gnuplot 2>&1 >/dev/null", "w") : NULL;
     if (!gp) {
         fprintf(stderr, "roma-bench: cannot start gnuplot\n");
+        signal(SIGPIPE, old_sigpipe);
         free(order);
         return 1;
     }
@@ -191,8 +197,12 @@ int roma_bench_plot(const roma_bench_point *points, int count, const char *title
     write_panel(gp, points, count, 0, x_label, show_front, order);
     write_panel(gp, points, count, 1, x_label, show_front, order);
     fprintf(gp, "unset multiplot\nset output\n");
+    int write_failed = ferror(gp);
     int status = pclose(gp);
+    signal(SIGPIPE, old_sigpipe);
     free(order);
+    if (write_failed && status == 0)
+        status = -1;
     if (status != 0) {
         fprintf(stderr, "roma-bench: gnuplot failed (status %d); install-deps.sh installs gnuplot-nox\n", status);
         return 1;

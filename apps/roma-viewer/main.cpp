@@ -789,7 +789,9 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.steps_tmin = (s.shadow_skip > 0.0f ? s.shadow_skip : ROMA_DEFAULT_SHADOW_SKIP_CELLS) * mi.trace_cell;
     cs.steps_max = s.max_steps;
     cs.map_index = std::min(s.map_index, s.angular * s.angular - 1);
-    cs.ao_skip = (s.ao_skip > 0.0f ? s.ao_skip : ROMA_DEFAULT_AO_SKIP_CELLS) * mi.trace_cell;
+    // Capped at the AO radius, as the AO effect caps it: a ray never skips past its end.
+    cs.ao_skip = std::min((s.ao_skip > 0.0f ? s.ao_skip : ROMA_DEFAULT_AO_SKIP_CELLS) * mi.trace_cell,
+                          effective_ao_radius(v));
     cs.bom_address = mi.bom_address;
     cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
     // The spatial filter while there is little history: a moving camera, or the first frames

@@ -242,15 +242,18 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     return hit;
 }
 
-// Texels the last roma_trace_unsnapped call of this invocation walked (debug views: a ray
-// that walked max_steps without a hit gave up and counts as unoccluded).
+// Texels the last roma_trace_unsnapped call of this invocation walked, and whether it gave up:
+// walked max_steps texels without a hit and without leaving the map or reaching tmax, so
+// it counts as unoccluded (debug views).
 uint roma_unsnapped_steps = 0u;
+bool roma_unsnapped_gave_up = false;
 
 // Un-snapped query: the exact direction walked through the selected map's texels
 // (2D DDA in the map's xy plane), at most max_steps texels.
 roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest, uint max_steps)
 {
     roma_unsnapped_steps = 0u;
+    roma_unsnapped_gave_up = false;
     roma_grid_params grid = roma_fetch_grid();
     uint res = grid.dims.x, words = grid.dims.y;
     vec3 dn;
@@ -324,6 +327,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
             return hit;
         t_cur = t_next;
     }
+    roma_unsnapped_gave_up = true;
     return hit;
 }
 

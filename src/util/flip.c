@@ -227,7 +227,8 @@ roma_result roma_image_flip(const roma_image *reference, const roma_image *test,
         return ROMA_ERROR_INVALID_ARGUMENT;
     if (out_map)
         memset(out_map, 0, sizeof *out_map);
-    if (!out_mean || !reference || !test || !reference->pixels || !test->pixels || reference->width != test->width || reference->height != test->height ||
+    if (!out_mean || !reference || !test || !reference->pixels || !test->pixels ||
+        reference->width != test->width || reference->height != test->height ||
         reference->channels != test->channels || (reference->channels != 1 && reference->channels != 3) ||
         reference->width == 0 || reference->height == 0 || !(pixels_per_degree >= 0.0f) ||
         !isfinite(pixels_per_degree))

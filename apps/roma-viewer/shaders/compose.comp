@@ -179,7 +179,8 @@ void main()
     } else if (view == VIEW_STEPS) {
         // One un-snapped shadow ray to the scene's first punctual light (the ROMA part of the
         // light effect's shadow ray, without the walk of its start): how many map texels it
-        // walked (heat: black none, white the most); blocked rays dimmed; rays that walked every step without a hit gave up and count
+        // walked (heat: black none, white the most); blocked rays dimmed; rays that walked
+        // every step without a hit, leaving the map or reaching the light gave up and count
         // as lit: magenta (where light can leak in from far occluders).
         value = albedo * 0.35;
         if (frame.steps_light.w > 0.0) {
@@ -192,7 +193,7 @@ void main()
                 roma_hit h = roma_trace_unsnapped(o, d, frame.steps_tmin.x, tmax, false, most);
                 bool hit = (h.info & ROMA_HIT_FLAG) != 0u;
                 float walked = float(roma_unsnapped_steps) / float(most);
-                value = !hit && roma_unsnapped_steps >= most ? vec3(1.0, 0.0, 1.0) : heat(walked) * (hit ? 0.5 : 1.0);
+                value = roma_unsnapped_gave_up ? vec3(1.0, 0.0, 1.0) : heat(walked) * (hit ? 0.5 : 1.0);
             }
         }
         tone = false;

@@ -14,6 +14,11 @@
  * point and spot lights, lux for directional ones; range windows; spot cones); their
  * formulas are the reference tracer's. Synchronisation and slots: as roma_ao_effect.
  *
+ * Many lights: with roma_light_settings.lights_per_frame each pixel traces a fixed number of
+ * the lights per frame (a random run of them, scaled to an unbiased estimate), so thousands of
+ * lights cost per frame what a few do and the engine's accumulation over frames converges to
+ * the all-lights image; key lights can stay exact (exact_light_count).
+ *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. */
 #ifndef ROMA_LIGHT_EFFECT_H
@@ -53,6 +58,16 @@ typedef struct roma_light_settings {
     uint32_t area_samples;
     uint32_t seed;         /**< area-light sample sequences, as roma_ao_settings */
     uint32_t frame;        /**< the engine's frame counter: new area-light samples, and a new frame of the slot */
+    /** Many lights: 0 = every punctual light is traced every frame. Otherwise each pixel traces
+     * this many of the lights after the first exact_light_count (a run of consecutive lights
+     * from a random start, new each frame), and scales their sum by (lights after the first
+     * exact_light_count) / lights_per_frame: every light is traced with the same probability,
+     * so the mean over frames is the all-lights image, at a cost per pixel that does not grow
+     * with the number of lights. Values at or above the number of those lights trace them all. */
+    uint32_t lights_per_frame;
+    /** With lights_per_frame: the first exact_light_count lights (an engine's key lights) are
+     * traced every frame and not sampled. Ignored when lights_per_frame is 0. */
+    uint32_t exact_light_count;
 } roma_light_settings;
 
 /** The zero value's meaning filled in (the one place defaults are resolved).

@@ -27,6 +27,7 @@ layout(set = 1, binding = 3, rgba32f) uniform writeonly image2D roma_light_outpu
 layout(push_constant) uniform Push { roma_light_images_push pc; };
 
 const uint DIM_DIRECT_AREA = 2u;
+const uint DIM_MANY_LIGHTS = 10u; // as passes/many_lights.comp
 
 void main()
 {
@@ -47,11 +48,27 @@ void main()
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
     vec3 E = vec3(0.0);
-    for (uint i = 0u; i < light_count; ++i)
-        E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
     uint seed = pc.config2.x, emitter_count = pc.config2.y, samples = pc.config2.z, frame = pc.config2.w;
+    uint pixel = xy.y * width + xy.x;
+    // Many lights: the first `exact` lights every frame; of the `rest`, a run of `sampled`
+    // consecutive ones from a random start, scaled by rest / sampled (each light is in the
+    // run with probability sampled / rest, so the estimate is unbiased).
+    uint exact = pc.config3.x == 0u ? light_count : min(pc.config3.y, light_count);
+    uint rest = light_count - exact, sampled = min(pc.config3.x == 0u ? rest : pc.config3.x, rest);
+    for (uint i = 0u; i < exact; ++i)
+        E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
+    if (sampled > 0u) {
+        uint first = sampled == rest ? 0u
+                                     : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(rest)), rest - 1u);
+        vec3 sum = vec3(0.0);
+        for (uint j = 0u; j < sampled; ++j) {
+            uint i = first + j;
+            i = exact + (i >= rest ? i - rest : i);
+            sum += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
+        }
+        E += sum * (float(rest) / float(sampled));
+    }
     if (emitter_count > 0u && samples > 0u) {
-        uint pixel = xy.y * width + xy.x;
         vec3 area = vec3(0.0);
         for (uint k = 0u; k < samples; ++k) {
             uint s = frame * samples + k;

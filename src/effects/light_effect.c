@@ -185,14 +185,22 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
         if (r != ROMA_SUCCESS)
             return r;
     }
-    uint32_t packed = 0;
-    for (uint32_t i = 0; i < light_count; ++i)
+    /* Dropped lights (no intensity or colour) shift the rest: count the kept ones among the
+     * first exact_light_count. */
+    uint32_t packed = 0, exact_packed = 0;
+    for (uint32_t i = 0; i < light_count; ++i) {
         packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)buf->mapped + packed);
+        if (i + 1 == s.exact_light_count)
+            exact_packed = packed;
+    }
+    if (s.exact_light_count > light_count)
+        exact_packed = packed;
     roma_light_images_push push = {.lights = buf->address, .bom = info.bom_address,
                                    .emitters = e->emitter_count ? e->emitters.address : 0,
                                    .cdf = e->emitter_count ? e->cdf.address : 0,
                                    .config = {im->width, im->height, packed, s.max_steps},
                                    .config2 = {s.seed, e->emitter_count, s.area_samples, s.frame},
+                                   .config3 = {s.lights_per_frame, exact_packed, 0, 0},
                                    .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};

@@ -31,6 +31,7 @@
 
 #include "app_common.h"
 #include "gbuffer_pass.h"
+#include "many_lights.h"
 #include "compose_pass.h"
 #include "swapchain.h"
 #include "reference_job.h"
@@ -58,6 +59,9 @@ const char *kUsage =
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
+    "  --many-lights N      N synthetic point lights added to the direct light (default 0)\n"
+    "  --lights-per-frame K of them, traced per pixel and frame (default 8; the scene's\n"
+    "                       own lights are traced every frame)\n"
     "  --max-steps N        texels an un-snapped shadow ray walks (default 8, the paper's)\n"
     "  --ao-skip C --offset C   AO rays' skip and every ray's origin offset, in trace cells\n"
     "                       (default: the library's, 1.6 and 1.5)\n"
@@ -167,6 +171,10 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 1024, o.settings.max_steps);
         } else if (a == "--area-samples") {
             ok = parse_u32(v, 1, 1024, o.settings.area_samples);
+        } else if (a == "--many-lights") {
+            ok = parse_u32(v, 0, 65536, o.settings.many_lights);
+        } else if (a == "--lights-per-frame") {
+            ok = parse_u32(v, 1, 65536, o.settings.lights_per_frame);
         } else if (a == "--ao-radius") {
             ok = parse_float(v, 1e-6f, 1e30f, o.settings.ao_radius);
         } else if (a == "--exposure") {
@@ -274,6 +282,8 @@ struct viewer {
     view_mode compared = VIEW_AO;
     roma_image coverage{};
     std::vector<std::string> passes; // what the last recorded frame ran
+    std::vector<roma_light> lights;  // the scene's punctual lights, then the many lights
+    uint32_t lights_made = UINT32_MAX; // the many-lights count `lights` was made for
     bool camera_moved = false;       // since the last recorded frame: reproject the history
     float prev_clip_rows[4][4] = {}; // the last recorded frame's world -> clip
     uint32_t scene_failures = 0;     // scenes that could not be opened (dropped files)
@@ -373,7 +383,9 @@ void describe_plan(viewer &v)
                 ? ", direct light from punctual and area lights (roma_light_effect) and one-bounce GI"
                   " (roma_gi_effect, its hits lit by shadow rays)"
                 : " (no lights in the scene: no direct light, no GI)";
-    text += " on one array; many lights are not in the public effect API yet.";
+    text += " on one array. Many lights (when asked for) are added to the direct light: the light effect"
+            " traces a few of them per pixel and frame (lights_per_frame) and the accumulation averages them;"
+            " GI carries the scene's own lights only.";
     v.info.plan = text;
 }
 
@@ -411,6 +423,7 @@ bool open_scene(viewer &v, const std::string &name)
     free_scene(v);
     v.scene = scene;
     roma_scene_get_view(scene, &v.view);
+    v.lights_made = UINT32_MAX; // the many lights follow the new scene's bounds
     v.info.scene_name = name;
     v.info.vertices = v.view.vertex_count;
     v.info.triangles = v.view.triangle_count;
@@ -689,7 +702,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     view_mode shown = (s.view == VIEW_REFERENCE || s.view == VIEW_DIFFERENCE) ? v.compared : s.view;
     bool want_ao = s.ao_on && (shown == VIEW_COMPOSED || shown == VIEW_AO);
     bool lit = v.view.light_count > 0 || v.view.emissive_triangle_count > 0;
-    bool want_direct = s.direct_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
+    bool want_direct = s.direct_on && (lit || s.many_lights > 0) && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
     bool want_gi = s.gi_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_GI);
     if (want_ao) {
         roma_ao_images images{};
@@ -723,10 +736,22 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         ls.area_samples = s.area_samples;
         ls.seed = 1;
         ls.frame = v.frame;
-        if (roma_light_effect_record(v.light, cmd, slot, v.map, &images, v.view.lights, v.view.light_count, &ls) !=
-            ROMA_SUCCESS)
+        if (v.lights_made != s.many_lights) { // the scene's lights, then the many lights
+            v.lights.assign(v.view.lights, v.view.lights + v.view.light_count);
+            std::vector<roma_light> many = make_many_lights(v.view.bounds_min, v.view.bounds_max, s.many_lights);
+            v.lights.insert(v.lights.end(), many.begin(), many.end());
+            v.lights_made = s.many_lights;
+        }
+        if (s.many_lights > 0) { // the scene's lights every frame, a few of the many sampled
+            ls.lights_per_frame = s.lights_per_frame;
+            ls.exact_light_count = v.view.light_count;
+        }
+        if (roma_light_effect_record(v.light, cmd, slot, v.map, &images, v.lights.data(),
+                                     static_cast<uint32_t>(v.lights.size()), &ls) != ROMA_SUCCESS)
             return false;
         v.passes.push_back("direct_light");
+        if (s.many_lights > 0)
+            v.passes.push_back("many_lights");
     }
     if (want_gi) {
         roma_light_images images{};

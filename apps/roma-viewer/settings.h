@@ -20,6 +20,8 @@ struct viewer_settings {
     float auto_ao_radius = 1.0f;
     uint32_t max_steps = 8;
     uint32_t area_samples = 4;       // area-light samples per pixel and frame
+    uint32_t many_lights = 0;        // synthetic point lights added to the direct light (0: none)
+    uint32_t lights_per_frame = 8;   // of them, traced per pixel and frame (the scene's own: all)
     float ao_skip = 0.0f, shadow_skip = 0.0f, offset = 0.0f; // 0 = the library's defaults
     // picture
     view_mode view = VIEW_COMPOSED;

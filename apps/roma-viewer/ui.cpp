@@ -59,6 +59,16 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
             s.ao_radius = shown;
             out.reset_accumulation = true;
         }
+        int many = static_cast<int>(s.many_lights);
+        if (ImGui::SliderInt("many lights (added to direct)", &many, 0, 4096, "%d", ImGuiSliderFlags_Logarithmic)) {
+            s.many_lights = static_cast<uint32_t>(many);
+            out.reset_accumulation = true;
+        }
+        int per_frame = static_cast<int>(s.lights_per_frame);
+        if (s.many_lights > 0 && ImGui::SliderInt("of them per pixel and frame", &per_frame, 1, 64)) {
+            s.lights_per_frame = static_cast<uint32_t>(per_frame);
+            out.reset_accumulation = true;
+        }
         int area = static_cast<int>(s.area_samples);
         if (ImGui::SliderInt("area-light samples per pixel", &area, 1, 64)) {
             s.area_samples = static_cast<uint32_t>(area);

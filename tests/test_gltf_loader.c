@@ -736,9 +736,48 @@ static void test_size_limits(void)
 }
 
 /* roma_gltf_desc.camera_index picks among a file's perspective cameras (2CylinderEngine
- * has one); the animations keep their names (Fox: Survey, Walk, Run), also in a posed copy. */
+ * has one; a file with two, each with its own placement and field of view, all of them
+ * listed in roma_scene_view.cameras); the animations keep their names (Fox: Survey, Walk,
+ * Run), also in a posed copy. */
 static void test_cameras_and_names(void)
 {
+    char *two = subst(tri_json, "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],",
+                      "\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[{\"mesh\":0},"
+                      "{\"camera\":0,\"translation\":[0,0,5]},"
+                      "{\"camera\":1,\"translation\":[3,0,0],\"rotation\":[0,0.70710678118,0,0.70710678118]}],"
+                      "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"znear\":0.1}},"
+                      "{\"type\":\"perspective\",\"perspective\":{\"yfov\":1.0,\"znear\":0.1}}],");
+    char *uri = data_uri(&tri_bin, sizeof tri_bin);
+    char *doc = printf_doc(two, uri);
+    const double deg = 180.0 / 3.14159265358979;
+    for (uint32_t k = 0; k < 2; ++k) {
+        roma_scene *s = NULL;
+        CHECK_RESULT(roma_scene_load_gltf_memory(doc, strlen(doc), NULL, &(roma_gltf_desc){.camera_index = k}, &s),
+                     ROMA_SUCCESS);
+        roma_scene_view v;
+        roma_scene_get_view(s, &v);
+        CHECK(s && v.has_camera && v.camera_count == 2);
+        if (!s || v.camera_count != 2)
+            continue;
+        /* Camera 1 is turned a quarter about y: it looks along -x. */
+        if (k == 0) {
+            CHECK_VEC(v.camera.eye, 0, 0, 5);
+            CHECK_VEC(v.camera.target, 0, 0, 4);
+        } else {
+            CHECK_VEC(v.camera.eye, 3, 0, 0);
+            CHECK_VEC(v.camera.target, 2, 0, 0);
+        }
+        CHECK_NEAR(v.camera.fovy_deg, (k ? 1.0 : 0.5) * deg, 1e-4);
+        CHECK_VEC(v.cameras[0].eye, 0, 0, 5);
+        CHECK_NEAR(v.cameras[0].fovy_deg, 0.5 * deg, 1e-4);
+        CHECK_VEC(v.cameras[1].eye, 3, 0, 0);
+        CHECK_NEAR(v.cameras[1].fovy_deg, 1.0 * deg, 1e-4);
+        roma_scene_destroy(s);
+    }
+    free(doc);
+    free(uri);
+    free(two);
+
     char path[1024];
     if (roma_test_scene_file("2CylinderEngine.glb", path, sizeof path)) {
         roma_scene *s = NULL;

@@ -63,6 +63,8 @@ static void test_good(roma_logger logger, roma_test_log *log)
     d.light_count = 2;
     roma_camera cam = {{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 50.0f};
     d.camera = &cam;
+    d.cameras = &cam;
+    d.camera_count = 1;
 
     roma_scene *s = NULL;
     CHECK_RESULT(roma_scene_create(&d, &s), ROMA_SUCCESS);
@@ -97,6 +99,7 @@ static void test_good(roma_logger logger, roma_test_log *log)
     CHECK_NEAR(v.lights[1].direction[0], 0.6, 1e-6);
     CHECK_NEAR(v.lights[1].direction[2], 0.8, 1e-6);
     CHECK(v.has_camera && v.camera.eye[1] == 2.0f && v.camera.fovy_deg == 50.0f);
+    CHECK(v.camera_count == 1 && v.cameras != d.cameras && v.cameras[0].eye[2] == 3.0f); /* copied */
     CHECK(v.animation.node_count == 0 && v.animation.nodes == NULL);
 
     roma_camera out;
@@ -167,6 +170,11 @@ static void test_rejects(void)
     REJECT(d, ROMA_ERROR_INVALID_ARGUMENT);
     d = quad_desc(logger), d.light_count = 1;
     REJECT(d, ROMA_ERROR_INVALID_ARGUMENT);
+    d = quad_desc(logger), d.camera_count = 1; /* cameras NULL */
+    REJECT(d, ROMA_ERROR_INVALID_ARGUMENT);
+    roma_camera cams[2] = {{{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 50.0f}, {{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, NAN}};
+    d = quad_desc(logger), d.cameras = cams, d.camera_count = 2;
+    REJECT(d, ROMA_ERROR_INVALID_SCENE);
 
     d = quad_desc(logger), d.triangle_count = 0;
     REJECT(d, ROMA_ERROR_EMPTY_SCENE);

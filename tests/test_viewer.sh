@@ -313,6 +313,19 @@ if command -v xvfb-run >/dev/null; then
   [ "$(json "$dir/resilience.json" scene_failures)" = "1" ] || fail "the malformed file was not refused once"
   grep -q "cannot open malformed.gltf" "$dir/resilience.out" || fail "the malformed file is not named in a message"
   [ "$(json "$dir/resilience.json" validation_messages)" = "0" ] || fail "validation messages in the resilience script"
+
+  # The scene's cameras: a glTF file with two, the second picked as the interface's button picks
+  # it (script verb camera); a camera the scene lacks is refused with a message.
+  (cd "$dir" && xvfb-run -a -s "-screen 0 800x600x24" "$viewer" --validation --size 160x120 \
+     --scene "$scripts/two_cameras.gltf" --script "$scripts/cameras.script" --stats "$dir/cameras.json") \
+    >"$dir/cameras.out" 2>&1 || { cat "$dir/cameras.out" >&2; fail "the cameras script failed"; }
+  grep -q "the scene has no camera 5 (it has 2)" "$dir/cameras.out" || fail "camera 5 of 2 was not refused with a message"
+  python3 - "$(json "$dir/cameras.json" camera)" <<'EOF' || fail "the viewer's camera is not the file's second camera"
+import sys
+got = [float(x) for x in sys.argv[1].split(",")]
+want = [3, 1, 0, 2, 1, 0, 57.29578]  # translation (3, 1, 0), turned to look along -x, yfov 1 rad
+sys.exit(0 if all(abs(a - b) < 1e-3 for a, b in zip(got, want)) and len(got) == 7 else 1)
+EOF
 fi
 
 # 4. Bad input.

@@ -42,6 +42,18 @@ static void errors_only(roma_log_level level, roma_result code, const char *mess
         fprintf(stderr, "libroma: %s\n", message);
 }
 
+static roma_camera turn_camera(float m[3][3], const roma_camera *c)
+{
+    roma_camera out = *c;
+    turn(m, c->eye, out.eye);
+    turn(m, c->target, out.target);
+    float up_in[3] = {c->up[0], c->up[1], c->up[2]};
+    if (up_in[0] == 0.0f && up_in[1] == 0.0f && up_in[2] == 0.0f)
+        up_in[1] = 1.0f;
+    turn(m, up_in, out.up);
+    return out;
+}
+
 roma_result roma_app_reorient(const roma_scene *scene, const char *up, roma_scene **out)
 {
     float m[3][3];
@@ -54,10 +66,12 @@ roma_result roma_app_reorient(const roma_scene *scene, const char *up, roma_scen
     size_t nv = (size_t)v.vertex_count * 3;
     float *positions = malloc(sizeof(float) * nv), *normals = malloc(sizeof(float) * nv);
     roma_light *lights = malloc(sizeof(roma_light) * (v.light_count ? v.light_count : 1));
-    if (!positions || !normals || !lights) {
+    roma_camera *cameras = malloc(sizeof(roma_camera) * (v.camera_count ? v.camera_count : 1));
+    if (!positions || !normals || !lights || !cameras) {
         free(positions);
         free(normals);
         free(lights);
+        free(cameras);
         return ROMA_ERROR_OUT_OF_HOST_MEMORY;
     }
     for (uint32_t i = 0; i < v.vertex_count; ++i) {
@@ -69,25 +83,21 @@ roma_result roma_app_reorient(const roma_scene *scene, const char *up, roma_scen
         turn(m, v.lights[i].position, lights[i].position);
         turn(m, v.lights[i].direction, lights[i].direction);
     }
-    roma_camera camera = v.camera;
-    if (v.has_camera) {
-        turn(m, v.camera.eye, camera.eye);
-        turn(m, v.camera.target, camera.target);
-        float up_in[3] = {v.camera.up[0], v.camera.up[1], v.camera.up[2]};
-        if (up_in[0] == 0.0f && up_in[1] == 0.0f && up_in[2] == 0.0f)
-            up_in[1] = 1.0f;
-        turn(m, up_in, camera.up);
-    }
+    roma_camera camera = v.has_camera ? turn_camera(m, &v.camera) : v.camera;
+    for (uint32_t i = 0; i < v.camera_count; ++i)
+        cameras[i] = turn_camera(m, &v.cameras[i]);
     /* Normals that were zero (unused vertices) stay zero; the builder recomputes none. */
     roma_scene_desc d = {.positions = positions, .normals = normals, .vertex_count = v.vertex_count,
                          .indices = v.indices, .triangle_count = v.triangle_count,
                          .triangle_materials = v.triangle_materials, .materials = v.materials,
                          .material_count = v.material_count, .lights = lights, .light_count = v.light_count,
-                         .camera = v.has_camera ? &camera : NULL, .name = v.name,
+                         .camera = v.has_camera ? &camera : NULL, .cameras = cameras,
+                         .camera_count = v.camera_count, .name = v.name,
                          .logger = {errors_only, NULL}};
     r = roma_scene_create(&d, out);
     free(positions);
     free(normals);
     free(lights);
+    free(cameras);
     return r;
 }

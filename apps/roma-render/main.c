@@ -806,7 +806,8 @@ static roma_result with_lights(const roma_scene *scene, const roma_light *extra,
                          .indices = v.indices, .triangle_count = v.triangle_count,
                          .triangle_materials = v.triangle_materials, .materials = v.materials,
                          .material_count = v.material_count, .lights = lights, .light_count = v.light_count + count,
-                         .camera = v.has_camera ? &v.camera : NULL, .name = v.name};
+                         .camera = v.has_camera ? &v.camera : NULL, .cameras = v.cameras,
+                         .camera_count = v.camera_count, .name = v.name};
     r = roma_scene_create(&d, out);
     free(lights);
     return r;

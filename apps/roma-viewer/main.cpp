@@ -424,6 +424,9 @@ bool open_scene(viewer &v, const std::string &name)
     v.scene = scene;
     roma_scene_get_view(scene, &v.view);
     v.lights_made = UINT32_MAX; // the many lights follow the new scene's bounds
+    v.info.scene_cameras.clear();
+    for (uint32_t i = 0; i < v.view.camera_count; ++i)
+        v.info.scene_cameras.push_back("camera " + std::to_string(i) + ": " + camera_to_string(v.view.cameras[i]));
     v.info.scene_name = name;
     v.info.vertices = v.view.vertex_count;
     v.info.triangles = v.view.triangle_count;
@@ -1167,6 +1170,8 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
         } else if (st.verb == "res" || st.verb == "angular") {
             (st.verb == "res" ? v.s.res : v.s.angular) = uint32_t(number(0));
             act.rebuild_map = act.reset_accumulation = true;
+        } else if (st.verb == "camera") {
+            act.scene_camera = int(number(0));
         } else if (st.verb == "resize") {
             glfwSetWindowSize(v.window, std::max(1, int(number(0))), std::max(1, int(number(1))));
         } else if (st.verb == "minimize") {
@@ -1266,6 +1271,15 @@ int run_window(viewer &v)
             if (camera_from_string(act.camera_text, c)) {
                 camera_control_set(v.cam, c);
                 moved = true;
+            }
+        }
+        if (act.scene_camera >= 0) {
+            if (uint32_t(act.scene_camera) < v.view.camera_count) {
+                camera_control_set(v.cam, v.view.cameras[act.scene_camera]);
+                moved = true;
+            } else {
+                std::fprintf(stderr, "roma-viewer: the scene has no camera %d (it has %u)\n", act.scene_camera,
+                             v.view.camera_count);
             }
         }
         if (act.frame_scene) {

@@ -6,7 +6,7 @@
 
 bool script_load(const char *path, script &out)
 {
-    static const char *verbs[] = {"wait", "key", "drag", "wheel", "set", "view", "res", "angular", "resize",
+    static const char *verbs[] = {"wait", "key", "drag", "wheel", "set", "view", "res", "angular", "camera", "resize",
                                   "minimize", "restore", "drop", "screenshot", "quit"};
     std::ifstream in(path);
     if (!in) {

@@ -7,6 +7,7 @@
 //   set ao|direct|gi|accumulate|filter on|off
 //   view NAME                    as --view (composed, ao, direct, albedo, normal, map, ...)
 //   res R | angular A            the ROMA array
+//   camera K                     the scene's camera K (a glTF file's, as the interface lists them)
 //   resize W H                   the window (1 1 is allowed)
 //   minimize | restore
 //   drop FILE                    as if FILE were dropped on the window

@@ -51,6 +51,7 @@ struct viewer_timings {
 
 struct viewer_info {
     std::string device, scene_name, camera_string;
+    std::vector<std::string> scene_cameras; // the scene's cameras (a glTF file's), as buttons
     uint32_t vertices = 0, triangles = 0, lights = 0, area_light_triangles = 0;
     uint32_t width = 0, height = 0, accumulated = 0;
     uint64_t map_bytes = 0;

@@ -177,6 +177,9 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         }
         ImGui::SameLine();
         out.frame_scene |= ImGui::Button("frame the scene (F)");
+        for (size_t i = 0; i < info.scene_cameras.size(); ++i)
+            if (ImGui::Button(info.scene_cameras[i].c_str()))
+                out.scene_camera = static_cast<int>(i);
         ImGui::TextDisabled("left drag: orbit, right drag: pan, wheel: zoom; Tab: fly (WASD, QE)");
     }
     if (ImGui::CollapsingHeader("Timing", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -12,6 +12,7 @@ struct ui_actions {
     bool capture_bom = false;
     bool start_reference = false;
     bool measure = false;            // MAE of the accumulated view against the reference
+    int scene_camera = -1;           // one of the scene's cameras picked (viewer_info.scene_cameras)
     char camera_text[256] = {};
 };
 

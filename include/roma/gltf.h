@@ -5,8 +5,9 @@
  * flattened into world space through the node hierarchy of the default scene
  * (or of every root node when the file names none). Per primitive: base
  * colour factor and emissive factor (times KHR_materials_emissive_strength).
- * KHR_lights_punctual lights and the first camera met in the node walk are
- * kept. Skins and animations are kept as roma_scene_animation_data; geometry
+ * KHR_lights_punctual lights are kept; every perspective camera met in the node walk is
+ * listed (roma_scene_view.cameras) and the one roma_gltf_desc.camera_index names (the first
+ * by default) becomes the scene's camera. Skins and animations are kept as roma_scene_animation_data; geometry
  * is the rest pose (skinned meshes are skinned with the rest-pose joints).
  * Morph targets are ignored (base mesh), with a warning. Textures are ignored.
  * Not supported (ROMA_ERROR_UNSUPPORTED): sparse accessors, and any required

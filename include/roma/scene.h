@@ -70,13 +70,17 @@ typedef struct roma_scene_desc {
     uint32_t material_count; /**< materials */
     const roma_light *lights;         /**< optional punctual lights */
     uint32_t light_count; /**< lights */
-    const roma_camera *camera;        /**< optional */
+    const roma_camera *camera;        /**< optional: the scene's camera */
+    /** Optional: the viewpoints the scene offers (a glTF file's perspective cameras, in the
+     * order roma_gltf_desc.camera_index counts them), for a viewer to list; copied. */
+    const roma_camera *cameras;
+    uint32_t camera_count; /**< entries of cameras */
     const char *name;                 /**< optional, copied; shown in logs and stats */
     roma_logger logger; /**< where validation messages go; zero: stderr */
 } roma_scene_desc;
 
 /** Creates a scene: validates and copies the arrays. Rejects: NULL/zero arrays, indices >=
- * vertex_count, material indices >= material_count, NaN/Inf positions, normals or light data,
+ * vertex_count, material indices >= material_count, NaN/Inf positions, normals, light or camera data,
  * negative colours, base colours above 1, spot cones outside 0 <= inner <= outer <= pi/2,
  * zero light directions (spot, directional), no triangle with non-zero area
  * (ROMA_ERROR_EMPTY_SCENE).
@@ -201,6 +205,8 @@ typedef struct roma_scene_view {
     uint32_t emissive_triangle_count; /**< entries of emissive_triangles */
     int has_camera; /**< 1 when the scene carries a camera */
     roma_camera camera; /**< valid when has_camera */
+    const roma_camera *cameras; /**< the viewpoints the scene offers (roma_scene_desc.cameras) */
+    uint32_t camera_count; /**< entries of cameras (0: none listed) */
     float bounds_min[3]; /**< lowest corner over the vertices referenced by triangles */
     float bounds_max[3]; /**< highest corner over the vertices referenced by triangles */
     roma_scene_animation_data animation; /**< skins and animations (empty for static scenes) */

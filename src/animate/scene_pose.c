@@ -39,7 +39,8 @@ roma_result roma_scene_pose(const roma_scene *scene, const roma_animator_pose *p
     roma_scene_desc d = {.positions = positions, .vertex_count = v.vertex_count, .indices = v.indices,
                          .triangle_count = v.triangle_count, .triangle_materials = v.triangle_materials,
                          .materials = v.materials, .material_count = v.material_count, .lights = v.lights,
-                         .light_count = v.light_count, .camera = v.has_camera ? &v.camera : NULL, .name = v.name};
+                         .light_count = v.light_count, .camera = v.has_camera ? &v.camera : NULL, .cameras = v.cameras,
+                         .camera_count = v.camera_count, .name = v.name};
     if (log)
         d.logger = *log;
     roma_scene *posed = NULL;

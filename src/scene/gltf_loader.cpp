@@ -282,7 +282,7 @@ private:
     std::string file_;
     uint32_t max_vertices_, max_triangles_;
     uint32_t camera_index_;       /* roma_gltf_desc.camera_index */
-    uint32_t cameras_seen_ = 0;   /* perspective cameras met in the walk */
+    std::vector<roma_camera> cameras_; /* perspective cameras met in the walk, in order */
     uint64_t zero_elements_ = 0; /* read from accessors without a buffer view, every use counted */
     tinygltf::Model m_;
 
@@ -298,8 +298,6 @@ private:
     std::vector<roma_material> mats_;
     std::vector<roma_light> lights_;
     std::vector<Range> ranges_;
-    bool has_camera_ = false;
-    roma_camera camera_ = {};
 
     bool keep_anim_ = false;
     std::vector<uint32_t> v_node_;
@@ -760,17 +758,15 @@ void Loader::add_camera(int node)
         warn("camera node %d has a degenerate transform; camera skipped", node);
         return;
     }
+    roma_camera cam = {};
     for (int k = 0; k < 3; ++k) {
-        camera_.eye[k] = (float)eye[k];
-        camera_.target[k] = (float)(eye[k] + f[k] / fl);
-        camera_.up[k] = (float)(u[k] / ul);
+        cam.eye[k] = (float)eye[k];
+        cam.target[k] = (float)(eye[k] + f[k] / fl);
+        cam.up[k] = (float)(u[k] / ul);
     }
-    /* Counted whether or not it is the one asked for; the asked one is kept. */
-    if (cameras_seen_++ != camera_index_)
-        return;
     double yfov = c.perspective.yfov;
-    camera_.fovy_deg = yfov > 0.0 && yfov < 3.14159 ? (float)(yfov * 180.0 / 3.14159265358979323846) : 0.0f;
-    has_camera_ = true;
+    cam.fovy_deg = yfov > 0.0 && yfov < 3.14159 ? (float)(yfov * 180.0 / 3.14159265358979323846) : 0.0f;
+    cameras_.push_back(cam); /* every one listed; camera_index picks the scene's camera */
 }
 
 void Loader::add_light(int node)
@@ -1199,7 +1195,9 @@ roma_result Loader::finish(roma_scene **out)
     desc.material_count = (uint32_t)mats_.size();
     desc.lights = lights_.data();
     desc.light_count = (uint32_t)lights_.size();
-    desc.camera = has_camera_ ? &camera_ : nullptr;
+    desc.camera = camera_index_ < cameras_.size() ? &cameras_[camera_index_] : nullptr;
+    desc.cameras = cameras_.data();
+    desc.camera_count = (uint32_t)cameras_.size();
     desc.name = name.c_str();
     if (log_)
         desc.logger = *log_;
@@ -1241,10 +1239,10 @@ roma_result Loader::load(const unsigned char *data, size_t size, const char *bas
     }
     if (idx_.empty())
         fail(ROMA_ERROR_EMPTY_SCENE, "no triangles in the default scene");
-    if (camera_index_ > 0 && camera_index_ >= cameras_seen_)
+    uint32_t seen = (uint32_t)cameras_.size();
+    if (camera_index_ > 0 && camera_index_ >= seen)
         fail(ROMA_ERROR_INVALID_ARGUMENT, "camera %u asked for (roma_gltf_desc.camera_index), the file has %u "
-             "perspective camera%s (0 to %d)", camera_index_, cameras_seen_, cameras_seen_ == 1 ? "" : "s",
-             (int)cameras_seen_ - 1);
+             "perspective camera%s (0 to %d)", camera_index_, seen, seen == 1 ? "" : "s", (int)seen - 1);
     return finish(out);
 }
 

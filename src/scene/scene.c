@@ -28,6 +28,8 @@ struct roma_scene {
     uint32_t emissive_count;
     int has_camera;
     roma_camera camera;
+    roma_camera *cameras; /* the viewpoints the source offers (a glTF file's cameras) */
+    uint32_t camera_count;
     float bmin[3], bmax[3];
     roma_scene_animation_data anim; /* every array owned by the scene */
 };
@@ -165,13 +167,19 @@ static roma_result validate_light(const roma_logger *log, const char *name, uint
     return ROMA_SUCCESS;
 }
 
+static int camera_finite(const roma_camera *c)
+{
+    return all_finite(c->eye, 3) && all_finite(c->target, 3) && all_finite(c->up, 3) && isfinite(c->fovy_deg);
+}
+
 /* Every check that can reject the desc, before anything is allocated. */
 static roma_result validate_desc(const roma_scene_desc *desc, uint32_t *out_degenerate)
 {
     const roma_logger *log = &desc->logger;
     const char *name = scene_name(desc);
     if ((!desc->positions && desc->vertex_count) || (!desc->indices && desc->triangle_count) ||
-        (!desc->materials && desc->material_count) || (!desc->lights && desc->light_count))
+        (!desc->materials && desc->material_count) || (!desc->lights && desc->light_count) ||
+        (!desc->cameras && desc->camera_count))
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "scene '%s': an array is NULL but its count is not zero", name);
     if (desc->triangle_count == 0)
@@ -217,10 +225,13 @@ static roma_result validate_desc(const roma_scene_desc *desc, uint32_t *out_dege
         if (r != ROMA_SUCCESS)
             return r;
     }
-    if (desc->camera && (!all_finite(desc->camera->eye, 3) || !all_finite(desc->camera->target, 3) ||
-                         !all_finite(desc->camera->up, 3) || !isfinite(desc->camera->fovy_deg)))
+    if (desc->camera && !camera_finite(desc->camera))
         return roma_fail(log, ROMA_ERROR_INVALID_SCENE, "scene '%s': camera has a NaN or infinite value",
                          name);
+    for (uint32_t i = 0; i < desc->camera_count; ++i)
+        if (!camera_finite(&desc->cameras[i]))
+            return roma_fail(log, ROMA_ERROR_INVALID_SCENE, "scene '%s': camera %u of cameras has a NaN or "
+                             "infinite value", name, i);
 
     uint32_t degenerate = 0;
     double c[3];
@@ -262,6 +273,7 @@ void roma_scene_destroy(roma_scene *scene)
     free(scene->triangle_materials);
     free(scene->materials);
     free(scene->lights);
+    free(scene->cameras);
     free(scene->emissive);
     free_animation(&scene->anim);
     free(scene);
@@ -339,8 +351,10 @@ roma_result roma_scene_create(const roma_scene_desc *desc, roma_scene **out_scen
     s->materials = dup_array(desc->material_count ? desc->materials : &default_material,
                              s->material_count, sizeof(roma_material));
     s->lights = dup_array(desc->lights, desc->light_count, sizeof(roma_light));
+    s->camera_count = desc->camera_count;
+    s->cameras = dup_array(desc->cameras, desc->camera_count, sizeof(roma_camera));
     if (!s->name || !s->positions || !s->normals || !s->indices || !s->triangle_materials ||
-        !s->materials || !s->lights)
+        !s->materials || !s->lights || !s->cameras)
         goto oom;
 
     for (size_t i = 0; i < (size_t)nt * 3; ++i)
@@ -438,6 +452,8 @@ roma_result roma_scene_get_view(const roma_scene *scene, roma_scene_view *out_vi
     v->emissive_triangle_count = scene->emissive_count;
     v->has_camera = scene->has_camera;
     v->camera = scene->camera;
+    v->cameras = scene->cameras;
+    v->camera_count = scene->camera_count;
     memcpy(v->bounds_min, scene->bmin, sizeof v->bounds_min);
     memcpy(v->bounds_max, scene->bmax, sizeof v->bounds_max);
     v->animation = scene->anim;

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gpu_images.h"
 #include "harness.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
@@ -33,65 +34,6 @@
 #define GI_MAX_ERROR 0.42
 #define GI_MAX_BIAS 0.14
 
-typedef struct image {
-    VkImage image;
-    VkImageView view;
-    VkDeviceMemory memory;
-} image;
-
-static uint32_t memory_type(VkPhysicalDevice pd, uint32_t bits, VkMemoryPropertyFlags want)
-{
-    VkPhysicalDeviceMemoryProperties p;
-    vkGetPhysicalDeviceMemoryProperties(pd, &p);
-    for (uint32_t i = 0; i < p.memoryTypeCount; ++i)
-        if ((bits & (1u << i)) && (p.memoryTypes[i].propertyFlags & want) == want)
-            return i;
-    return 0;
-}
-
-static void image_create(roma_context *ctx, VkFormat format, VkImageUsageFlags usage, image *out)
-{
-    VkDevice dev = roma_context_device(ctx);
-    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
-                            .format = format, .extent = {W, H, 1}, .mipLevels = 1, .arrayLayers = 1,
-                            .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage,
-                            .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
-    CHECK(vkCreateImage(dev, &ii, NULL, &out->image) == VK_SUCCESS);
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, out->image, &req);
-    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                               .memoryTypeIndex = memory_type(roma_context_physical_device(ctx), req.memoryTypeBits,
-                                                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
-    CHECK(vkAllocateMemory(dev, &ai, NULL, &out->memory) == VK_SUCCESS);
-    CHECK(vkBindImageMemory(dev, out->image, out->memory, 0) == VK_SUCCESS);
-    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
-                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
-                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    CHECK(vkCreateImageView(dev, &vi, NULL, &out->view) == VK_SUCCESS);
-}
-
-static void image_destroy(VkDevice dev, image *im)
-{
-    vkDestroyImageView(dev, im->view, NULL);
-    vkDestroyImage(dev, im->image, NULL);
-    vkFreeMemory(dev, im->memory, NULL);
-}
-
-static void layout_barrier(VkCommandBuffer cmd, VkImage img, VkImageLayout from, VkImageLayout to,
-                           VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                           VkAccessFlags2 dst_access)
-{
-    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
-                               .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access,
-                               .oldLayout = from, .newLayout = to, .image = img,
-                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                               .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                               .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    VkDependencyInfo d = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
-                          .pImageMemoryBarriers = &b};
-    vkCmdPipelineBarrier2(cmd, &d);
-}
-
 /* Records one frame of the light effect into its output and reads it back into irradiance. */
 static void light_frame(roma_context *ctx, roma_light_effect *light, const roma_map *map,
                         const roma_light_images *images, VkImage out, VkCommandBuffer cmd, VkCommandPool pool,
@@ -102,20 +44,22 @@ static void light_frame(roma_context *ctx, roma_light_effect *light, const roma_
     vkResetCommandPool(dev, pool, 0);
     VkCommandBufferBeginInfo begin = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vkBeginCommandBuffer(cmd, &begin);
-    layout_barrier(cmd, out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                   VK_ACCESS_2_MEMORY_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_test_layout_barrier(cmd, out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     CHECK_RESULT(roma_light_effect_record(light, cmd, settings->frame % 2u, map, images, lights, light_count, settings),
                  ROMA_SUCCESS);
-    layout_barrier(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+    roma_test_layout_barrier(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy back = {.bufferOffset = 3 * (VkDeviceSize)W * H * 16 + (VkDeviceSize)W * H * 4,
                               .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, out, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
-    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
                                 .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+                                .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
     VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
                             .pMemoryBarriers = &to_host};
     vkCmdPipelineBarrier2(cmd, &dep);
@@ -251,10 +195,11 @@ int main(void)
     CHECK(vkCreateBuffer(dev, &bi, NULL, &staging) == VK_SUCCESS);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(dev, staging, &req);
-    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                                .memoryTypeIndex = memory_type(roma_context_physical_device(ctx), req.memoryTypeBits,
-                                                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                                   VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                .allocationSize = req.size,
+                                .memoryTypeIndex = roma_test_memory_type(
+                                    roma_context_physical_device(ctx), req.memoryTypeBits,
+                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
     CHECK(vkAllocateMemory(dev, &mai, NULL, &staging_memory) == VK_SUCCESS);
     CHECK(vkBindBufferMemory(dev, staging, staging_memory, 0) == VK_SUCCESS);
     float *host = NULL;
@@ -278,13 +223,14 @@ int main(void)
             nrm[4 * p + 3] = gnrm[4 * p + 3] = 0.0f;
         }
 
-    image in[3], output, light_out;
+    roma_test_image in[3], output, light_out;
     for (int i = 0; i < 3; ++i)
-        image_create(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                     &in[i]);
-    image_create(ctx, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &output);
-    image_create(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                 &light_out);
+        roma_test_image_create(ctx, W, H, VK_FORMAT_R32G32B32A32_SFLOAT,
+                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &in[i]);
+    roma_test_image_create(ctx, W, H, VK_FORMAT_R32_SFLOAT,
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &output);
+    roma_test_image_create(ctx, W, H, VK_FORMAT_R32G32B32A32_SFLOAT,
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &light_out);
 
     /* One command buffer: upload, build, AO, read back. */
     VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
@@ -298,20 +244,23 @@ int main(void)
     VkCommandBufferBeginInfo begin = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vkBeginCommandBuffer(cmd, &begin);
     for (int i = 0; i < 3; ++i) {
-        layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        roma_test_layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                        VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy copy = {.bufferOffset = (VkDeviceSize)i * plane,
                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {W, H, 1}};
         vkCmdCopyBufferToImage(cmd, staging, in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        roma_test_layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
-    layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE,
-                   0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                             VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                             VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     roma_map_frame_desc fd = {.frame = 0, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
     CHECK_RESULT(roma_map_record_build(map, cmd, &fd, NULL), ROMA_SUCCESS);
     roma_ao_images images = {.width = W, .height = H, .position = in[0].view, .normal = in[1].view,
@@ -323,21 +272,23 @@ int main(void)
     CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, sv.lights, sv.light_count, NULL), ROMA_SUCCESS);
     CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, sv.lights, sv.light_count, NULL),
                  ROMA_ERROR_INVALID_ARGUMENT); /* one record per slot and frame */
-    layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+    roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy lback = {.bufferOffset = 3 * plane + (VkDeviceSize)W * H * 4,
                                .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, light_out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &lback);
-    layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+    roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy back = {.bufferOffset = 3 * plane, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                               .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
-    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
                                 .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+                                .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
     VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
                             .pMemoryBarriers = &to_host};
     vkCmdPipelineBarrier2(cmd, &dep);
@@ -356,8 +307,8 @@ int main(void)
             background_ok &= out[p] == 1.0f;
             continue;
         }
-        float r = roma_ref_ao_point(ref, hits[p].position, hits[p].geometric_normal, hits[p].shading_normal, RADIUS, SPP,
-                                    SEED, p);
+        float r = roma_ref_ao_point(ref, hits[p].position, hits[p].geometric_normal, hits[p].shading_normal, RADIUS,
+                                    SPP, SEED, p);
         err += fabs((double)out[p] - r);
         mean_roma += out[p], mean_ref += r;
         ++n;
@@ -413,7 +364,7 @@ int main(void)
     {
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
-        layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+        roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc af = {.frame = 1, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
@@ -422,7 +373,7 @@ int main(void)
         roma_light_settings ls = {.area_samples = AREA_SPP, .seed = SEED};
         CHECK_RESULT(roma_light_effect_record(light, cmd, 1, map, &limages, lv.lights, lv.light_count, &ls),
                      ROMA_SUCCESS);
-        layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         vkCmdCopyImageToBuffer(cmd, light_out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &lback);
@@ -461,7 +412,7 @@ int main(void)
     if (gi) {
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
-        layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+        roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc gf = {.frame = 2, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
@@ -470,7 +421,7 @@ int main(void)
         CHECK_RESULT(roma_gi_effect_record(gi, cmd, 0, map, &limages, lv.lights, lv.light_count, &gs), ROMA_SUCCESS);
         CHECK_RESULT(roma_gi_effect_record(gi, cmd, 0, map, &limages, lv.lights, lv.light_count, &gs),
                      ROMA_ERROR_INVALID_ARGUMENT); /* one record per slot and frame */
-        layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         vkCmdCopyImageToBuffer(cmd, light_out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &lback);
@@ -529,7 +480,7 @@ int main(void)
     if (second) {
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
-        layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+        roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc bf = {.frame = 7, .seed = 5, .jitter_grid = 1, .jitter_directions = 1, .slot = 1};
@@ -554,7 +505,7 @@ int main(void)
         CHECK_RESULT(roma_map_build(map, &bf, NULL), ROMA_SUCCESS);
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
-        layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+        roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         settings.frame = f;
@@ -578,9 +529,9 @@ int main(void)
 
     vkDestroyCommandPool(dev, pool, NULL);
     for (int i = 0; i < 3; ++i)
-        image_destroy(dev, &in[i]);
-    image_destroy(dev, &output);
-    image_destroy(dev, &light_out);
+        roma_test_image_destroy(dev, &in[i]);
+    roma_test_image_destroy(dev, &output);
+    roma_test_image_destroy(dev, &light_out);
     roma_light nan_light = sv.lights[0];
     nan_light.intensity = NAN;
     CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, &nan_light, 1, NULL),

@@ -16,8 +16,9 @@
  *    (library roma_gltf);
  *  - roma/map.h: the map array, its build, instances, and batch traces;
  *  - roma/trace_types.h: what the C API and the engine's shaders (roma/trace.glsl) share;
- *  - roma/ao_effect.h, roma/light_effect.h: AO and shadowed direct light on the engine's
- *    G-buffer, recorded into its command buffers;
+ *  - roma/ao_effect.h, roma/light_effect.h, roma/gi_effect.h: AO, shadowed direct light (many
+ *    lights too) and one-bounce GI on the engine's G-buffer, recorded into its command buffers;
+ *  - roma/temporal_effect.h: their accumulation over frames (reprojected) and a spatial filter;
  *  - roma/animation.h: glTF skins and node animations played on the GPU;
  *  - roma/effects.h: the plan of passes a frame of effects runs;
  *  - roma/camera.h, roma/sampling.h: camera and sample sequences shared with the reference;
@@ -40,6 +41,7 @@
 #include "roma/result.h"
 #include "roma/sampling.h"
 #include "roma/scene.h"
+#include "roma/temporal_effect.h"
 
 /** Major version: the shared library's SONAME (libroma.so.0). */
 #define ROMA_VERSION_MAJOR 0

@@ -58,8 +58,8 @@ void main()
     for (uint i = 0u; i < exact; ++i)
         E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
     if (sampled > 0u) {
-        uint first = sampled == rest ? 0u
-                                     : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(rest)), rest - 1u);
+        uint first =
+            sampled == rest ? 0u : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(rest)), rest - 1u);
         vec3 sum = vec3(0.0);
         for (uint j = 0u; j < sampled; ++j) {
             uint i = first + j;

@@ -422,4 +422,20 @@ ROMA_STRUCT_BEGIN(roma_atrous_push)
                              z: value sigma in units of the expected noise (0.5 / sqrt(frames) of a [0, 1] value) */
 ROMA_STRUCT_END(roma_atrous_push)
 
+/* The public temporal effect (roma/temporal_effect.h): shaders/effects/temporal_images.comp
+ * and shaders/effects/atrous_images.comp. */
+ROMA_STRUCT_BEGIN(roma_temporal_images_push)
+    ROMA_VEC4(prev_row0); /* the previous frame's world -> clip matrix, by rows */
+    ROMA_VEC4(prev_row1);
+    ROMA_VEC4(prev_row2);
+    ROMA_VEC4(prev_row3);
+    ROMA_UVEC4(config);   /* x: width, y: height, z: max frames in the history, w: ROMA_TEMPORAL_* flags */
+ROMA_STRUCT_END(roma_temporal_images_push)
+#define ROMA_TEMPORAL_RESET 1u /* no history this frame */
+#define ROMA_TEMPORAL_STILL 2u /* the camera did not move: history at the same pixel */
+
+ROMA_STRUCT_BEGIN(roma_atrous_images_push)
+    ROMA_UVEC4(config);   /* x: width, y: height, z: step in pixels, w: filter where the history is shorter */
+ROMA_STRUCT_END(roma_atrous_images_push)
+
 #endif /* ROMA_SHARED_H */

@@ -1,0 +1,271 @@
+/* roma_temporal_effect: temporal accumulation with reprojection
+ * (shaders/effects/temporal_images.comp) and an edge-aware a-trous filter
+ * (shaders/effects/atrous_images.comp) on the engine's images; descriptor sets from a pool
+ * per frame slot, reset when a record starts a new frame of its slot. */
+#include "roma/temporal_effect.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "roma_shared.h"
+#include "util/log.h"
+#include "vulkan/vk_internal.h"
+
+#define RECORDS_PER_SLOT 8u
+#define SETS_PER_RECORD (1u + ROMA_MAX_FILTER_ITERATIONS)
+#define TEMPORAL_SAMPLED 4u /* current, position, previous_position, history; then accumulated */
+#define ATROUS_SAMPLED 2u   /* position, normal; then src, dst */
+
+struct roma_temporal_effect {
+    roma_context *ctx;
+    roma_logger logger;
+    uint32_t frames_in_flight, last_slot, last_frame, used[ROMA_MAX_FRAMES_IN_FLIGHT];
+    VkSampler sampler;
+    roma_compute_pipeline temporal, atrous;
+    VkDescriptorPool pools[ROMA_MAX_FRAMES_IN_FLIGHT];
+};
+
+static int finite_all(const float *v, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+roma_result roma_temporal_settings_resolve(const roma_temporal_settings *in, roma_temporal_settings *out)
+{
+    roma_temporal_settings s = in ? *in : (roma_temporal_settings){0};
+    if (out)
+        memset(out, 0, sizeof *out);
+    if (!out)
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_settings_resolve: out is NULL");
+    if (!finite_all(s.previous_view_proj, 16))
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_temporal_settings: previous_view_proj has a NaN or infinite entry");
+    if (s.filter_iterations > ROMA_MAX_FILTER_ITERATIONS)
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_settings: filter_iterations %u, at most %u",
+                         s.filter_iterations, ROMA_MAX_FILTER_ITERATIONS);
+    if (s.max_history == 0)
+        s.max_history = ROMA_DEFAULT_TEMPORAL_HISTORY;
+    if (s.filter_iterations == 0)
+        s.filter_iterations = ROMA_DEFAULT_FILTER_ITERATIONS;
+    if (s.filter_below == 0)
+        s.filter_below = ROMA_DEFAULT_FILTER_BELOW;
+    *out = s;
+    return ROMA_SUCCESS;
+}
+
+void roma_temporal_effect_destroy(roma_temporal_effect *e)
+{
+    if (!e)
+        return;
+    roma_context *ctx = e->ctx;
+    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
+        if (e->pools[s])
+            vkDestroyDescriptorPool(ctx->device, e->pools[s], ctx->allocator);
+    roma_compute_pipeline_destroy(ctx, &e->temporal);
+    roma_compute_pipeline_destroy(ctx, &e->atrous);
+    if (e->sampler)
+        vkDestroySampler(ctx->device, e->sampler, ctx->allocator);
+    free(e);
+}
+
+roma_result roma_temporal_effect_create(roma_context *ctx, const roma_temporal_effect_desc *desc_in,
+                                        roma_temporal_effect **out)
+{
+    roma_temporal_effect_desc desc = desc_in ? *desc_in : (roma_temporal_effect_desc){0};
+    const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
+    if (!out)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_effect_create: out is NULL");
+    *out = NULL;
+    if (!ctx)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_effect_create: context is NULL");
+    if (desc.frames_in_flight == 0)
+        desc.frames_in_flight = 2;
+    if (desc.frames_in_flight > ROMA_MAX_FRAMES_IN_FLIGHT)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_temporal_effect_create: frames_in_flight %u outside [1, %u]", desc.frames_in_flight,
+                         ROMA_MAX_FRAMES_IN_FLIGHT);
+    roma_temporal_effect *e = calloc(1, sizeof *e);
+    if (!e)
+        return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_temporal_effect_create: out of host memory");
+    e->ctx = ctx;
+    e->logger = *log;
+    e->frames_in_flight = desc.frames_in_flight;
+    e->last_slot = UINT32_MAX;
+    VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                              .magFilter = VK_FILTER_NEAREST,
+                              .minFilter = VK_FILTER_NEAREST,
+                              .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                              .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                              .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
+    roma_result r =
+        roma_vk_check(ctx, vkCreateSampler(ctx->device, &si, ctx->allocator, &e->sampler), "vkCreateSampler");
+    const VkDescriptorType temporal_types[TEMPORAL_SAMPLED + 1] = {
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    const VkDescriptorType atrous_types[ATROUS_SAMPLED + 2] = {
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create_typed(ctx, "temporal_images.comp", temporal_types, TEMPORAL_SAMPLED + 1,
+                                               sizeof(roma_temporal_images_push), &e->temporal);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_create_typed(ctx, "atrous_images.comp", atrous_types, ATROUS_SAMPLED + 2,
+                                               sizeof(roma_atrous_images_push), &e->atrous);
+    const uint32_t sets = RECORDS_PER_SLOT * SETS_PER_RECORD;
+    VkDescriptorPoolSize sizes[2] = {
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+         RECORDS_PER_SLOT * (TEMPORAL_SAMPLED + ATROUS_SAMPLED * ROMA_MAX_FILTER_ITERATIONS)},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RECORDS_PER_SLOT * (1u + 2u * ROMA_MAX_FILTER_ITERATIONS)}};
+    VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                     .maxSets = sets,
+                                     .poolSizeCount = 2,
+                                     .pPoolSizes = sizes};
+    for (uint32_t s = 0; s < e->frames_in_flight && r == ROMA_SUCCESS; ++s)
+        r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pi, ctx->allocator, &e->pools[s]),
+                          "vkCreateDescriptorPool");
+    if (r != ROMA_SUCCESS) {
+        roma_temporal_effect_destroy(e);
+        return roma_fail(log, r, "roma_temporal_effect_create: cannot create the pipelines or pools");
+    }
+    *out = e;
+    return ROMA_SUCCESS;
+}
+
+/* A set of `layout` with views[i] at binding i: sampled ones (through the effect's sampler,
+ * in layouts[i]) first, then storage images in GENERAL. */
+static roma_result write_set(roma_temporal_effect *e, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                             const VkImageView *views, const VkImageLayout *layouts, uint32_t sampled,
+                             uint32_t count, VkDescriptorSet *out)
+{
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = pool,
+                                      .descriptorSetCount = 1,
+                                      .pSetLayouts = &layout};
+    roma_result r =
+        roma_vk_check(e->ctx, vkAllocateDescriptorSets(e->ctx->device, &ai, out), "vkAllocateDescriptorSets");
+    if (r != ROMA_SUCCESS)
+        return r;
+    VkDescriptorImageInfo infos[8];
+    VkWriteDescriptorSet writes[8];
+    for (uint32_t i = 0; i < count; ++i) {
+        infos[i] = (VkDescriptorImageInfo){.sampler = i < sampled ? e->sampler : VK_NULL_HANDLE,
+                                           .imageView = views[i],
+                                           .imageLayout = i < sampled ? layouts[i] : VK_IMAGE_LAYOUT_GENERAL};
+        writes[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                           .dstSet = *out,
+                                           .dstBinding = i,
+                                           .descriptorCount = 1,
+                                           .descriptorType = i < sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                                                         : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                           .pImageInfo = &infos[i]};
+    }
+    vkUpdateDescriptorSets(e->ctx->device, count, writes, 0, NULL);
+    return ROMA_SUCCESS;
+}
+
+/* Compute-shader storage writes before the next dispatch's reads (and its writes over what
+ * the one before read). */
+static void compute_barrier(VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                          .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+    VkDependencyInfo d = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &d);
+}
+
+static void dispatch(VkCommandBuffer cmd, const roma_compute_pipeline *p, VkDescriptorSet set, const void *push,
+                     uint32_t push_size, uint32_t width, uint32_t height)
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 1, &set, 0, NULL);
+    vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
+    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+}
+
+roma_result roma_temporal_effect_record(roma_temporal_effect *e, VkCommandBuffer cmd, uint32_t slot,
+                                        const roma_temporal_images *im, const roma_temporal_settings *settings_in)
+{
+    const roma_logger *log = e ? &e->logger : NULL;
+    if (!e || !cmd || !im)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_effect_record: %s is NULL",
+                         !e ? "effect" : !cmd ? "cmd" : "images");
+    roma_temporal_settings s;
+    roma_result r = roma_temporal_settings_resolve(settings_in, &s);
+    if (r != ROMA_SUCCESS)
+        return roma_fail(log, r, "roma_temporal_effect_record: invalid settings");
+    if (!im->width || !im->height || !im->current || !im->position || !im->normal || !im->accumulated)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_temporal_effect_record: width, height, current, position, normal and accumulated "
+                         "are required");
+    if (!s.reset && (!im->history || !im->previous_position))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_temporal_effect_record: history and previous_position are required without reset");
+    if (im->filtered && s.filter_iterations > 1 && !im->scratch)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_temporal_effect_record: %u filter iterations need a scratch image", s.filter_iterations);
+    if (slot >= e->frames_in_flight)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_effect_record: slot %u of %u", slot,
+                         e->frames_in_flight);
+    /* A new frame of the slot: the GPU is done with its previous one (the slot rules). */
+    if (slot != e->last_slot || s.frame != e->last_frame || e->used[slot] == 0) {
+        vkResetDescriptorPool(e->ctx->device, e->pools[slot], 0);
+        e->used[slot] = 0;
+        e->last_slot = slot;
+        e->last_frame = s.frame;
+    }
+    if (e->used[slot] == RECORDS_PER_SLOT)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_temporal_effect_record: more than %u records in one frame of a slot (count frames in "
+                         "settings.frame)", RECORDS_PER_SLOT);
+    VkImageLayout input = im->input_layout ? im->input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkImageLayout history = im->history_layout ? im->history_layout : VK_IMAGE_LAYOUT_GENERAL;
+    /* With reset the history is not read: the current image stands in for the absent views. */
+    const VkImageView tviews[TEMPORAL_SAMPLED + 1] = {
+        im->current, im->position, im->previous_position ? im->previous_position : im->current,
+        im->history ? im->history : im->current, im->accumulated};
+    const VkImageLayout tlayouts[TEMPORAL_SAMPLED] = {input, input, input, im->history ? history : input};
+    VkDescriptorSet sets[SETS_PER_RECORD];
+    uint32_t iterations = im->filtered ? s.filter_iterations : 0;
+    r = write_set(e, e->pools[slot], e->temporal.set_layout, tviews, tlayouts, TEMPORAL_SAMPLED, TEMPORAL_SAMPLED + 1,
+                  &sets[0]);
+    /* Iteration i writes filtered when iterations - 1 - i is even, scratch otherwise, so the
+     * last one ends in filtered; each reads what the one before wrote. */
+    VkImageView src = im->accumulated;
+    for (uint32_t i = 0; i < iterations && r == ROMA_SUCCESS; ++i) {
+        VkImageView dst = (iterations - 1 - i) % 2 == 0 ? im->filtered : im->scratch;
+        const VkImageView aviews[ATROUS_SAMPLED + 2] = {im->position, im->normal, src, dst};
+        const VkImageLayout alayouts[ATROUS_SAMPLED] = {input, input};
+        r = write_set(e, e->pools[slot], e->atrous.set_layout, aviews, alayouts, ATROUS_SAMPLED, ATROUS_SAMPLED + 2,
+                      &sets[1 + i]);
+        src = dst;
+    }
+    if (r != ROMA_SUCCESS)
+        return roma_fail(log, r, "roma_temporal_effect_record: cannot allocate descriptor sets");
+    ++e->used[slot];
+
+    int still = 1;
+    for (int i = 0; i < 16; ++i)
+        still &= s.previous_view_proj[i] == 0.0f;
+    roma_temporal_images_push tp = {
+        .config = {im->width, im->height, s.max_history,
+                   (s.reset ? ROMA_TEMPORAL_RESET : 0u) | (still ? ROMA_TEMPORAL_STILL : 0u)}};
+    float *rows[4] = {tp.prev_row0, tp.prev_row1, tp.prev_row2, tp.prev_row3};
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            rows[row][col] = s.previous_view_proj[col * 4 + row]; /* column-major in, rows out */
+    dispatch(cmd, &e->temporal, sets[0], &tp, sizeof tp, im->width, im->height);
+    for (uint32_t i = 0; i < iterations; ++i) {
+        compute_barrier(cmd);
+        roma_atrous_images_push ap = {.config = {im->width, im->height, 1u << i, s.filter_below}};
+        dispatch(cmd, &e->atrous, sets[1 + i], &ap, sizeof ap, im->width, im->height);
+    }
+    return ROMA_SUCCESS;
+}

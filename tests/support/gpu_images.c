@@ -1,0 +1,89 @@
+/* Images and host staging for tests of the effects on an engine's images (gpu_images.h). */
+#include "gpu_images.h"
+
+#include <string.h>
+
+#include "harness.h"
+
+uint32_t roma_test_memory_type(VkPhysicalDevice pd, uint32_t bits, VkMemoryPropertyFlags want)
+{
+    VkPhysicalDeviceMemoryProperties p;
+    vkGetPhysicalDeviceMemoryProperties(pd, &p);
+    for (uint32_t i = 0; i < p.memoryTypeCount; ++i)
+        if ((bits & (1u << i)) && (p.memoryTypes[i].propertyFlags & want) == want)
+            return i;
+    return 0;
+}
+
+void roma_test_image_create(roma_context *ctx, uint32_t width, uint32_t height, VkFormat format,
+                            VkImageUsageFlags usage, roma_test_image *out)
+{
+    memset(out, 0, sizeof *out);
+    VkDevice dev = roma_context_device(ctx);
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                            .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
+                            .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage,
+                            .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    CHECK(vkCreateImage(dev, &ii, NULL, &out->image) == VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(dev, out->image, &req);
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                               .memoryTypeIndex = roma_test_memory_type(roma_context_physical_device(ctx),
+                                                                        req.memoryTypeBits,
+                                                                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+    CHECK(vkAllocateMemory(dev, &ai, NULL, &out->memory) == VK_SUCCESS);
+    CHECK(vkBindImageMemory(dev, out->image, out->memory, 0) == VK_SUCCESS);
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
+                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
+                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    CHECK(vkCreateImageView(dev, &vi, NULL, &out->view) == VK_SUCCESS);
+}
+
+void roma_test_image_destroy(VkDevice dev, roma_test_image *image)
+{
+    vkDestroyImageView(dev, image->view, NULL);
+    vkDestroyImage(dev, image->image, NULL);
+    vkFreeMemory(dev, image->memory, NULL);
+    memset(image, 0, sizeof *image);
+}
+
+void roma_test_layout_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                              VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                              VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
+                               .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access,
+                               .oldLayout = from, .newLayout = to, .image = image,
+                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                               .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                               .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    VkDependencyInfo d = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
+                          .pImageMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &d);
+}
+
+void roma_test_staging_create(roma_context *ctx, VkDeviceSize bytes, roma_test_staging *out)
+{
+    memset(out, 0, sizeof *out);
+    VkDevice dev = roma_context_device(ctx);
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = bytes,
+                             .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    CHECK(vkCreateBuffer(dev, &bi, NULL, &out->buffer) == VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev, out->buffer, &req);
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                               .memoryTypeIndex = roma_test_memory_type(roma_context_physical_device(ctx),
+                                                                        req.memoryTypeBits,
+                                                                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+    CHECK(vkAllocateMemory(dev, &ai, NULL, &out->memory) == VK_SUCCESS);
+    CHECK(vkBindBufferMemory(dev, out->buffer, out->memory, 0) == VK_SUCCESS);
+    CHECK(vkMapMemory(dev, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped) == VK_SUCCESS);
+}
+
+void roma_test_staging_destroy(VkDevice dev, roma_test_staging *staging)
+{
+    vkDestroyBuffer(dev, staging->buffer, NULL);
+    vkFreeMemory(dev, staging->memory, NULL);
+    memset(staging, 0, sizeof *staging);
+}

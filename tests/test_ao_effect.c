@@ -50,23 +50,13 @@ static void light_frame(roma_context *ctx, roma_light_effect *light, const roma_
     CHECK_RESULT(roma_light_effect_record(light, cmd, settings->frame % 2u, map, images, lights, light_count, settings),
                  ROMA_SUCCESS);
     roma_test_layout_barrier(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy back = {.bufferOffset = 3 * (VkDeviceSize)W * H * 16 + (VkDeviceSize)W * H * 4,
-                              .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
+                              .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                              .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, out, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
-    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-                                .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                            .pMemoryBarriers = &to_host};
-    vkCmdPipelineBarrier2(cmd, &dep);
-    vkEndCommandBuffer(cmd);
-    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-    CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
-    vkQueueWaitIdle(roma_context_queue(ctx));
+    roma_test_submit_and_wait(ctx, cmd);
 }
 
 /* Many lights (roma_light_settings.lights_per_frame): the room's spot and MANY_LIGHTS point
@@ -188,22 +178,10 @@ int main(void)
     roma_camera_frame cam;
     roma_camera_make_frame(&sv.camera, W, H, &cam);
     VkDeviceSize plane = (VkDeviceSize)W * H * 16;
-    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = 4 * plane + (VkDeviceSize)W * H * 4,
-                             .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
-    VkBuffer staging;
-    VkDeviceMemory staging_memory;
-    CHECK(vkCreateBuffer(dev, &bi, NULL, &staging) == VK_SUCCESS);
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(dev, staging, &req);
-    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                .allocationSize = req.size,
-                                .memoryTypeIndex = roma_test_memory_type(
-                                    roma_context_physical_device(ctx), req.memoryTypeBits,
-                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
-    CHECK(vkAllocateMemory(dev, &mai, NULL, &staging_memory) == VK_SUCCESS);
-    CHECK(vkBindBufferMemory(dev, staging, staging_memory, 0) == VK_SUCCESS);
-    float *host = NULL;
-    CHECK(vkMapMemory(dev, staging_memory, 0, VK_WHOLE_SIZE, 0, (void **)&host) == VK_SUCCESS);
+    roma_test_staging staging_buffer;
+    roma_test_staging_create(ctx, 4 * plane + (VkDeviceSize)W * H * 4, &staging_buffer);
+    VkBuffer staging = staging_buffer.buffer;
+    float *host = staging_buffer.mapped;
     float *pos = host, *nrm = host + 4 * W * H, *gnrm = host + 8 * W * H, *out = host + 12 * W * H,
           *irradiance = host + 13 * W * H;
     static roma_ref_hit hits[W * H];
@@ -245,7 +223,8 @@ int main(void)
     vkBeginCommandBuffer(cmd, &begin);
     for (int i = 0; i < 3; ++i) {
         roma_test_layout_barrier(cmd, in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                                 VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy copy = {.bufferOffset = (VkDeviceSize)i * plane,
                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {W, H, 1}};
@@ -273,29 +252,19 @@ int main(void)
     CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, sv.lights, sv.light_count, NULL),
                  ROMA_ERROR_INVALID_ARGUMENT); /* one record per slot and frame */
     roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy lback = {.bufferOffset = 3 * plane + (VkDeviceSize)W * H * 4,
-                               .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
+                               .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                               .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, light_out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &lback);
     roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy back = {.bufferOffset = 3 * plane, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                              .imageExtent = {W, H, 1}};
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy back = {
+        .bufferOffset = 3 * plane, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {W, H, 1}};
     vkCmdCopyImageToBuffer(cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
-    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-                                .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                            .pMemoryBarriers = &to_host};
-    vkCmdPipelineBarrier2(cmd, &dep);
-    vkEndCommandBuffer(cmd);
-    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-    CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
-    vkQueueWaitIdle(roma_context_queue(ctx));
+    roma_test_submit_and_wait(ctx, cmd);
 
     /* Against the reference at the same points with the same samples. */
     roma_map_info mi;
@@ -365,8 +334,8 @@ int main(void)
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
         roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                                 VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc af = {.frame = 1, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
         CHECK_RESULT(roma_map_record_build(map, cmd, &af, NULL), ROMA_SUCCESS);
         /* Slot 1: a new frame of the effect with frame 0, the reference's samples 0 .. AREA_SPP - 1. */
@@ -374,13 +343,10 @@ int main(void)
         CHECK_RESULT(roma_light_effect_record(light, cmd, 1, map, &limages, lv.lights, lv.light_count, &ls),
                      ROMA_SUCCESS);
         roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         vkCmdCopyImageToBuffer(cmd, light_out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &lback);
-        vkCmdPipelineBarrier2(cmd, &dep);
-        vkEndCommandBuffer(cmd);
-        CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
-        vkQueueWaitIdle(roma_context_queue(ctx));
+        roma_test_submit_and_wait(ctx, cmd);
     }
     double area_err = 0.0, area_ref = 0.0, area_got = 0.0;
     for (uint32_t p = 0; lit_ref && p < W * H; ++p) {
@@ -413,8 +379,8 @@ int main(void)
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
         roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                                 VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc gf = {.frame = 2, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
         CHECK_RESULT(roma_map_record_build(map, cmd, &gf, NULL), ROMA_SUCCESS);
         roma_gi_settings gs = {.samples = GI_SPP, .seed = SEED};
@@ -422,13 +388,10 @@ int main(void)
         CHECK_RESULT(roma_gi_effect_record(gi, cmd, 0, map, &limages, lv.lights, lv.light_count, &gs),
                      ROMA_ERROR_INVALID_ARGUMENT); /* one record per slot and frame */
         roma_test_layout_barrier(cmd, light_out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         vkCmdCopyImageToBuffer(cmd, light_out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &lback);
-        vkCmdPipelineBarrier2(cmd, &dep);
-        vkEndCommandBuffer(cmd);
-        CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
-        vkQueueWaitIdle(roma_context_queue(ctx));
+        roma_test_submit_and_wait(ctx, cmd);
         double gi_err = 0.0, gi_ref = 0.0, gi_got = 0.0;
         for (uint32_t p = 0; lit_ref && p < W * H; ++p) {
             if (!covered[p])
@@ -481,8 +444,8 @@ int main(void)
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
         roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                                 VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_map_frame_desc bf = {.frame = 7, .seed = 5, .jitter_grid = 1, .jitter_directions = 1, .slot = 1};
         CHECK_RESULT(roma_map_record_build(map, cmd, &bf, NULL), ROMA_SUCCESS);
         CHECK_RESULT(roma_map_record_build(second, cmd, &bf, NULL), ROMA_SUCCESS);
@@ -490,9 +453,7 @@ int main(void)
         both.frame = 7;
         CHECK_RESULT(roma_ao_effect_record(ao, cmd, 1, map, &images, &both), ROMA_SUCCESS);
         CHECK_RESULT(roma_ao_effect_record(ao, cmd, 1, second, &images, &both), ROMA_SUCCESS);
-        vkEndCommandBuffer(cmd);
-        CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
-        vkQueueWaitIdle(roma_context_queue(ctx));
+        roma_test_submit_and_wait(ctx, cmd);
         roma_map_destroy(second);
     }
 
@@ -506,13 +467,11 @@ int main(void)
         vkResetCommandPool(dev, pool, 0);
         vkBeginCommandBuffer(cmd, &begin);
         roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                                 VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         settings.frame = f;
         CHECK_RESULT(roma_ao_effect_record(single, cmd, 0, map, &images, &settings), ROMA_SUCCESS);
-        vkEndCommandBuffer(cmd);
-        CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
-        vkQueueWaitIdle(roma_context_queue(ctx));
+        roma_test_submit_and_wait(ctx, cmd);
     }
     roma_ao_effect_destroy(single);
 
@@ -537,8 +496,7 @@ int main(void)
     CHECK_RESULT(roma_light_effect_record(light, cmd, 0, map, &limages, &nan_light, 1, NULL),
                  ROMA_ERROR_INVALID_ARGUMENT);
     roma_light_effect_destroy(light);
-    vkDestroyBuffer(dev, staging, NULL);
-    vkFreeMemory(dev, staging_memory, NULL);
+    roma_test_staging_destroy(dev, &staging_buffer);
     roma_ao_effect_destroy(ao);
     roma_map_destroy(map);
     roma_ref_destroy(ref);

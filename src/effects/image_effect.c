@@ -8,6 +8,17 @@
 
 #define SETS_PER_SLOT 16u
 
+roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out)
+{
+    VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                              .magFilter = VK_FILTER_NEAREST,
+                              .minFilter = VK_FILTER_NEAREST,
+                              .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                              .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                              .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
+    return roma_vk_check(ctx, vkCreateSampler(ctx->device, &si, ctx->allocator, out), "vkCreateSampler");
+}
+
 roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, const roma_logger *log, const char *name,
                                    const char *module, uint32_t inputs, uint32_t outputs, uint32_t push_size,
                                    uint32_t frames_in_flight)
@@ -25,13 +36,7 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     for (uint32_t i = 0; i < inputs + outputs; ++i)
         types[i] = i < inputs ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     types[inputs + outputs] = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER; /* the map's BOM */
-    VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                              .magFilter = VK_FILTER_NEAREST,
-                              .minFilter = VK_FILTER_NEAREST,
-                              .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                              .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                              .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
-    roma_result r = roma_vk_check(ctx, vkCreateSampler(ctx->device, &si, ctx->allocator, &e->sampler), "vkCreateSampler");
+    roma_result r = roma_nearest_sampler_create(ctx, &e->sampler);
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_layout_create(ctx, roma_trace_binding_types, ROMA_TRACE_BINDINGS, &e->trace_layout);
     if (r == ROMA_SUCCESS)

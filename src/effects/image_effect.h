@@ -24,6 +24,10 @@ typedef struct roma_image_effect {
     VkDescriptorPool pools[ROMA_MAX_FRAMES_IN_FLIGHT];
 } roma_image_effect;
 
+/* The nearest, clamp-to-edge sampler through which the effects read the engine's images
+ * (texelFetch: any float format works). */
+roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out);
+
 roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, const roma_logger *log, const char *name,
                                    const char *module, uint32_t inputs, uint32_t outputs, uint32_t push_size,
                                    uint32_t frames_in_flight);

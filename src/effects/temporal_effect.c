@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "effects/image_effect.h"
 #include "roma_shared.h"
 #include "util/log.h"
 #include "vulkan/vk_internal.h"
@@ -95,14 +96,7 @@ roma_result roma_temporal_effect_create(roma_context *ctx, const roma_temporal_e
     e->logger = *log;
     e->frames_in_flight = desc.frames_in_flight;
     e->last_slot = UINT32_MAX;
-    VkSamplerCreateInfo si = {.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                              .magFilter = VK_FILTER_NEAREST,
-                              .minFilter = VK_FILTER_NEAREST,
-                              .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                              .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-                              .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
-    roma_result r =
-        roma_vk_check(ctx, vkCreateSampler(ctx->device, &si, ctx->allocator, &e->sampler), "vkCreateSampler");
+    roma_result r = roma_nearest_sampler_create(ctx, &e->sampler);
     const VkDescriptorType temporal_types[TEMPORAL_SAMPLED + 1] = {
         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,

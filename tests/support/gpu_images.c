@@ -15,6 +15,16 @@ uint32_t roma_test_memory_type(VkPhysicalDevice pd, uint32_t bits, VkMemoryPrope
     return 0;
 }
 
+static VkDeviceMemory allocate(roma_context *ctx, const VkMemoryRequirements *req, VkMemoryPropertyFlags want)
+{
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req->size,
+                               .memoryTypeIndex = roma_test_memory_type(roma_context_physical_device(ctx),
+                                                                        req->memoryTypeBits, want)};
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    CHECK(vkAllocateMemory(roma_context_device(ctx), &ai, NULL, &memory) == VK_SUCCESS);
+    return memory;
+}
+
 void roma_test_image_create(roma_context *ctx, uint32_t width, uint32_t height, VkFormat format,
                             VkImageUsageFlags usage, roma_test_image *out)
 {
@@ -27,11 +37,7 @@ void roma_test_image_create(roma_context *ctx, uint32_t width, uint32_t height, 
     CHECK(vkCreateImage(dev, &ii, NULL, &out->image) == VK_SUCCESS);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(dev, out->image, &req);
-    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                               .memoryTypeIndex = roma_test_memory_type(roma_context_physical_device(ctx),
-                                                                        req.memoryTypeBits,
-                                                                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
-    CHECK(vkAllocateMemory(dev, &ai, NULL, &out->memory) == VK_SUCCESS);
+    out->memory = allocate(ctx, &req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     CHECK(vkBindImageMemory(dev, out->image, out->memory, 0) == VK_SUCCESS);
     VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
                                 .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
@@ -62,6 +68,22 @@ void roma_test_layout_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout 
     vkCmdPipelineBarrier2(cmd, &d);
 }
 
+void roma_test_submit_and_wait(roma_context *ctx, VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+                                .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                            .pMemoryBarriers = &to_host};
+    vkCmdPipelineBarrier2(cmd, &dep);
+    vkEndCommandBuffer(cmd);
+    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
+    CHECK(vkQueueSubmit(roma_context_queue(ctx), 1, &si, VK_NULL_HANDLE) == VK_SUCCESS);
+    vkQueueWaitIdle(roma_context_queue(ctx));
+}
+
 void roma_test_staging_create(roma_context *ctx, VkDeviceSize bytes, roma_test_staging *out)
 {
     memset(out, 0, sizeof *out);
@@ -71,12 +93,7 @@ void roma_test_staging_create(roma_context *ctx, VkDeviceSize bytes, roma_test_s
     CHECK(vkCreateBuffer(dev, &bi, NULL, &out->buffer) == VK_SUCCESS);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(dev, out->buffer, &req);
-    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                               .memoryTypeIndex = roma_test_memory_type(roma_context_physical_device(ctx),
-                                                                        req.memoryTypeBits,
-                                                                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
-    CHECK(vkAllocateMemory(dev, &ai, NULL, &out->memory) == VK_SUCCESS);
+    out->memory = allocate(ctx, &req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     CHECK(vkBindBufferMemory(dev, out->buffer, out->memory, 0) == VK_SUCCESS);
     CHECK(vkMapMemory(dev, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped) == VK_SUCCESS);
 }

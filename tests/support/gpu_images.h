@@ -28,6 +28,10 @@ void roma_test_layout_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout 
                               VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                               VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
+/* Ends cmd (recording) after a barrier that makes its copies visible to the host, submits it
+ * to the context's queue and waits for the queue to be idle. */
+void roma_test_submit_and_wait(roma_context *ctx, VkCommandBuffer cmd);
+
 /* A host-visible, coherent transfer buffer of `bytes`, mapped. */
 typedef struct roma_test_staging {
     VkBuffer buffer;

@@ -10,7 +10,9 @@
  *      whose answers are known from the box's pose that frame;
  *   5. its own G-buffer of the floor seen from above (gbuffer.comp), and libroma's AO
  *      effect on it (roma_ao_effect) into its own image: darker in a corner of the room
- *      than in the open.
+ *      than in the open;
+ *   6. libroma's temporal effect (roma_temporal_effect) averaging that AO over frames into
+ *      its own pair of history images, swapped every frame.
  * The answers come back a frame later, when the slot's fence is waited on.
  *
  *   example-engine [--frames N] [--validation | --sync-validation] [--character file.glb]
@@ -471,9 +473,11 @@ int main(int argc, char **argv)
     ok = ok && pipeline_create(&e, "animate.spv", 80, VK_NULL_HANDLE, &animate_layout, &animate) &&
          pipeline_create(&e, "probe.spv", 40, VK_NULL_HANDLE, &probe_layout, &probe);
     /* The floor G-buffer and the AO it gets from libroma. */
-    image gb_position = {0}, gb_normal = {0}, ao_image = {0};
-    buffer ao_readback[SLOTS];
+    image gb_position = {0}, gb_normal = {0}, ao_image = {0}, history[2] = {{0}, {0}};
+    buffer ao_readback[SLOTS], history_readback[SLOTS];
     memset(ao_readback, 0, sizeof ao_readback);
+    memset(history_readback, 0, sizeof history_readback);
+    roma_temporal_effect *temporal = NULL;
     VkDescriptorSetLayout gb_set_layout = VK_NULL_HANDLE;
     VkDescriptorPool gb_pool = VK_NULL_HANDLE;
     VkDescriptorSet gb_set = VK_NULL_HANDLE;
@@ -483,9 +487,14 @@ int main(int argc, char **argv)
     const VkImageUsageFlags gb_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     ok = ok && image_create(&e, VK_FORMAT_R32G32B32A32_SFLOAT, gb_usage, &gb_position) &&
          image_create(&e, VK_FORMAT_R32G32B32A32_SFLOAT, gb_usage, &gb_normal) &&
-         image_create(&e, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &ao_image);
+         image_create(&e, VK_FORMAT_R32_SFLOAT, gb_usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &ao_image) &&
+         image_create(&e, VK_FORMAT_R32G32B32A32_SFLOAT, gb_usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &history[0]) &&
+         image_create(&e, VK_FORMAT_R32G32B32A32_SFLOAT, gb_usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &history[1]);
     for (int s = 0; s < SLOTS && ok; ++s)
-        ok = buffer_create(&e, 4ull * GB_W * GB_H, 1, &ao_readback[s]);
+        ok = buffer_create(&e, 4ull * GB_W * GB_H, 1, &ao_readback[s]) &&
+             buffer_create(&e, 16ull * GB_W * GB_H, 1, &history_readback[s]);
+    ok = ok && roma_temporal_effect_create(ctx, &(roma_temporal_effect_desc){.frames_in_flight = SLOTS}, &temporal) ==
+                   ROMA_SUCCESS;
     if (ok) {
         VkDescriptorSetLayoutBinding b[2] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL},
                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, NULL}};
@@ -525,20 +534,21 @@ int main(int argc, char **argv)
                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                       .commandBufferCount = SLOTS};
     ok = ok && vkAllocateCommandBuffers(e.device, &ai, cmds) == VK_SUCCESS;
-    if (ok) { /* the three images to GENERAL once, before the first frame */
+    if (ok) { /* the five images to GENERAL once, before the first frame */
         VkCommandBufferBeginInfo once = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                          .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
         vkBeginCommandBuffer(cmds[0], &once);
-        VkImageMemoryBarrier2 to_general[3];
-        const VkImage imgs[3] = {gb_position.image, gb_normal.image, ao_image.image};
-        for (int i = 0; i < 3; ++i)
+        VkImageMemoryBarrier2 to_general[5];
+        const VkImage imgs[5] = {gb_position.image, gb_normal.image, ao_image.image, history[0].image,
+                                 history[1].image};
+        for (int i = 0; i < 5; ++i)
             to_general[i] = (VkImageMemoryBarrier2){
                 .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, .oldLayout = VK_IMAGE_LAYOUT_UNDEFINED,
                 .newLayout = VK_IMAGE_LAYOUT_GENERAL, .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
                 .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = imgs[i],
                 .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 3,
+        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 5,
                                 .pImageMemoryBarriers = to_general};
         vkCmdPipelineBarrier2(cmds[0], &dep);
         vkEndCommandBuffer(cmds[0]);
@@ -590,6 +600,27 @@ int main(int argc, char **argv)
                         (double)open);
                 ++w;
             }
+            /* The same averaged over the frames so far (at most 32): every floor pixel holds
+             * min(frame + 1, 32) frames; the corner stays dark, the open stays open. */
+            const float *acc = history_readback[s].mapped;
+            float acc_corner = 0.0f, acc_open = 0.0f;
+            uint32_t wrong_count = 0;
+            for (uint32_t p = 0; p < GB_W * GB_H; ++p)
+                wrong_count += acc[4 * p + 3] != (float)(in_flight[s] + 1 < 32 ? in_flight[s] + 1 : 32);
+            for (uint32_t dy = 0; dy < 4; ++dy)
+                for (uint32_t dx = 0; dx < 4; ++dx) {
+                    acc_corner += acc[4 * (dy * GB_W + dx)] / 16.0f;
+                    acc_open += acc[4 * ((uint32_t)((1.3f + 1.0f) / 3.0f * GB_H + dy) * GB_W +
+                                         (uint32_t)((0.5f + 1.0f) / 2.0f * GB_W) + dx)] / 16.0f;
+                }
+            if (wrong_count || !(acc_corner < 0.8f) || !(acc_open > 0.9f)) {
+                fprintf(stderr, "frame %u: averaged AO in the corner %.3f, in the open %.3f, %u pixels with the "
+                        "wrong history length\n", in_flight[s], (double)acc_corner, (double)acc_open, wrong_count);
+                ++w;
+            }
+            if (getenv("EXAMPLE_VERBOSE"))
+                printf("frame %u: averaged AO in the corner %.3f, in the open %.3f\n", in_flight[s],
+                       (double)acc_corner, (double)acc_open);
             if (w)
                 fprintf(stderr, "frame %u: %d wrong probe answers\n", in_flight[s], w);
             wrong += w;
@@ -677,10 +708,25 @@ int main(int argc, char **argv)
         roma_ao_settings settings = {.samples = 16, .radius = AO_RADIUS, .seed = 1, .frame = f};
         if (roma_ao_effect_record(ao, cmds[s], s, map, &images, &settings) != ROMA_SUCCESS)
             goto cleanup;
+        /* 6. The AO averaged over frames: this frame writes history[f % 2] and reads the
+         *    other, which the previous frame wrote (the camera stands still: the zero
+         *    matrix). The AO's writes and last frame's history, read by the effect. */
+        memory_barrier(cmds[s], VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        const image *written = &history[f % 2], *previous = &history[(f + 1) % 2];
+        roma_temporal_images ti = {.width = GB_W, .height = GB_H, .current = ao_image.view,
+                                   .position = gb_position.view, .normal = gb_normal.view,
+                                   .previous_position = gb_position.view, .history = previous->view,
+                                   .accumulated = written->view, .input_layout = VK_IMAGE_LAYOUT_GENERAL};
+        roma_temporal_settings ts = {.reset = f == 0, .frame = f};
+        if (roma_temporal_effect_record(temporal, cmds[s], s, &ti, &ts) != ROMA_SUCCESS)
+            goto cleanup;
         memory_barrier(cmds[s], VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferImageCopy back = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {GB_W, GB_H, 1}};
         vkCmdCopyImageToBuffer(cmds[s], ao_image.image, VK_IMAGE_LAYOUT_GENERAL, ao_readback[s].buffer, 1, &back);
+        vkCmdCopyImageToBuffer(cmds[s], written->image, VK_IMAGE_LAYOUT_GENERAL, history_readback[s].buffer, 1, &back);
         VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
                                     .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                                     .srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -738,8 +784,13 @@ cleanup:
     image_destroy(&e, &gb_position);
     image_destroy(&e, &gb_normal);
     image_destroy(&e, &ao_image);
-    for (int s = 0; s < SLOTS; ++s)
+    image_destroy(&e, &history[0]);
+    image_destroy(&e, &history[1]);
+    roma_temporal_effect_destroy(temporal);
+    for (int s = 0; s < SLOTS; ++s) {
         buffer_destroy(&e, &ao_readback[s]);
+        buffer_destroy(&e, &history_readback[s]);
+    }
     buffer_destroy(&e, &rest);
     buffer_destroy(&e, &positions);
 done:

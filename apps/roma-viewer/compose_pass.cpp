@@ -2,16 +2,17 @@
 
 #include <roma/trace_types.h>
 
-#include "atrous_comp_spv.h"
 #include "compose_comp_spv.h"
+#include "display_comp_spv.h"
 
 #include <cstring>
 #include <initializer_list>
 
 namespace {
-// Set 0 of compose.comp: 0-2 G-buffer (sampled), 3-6 effect outputs, accum out, display
-// (storage images), 7-8 reference and BOM (storage buffers), 9-11 history (storage
-// images), 12 the Frame block (storage buffer), 13 the GI output (storage image).
+// Set 0 of compose.comp: 0-2 G-buffer (sampled), 3-6 effect outputs, current, display
+// (storage images), 7-8 reference and BOM (storage buffers), 9 the temporal effect's
+// picture and 10 this frame's positions (storage images; 11 unused), 12 the Frame block
+// (storage buffer), 13 the GI output (storage image).
 constexpr uint32_t kBindings = 14;
 VkDescriptorType binding_type(uint32_t i)
 {
@@ -57,22 +58,22 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     li.pBindings = trace;
     if (vkCreateDescriptorSetLayout(b.device, &li, nullptr, &c.trace_layout) != VK_SUCCESS)
         return false;
-    VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 16},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
+    VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 12},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 12},
                                      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pi.maxSets = 2;
+    pi.maxSets = 4;
     pi.poolSizeCount = 4;
     pi.pPoolSizes = sizes;
     if (vkCreateDescriptorPool(b.device, &pi, nullptr, &c.pool) != VK_SUCCESS)
         return false;
-    VkDescriptorSetLayout both[2] = {c.set_layout, c.set_layout};
+    VkDescriptorSetLayout four[4] = {c.set_layout, c.set_layout, c.set_layout, c.set_layout};
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     ai.descriptorPool = c.pool;
-    ai.descriptorSetCount = 2;
-    ai.pSetLayouts = both;
-    if (vkAllocateDescriptorSets(b.device, &ai, c.sets) != VK_SUCCESS)
+    ai.descriptorSetCount = 4;
+    ai.pSetLayouts = four;
+    if (vkAllocateDescriptorSets(b.device, &ai, &c.sets[0][0]) != VK_SUCCESS)
         return false;
     for (vk_buffer &f : c.frame_data)
         if (!vk_buffer_create(b, sizeof(frame_block), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, f))
@@ -87,72 +88,28 @@ bool compose_pass_create(const vk_base &b, compose_pass &c)
     if (vkCreatePipelineLayout(b.device, &pli, nullptr, &c.layout) != VK_SUCCESS)
         return false;
     c.module = vk_shader_module(b, compose_comp_spv, sizeof compose_comp_spv);
-    if (!c.module)
-        return false;
-    // The a-trous filter: G-buffer position and normal, source, destination, display.
-    VkDescriptorSetLayoutBinding ab[5];
-    for (uint32_t i = 0; i < 5; ++i)
-        ab[i] = {i, i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
-                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo ali{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    ali.bindingCount = 5;
-    ali.pBindings = ab;
-    if (vkCreateDescriptorSetLayout(b.device, &ali, nullptr, &c.atrous_set_layout) != VK_SUCCESS)
-        return false;
-    VkDescriptorPoolSize asz[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 12},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 18}};
-    VkDescriptorPoolCreateInfo api{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    api.maxSets = 6;
-    api.poolSizeCount = 2;
-    api.pPoolSizes = asz;
-    if (vkCreateDescriptorPool(b.device, &api, nullptr, &c.atrous_pool) != VK_SUCCESS)
-        return false;
-    VkDescriptorSetLayout six[6] = {c.atrous_set_layout, c.atrous_set_layout, c.atrous_set_layout,
-                                    c.atrous_set_layout, c.atrous_set_layout, c.atrous_set_layout};
-    VkDescriptorSetAllocateInfo aai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    aai.descriptorPool = c.atrous_pool;
-    aai.descriptorSetCount = 6;
-    aai.pSetLayouts = six;
-    if (vkAllocateDescriptorSets(b.device, &aai, &c.atrous_sets[0][0]) != VK_SUCCESS)
-        return false;
-    VkPushConstantRange apush{VK_SHADER_STAGE_COMPUTE_BIT, 0, 48};
-    VkPipelineLayoutCreateInfo apli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    apli.setLayoutCount = 1;
-    apli.pSetLayouts = &c.atrous_set_layout;
-    apli.pushConstantRangeCount = 1;
-    apli.pPushConstantRanges = &apush;
-    if (vkCreatePipelineLayout(b.device, &apli, nullptr, &c.atrous_layout) != VK_SUCCESS)
-        return false;
-    VkShaderModule am = vk_shader_module(b, atrous_comp_spv, sizeof atrous_comp_spv);
-    VkComputePipelineCreateInfo aci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    aci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    aci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    aci.stage.module = am;
-    aci.stage.pName = "main";
-    aci.layout = c.atrous_layout;
-    bool ok = am && vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &aci, nullptr, &c.atrous) == VK_SUCCESS;
-    if (am)
-        vkDestroyShaderModule(b.device, am, nullptr);
-    return ok;
+    c.display_module = vk_shader_module(b, display_comp_spv, sizeof display_comp_spv);
+    return c.module != VK_NULL_HANDLE && c.display_module != VK_NULL_HANDLE;
 }
 
-static VkPipeline view_pipeline(const vk_base &b, compose_pass &c, view_mode view)
+static VkPipeline view_pipeline(const vk_base &b, compose_pass &c, view_mode view, uint32_t pass)
 {
-    if (c.pipelines[view])
-        return c.pipelines[view];
+    VkPipeline &pipeline = c.pipelines[pass][view];
+    if (pipeline)
+        return pipeline;
     uint32_t value = view;
     VkSpecializationMapEntry entry{0, 0, sizeof value};
     VkSpecializationInfo spec{1, &entry, sizeof value, &value};
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = c.module;
+    ci.stage.module = pass == 0 ? c.module : c.display_module;
     ci.stage.pName = "main";
     ci.stage.pSpecializationInfo = &spec;
     ci.layout = c.layout;
-    if (vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &ci, nullptr, &c.pipelines[view]) != VK_SUCCESS)
-        c.pipelines[view] = VK_NULL_HANDLE;
-    return c.pipelines[view];
+    if (vkCreateComputePipelines(b.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline) != VK_SUCCESS)
+        pipeline = VK_NULL_HANDLE;
+    return pipeline;
 }
 
 bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &g)
@@ -161,72 +118,57 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
     vk_image_destroy(b, c.light);
     vk_image_destroy(b, c.gi);
     vk_image_destroy(b, c.display);
+    vk_image_destroy(b, c.current);
     for (int k = 0; k < 2; ++k) {
         vk_image_destroy(b, c.accum[k]);
         vk_image_destroy(b, c.positions[k]);
+        vk_image_destroy(b, c.t[k]);
         c.history_ready[k] = false;
     }
     c.width = g.width;
     c.height = g.height;
     VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    // Sampled too: the temporal effect reads this frame's picture, positions and history so.
+    VkImageUsageFlags both = storage | VK_IMAGE_USAGE_SAMPLED_BIT;
     const VkFormat f32x4 = VK_FORMAT_R32G32B32A32_SFLOAT;
     if (!vk_image_create(b, c.width, c.height, VK_FORMAT_R32_SFLOAT, storage, c.ao) ||
         !vk_image_create(b, c.width, c.height, f32x4, storage, c.light) ||
         !vk_image_create(b, c.width, c.height, f32x4, storage, c.gi) ||
-        !vk_image_create(b, c.width, c.height, VK_FORMAT_R8G8B8A8_UNORM, storage, c.display))
+        !vk_image_create(b, c.width, c.height, VK_FORMAT_R8G8B8A8_UNORM, storage, c.display) ||
+        !vk_image_create(b, c.width, c.height, f32x4, both, c.current))
         return false;
-    for (int k = 0; k < 2; ++k) {
-        vk_image_destroy(b, c.t[k]);
-        if (!vk_image_create(b, c.width, c.height, f32x4, storage, c.accum[k]) ||
-            !vk_image_create(b, c.width, c.height, f32x4, VK_IMAGE_USAGE_STORAGE_BIT, c.positions[k]) ||
+    for (int k = 0; k < 2; ++k)
+        if (!vk_image_create(b, c.width, c.height, f32x4, both, c.accum[k]) ||
+            !vk_image_create(b, c.width, c.height, f32x4, both, c.positions[k]) ||
             !vk_image_create(b, c.width, c.height, f32x4, storage, c.t[k]))
             return false;
-    }
-    for (uint32_t k = 0; k < 2; ++k)
-        for (uint32_t it = 0; it < 3; ++it) {
-            // accum[k] -> t0 -> t1 -> t0 (and the display)
-            VkImageView from = it == 0 ? c.accum[k].view : c.t[(it + 1) % 2].view, to = c.t[it % 2].view;
-            VkDescriptorImageInfo ai[5] = {{c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                                           {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                                           {VK_NULL_HANDLE, from, VK_IMAGE_LAYOUT_GENERAL},
-                                           {VK_NULL_HANDLE, to, VK_IMAGE_LAYOUT_GENERAL},
-                                           {VK_NULL_HANDLE, c.display.view, VK_IMAGE_LAYOUT_GENERAL}};
-            VkWriteDescriptorSet aw[5];
-            for (uint32_t i = 0; i < 5; ++i) {
-                aw[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-                aw[i].dstSet = c.atrous_sets[k][it];
-                aw[i].dstBinding = i;
-                aw[i].descriptorCount = 1;
-                aw[i].descriptorType = i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-                aw[i].pImageInfo = &ai[i];
-            }
-            vkUpdateDescriptorSets(b.device, 5, aw, 0, nullptr);
-        }
-    for (uint32_t k = 0; k < 2; ++k) {
-        // Parity k writes accum[k] and positions[k] and reads the other pair.
+    for (uint32_t set = 0; set < 4; ++set) {
+        // Parity k composes into current and positions[k]; the display reads accum[k] (the
+        // temporal effect's output) or, filtered, t[0].
+        uint32_t k = set / 2, filtered = set % 2;
         VkDescriptorImageInfo images[kBindings] = {
             {c.sampler, g.position.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {c.sampler, g.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {c.sampler, g.albedo.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {VK_NULL_HANDLE, c.ao.view, VK_IMAGE_LAYOUT_GENERAL},
             {VK_NULL_HANDLE, c.light.view, VK_IMAGE_LAYOUT_GENERAL},
-            {VK_NULL_HANDLE, c.accum[k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, c.current.view, VK_IMAGE_LAYOUT_GENERAL},
             {VK_NULL_HANDLE, c.display.view, VK_IMAGE_LAYOUT_GENERAL},
             {},
             {},
-            {VK_NULL_HANDLE, c.accum[1 - k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {VK_NULL_HANDLE, filtered ? c.t[0].view : c.accum[k].view, VK_IMAGE_LAYOUT_GENERAL},
             {VK_NULL_HANDLE, c.positions[k].view, VK_IMAGE_LAYOUT_GENERAL},
-            {VK_NULL_HANDLE, c.positions[1 - k].view, VK_IMAGE_LAYOUT_GENERAL},
+            {},
             {},
             {VK_NULL_HANDLE, c.gi.view, VK_IMAGE_LAYOUT_GENERAL}};
         VkDescriptorBufferInfo frame{c.frame_data[k].buffer, 0, VK_WHOLE_SIZE};
         VkWriteDescriptorSet writes[kBindings];
         uint32_t n = 0;
         for (uint32_t i = 0; i < kBindings; ++i) {
-            if (i == 7 || i == 8)
-                continue; // the buffers: compose_pass_set_buffers
+            if (i == 7 || i == 8 || i == 11)
+                continue; // the buffers: compose_pass_set_buffers; 11 unused
             writes[n] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            writes[n].dstSet = c.sets[k];
+            writes[n].dstSet = c.sets[k][filtered];
             writes[n].dstBinding = i;
             writes[n].descriptorCount = 1;
             writes[n].descriptorType = binding_type(i);
@@ -244,16 +186,16 @@ bool compose_pass_resize(const vk_base &b, compose_pass &c, const gbuffer_pass &
 void compose_pass_set_buffers(const vk_base &b, compose_pass &c, VkBuffer reference, VkBuffer bom)
 {
     VkDescriptorBufferInfo infos[2] = {{reference, 0, VK_WHOLE_SIZE}, {bom, 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet writes[4];
-    for (uint32_t i = 0; i < 4; ++i) {
+    VkWriteDescriptorSet writes[8];
+    for (uint32_t i = 0; i < 8; ++i) {
         writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = c.sets[i / 2];
+        writes[i].dstSet = (&c.sets[0][0])[i / 2];
         writes[i].dstBinding = 7 + i % 2;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         writes[i].pBufferInfo = &infos[i % 2];
     }
-    vkUpdateDescriptorSets(b.device, 4, writes, 0, nullptr);
+    vkUpdateDescriptorSets(b.device, 8, writes, 0, nullptr);
 }
 
 void compose_pass_destroy(const vk_base &b, compose_pass &c)
@@ -262,25 +204,21 @@ void compose_pass_destroy(const vk_base &b, compose_pass &c)
     vk_image_destroy(b, c.light);
     vk_image_destroy(b, c.gi);
     vk_image_destroy(b, c.display);
+    vk_image_destroy(b, c.current);
     for (int k = 0; k < 2; ++k) {
         vk_image_destroy(b, c.accum[k]);
         vk_image_destroy(b, c.positions[k]);
         vk_image_destroy(b, c.t[k]);
         vk_buffer_destroy(b, c.frame_data[k]);
     }
-    if (c.atrous)
-        vkDestroyPipeline(b.device, c.atrous, nullptr);
-    if (c.atrous_layout)
-        vkDestroyPipelineLayout(b.device, c.atrous_layout, nullptr);
-    if (c.atrous_pool)
-        vkDestroyDescriptorPool(b.device, c.atrous_pool, nullptr);
-    if (c.atrous_set_layout)
-        vkDestroyDescriptorSetLayout(b.device, c.atrous_set_layout, nullptr);
-    for (VkPipeline p : c.pipelines)
-        if (p)
-            vkDestroyPipeline(b.device, p, nullptr);
+    for (auto &per_pass : c.pipelines)
+        for (VkPipeline p : per_pass)
+            if (p)
+                vkDestroyPipeline(b.device, p, nullptr);
     if (c.module)
         vkDestroyShaderModule(b.device, c.module, nullptr);
+    if (c.display_module)
+        vkDestroyShaderModule(b.device, c.display_module, nullptr);
     if (c.layout)
         vkDestroyPipelineLayout(b.device, c.layout, nullptr);
     if (c.pool)
@@ -308,42 +246,47 @@ void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd)
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
 }
 
-bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
-                         VkDescriptorSet trace_set)
+// A global barrier: compute-shader storage writes before the next compute reads and writes.
+static void compute_to_compute(VkCommandBuffer cmd)
 {
-    VkPipeline pipeline = view_pipeline(b, c, s.view);
-    if (!pipeline)
-        return false;
-    const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    const VkAccessFlags2 rw = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    // The effects' storage writes, read here.
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    mb.srcStageMask = cs;
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    mb.dstStageMask = cs;
-    mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &mb;
     vkCmdPipelineBarrier2(cmd, &dep);
-    // History: this frame writes the parity's pair (rewritten whole) and reads the other,
-    // which the last frame wrote; before the first such frame there is nothing to read.
+}
+
+bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
+                         VkDescriptorSet trace_set, roma_temporal_effect *temporal, const gbuffer_pass &g)
+{
+    VkPipeline compose = view_pipeline(b, c, s.view, 0), display = view_pipeline(b, c, s.view, 1);
+    if (!compose || !display)
+        return false;
+    const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    const VkPipelineStageFlags2 before = cs | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    const VkAccessFlags2 sampled = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    // The effects' storage writes, read here.
+    compute_to_compute(cmd);
+    // This frame composes into current and positions[k] (rewritten whole), the temporal
+    // effect writes accum[k] (and t) and reads accum and positions of the other parity,
+    // which the last frame wrote; before the first such frame there is no history.
     const uint32_t k = s.parity & 1u, other = 1u - k;
-    uint32_t mode = c.history_ready[other] ? s.history_mode : 0u;
-    for (vk_image *img : {&c.accum[k], &c.positions[k]})
-        vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                         cs | VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    if (!c.history_ready[other]) // the reads of an unwritten pair still need a layout
-        for (vk_image *img : {&c.accum[other], &c.positions[other]})
-            vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                             VK_PIPELINE_STAGE_2_NONE, 0, cs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    bool history = c.history_ready[other] && s.history_mode != 0 && s.view != VIEW_ROTATED_MAP;
+    for (vk_image *img : {&c.current, &c.positions[k], &c.accum[k], &c.t[0], &c.t[1], &c.display})
+        vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, before, 0, cs,
+                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    if (!c.history_ready[other]) { // the bindings of an unwritten pair still need their layouts
+        vk_image_barrier(cmd, c.accum[other].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                         VK_PIPELINE_STAGE_2_NONE, 0, cs, sampled);
+        vk_image_barrier(cmd, c.positions[other].image, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, cs, sampled);
+    }
     frame_block fb{};
-    std::memcpy(fb.prev_rows, s.prev_clip_rows, sizeof fb.prev_rows);
-    for (int i = 0; i < 3; ++i)
-        fb.eye_angle[i] = s.eye[i];
-    fb.eye_angle[3] = s.pixel_angle;
-    fb.mode_cap[0] = mode;
-    fb.mode_cap[1] = s.history_cap;
     fb.mode_cap[2] = s.steps_max;
     fb.mode_cap[3] = s.map_index;
     std::memcpy(fb.steps_light, s.steps_light, sizeof fb.steps_light);
@@ -352,8 +295,6 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     fb.bom[0] = uint32_t(s.bom_address);
     fb.bom[1] = uint32_t(s.bom_address >> 32);
     std::memcpy(c.frame_data[k].mapped, &fb, sizeof fb); // the slot's fence has passed: not in use
-    vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, cs, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     struct {
         float ambient[4], background[4], bom_origin[4];
         uint32_t size[2], view, accumulated;
@@ -381,63 +322,68 @@ bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd,
     push.ao_on = s.ao_on;
     push.direct_on = s.direct_on;
     push.gi_on = s.gi_on;
-    VkDescriptorSet sets[2] = {c.sets[k], trace_set};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    VkDescriptorSet sets[2] = {c.sets[k][s.filter ? 1 : 0], trace_set};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compose);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);
     vkCmdPushConstants(cmd, c.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
-    if (s.filter) {
-        // Three a-trous iterations (steps 1, 2, 4) over this frame's accumulation; the last
-        // one rewrites the display image's covered pixels. Each reads what the one before wrote.
-        for (vk_image *img : {&c.t[0], &c.t[1]})
-            vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, cs, 0, cs,
-                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        struct {
-            uint32_t size[2];
-            int32_t step;
-            uint32_t last;
-            float exposure, pixel_angle, pad[2];
-            float eye[4];
-        } ap{};
-        static_assert(sizeof ap == 48, "the push block of atrous.comp");
-        ap.size[0] = c.width, ap.size[1] = c.height;
-        ap.exposure = s.tone ? s.exposure : 0.0f;
-        ap.pixel_angle = s.pixel_angle;
-        for (int i = 0; i < 3; ++i)
-            ap.eye[i] = s.eye[i];
-        // The last dispatch's writes, read (and t0 and the display written again) now.
-        VkMemoryBarrier2 step_barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        step_barrier.srcStageMask = cs;
-        step_barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        step_barrier.dstStageMask = cs;
-        step_barrier.dstAccessMask = rw;
-        VkDependencyInfo step_dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        step_dep.memoryBarrierCount = 1;
-        step_dep.pMemoryBarriers = &step_barrier;
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.atrous);
-        for (uint32_t it = 0; it < 3; ++it) {
-            vkCmdPipelineBarrier2(cmd, &step_dep);
-            ap.step = 1 << it;
-            ap.last = it == 2;
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.atrous_layout, 0, 1, &c.atrous_sets[k][it],
-                                    0, nullptr);
-            vkCmdPushConstants(cmd, c.atrous_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof ap, &ap);
-            vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
-        }
-    }
+
+    // libroma's temporal effect: the picture averaged over frames (reprojected through last
+    // frame's world -> clip while the camera moves), filtered where the history is short.
+    for (vk_image *img : {&c.current, &c.positions[k]})
+        vk_image_barrier(cmd, img->image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, cs,
+                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, cs, sampled);
+    roma_temporal_images ti{};
+    ti.width = c.width;
+    ti.height = c.height;
+    ti.current = c.current.view;
+    ti.position = g.position.view;
+    ti.normal = g.normal.view;
+    ti.previous_position = c.positions[other].view;
+    ti.history = c.accum[other].view;
+    ti.accumulated = c.accum[k].view;
+    ti.filtered = s.filter ? c.t[0].view : VK_NULL_HANDLE;
+    ti.scratch = c.t[1].view;
+    ti.input_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    ti.history_layout = VK_IMAGE_LAYOUT_GENERAL;
+    roma_temporal_settings ts{};
+    ts.reset = history ? 0u : 1u;
+    ts.max_history = s.history_cap;
+    ts.frame = s.frame;
+    if (s.history_mode == 2) // rows in, column-major out; zero (a still camera) otherwise
+        for (int row = 0; row < 4; ++row)
+            for (int col = 0; col < 4; ++col)
+                ts.previous_view_proj[col * 4 + row] = s.prev_clip_rows[row][col];
+    if (roma_temporal_effect_record(temporal, cmd, k, &ti, &ts) != ROMA_SUCCESS)
+        return false;
+
+    // The display (the effect bound its own pipeline, sets and push constants: bound again).
+    compute_to_compute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, display);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c.layout, 0, 2, sets, 0, nullptr);
+    vkCmdPushConstants(cmd, c.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    vkCmdDispatch(cmd, (c.width + 7) / 8, (c.height + 7) / 8, 1);
     vk_image_barrier(cmd, c.display.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, cs,
                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                      VK_ACCESS_2_TRANSFER_READ_BIT);
     c.history_ready[k] = true;
-    c.current = k;
+    c.current_accum = k;
     c.filtered = s.filter;
     // The history is read by copies (screenshots) and the next frame.
     VkMemoryBarrier2 after{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     after.srcStageMask = cs;
     after.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
     after.dstStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT | cs;
-    after.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | rw;
+    after.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | sampled;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &after;
     vkCmdPipelineBarrier2(cmd, &dep);
     return true;
+}
+
+const vk_image &compose_pass_picture(const compose_pass &c)
+{
+    return c.filtered ? c.t[0] : c.accum[c.current_accum];
 }

@@ -1,8 +1,11 @@
-// roma-viewer: the effect outputs (AO, direct and indirect irradiance), the accumulation image and
-// the display image, and the compute pass that turns them into the picture.
+// roma-viewer: the effect outputs (AO, direct and indirect irradiance), the picture of the
+// chosen view (current), its average over frames (libroma's temporal effect, into history
+// images the viewer owns) and the display image; the compute passes that make them.
 #pragma once
 
 #include "gbuffer_pass.h"
+
+#include <roma/temporal_effect.h>
 
 enum view_mode : uint32_t {
     VIEW_COMPOSED = 0,
@@ -47,33 +50,29 @@ struct compose_settings {
     uint32_t map_index;         // the rotated-map view's map
     float ao_skip;              // the ray-start view: the AO rays' skip (world units)
     uint64_t bom_address;       // and the map's BOM
-    uint32_t parity;            // frame % 2: which history images this frame writes
-    bool filter;                // run the a-trous filter (a moving camera: little history)
-    bool tone;                  // the view's values are radiance (exposure applies)
+    uint32_t parity;            // frame % 2: the frame slot, and which history images this frame writes
+    uint32_t frame;             // the viewer's frame counter (the temporal effect's slot rules)
+    bool filter;                // give the temporal effect its filter (it runs where the history is short)
 };
 
 struct compose_pass {
     vk_image ao, light, gi, display;
+    vk_image current;                // this frame's view, linear (the temporal effect's input)
     vk_image accum[2], positions[2]; // history, alternating: frame parity k writes [k], reads [1 - k]
+    vk_image t[2];                   // the temporal effect's filter: t[0] the filtered picture, t[1] scratch
     vk_buffer frame_data[2];         // the Frame uniform block per parity (host-written)
     bool history_ready[2] = {};      // [k] was written since the images were made
-    uint32_t current = 0;            // the accum image the last recorded frame wrote
+    uint32_t current_accum = 0;      // the accum image the last recorded frame wrote
     bool filtered = false;           // the last recorded frame shows t[0], the filtered picture
     uint32_t width = 0, height = 0;
     VkSampler sampler = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE, trace_layout = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet sets[2] = {};    // per parity
+    VkDescriptorSet sets[2][2] = {}; // per parity, and whether the final picture is t[0] (filtered)
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    VkShaderModule module = VK_NULL_HANDLE;
-    VkPipeline pipelines[VIEW_COUNT] = {}; // one per view (specialization constant), made on first use
-    // The a-trous filter (atrous.comp): 3 iterations per parity, ping-ponging through t.
-    vk_image t[2];                    // t[0] ends with the filtered picture (linear)
-    VkDescriptorSetLayout atrous_set_layout = VK_NULL_HANDLE;
-    VkDescriptorPool atrous_pool = VK_NULL_HANDLE;
-    VkDescriptorSet atrous_sets[2][3] = {};
-    VkPipelineLayout atrous_layout = VK_NULL_HANDLE;
-    VkPipeline atrous = VK_NULL_HANDLE;
+    VkShaderModule module = VK_NULL_HANDLE, display_module = VK_NULL_HANDLE; // compose.comp, display.comp
+    // One per pass (compose, display) and view (a specialization constant), made on first use.
+    VkPipeline pipelines[2][VIEW_COUNT] = {};
 };
 
 bool compose_pass_create(const vk_base &b, compose_pass &c);
@@ -85,7 +84,9 @@ void compose_pass_destroy(const vk_base &b, compose_pass &c);
 void compose_pass_set_buffers(const vk_base &b, compose_pass &c, VkBuffer reference, VkBuffer bom);
 // Puts the effect outputs into GENERAL after last frame's readers, ready for the effects.
 void compose_pass_prepare(const compose_pass &c, VkCommandBuffer cmd);
-// trace_set: roma_map_info.trace_set of this frame's map. Leaves the display image in
-// TRANSFER_SRC_OPTIMAL.
+// The picture of one frame: compose, libroma's temporal effect, display. trace_set:
+// roma_map_info.trace_set of this frame's map. Leaves the display image in TRANSFER_SRC_OPTIMAL.
 bool compose_pass_record(const vk_base &b, compose_pass &c, VkCommandBuffer cmd, const compose_settings &s,
-                         VkDescriptorSet trace_set);
+                         VkDescriptorSet trace_set, roma_temporal_effect *temporal, const gbuffer_pass &g);
+// The image that holds the last recorded frame's linear picture (filtered or accumulated).
+const vk_image &compose_pass_picture(const compose_pass &c);

@@ -260,6 +260,7 @@ struct viewer {
     roma_ao_effect *ao = nullptr;
     roma_light_effect *light = nullptr;
     roma_gi_effect *gi = nullptr;
+    roma_temporal_effect *temporal = nullptr; // the picture averaged over frames
     gbuffer_pass gb;
     compose_pass cp;
     VkCommandPool pool = VK_NULL_HANDLE;
@@ -517,9 +518,12 @@ bool create_libroma(viewer &v)
     ld.frames_in_flight = kSlots;
     roma_gi_effect_desc gd{};
     gd.frames_in_flight = kSlots;
+    roma_temporal_effect_desc td{};
+    td.frames_in_flight = kSlots;
     return roma_ao_effect_create(v.ctx, &ad, &v.ao) == ROMA_SUCCESS &&
            roma_light_effect_create(v.ctx, &ld, &v.light) == ROMA_SUCCESS &&
-           roma_gi_effect_create(v.ctx, &gd, &v.gi) == ROMA_SUCCESS;
+           roma_gi_effect_create(v.ctx, &gd, &v.gi) == ROMA_SUCCESS &&
+           roma_temporal_effect_create(v.ctx, &td, &v.temporal) == ROMA_SUCCESS;
 }
 
 bool resize_images(viewer &v, uint32_t width, uint32_t height)
@@ -798,9 +802,11 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.slice_depth = std::min(s.slice_depth, v.bom_res ? v.bom_res - 1 : 0u);
     cs.bom_res = v.bom_res;
     cs.compared = v.compared;
-    // History: start over after a change of scene, settings or size; reproject after the
-    // camera moved (at most 16 frames kept, so old light does not trail); else keep adding.
+    // History (libroma's temporal effect): start over after a change of scene, settings or
+    // size; reproject after the camera moved (at most 16 frames kept, so old light does not
+    // trail); else keep adding.
     cs.parity = slot;
+    cs.frame = v.frame;
     cs.history_mode = v.accumulated == 0 ? 0u : v.camera_moved ? 2u : 1u;
     cs.history_cap = v.camera_moved ? 16u : 1u << 30;
     std::memcpy(cs.prev_clip_rows, v.prev_clip_rows, sizeof cs.prev_clip_rows);
@@ -822,13 +828,14 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
                           effective_ao_radius(v));
     cs.bom_address = mi.bom_address;
     cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
-    // The spatial filter while there is little history: a moving camera, or the first frames
-    // after a change; only for the views of light (not the debug views, whose values are labels).
-    cs.tone = shown == VIEW_COMPOSED || shown == VIEW_DIRECT;
+    // The temporal effect's spatial filter (it runs where the history is short: a moving
+    // camera's disocclusions, the first frames after a change); not asked for while a still
+    // camera has 4 frames everywhere (nothing to filter; its passes would still cost); only for
+    // the views of light, not the debug views, whose values are labels.
     cs.filter = v.s.filter && (cs.history_mode == 2u || v.accumulated < 4) &&
-                (shown == VIEW_COMPOSED || shown == VIEW_DIRECT || shown == VIEW_AO) &&
+                (shown == VIEW_COMPOSED || shown == VIEW_DIRECT || shown == VIEW_AO || shown == VIEW_GI) &&
                 s.view != VIEW_REFERENCE && s.view != VIEW_DIFFERENCE;
-    if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set))
+    if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set, v.temporal, v.gb))
         return false;
     v.passes.push_back("compose");
     roma_context_info ci;
@@ -872,7 +879,7 @@ void record_readback(VkCommandBuffer cmd, void *user)
     region.imageExtent = {r->v->cp.width, r->v->cp.height, 1};
     vkCmdCopyImageToBuffer(cmd, r->v->cp.display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->display, 1, &region);
     // What the picture shows: the filtered values when the filter ran, else the accumulation.
-    const vk_image &shown = r->v->cp.filtered ? r->v->cp.t[0] : r->v->cp.accum[r->v->cp.current];
+    const vk_image &shown = compose_pass_picture(r->v->cp);
     vkCmdCopyImageToBuffer(cmd, shown.image, VK_IMAGE_LAYOUT_GENERAL, r->accum, 1, &region);
     VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     mb.srcStageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
@@ -1551,6 +1558,7 @@ void destroy(viewer &v)
     roma_ao_effect_destroy(v.ao);
     roma_light_effect_destroy(v.light);
     roma_gi_effect_destroy(v.gi);
+    roma_temporal_effect_destroy(v.temporal);
     roma_context_destroy(v.ctx);
     gbuffer_pass_destroy(v.base, v.gb);
     compose_pass_destroy(v.base, v.cp);

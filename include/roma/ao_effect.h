@@ -19,7 +19,8 @@
  * settings' frame differs from the previous record's, and the slot's pool is reset then:
  * the slot rules of roma_map_frame_desc.slot apply (the GPU has finished the slot's
  * previous frame). Count frames in settings.frame; records of one frame (several maps,
- * several images) keep the same frame.
+ * several images) keep the same frame. A record binds its own compute pipeline, descriptor
+ * sets and push constants (as every effect's does): bind yours again afterwards.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. */

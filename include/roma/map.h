@@ -197,7 +197,8 @@ typedef struct roma_map_frame_desc {
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) from the
  *   buffers made on first use of a slot or after instances changed.
  * @par Threads
- * The context's thread; cmd externally synchronised. Never submits or waits. */
+ * The context's thread; cmd externally synchronised. Never submits or waits. Binds its own
+ * pipelines, descriptor sets and push constants: bind yours again afterwards. */
 ROMA_API roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
                                            const roma_map_frame_desc *frame, roma_gpu_timer *timer);
 

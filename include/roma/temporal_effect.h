@@ -32,7 +32,9 @@
  * the barriers it needs; after the record, compute-shader storage writes to the engine's
  * readers. Descriptor sets come from a pool per frame slot (8 records per slot and frame);
  * slots and frames follow the rules of roma_ao_effect (count frames in settings.frame).
- * Nothing here reads a ROMA map: the effect may run on any engine image.
+ * Nothing here reads a ROMA map: the effect may run on any engine image. Like every record
+ * call of libroma, it binds its own compute pipeline, descriptor sets and push constants:
+ * bind yours again after it.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. */

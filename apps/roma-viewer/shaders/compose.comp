@@ -1,11 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The viewer's picture: the chosen view of this frame's G-buffer and effect outputs,
-// averaged with the history (progressive accumulation while the camera is still; while it
-// moves, the history reprojected to where each surface point was and rejected where another
-// surface was there, at most history_cap frames), then exposed and sRGB-encoded into the
-// display image. History images alternate between frames (accum_in/out, pos_in/out). The ROMA debug views trace their own
-// rays through the public GLSL (roma/trace_descriptors.glsl, set 1).
+// The viewer's picture: the chosen view of this frame's G-buffer and effect outputs, linear,
+// into the current image, and this frame's positions (the next frame's previous positions).
+// libroma's temporal effect then averages it over frames (reprojected while the camera moves)
+// and filters it where the history is short, and display.comp shows it (compose_pass.cpp).
+// The ROMA debug views trace their own rays through the public GLSL
+// (roma/trace_descriptors.glsl, set 1).
 #define ROMA_TRACE_SET 1
 #include "roma/trace_descriptors.glsl"
 #include "roma/ray_start.glsl"
@@ -21,82 +21,29 @@ layout(set = 0, binding = 1) uniform sampler2D g_normal;
 layout(set = 0, binding = 2) uniform sampler2D g_albedo;
 layout(set = 0, binding = 3, r32f) uniform readonly image2D ao_image;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D light_image;
-layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D accum_image; // rgb mean, a frames
-layout(set = 0, binding = 6, rgba8) uniform writeonly image2D display_image;
-// The Embree reference of the compared view, one vec4 per pixel (row 0 at the top).
-layout(std430, set = 0, binding = 7) readonly buffer Reference { vec4 reference[]; };
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D current_image; // this frame's value
 // A captured base occupancy map: cell (x, y, z) is bit z & 31 of word (y * RES + x) * (RES / 32) + z / 32.
 layout(std430, set = 0, binding = 8) readonly buffer Bom { uint bom[]; };
-layout(set = 0, binding = 9, rgba32f) uniform readonly image2D accum_in;   // last frame's accum_image
-layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D pos_out;  // this frame's positions
-layout(set = 0, binding = 11, rgba32f) uniform readonly image2D pos_in;    // last frame's
+layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D pos_out;    // this frame's positions
 // A storage buffer: bound as a uniform buffer here, the block made lavapipe (Mesa 22.3) leak
 // memory every frame under LeakSanitizer (12 blocks in 2 frames; libroma's own uniform
 // buffers do not); the cause inside the driver was not found.
 layout(std430, set = 0, binding = 12) readonly buffer Frame {
-    vec4 prev_rows[4];  // last frame's world -> clip
-    vec4 eye_angle;     // xyz: eye; w: the angle a pixel subtends (radians)
-    uvec4 mode_cap;     // x: 0 start over, 1 still (same pixel), 2 reproject; y: most frames kept;
-                        // z: the steps view's most steps; w: the rotated-map view's map
+    vec4 prev_rows[4];  // unused here (the temporal effect reprojects)
+    vec4 eye_angle;     // unused here
+    uvec4 mode_cap;     // x, y unused; z: the steps view's most steps; w: the rotated-map view's map
     vec4 steps_light;   // the steps view's light: xyz position (w = 1) or direction of travel (w = 2)
     vec4 steps_tmin;    // x: the skip of its shadow rays; y: the skip of AO rays (world units)
     uvec4 bom;          // xy: the map's BOM address (the ray-start view's walk)
 } frame;
 layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // indirect irradiance
 
-// Views (roma-viewer's view_mode).
-#define VIEW_COMPOSED 0u
-#define VIEW_AO 1u
-#define VIEW_DIRECT 2u
-#define VIEW_ALBEDO 3u
-#define VIEW_NORMAL 4u
-#define VIEW_MAP 5u
-#define VIEW_HIT_DISTANCE 6u
-#define VIEW_BOM_SLICE 7u
-#define VIEW_REFERENCE 8u
-#define VIEW_DIFFERENCE 9u
-#define VIEW_GI 10u
-#define VIEW_STEPS 11u
-#define VIEW_ROTATED_MAP 12u
-#define VIEW_RAY_START 13u
-
-layout(push_constant) uniform Push {
-    vec4 ambient;        // rgb: sky radiance that AO scales in the composed view
-    vec4 background;     // rgb: display colour where no geometry is
-    vec4 bom_origin;     // xyz: the captured BOM's cell (0,0,0) corner; w: its cell size
-    uvec2 size;
-    uint view;
-    uint accumulated;    // frames already in accum_image (0: start over)
-    float exposure;
-    float debug_length;  // ray length of the debug views (world units)
-    float offset;        // origin offset of the debug rays (world units)
-    uint ao_on;
-    uint direct_on;
-    uint slice_axis;     // 0, 1, 2: x, y, z
-    uint slice_depth;    // cell index along the axis
-    uint bom_res;        // 0: nothing captured
-    uint compared;       // the reference's quantity: VIEW_AO or VIEW_DIRECT (0: none)
-    uint gi_on;
-} pc;
-
-const float PI = 3.14159265358979;
-
-vec3 srgb(vec3 c)
-{
-    c = clamp(c, 0.0, 1.0);
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
-}
+#include "views.glsl"
 
 vec3 hash_colour(uint k)
 {
     uint h = k * 2654435761u;
     return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
-}
-
-vec3 heat(float t)
-{
-    t = clamp(t, 0.0, 1.0);
-    return clamp(vec3(3.0 * t, 3.0 * t - 1.0, 3.0 * t - 2.0), 0.0, 1.0);
 }
 
 // One ray-aligned map as its rays see it, looking along its candidate direction: its RES x
@@ -116,9 +63,8 @@ void show_rotated_map(ivec2 p)
         int first = roma_first_cell(roma_texel_base(k, x, y, res, words), 0, int(res) - 1, true);
         value = first < 0 ? vec3(0.02, 0.04, 0.2) : heat(1.0 - 0.8 * float(first) / float(res));
     }
-    imageStore(accum_image, p, vec4(value, 1.0));
+    imageStore(current_image, p, vec4(value, 1.0));
     imageStore(pos_out, p, vec4(0.0));
-    imageStore(display_image, p, vec4(srgb(value), 1.0));
 }
 
 void main()
@@ -132,9 +78,8 @@ void main()
     }
     vec4 pos = texelFetch(g_position, p, 0);
     if (pos.w <= 0.0) {
-        imageStore(accum_image, p, vec4(0.0));
+        imageStore(current_image, p, vec4(0.0));
         imageStore(pos_out, p, vec4(0.0));
-        imageStore(display_image, p, vec4(pc.background.rgb, 1.0));
         return;
     }
     vec3 n = texelFetch(g_normal, p, 0).xyz;
@@ -147,7 +92,6 @@ void main()
     if (view == VIEW_REFERENCE || view == VIEW_DIFFERENCE)
         view = pc.compared; // accumulate the compared quantity; show it against the reference
     vec3 value;      // linear, accumulated
-    bool tone = true; // exposure applies
     if (view == VIEW_BOM_SLICE) {
         // The layer of cells at the chosen depth, over the scene: occupied cells red,
         // empty ones blue; elsewhere the albedo, dimmed.
@@ -162,20 +106,16 @@ void main()
                 value = occupied ? vec3(0.9, 0.15, 0.1) : vec3(0.1, 0.3, 0.9);
             }
         }
-        tone = false;
     } else if (view == VIEW_AO) {
         value = vec3(ao);
-        tone = false;
     } else if (view == VIEW_DIRECT) {
         value = albedo / PI * irradiance;
     } else if (view == VIEW_GI) {
         value = albedo / PI * indirect;
     } else if (view == VIEW_ALBEDO) {
         value = albedo;
-        tone = false;
     } else if (view == VIEW_NORMAL) {
         value = 0.5 * n + 0.5;
-        tone = false;
     } else if (view == VIEW_STEPS) {
         // One un-snapped shadow ray to the scene's first punctual light (the ROMA part of the
         // light effect's shadow ray, without the walk of its start): how many map texels it
@@ -196,7 +136,6 @@ void main()
                 value = roma_unsnapped_gave_up ? vec3(1.0, 0.0, 1.0) : heat(walked) * (hit ? 0.5 : 1.0);
             }
         }
-        tone = false;
     } else if (view == VIEW_RAY_START) {
         // Where the start of a ray decides: 16 AO rays leaving the surface (a fixed spiral
         // over the hemisphere), offset off it by the origin offset and walked exactly through
@@ -216,7 +155,6 @@ void main()
             blocked += roma_ray_start_blocked(o, d, frame.steps_tmin.y) ? 1u : 0u;
         }
         value = heat(float(blocked) / 16.0);
-        tone = false;
     } else if (view == VIEW_MAP || view == VIEW_HIT_DISTANCE) {
         // One ROMA ray along the normal: which map (candidate direction) serves it, and
         // how far it goes before a hit (black: no hit within debug_length).
@@ -227,41 +165,9 @@ void main()
             value = hash_colour(ROMA_HIT_MAP(h.info)) * (hit ? 0.55 : 1.0);
         else
             value = hit ? heat(h.t / pc.debug_length) : vec3(0.0);
-        tone = false;
     } else {
         value = albedo / PI * (irradiance + indirect) + albedo * pc.ambient.rgb * ao;
     }
-    vec3 mean = value;
-    float count = 1.0;
-    if (frame.mode_cap.x != 0u) {
-        ivec2 q = p;
-        if (frame.mode_cap.x == 2u) { // where this point was on last frame's picture
-            vec4 x = vec4(pos.xyz, 1.0);
-            vec4 c = vec4(dot(frame.prev_rows[0], x), dot(frame.prev_rows[1], x), dot(frame.prev_rows[2], x),
-                          dot(frame.prev_rows[3], x));
-            q = c.w > 0.0 ? ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(pc.size))) : ivec2(-1);
-        }
-        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(pc.size)))) {
-            vec4 history = imageLoad(accum_in, q);
-            vec4 was = imageLoad(pos_in, q);
-            // The same surface: within 3 pixel footprints of where this point is.
-            float tolerance = 3.0 * frame.eye_angle.w * distance(frame.eye_angle.xyz, pos.xyz);
-            if (history.a > 0.0 && was.w > 0.0 && distance(was.xyz, pos.xyz) <= tolerance) {
-                count = min(history.a, float(frame.mode_cap.y)) + 1.0;
-                mean = history.rgb + (value - history.rgb) / count;
-            }
-        }
-    }
-    imageStore(accum_image, p, vec4(mean, count));
+    imageStore(current_image, p, vec4(value, 1.0));
     imageStore(pos_out, p, pos);
-    vec3 shown = tone ? mean * pc.exposure : mean;
-    if (VIEW == VIEW_REFERENCE || VIEW == VIEW_DIFFERENCE) {
-        vec3 ref = reference[p.y * int(pc.size.x) + p.x].rgb;
-        if (VIEW == VIEW_REFERENCE)
-            shown = tone ? ref * pc.exposure : ref;
-        else // |ROMA - reference|, max over channels, 0.25 (exposed) as white
-            shown = heat(max(max(abs(mean - ref).r, abs(mean - ref).g), abs(mean - ref).b) *
-                         (tone ? pc.exposure : 1.0) / 0.25);
-    }
-    imageStore(display_image, p, vec4(srgb(shown), 1.0));
 }

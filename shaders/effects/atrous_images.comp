@@ -32,6 +32,10 @@ void main()
     int step = int(pc.config.z);
     vec3 n = normalize(texelFetch(t_normal, p, 0).xyz);
     float footprint = roma_pixel_footprint(t_position, p, size, pos.xyz) * float(step);
+    if (isinf(footprint)) { // a pixel alone on its surface: nothing of the same surface to average
+        imageStore(t_dst, p, centre);
+        return;
+    }
     const float kernel[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
     vec3 sum = vec3(0.0);
     float weights = 0.0;

@@ -306,6 +306,10 @@ static void bad_input(rig *g, roma_temporal_effect *e)
     CHECK_RESULT(roma_temporal_effect_record(e, g->cmd, 0, &bad, &s), ROMA_ERROR_INVALID_ARGUMENT);
     bad = im, bad.filtered = g->storage[FILTERED].view; /* 3 iterations, no scratch */
     CHECK_RESULT(roma_temporal_effect_record(e, g->cmd, 0, &bad, &s), ROMA_ERROR_INVALID_ARGUMENT);
+    bad = im, bad.history = im.accumulated; /* read and written in one dispatch */
+    CHECK_RESULT(roma_temporal_effect_record(e, g->cmd, 0, &bad, &s), ROMA_ERROR_INVALID_ARGUMENT);
+    bad = im, bad.filtered = g->storage[FILTERED].view, bad.scratch = bad.filtered;
+    CHECK_RESULT(roma_temporal_effect_record(e, g->cmd, 0, &bad, &s), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_temporal_effect_record(e, g->cmd, 2, &im, &s), ROMA_ERROR_INVALID_ARGUMENT); /* slot */
     CHECK_RESULT(roma_temporal_effect_record(e, g->cmd, 0, NULL, &s), ROMA_ERROR_INVALID_ARGUMENT);
     roma_temporal_settings nan = s, many = s, resolved;

@@ -745,7 +745,13 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         ls.frame = v.frame;
         if (v.lights_made != s.many_lights) { // the scene's lights, then the many lights
             v.lights.assign(v.view.lights, v.view.lights + v.view.light_count);
-            std::vector<roma_light> many = make_many_lights(v.view.bounds_min, v.view.bounds_max, s.many_lights);
+            // The light effect takes 65,536 lights in all: the scene's count against that.
+            uint32_t room = 65536u - std::min(65536u, v.view.light_count);
+            if (s.many_lights > room)
+                std::fprintf(stderr, "roma-viewer: %u many lights, %u with the scene's %u lights\n", s.many_lights,
+                             room, v.view.light_count);
+            std::vector<roma_light> many =
+                make_many_lights(v.view.bounds_min, v.view.bounds_max, std::min(s.many_lights, room));
             v.lights.insert(v.lights.end(), many.begin(), many.end());
             v.lights_made = s.many_lights;
         }
@@ -832,7 +838,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     // camera's disocclusions, the first frames after a change); not asked for while a still
     // camera has 4 frames everywhere (nothing to filter; its passes would still cost); only for
     // the views of light, not the debug views, whose values are labels.
-    cs.filter = v.s.filter && (cs.history_mode == 2u || v.accumulated < 4) &&
+    cs.filter = v.s.filter && (cs.history_mode == 2u || v.accumulated + 1 < ROMA_DEFAULT_FILTER_BELOW) &&
                 (shown == VIEW_COMPOSED || shown == VIEW_DIRECT || shown == VIEW_AO || shown == VIEW_GI) &&
                 s.view != VIEW_REFERENCE && s.view != VIEW_DIFFERENCE;
     if (!compose_pass_record(v.base, v.cp, cmd, cs, mi.trace_set, v.temporal, v.gb))

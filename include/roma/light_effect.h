@@ -56,8 +56,11 @@ typedef struct roma_light_settings {
     float skip_cells;
     /** Area-light samples per pixel and frame; 0 = ROMA_DEFAULT_AREA_LIGHT_SAMPLES. */
     uint32_t area_samples;
-    uint32_t seed;         /**< area-light sample sequences, as roma_ao_settings */
-    uint32_t frame;        /**< the engine's frame counter: new area-light samples, and a new frame of the slot */
+    uint32_t seed;         /**< area-light sample sequences and the many lights' choice, as roma_ao_settings */
+    /** The engine's frame counter: new area-light samples, a new choice of the many lights
+     * (lights_per_frame: with a constant frame each pixel keeps the same lights and the mean
+     * over frames never reaches the all-lights image), and a new frame of the slot. */
+    uint32_t frame;
     /** Many lights: 0 = every punctual light is traced every frame. Otherwise each pixel traces
      * this many of the lights after the first exact_light_count (a run of consecutive lights
      * from a random start, new each frame), and scales their sum by (lights after the first

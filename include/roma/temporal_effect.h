@@ -152,7 +152,8 @@ typedef struct roma_temporal_images {
  * @return ROMA_SUCCESS;
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd or images, a zero width or height, no
  *   current, position, normal or accumulated view, no history or previous_position without
- *   reset, no scratch for 2 or more filter iterations with a filtered image, settings
+ *   reset, no scratch for 2 or more filter iterations with a filtered image, an output view
+ *   (accumulated, filtered, scratch) that is also an input view or another output view, settings
  *   roma_temporal_settings_resolve rejects, a slot not below frames_in_flight, more than 8
  *   records in one frame of a slot;
  *   a Vulkan failure code (roma_result) for a descriptor set.

@@ -30,12 +30,15 @@ void main()
         return;
     }
     int step = int(pc.config.z);
-    vec3 n = normalize(texelFetch(t_normal, p, 0).xyz);
-    float footprint = roma_pixel_footprint(t_position, p, size, pos.xyz) * float(step);
-    if (isinf(footprint)) { // a pixel alone on its surface: nothing of the same surface to average
+    vec3 n = texelFetch(t_normal, p, 0).xyz;
+    float footprint = roma_pixel_footprint(t_position, p, size, pos.xyz);
+    // A pixel alone on its surface, or without a normal: nothing to average it with.
+    if (!(footprint < ROMA_FOOTPRINT_ALONE) || !(dot(n, n) > 0.0)) {
         imageStore(t_dst, p, centre);
         return;
     }
+    n = normalize(n);
+    footprint *= float(step);
     const float kernel[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
     vec3 sum = vec3(0.0);
     float weights = 0.0;
@@ -47,7 +50,10 @@ void main()
             vec4 qpos = texelFetch(t_position, q, 0);
             if (!(qpos.w > 0.0))
                 continue;
-            vec3 qn = normalize(texelFetch(t_normal, q, 0).xyz);
+            vec3 qn = texelFetch(t_normal, q, 0).xyz;
+            if (!(dot(qn, qn) > 0.0))
+                continue;
+            qn = normalize(qn);
             float plane = abs(dot(qpos.xyz - pos.xyz, n)) / max(footprint, 1e-20);
             float w = kernel[abs(dx)] * kernel[abs(dy)] * pow(max(dot(n, qn), 0.0), 32.0) * exp(-plane);
             sum += w * imageLoad(t_src, q).rgb;

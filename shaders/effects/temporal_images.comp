@@ -42,8 +42,10 @@ void main()
         if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
             vec4 history = texelFetch(t_history, q, 0);
             vec4 was = texelFetch(t_previous_position, q, 0);
-            float tolerance = 3.0 * roma_pixel_footprint(t_position, p, size, pos.xyz);
-            if (history.a > 0.0 && was.w > 0.0 && distance(was.xyz, pos.xyz) <= tolerance) {
+            // A pixel alone on its surface keeps no history: nothing tells its surface from another.
+            float footprint = roma_pixel_footprint(t_position, p, size, pos.xyz);
+            if (history.a > 0.0 && was.w > 0.0 && footprint < ROMA_FOOTPRINT_ALONE &&
+                distance(was.xyz, pos.xyz) <= 3.0 * footprint) {
                 count = min(history.a + 1.0, float(pc.config.z));
                 mean = history.rgb + (value - history.rgb) / count;
             }

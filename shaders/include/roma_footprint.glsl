@@ -4,10 +4,14 @@
 #ifndef ROMA_FOOTPRINT_GLSL
 #define ROMA_FOOTPRINT_GLSL
 
+// The footprint of a pixel none of whose neighbours shows geometry: no surface of its own to
+// compare with (finite: devices may assume floats hold no infinity).
+const float ROMA_FOOTPRINT_ALONE = 1e30;
+
 float roma_pixel_footprint(sampler2D positions, ivec2 p, ivec2 size, vec3 at)
 {
     const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
-    float nearest = 1.0 / 0.0;
+    float nearest = ROMA_FOOTPRINT_ALONE;
     for (int i = 0; i < 4; ++i) {
         ivec2 q = p + offsets[i];
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
@@ -16,7 +20,7 @@ float roma_pixel_footprint(sampler2D positions, ivec2 p, ivec2 size, vec3 at)
         if (other.w > 0.0)
             nearest = min(nearest, distance(other.xyz, at));
     }
-    return nearest; // infinite for a pixel alone on its surface: any history near it is kept
+    return nearest;
 }
 
 #endif // ROMA_FOOTPRINT_GLSL

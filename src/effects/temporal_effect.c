@@ -202,6 +202,19 @@ roma_result roma_temporal_effect_record(roma_temporal_effect *e, VkCommandBuffer
     if (!s.reset && (!im->history || !im->previous_position))
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_temporal_effect_record: history and previous_position are required without reset");
+    /* An image written by a dispatch must not be read or written by another view in it. */
+    VkImageView written[3] = {im->accumulated, im->filtered, im->scratch};
+    const VkImageView read[5] = {im->current, im->position, im->normal, im->previous_position, im->history};
+    for (int w = 0; w < 3; ++w) {
+        for (int q = 0; written[w] && q < 5; ++q)
+            if (written[w] == read[q])
+                return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                                 "roma_temporal_effect_record: an output image is also an input");
+        for (int o = w + 1; written[w] && o < 3; ++o)
+            if (written[w] == written[o])
+                return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                                 "roma_temporal_effect_record: accumulated, filtered and scratch must differ");
+    }
     if (im->filtered && s.filter_iterations > 1 && !im->scratch)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_temporal_effect_record: %u filter iterations need a scratch image", s.filter_iterations);

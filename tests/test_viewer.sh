@@ -31,6 +31,13 @@ metric() {
 json() { # FILE KEY: a top-level value of a stats file
   python3 -c 'import json, sys; v = json.load(open(sys.argv[1]))[sys.argv[2]]; print(" ".join(v) if isinstance(v, list) else v)' "$1" "$2"
 }
+# headless NAME WHAT ARGS...: a headless run with validation, its output in $dir/NAME.out,
+# shown and counted as a failure ("roma-viewer WHAT failed") when it exits non-zero.
+headless() {
+  local name=$1 what=$2
+  shift 2
+  "$viewer" --headless --validation "$@" >"$dir/$name.out" 2>&1 || { cat "$dir/$name.out" >&2; fail "roma-viewer $what failed"; }
+}
 # below VALUE BOUND: VALUE <= BOUND
 below() {
   awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'
@@ -120,9 +127,8 @@ v = struct.unpack("<%df" % (3 * w * h), f.read(12 * w * h))
 print(sum(1 for i in range(w * h) if v[3*i] > 0.99 and v[3*i+1] < 0.01 and v[3*i+2] > 0.99) / (w * h))' "$1"
 }
 for steps in 8 64; do
-  "$viewer" --headless --validation --view steps --max-steps $steps --frames 1 --camera "$cam" --size 160x120 \
-    --linear "$dir/steps_$steps.pfm" >"$dir/steps_$steps.out" 2>&1 \
-    || { cat "$dir/steps_$steps.out" >&2; fail "roma-viewer --view steps failed"; }
+  headless "steps_$steps" "--view steps" --view steps --max-steps $steps --frames 1 --camera "$cam" --size 160x120 \
+    --linear "$dir/steps_$steps.pfm"
 done
 if [ -f "$dir/steps_8.pfm" ] && [ -f "$dir/steps_64.pfm" ]; then
   g8=$(magenta "$dir/steps_8.pfm"); g64=$(magenta "$dir/steps_64.pfm")
@@ -145,9 +151,8 @@ empty = sum(1 for y in range(y0, y0 + side) for x in range(x0, x0 + side)
 print(1.0 - empty / float(side * side))' "$1"
 }
 for k in 0 9; do
-  "$viewer" --headless --validation --view rotated-map --map $k --frames 1 --size 160x120 \
-    --linear "$dir/rotated_$k.pfm" >"$dir/rotated_$k.out" 2>&1 \
-    || { cat "$dir/rotated_$k.out" >&2; fail "roma-viewer --view rotated-map --map $k failed"; }
+  headless "rotated_$k" "--view rotated-map --map $k" --view rotated-map --map $k --frames 1 --size 160x120 \
+    --linear "$dir/rotated_$k.pfm"
 done
 if [ -f "$dir/rotated_0.pfm" ] && [ -f "$dir/rotated_9.pfm" ]; then
   r0=$(occupied_share "$dir/rotated_0.pfm"); r9=$(occupied_share "$dir/rotated_9.pfm")
@@ -168,9 +173,8 @@ v = struct.unpack("<%df" % (3 * w * h), f.read(12 * w * h))
 print(sum(1 for i in range(w * h) if v[3*i] > 0.0) / float(w * h))' "$1"
 }
 for skip in 1.6 3.2; do
-  "$viewer" --headless --validation --view ray-start --ao-skip $skip --frames 1 --camera "$cam" --size 160x120 \
-    --linear "$dir/ray_start_$skip.pfm" >"$dir/ray_start_$skip.out" 2>&1 \
-    || { cat "$dir/ray_start_$skip.out" >&2; fail "roma-viewer --view ray-start failed"; }
+  headless "ray_start_$skip" "--view ray-start" --view ray-start --ao-skip $skip --frames 1 --camera "$cam" \
+    --size 160x120 --linear "$dir/ray_start_$skip.pfm"
 done
 if [ -f "$dir/ray_start_1.6.pfm" ] && [ -f "$dir/ray_start_3.2.pfm" ]; then
   s1=$(blocked_share "$dir/ray_start_1.6.pfm"); s2=$(blocked_share "$dir/ray_start_3.2.pfm")
@@ -184,12 +188,12 @@ fi
 #      the image with every light traced (its noise halves from 16 to 64 frames), unbiased.
 for run in "8 16" "8 64" "256 16"; do
   set -- $run
-  "$viewer" --headless --validation --scene builtin:cornell_spot --view direct --many-lights 256 \
+  headless "many_$1_$2" "--many-lights" --scene builtin:cornell_spot --view direct --many-lights 256 \
     --lights-per-frame "$1" --frames "$2" --camera "$cam" --size 80x60 --linear "$dir/many_$1_$2.pfm" \
-    --stats "$dir/many_$1_$2.json" >"$dir/many.out" 2>&1 || { cat "$dir/many.out" >&2; fail "roma-viewer --many-lights failed"; }
+    --stats "$dir/many_$1_$2.json"
 done
-"$viewer" --headless --validation --scene builtin:cornell_spot --view direct --frames 16 --camera "$cam" --size 80x60 \
-  --linear "$dir/many_none.pfm" >"$dir/many.out" 2>&1 || { cat "$dir/many.out" >&2; fail "roma-viewer (spot only) failed"; }
+headless many_none "(spot only)" --scene builtin:cornell_spot --view direct --frames 16 --camera "$cam" --size 80x60 \
+  --linear "$dir/many_none.pfm"
 if [ -f "$dir/many_8_16.pfm" ] && [ -f "$dir/many_8_64.pfm" ] && [ -f "$dir/many_256_16.pfm" ] && [ -f "$dir/many_none.pfm" ]; then
   for a in 8_16 8_64 none; do "$compare" "$dir/many_$a.pfm" "$dir/many_256_16.pfm" >"$dir/many_$a.txt"; done
   r16=$(metric "$dir/many_8_16.txt" relative); r64=$(metric "$dir/many_8_64.txt" relative)

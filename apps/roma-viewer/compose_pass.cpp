@@ -25,8 +25,6 @@ VkDescriptorType binding_type(uint32_t i)
 }
 
 struct frame_block { // std430, as compose.comp's Frame
-    float prev_rows[4][4];
-    float eye_angle[4];
     uint32_t mode_cap[4];
     float steps_light[4];
     float steps_tmin[4];

@@ -40,8 +40,6 @@ struct compose_settings {
     // History: 0 start over, 1 still camera (each pixel's own), 2 reprojected (a moved camera)
     uint32_t history_mode, history_cap;
     float prev_clip_rows[4][4]; // last frame's world -> clip (mode 2)
-    float eye[3];
-    float pixel_angle;          // radians a pixel subtends
     // The steps view: the light its shadow rays go to (xyz: position, or direction of travel
     // of a sun's light; w: 0 none, 1 a position, 2 a direction), their skip and most steps.
     float steps_light[4];

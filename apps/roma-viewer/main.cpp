@@ -816,8 +816,6 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.history_mode = v.accumulated == 0 ? 0u : v.camera_moved ? 2u : 1u;
     cs.history_cap = v.camera_moved ? 16u : 1u << 30;
     std::memcpy(cs.prev_clip_rows, v.prev_clip_rows, sizeof cs.prev_clip_rows);
-    for (int i = 0; i < 3; ++i)
-        cs.eye[i] = cam.eye[i];
     // The steps view: the scene's first punctual light, the light effect's skip and steps.
     for (uint32_t i = 0; i < v.view.light_count && cs.steps_light[3] == 0.0f; ++i) {
         const roma_light &l = v.view.lights[i];
@@ -833,7 +831,6 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     cs.ao_skip = std::min((s.ao_skip > 0.0f ? s.ao_skip : ROMA_DEFAULT_AO_SKIP_CELLS) * mi.trace_cell,
                           effective_ao_radius(v));
     cs.bom_address = mi.bom_address;
-    cs.pixel_angle = 2.0f * std::tan(0.5f * cam.fovy_deg * 3.14159265f / 180.0f) / float(std::max(1u, v.gb.height));
     // The temporal effect's spatial filter (it runs where the history is short: a moving
     // camera's disocclusions, the first frames after a change); not asked for while a still
     // camera has 4 frames everywhere (nothing to filter; its passes would still cost); only for

@@ -29,8 +29,6 @@ layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D pos_out;    // 
 // memory every frame under LeakSanitizer (12 blocks in 2 frames; libroma's own uniform
 // buffers do not); the cause inside the driver was not found.
 layout(std430, set = 0, binding = 12) readonly buffer Frame {
-    vec4 prev_rows[4];  // unused here (the temporal effect reprojects)
-    vec4 eye_angle;     // unused here
     uvec4 mode_cap;     // x, y unused; z: the steps view's most steps; w: the rotated-map view's map
     vec4 steps_light;   // the steps view's light: xyz position (w = 1) or direction of travel (w = 2)
     vec4 steps_tmin;    // x: the skip of its shadow rays; y: the skip of AO rays (world units)

@@ -149,6 +149,29 @@ static void many_lights(roma_context *ctx, const roma_scene_view *sv, const roma
     CHECK(one_err / exact_sum >= 0.8 && one_err / exact_sum <= 0.95);
     CHECK(mean_err / exact_sum <= 0.13);
     CHECK(fabs(mean_sum - exact_sum) / exact_sum <= 0.007);
+    /* A light without intensity is dropped and the rest move up: exact_light_count counts
+     * the kept ones among the first ones it names. A dark light in front of the spot with
+     * exact_light_count 2 gives the first sampled frame above bit for bit; an
+     * exact_light_count beyond the list traces every light, as the all-lights frame. */
+    roma_light dark_first[2 + MANY_LIGHTS];
+    dark_first[0] = lights[0];
+    dark_first[0].intensity = 0.0f;
+    memcpy(dark_first + 1, lights, sizeof lights);
+    roma_light_settings shifted = {.seed = SEED, .frame = 200, .lights_per_frame = MANY_PER_FRAME,
+                                   .exact_light_count = 2};
+    light_frame(ctx, light, map, images, out, cmd, pool, staging, dark_first, 2 + MANY_LIGHTS, &shifted);
+    uint32_t differ = 0;
+    for (uint32_t i = 0; i < 3 * W * H; ++i)
+        differ += irradiance[i / 3u * 4u + i % 3u] != first[i];
+    roma_light_settings beyond = {.seed = SEED, .frame = 100, .lights_per_frame = MANY_PER_FRAME,
+                                  .exact_light_count = 1000};
+    light_frame(ctx, light, map, images, out, cmd, pool, staging, lights, 1 + MANY_LIGHTS, &beyond);
+    uint32_t differ_all = 0;
+    for (uint32_t i = 0; i < 3 * W * H; ++i)
+        differ_all += irradiance[i / 3u * 4u + i % 3u] != exact[i];
+    printf("many lights: a dropped light before the exact ones: %u values differ; exact_light_count beyond the "
+           "list: %u differ from every light traced\n", differ, differ_all);
+    CHECK(differ == 0 && differ_all == 0);
     roma_ref_destroy(crowd_ref);
     roma_scene_destroy(crowd);
 }

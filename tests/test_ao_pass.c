@@ -148,7 +148,7 @@ static void run(roma_context *ctx)
         }
         roma_ao_pass_inputs in = {
             .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = W, .height = H,
-            .map = &info, .list = &list, .bom = info.bom_buffer,
+            .map = &info, .list = &list, .bom = info.bom_view,
             .offset = offset, .radius = RADIUS, .spp = SPP, .frame = f, .seed = SEED,
             .accum = accum.buffer,
         };

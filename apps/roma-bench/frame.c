@@ -168,7 +168,7 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
             .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = w, .height = h, .map = &mi,
             .list = &list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
             .tmin = ROMA_DEFAULT_AO_SKIP_CELLS * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.buffer,
-            .bom = mi.bom_buffer, /* the rays' start walked exactly, as every pass does */
+            .bom = mi.bom_view, /* the rays' start walked exactly, as every pass does */
         };
         double ref_mean = 0.0;
         for (uint32_t k = 0; k < runs; ++k) {

@@ -326,10 +326,13 @@ typedef struct roma_map_info {
     VkDescriptorSetLayout trace_set_layout; /**< trace_set's layout (compute stage) */
     /** The base occupancy map of this frame (storage buffer; layout in roma/ray_start.glsl),
      * for the exact walk of a ray's skipped start that keeps rays from passing a wall they
-     * start next to: its address (roma_use_ray_start) and the buffer, for shaders that bind
-     * it. Written by each build, like the maps. */
+     * start next to: its address (roma_use_ray_start), the buffer, and an R32_UINT uniform
+     * texel view of it, for shaders that bind it (on CPU devices texel fetches are several
+     * times faster than storage-buffer loads at varying indices). Written by each build,
+     * like the maps. */
     VkDeviceAddress bom_address;
     VkBuffer bom_buffer; /**< the same BOM as a buffer */
+    VkBufferView bom_view; /**< the same BOM as an R32_UINT uniform texel buffer */
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.

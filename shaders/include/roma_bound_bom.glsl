@@ -1,7 +1,8 @@
 // libroma's tracing passes bind the map's BOM (ROMA_PIXEL_BINDING_BOM of the trace set, or
 // ROMA_BOM_SET / ROMA_BOM_BINDING) for the exact walk of their rays' start
-// (roma/ray_start.glsl): on CPU devices bound loads are several times faster than loads
-// through an address. Include before roma/ray_start.glsl.
+// (roma/ray_start.glsl), as an R32_UINT uniform texel buffer (roma_map_info.bom_view): on
+// CPU devices texel fetches are several times faster than storage loads at varying indices,
+// which are faster than loads through an address. Include before roma/ray_start.glsl.
 #ifndef ROMA_BOUND_BOM_GLSL
 #define ROMA_BOUND_BOM_GLSL
 
@@ -19,11 +20,9 @@
 #define ROMA_BOM_BINDING ROMA_PIXEL_BINDING_BOM
 #endif
 
-layout(std430, set = ROMA_BOM_SET, binding = ROMA_BOM_BINDING) readonly buffer RomaBoundBom {
-    uint roma_bom_words[];
-};
+layout(set = ROMA_BOM_SET, binding = ROMA_BOM_BINDING) uniform usamplerBuffer roma_bom_texels;
 
 #define ROMA_RAY_START_FETCH
-uint roma_fetch_bom_word(uint index) { return roma_bom_words[index]; }
+uint roma_fetch_bom_word(uint index) { return texelFetch(roma_bom_texels, int(index)).x; }
 
 #endif // ROMA_BOUND_BOM_GLSL

@@ -7,13 +7,16 @@
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
 
-layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_GBUFFER) readonly buffer RomaBoundGbuffer {
-    roma_gbuffer_pixel roma_gbuffer[];
-};
-layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_LIST) readonly buffer RomaBoundList {
-    roma_pixel_list_header roma_list_header;
-    uint roma_list_pixels[];
-};
+layout(set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_GBUFFER) uniform samplerBuffer roma_gbuffer_texels;
+// The header's 4 words, then the pixel indices.
+layout(set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_LIST) uniform usamplerBuffer roma_list_texels;
+
+roma_gbuffer_pixel roma_gbuffer_fetch(uint pixel)
+{
+    int at = int(pixel) * 4;
+    return roma_gbuffer_pixel(texelFetch(roma_gbuffer_texels, at), texelFetch(roma_gbuffer_texels, at + 1),
+                              texelFetch(roma_gbuffer_texels, at + 2), texelFetch(roma_gbuffer_texels, at + 3));
+}
 
 // The pixel of this invocation (an indirect dispatch over the list, 8 x 8 workgroups),
 // or false past the end of the list.
@@ -22,9 +25,9 @@ bool roma_bound_pixel(out uint pixel)
     pixel = 0u;
     uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * (ROMA_PIXEL_WORKGROUP_X * ROMA_PIXEL_WORKGROUP_Y)
              + gl_LocalInvocationIndex;
-    if (i >= roma_list_header.dispatch.w)
+    if (i >= texelFetch(roma_list_texels, 3).x) // the header's dispatch.w
         return false;
-    pixel = roma_list_pixels[i];
+    pixel = texelFetch(roma_list_texels, int(i) + 4).x;
     return true;
 }
 

@@ -203,10 +203,12 @@ ROMA_STRUCT_END(roma_gbuffer_pixel)
 #define ROMA_PIXEL_WORKGROUP_X 8
 #define ROMA_PIXEL_WORKGROUP_Y 8
 
-/* Every tracing pass binds set 0: the trace set's two bindings, then (storage buffers)
- * the G-buffer, the covered-pixel list, the pass's accumulator (one element per pixel,
- * added to) and the map's BOM (the exact walk of the rays' start, roma/ray_start.glsl).
- * On CPU devices address-based loads cost several times more. */
+/* Every tracing pass binds set 0: the trace set's two bindings, then the G-buffer
+ * (RGBA32F uniform texel buffer, 4 texels a pixel), the covered-pixel list (R32UI uniform
+ * texel buffer), the pass's accumulator (storage buffer, one element per pixel, added to)
+ * and the map's BOM (R32UI uniform texel buffer: the exact walk of the rays' start,
+ * roma/ray_start.glsl). On CPU devices texel fetches cost a fraction of storage loads at
+ * varying indices, and those a fraction of loads through an address. */
 #define ROMA_PIXEL_BINDING_GBUFFER 2
 #define ROMA_PIXEL_BINDING_LIST 3
 #define ROMA_PIXEL_BINDING_ACCUM 4

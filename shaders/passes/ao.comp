@@ -22,7 +22,7 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 // pass carries none of their code.
 layout(constant_id = 0) const uint ROMA_AO_METHOD = 0u;
 
-#define ROMA_DF_WORD(i) roma_bom_words[i]
+#define ROMA_DF_WORD(i) roma_fetch_bom_word(i)
 #include "roma_distance_field.glsl"
 
 void main()
@@ -31,7 +31,7 @@ void main()
     uint pixel;
     if (!roma_bound_pixel(pixel))
         return;
-    roma_gbuffer_pixel g = roma_gbuffer[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer_fetch(pixel);
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
     roma_use_ray_start(pc.bom);

@@ -72,7 +72,7 @@ void main()
     uint pixel;
     if (!roma_bound_pixel(pixel))
         return;
-    roma_gbuffer_pixel g = roma_gbuffer[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer_fetch(pixel);
     if (roma_is_inf(g.position_t.w))
         return;
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;

@@ -31,7 +31,7 @@ void main()
     uint pixel;
     if (!roma_bound_pixel(pixel) || light_count == 0u)
         return;
-    roma_gbuffer_pixel g = roma_gbuffer[pixel];
+    roma_gbuffer_pixel g = roma_gbuffer_fetch(pixel);
     if (roma_is_inf(g.position_t.w))
         return;
     vec3 p = g.position_t.xyz, n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;

@@ -23,8 +23,15 @@ roma_result roma_distance_field_create(roma_context *ctx, VkBuffer bom, uint32_t
     roma_result r = ROMA_SUCCESS;
     for (int i = 0; i < 2 && r == ROMA_SUCCESS; ++i)
         r = roma_buffer_create(ctx, cells * sizeof(uint32_t), usage, ROMA_MEMORY_DEVICE, &out->seed_buffers[i]);
+    if (r == ROMA_SUCCESS && cells / 2 > ctx->properties.limits.maxTexelBufferElements)
+        r = roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                      "distance field: %llu words at RES %u exceed maxTexelBufferElements (%u)",
+                      (unsigned long long)(cells / 2), resolution, ctx->properties.limits.maxTexelBufferElements);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, cells / 2 * sizeof(uint32_t), usage, ROMA_MEMORY_DEVICE, &out->distances);
+        r = roma_buffer_create(ctx, cells / 2 * sizeof(uint32_t), usage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                               ROMA_MEMORY_DEVICE, &out->distances);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_view_create(ctx, out->distances.buffer, VK_FORMAT_R32_UINT, &out->distances_view);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "df_seeds.comp", df_types, 4, sizeof(roma_df_push), &out->seeds);
     if (r == ROMA_SUCCESS)
@@ -59,6 +66,8 @@ void roma_distance_field_destroy(roma_distance_field *field)
             roma_descriptor_set_destroy(field->ctx, &field->sets[i]);
             roma_buffer_destroy(field->ctx, &field->seed_buffers[i]);
         }
+        if (field->distances_view)
+            vkDestroyBufferView(field->ctx->device, field->distances_view, field->ctx->allocator);
         roma_buffer_destroy(field->ctx, &field->distances);
         roma_compute_pipeline_destroy(field->ctx, &field->seeds);
         roma_compute_pipeline_destroy(field->ctx, &field->jump);

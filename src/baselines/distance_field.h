@@ -15,6 +15,7 @@ typedef struct roma_distance_field {
     roma_descriptor_set sets[2]; /* [0]: seeds A -> B, [1]: B -> A; both read the BOM */
     roma_buffer seed_buffers[2]; /* RES^3 uint each: the jump passes' ping-pong */
     roma_buffer distances;       /* RES^3 / 2 uint: two float16 per word */
+    VkBufferView distances_view; /* R32_UINT texel view of distances, for the AO pass */
     uint32_t resolution;
 } roma_distance_field;
 

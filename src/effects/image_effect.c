@@ -35,7 +35,7 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     VkDescriptorType types[ROMA_IMAGE_EFFECT_MAX_IMAGES + 1];
     for (uint32_t i = 0; i < inputs + outputs; ++i)
         types[i] = i < inputs ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    types[inputs + outputs] = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER; /* the map's BOM */
+    types[inputs + outputs] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER; /* the map's BOM (bom_view) */
     roma_result r = roma_nearest_sampler_create(ctx, &e->sampler);
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_layout_create(ctx, roma_trace_binding_types, ROMA_TRACE_BINDINGS, &e->trace_layout);
@@ -166,13 +166,12 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
                                            .pImageInfo = &infos[i]};
     }
     const uint32_t n = e->inputs + e->outputs;
-    VkDescriptorBufferInfo bom = {info->bom_buffer, 0, VK_WHOLE_SIZE};
     writes[n] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                        .dstSet = set,
                                        .dstBinding = n,
                                        .descriptorCount = 1,
-                                       .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                       .pBufferInfo = &bom};
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+                                       .pTexelBufferView = &info->bom_view};
     vkUpdateDescriptorSets(e->ctx->device, n + 1, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);

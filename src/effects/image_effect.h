@@ -1,6 +1,6 @@
 /* What every public effect on the engine's G-buffer images shares: a compute pipeline
  * whose set 0 is a map's trace set and set 1 the engine's images (sampled inputs through
- * a nearest sampler, then storage outputs) followed by the map's BOM (a storage buffer, for
+ * a nearest sampler, then storage outputs) followed by the map's BOM (a uniform texel buffer, for
  * the exact walk of the rays' start), sets allocated from a pool per frame slot. */
 #ifndef ROMA_EFFECTS_IMAGE_EFFECT_H
 #define ROMA_EFFECTS_IMAGE_EFFECT_H

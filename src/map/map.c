@@ -229,9 +229,12 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                        ROMA_MEMORY_DEVICE, &map->positions);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage, ROMA_MEMORY_UPLOAD, &map->indices);
+    /* UNIFORM_TEXEL: the tracing passes read the BOM through bom_view (faster than storage
+     * loads on CPU devices); it is no larger than the maps, so within the same limit. */
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4 * texel_words, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &map->bom);
+                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                               ROMA_MEMORY_DEVICE, &map->bom);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4 * texel_words * map->map_count,
                                storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -286,6 +289,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     if (r == ROMA_SUCCESS)
         r = roma_buffer_view_create(ctx, map->maps.buffer, VK_FORMAT_R32_UINT, &map->maps_view);
     if (r == ROMA_SUCCESS)
+        r = roma_buffer_view_create(ctx, map->bom.buffer, VK_FORMAT_R32_UINT, &map->bom_view);
+    if (r == ROMA_SUCCESS)
         r = roma_descriptor_set_create_with_layout(ctx, roma_trace_binding_types, ROMA_TRACE_BINDINGS,
                                                    &map->trace_set);
     for (int i = 0; i < 2 && r == ROMA_SUCCESS; ++i) {
@@ -324,6 +329,8 @@ void roma_map_destroy(roma_map *map)
             vkDestroyBufferView(ctx->device, map->staging_views[i], ctx->allocator);
     if (map->maps_view)
         vkDestroyBufferView(ctx->device, map->maps_view, ctx->allocator);
+    if (map->bom_view)
+        vkDestroyBufferView(ctx->device, map->bom_view, ctx->allocator);
     roma_compute_pipeline_destroy(ctx, &map->rotate_gather);
     roma_compute_pipeline_destroy(ctx, &map->rotate_scatter);
     roma_compute_pipeline_destroy(ctx, &map->occupied_cells);
@@ -624,6 +631,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->bom_bytes = map->bom.size;
     out->bom_address = map->bom.address;
     out->bom_buffer = map->bom.buffer;
+    out->bom_view = map->bom_view;
     out->maps_bytes = map->maps.size;
     out->params_bytes = map->params.size;
     out->geometry_bytes = map->positions.size + map->indices.size;

@@ -77,6 +77,7 @@ struct roma_map {
     roma_compute_pipeline trace[4], trace_staged[4];
     roma_descriptor_set rotate_set; /* bom, maps, cells, params: shared by the rotation pipelines */
     VkBufferView maps_view;         /* R32_UINT texel view of maps */
+    VkBufferView bom_view;          /* R32_UINT texel view of bom (the tracing passes' walk) */
     roma_descriptor_set trace_set;  /* roma/trace_descriptors.glsl: maps_view, params */
     roma_descriptor_set staged_set; /* trace set + ray and hit staging (rewritten when they grow) */
     VkBufferView staging_views[2];  /* rays (RGBA32F), hits (RG32UI) */

@@ -25,10 +25,10 @@ typedef struct roma_ao_pass_inputs {
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */
-    /* The map's BOM (roma_map_info.bom_buffer), bound: the skipped start is walked through it
-     * exactly, an occupied cell blocking the ray (roma/ray_start.glsl). With
-     * ROMA_AO_METHOD_DISTANCE_FIELD: the field's distances instead. */
-    VkBuffer bom;
+    /* The map's BOM as a texel buffer (roma_map_info.bom_view), bound: the skipped start is
+     * walked through it exactly, an occupied cell blocking the ray (roma/ray_start.glsl).
+     * With ROMA_AO_METHOD_DISTANCE_FIELD: the field's distances (distances_view) instead. */
+    VkBufferView bom;
     int blind_start;                /* 1: the start is skipped unseen (the rule before the walk) */
     uint32_t spp, frame, seed;
     /* width * height uint32_t, added to; clear it (vkCmdFillBuffer) before frame 0. */

@@ -257,18 +257,18 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             continue;
         const roma_map_info *m = &info[plan->pass_map[p]];
         const float offset = offset_cells * m->trace_cell;
-        const VkBuffer bom_buffer = m->bom_buffer;
+        const VkBufferView bom_view = m->bom_view;
         const uint64_t bom = d->blind_ray_start ? 0u : 1u; /* the walk reads the bound BOM */
         scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
         switch ((roma_pass_kind)p) {
         case ROMA_PASS_AO: {
-            VkBuffer bound = bom_buffer;
+            VkBufferView bound = bom_view;
             if (R->distance_field.ctx) {
                 /* The baseline's generation: from this frame's BOM, in the AO pass's time. */
                 uint32_t scope = roma_gpu_timer_begin(R->timer, cmd, "distance field");
                 roma_distance_field_record(&R->distance_field, cmd);
                 roma_gpu_timer_end(R->timer, cmd, scope);
-                bound = R->distance_field.distances.buffer;
+                bound = R->distance_field.distances_view;
             }
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
@@ -284,7 +284,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, R->lights.light_count, steps},
                 .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_SOFT_SHADOWS: {
@@ -293,7 +293,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, spp, f},
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_MANY_LIGHTS: {
@@ -305,7 +305,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, n, lights_steps},
                 .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
             };
-            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         case ROMA_PASS_GI: {
@@ -318,7 +318,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config2 = {d->seed, R->rsm_views.count, steps, 0},
                 .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, skip_cells * m->trace_cell},
             };
-            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, bom_buffer, pixels_buffer, R->accum[p].buffer, &push);
+            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
         }
         default:

@@ -144,7 +144,8 @@ roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t heig
     if (res == ROMA_SUCCESS)
         res = roma_buffer_create(ctx, (VkDeviceSize)width * height * sizeof(roma_gbuffer_pixel),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                     VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, /* read by the tracing passes */
                                  ROMA_MEMORY_DEVICE, &g->pixels);
     if (res != ROMA_SUCCESS) {
         roma_gbuffer_destroy(g);

@@ -14,7 +14,8 @@ roma_result roma_pixel_list_create(roma_context *ctx, uint32_t width, uint32_t h
     out->height = height;
     roma_result r = roma_buffer_create(ctx, sizeof(roma_pixel_list_header) + 4ull * width * height,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                           VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, /* read by the tracing passes */
                                        ROMA_MEMORY_DEVICE, &out->buffer);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create(ctx, "pixel_list.comp", 0, sizeof(roma_pixel_list_push), &out->build);

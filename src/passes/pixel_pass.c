@@ -27,8 +27,18 @@ static void record_out_barrier(VkCommandBuffer cmd)
 }
 
 static const VkDescriptorType pixel_types[ROMA_PIXEL_BINDINGS] = {
-    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,       VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER};
+
+static void binding_release(roma_context *ctx, roma_pixel_binding *b)
+{
+    roma_descriptor_set_destroy(ctx, &b->set);
+    if (b->gbuffer_view)
+        vkDestroyBufferView(ctx->device, b->gbuffer_view, ctx->allocator);
+    if (b->list_view)
+        vkDestroyBufferView(ctx->device, b->list_view, ctx->allocator);
+}
 
 roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                    roma_pixel_pass *out)
@@ -56,7 +66,7 @@ void roma_pixel_pass_destroy(roma_pixel_pass *pass)
 {
     if (pass->ctx) {
         for (uint32_t i = 0; i < pass->set_count; ++i)
-            roma_descriptor_set_destroy(pass->ctx, &pass->sets[i].set);
+            binding_release(pass->ctx, &pass->sets[i]);
         roma_compute_pipeline_destroy(pass->ctx, &pass->pipeline);
     }
     memset(pass, 0, sizeof *pass);
@@ -79,16 +89,24 @@ static roma_result pass_set(roma_pixel_pass *pass, const roma_pixel_binding *key
                          ROMA_PIXEL_PASS_MAX_SETS);
     roma_context *ctx = pass->ctx;
     roma_pixel_binding key = *key_in;
-    roma_result r = roma_descriptor_set_create(ctx, &pass->pipeline, pixel_types, ROMA_PIXEL_BINDINGS, &key.set);
-    if (r != ROMA_SUCCESS)
+    roma_result r = roma_buffer_view_create(ctx, key.gbuffer, VK_FORMAT_R32G32B32A32_SFLOAT, &key.gbuffer_view);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_view_create(ctx, key.list, VK_FORMAT_R32_UINT, &key.list_view);
+    if (r == ROMA_SUCCESS)
+        r = roma_descriptor_set_create(ctx, &pass->pipeline, pixel_types, ROMA_PIXEL_BINDINGS, &key.set);
+    if (r != ROMA_SUCCESS) {
+        binding_release(ctx, &key);
         return r;
+    }
     roma_descriptor_write_view(ctx, &key.set, ROMA_TRACE_BINDING_MAPS, pixel_types[ROMA_TRACE_BINDING_MAPS], key.maps);
     roma_descriptor_write_buffer(ctx, &key.set, ROMA_TRACE_BINDING_PARAMS, pixel_types[ROMA_TRACE_BINDING_PARAMS],
                                  key.params);
-    const VkBuffer buffers[4] = {key.gbuffer, key.list, key.accum, key.bom};
-    for (uint32_t b = 0; b < 4; ++b)
-        roma_descriptor_write_buffer(ctx, &key.set, ROMA_PIXEL_BINDING_GBUFFER + b,
-                                     pixel_types[ROMA_PIXEL_BINDING_GBUFFER + b], buffers[b]);
+    const VkBufferView views[3] = {key.gbuffer_view, key.list_view, key.bom};
+    const uint32_t view_bindings[3] = {ROMA_PIXEL_BINDING_GBUFFER, ROMA_PIXEL_BINDING_LIST, ROMA_PIXEL_BINDING_BOM};
+    for (uint32_t b = 0; b < 3; ++b)
+        roma_descriptor_write_view(ctx, &key.set, view_bindings[b], pixel_types[view_bindings[b]], views[b]);
+    roma_descriptor_write_buffer(ctx, &key.set, ROMA_PIXEL_BINDING_ACCUM, pixel_types[ROMA_PIXEL_BINDING_ACCUM],
+                                 key.accum);
     pass->sets[pass->set_count++] = key;
     *out = key.set.set;
     return ROMA_SUCCESS;
@@ -113,7 +131,7 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
 }
 
 roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
-                                        const roma_map_info *map, VkBuffer bom, VkBuffer gbuffer, VkBuffer accum,
+                                        const roma_map_info *map, VkBufferView bom, VkBuffer gbuffer, VkBuffer accum,
                                         const void *push)
 {
     if (!pass->ctx || !cmd || !push || !list || !list->buffer.buffer || !pass->binding_count || !map ||
@@ -121,8 +139,8 @@ roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer c
         return pass->ctx ? roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                                      "%s: list, map, BOM, G-buffer and accumulator are required", pass->name)
                          : ROMA_ERROR_INVALID_ARGUMENT;
-    const roma_pixel_binding key = {map->maps_view, map->params_buffer, gbuffer, list->buffer.buffer, accum, bom,
-                                    {0}};
+    const roma_pixel_binding key = {map->maps_view, bom, map->params_buffer, gbuffer, list->buffer.buffer, accum,
+                                    VK_NULL_HANDLE, VK_NULL_HANDLE, {0}};
     VkDescriptorSet set = VK_NULL_HANDLE;
     roma_result r = pass_set(pass, &key, &set);
     if (r != ROMA_SUCCESS)

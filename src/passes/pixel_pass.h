@@ -19,8 +19,9 @@
 
 /* The buffers of one set of a tracing pass. */
 typedef struct roma_pixel_binding {
-    VkBufferView maps;
-    VkBuffer params, gbuffer, list, accum, bom;
+    VkBufferView maps, bom;
+    VkBuffer params, gbuffer, list, accum;
+    VkBufferView gbuffer_view, list_view; /* made with the set */
     roma_descriptor_set set;
 } roma_pixel_binding;
 
@@ -53,9 +54,9 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
 
 /* A tracing pass over the covered pixels of `list` (recorded before for this frame's
  * G-buffer, the buffer `gbuffer`): an indirect dispatch. map: the info of a built map;
- * bom: that map's BOM (roma_map_info.bom_buffer); accum: the pass's accumulator. */
+ * bom: that map's BOM as a texel buffer (roma_map_info.bom_view); accum: the pass's accumulator. */
 roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
-                                        const roma_map_info *map, VkBuffer bom, VkBuffer gbuffer, VkBuffer accum,
+                                        const roma_map_info *map, VkBufferView bom, VkBuffer gbuffer, VkBuffer accum,
                                         const void *push);
 
 #endif /* ROMA_PASSES_PIXEL_PASS_H */

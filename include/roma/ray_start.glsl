@@ -19,7 +19,8 @@
 // roma_fetch_grid()). The BOM's words come by address, or through your own
 //     uint roma_fetch_bom_word(uint index);
 // defined before including this file with ROMA_RAY_START_FETCH defined (then any non-zero
-// value given to roma_use_ray_start turns the walk on). BOM layout: RES x RES texels of
+// value given to roma_use_ray_start turns the walk on), for example a texelFetch from a
+// usamplerBuffer bound to roma_map_info.bom_view (on CPU devices the fastest). BOM layout: RES x RES texels of
 // RES / 32 words, texel (x, y) at word (y * RES + x) * (RES / 32); cell z is bit z % 32 of
 // the texel's word z / 32; cell (x, y, z) covers grid.origin + [x, x+1) * cell size, ...
 // (roma_grid_params, this frame's placement). Valid after the build that wrote it, like

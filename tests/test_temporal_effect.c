@@ -251,6 +251,27 @@ static void moved_camera(rig *g, roma_temporal_effect *e)
     CHECK(wrong == 0 && kept > 0 && dropped > 0);
 }
 
+/* One a-trous iteration on the host over the fold below: on a face every tap of the same
+ * face weighs its B3 spline weight (same normal, in the same plane), the other face's 0. */
+static void atrous_host(const float *src, float *dst, int step)
+{
+    const double kernel[3] = {3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0};
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double sum = 0.0, weights = 0.0;
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) {
+                    int qx = x + dx * step, qy = y + dy * step;
+                    if (qx < 0 || qy < 0 || qx >= W || qy >= H || (qx >= W / 2) != (x >= W / 2))
+                        continue;
+                    double w = kernel[abs(dx)] * kernel[abs(dy)];
+                    sum += w * src[qy * W + qx];
+                    weights += w;
+                }
+            dst[y * W + x] = (float)(sum / weights);
+        }
+}
+
 /* The filter: a fold along x = W / 2 (left face z = 0 facing +z, right face x = W / 2
  * facing -x, running off in z), values 0.2 and 0.8 with noise; one frame of history. */
 static void filter(rig *g, roma_temporal_effect *e)
@@ -294,6 +315,29 @@ static void filter(rig *g, roma_temporal_effect *e)
     s.frame = 31;
     CHECK_RESULT(frame(g, e, 1, &im, &s), ROMA_SUCCESS);
     CHECK(memcmp(g->plane[INPUT_COUNT + ACC_A], g->plane[INPUT_COUNT + FILTERED], (size_t)N * 16) == 0);
+    /* One iteration (no scratch image needed) and two (through scratch into filtered), against
+     * the same iterations on the host. */
+    static float host[2][N];
+    for (uint32_t iterations = 1; iterations <= 2; ++iterations) {
+        roma_temporal_images few = im;
+        if (iterations == 1)
+            few.scratch = VK_NULL_HANDLE;
+        roma_temporal_settings fs = {.reset = 1, .frame = 31 + iterations, .filter_iterations = iterations};
+        CHECK_RESULT(frame(g, e, iterations % 2, &few, &fs), ROMA_SUCCESS);
+        for (uint32_t p = 0; p < N; ++p)
+            host[0][p] = in[4 * p];
+        for (uint32_t i = 0; i < iterations; ++i) {
+            atrous_host(host[0], host[1], 1 << i);
+            memcpy(host[0], host[1], sizeof host[0]);
+        }
+        double worst = 0.0;
+        for (uint32_t p = 0; p < N; ++p)
+            worst = fmax(worst, fabs((double)out[4 * p] - host[0][p]));
+        printf("filter: %u iteration%s, largest difference from the host's %.2g\n", iterations,
+               iterations > 1 ? "s" : "", worst);
+        /* Measured: 2.4e-7 for both (float sums in another order, against double). */
+        CHECK(worst < 5e-7);
+    }
 }
 
 static void bad_input(rig *g, roma_temporal_effect *e)

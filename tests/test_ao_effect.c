@@ -59,6 +59,15 @@ static void light_frame(roma_context *ctx, roma_light_effect *light, const roma_
     roma_test_submit_and_wait(ctx, cmd);
 }
 
+/* Values of the RGBA image rgba whose RGB differ from rgb's. */
+static uint32_t rgb_values_differing(const float *rgba, const float *rgb)
+{
+    uint32_t differ = 0;
+    for (uint32_t i = 0; i < 3 * W * H; ++i)
+        differ += rgba[i / 3u * 4u + i % 3u] != rgb[i];
+    return differ;
+}
+
 /* Many lights (roma_light_settings.lights_per_frame): the room's spot and MANY_LIGHTS point
  * lights on a grid through the room. Every light traced every frame, against the reference
  * with the same lights; then the spot every frame and MANY_PER_FRAME of the others per pixel
@@ -160,15 +169,11 @@ static void many_lights(roma_context *ctx, const roma_scene_view *sv, const roma
     roma_light_settings shifted = {.seed = SEED, .frame = 200, .lights_per_frame = MANY_PER_FRAME,
                                    .exact_light_count = 2};
     light_frame(ctx, light, map, images, out, cmd, pool, staging, dark_first, 2 + MANY_LIGHTS, &shifted);
-    uint32_t differ = 0;
-    for (uint32_t i = 0; i < 3 * W * H; ++i)
-        differ += irradiance[i / 3u * 4u + i % 3u] != first[i];
+    uint32_t differ = rgb_values_differing(irradiance, first);
     roma_light_settings beyond = {.seed = SEED, .frame = 100, .lights_per_frame = MANY_PER_FRAME,
                                   .exact_light_count = 1000};
     light_frame(ctx, light, map, images, out, cmd, pool, staging, lights, 1 + MANY_LIGHTS, &beyond);
-    uint32_t differ_all = 0;
-    for (uint32_t i = 0; i < 3 * W * H; ++i)
-        differ_all += irradiance[i / 3u * 4u + i % 3u] != exact[i];
+    uint32_t differ_all = rgb_values_differing(irradiance, exact);
     printf("many lights: a dropped light before the exact ones: %u values differ; exact_light_count beyond the "
            "list: %u differ from every light traced\n", differ, differ_all);
     CHECK(differ == 0 && differ_all == 0);

@@ -6,7 +6,7 @@
 #include "map/map_internal.h"
 #include "util/log.h"
 
-#define SETS_PER_SLOT 16u
+#define RECORDS_PER_SLOT 16u
 
 roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out)
 {
@@ -27,8 +27,6 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     e->ctx = ctx;
     e->logger = *log;
     e->name = name;
-    e->frames_in_flight = frames_in_flight;
-    e->last_slot = UINT32_MAX;
     e->inputs = inputs;
     e->outputs = outputs;
     e->push_size = push_size;
@@ -69,16 +67,11 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     }
     if (shader)
         vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs * SETS_PER_SLOT},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, outputs * SETS_PER_SLOT},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, SETS_PER_SLOT}};
-    VkDescriptorPoolCreateInfo poi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                      .maxSets = SETS_PER_SLOT,
-                                      .poolSizeCount = 3,
-                                      .pPoolSizes = sizes};
-    for (uint32_t s = 0; s < frames_in_flight && r == ROMA_SUCCESS; ++s)
-        r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &poi, ctx->allocator, &e->pools[s]),
-                          "vkCreateDescriptorPool");
+    const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs},
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, outputs},
+                                           {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
+    if (r == ROMA_SUCCESS)
+        r = roma_slot_sets_init(&e->sets, ctx, frames_in_flight, RECORDS_PER_SLOT, 1, sizes, 3);
     if (r != ROMA_SUCCESS)
         roma_image_effect_free(e);
     return r;
@@ -90,9 +83,7 @@ void roma_image_effect_free(roma_image_effect *e)
         return;
     VkDevice dev = e->ctx->device;
     const VkAllocationCallbacks *a = e->ctx->allocator;
-    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
-        if (e->pools[s])
-            vkDestroyDescriptorPool(dev, e->pools[s], a);
+    roma_slot_sets_free(&e->sets);
     if (e->pipeline)
         vkDestroyPipeline(dev, e->pipeline, a);
     if (e->layout)
@@ -109,9 +100,9 @@ void roma_image_effect_free(roma_image_effect *e)
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
                                     roma_map_info *info)
 {
-    if (slot >= e->frames_in_flight)
+    if (slot >= e->sets.frames_in_flight)
         return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: slot %u of %u", e->name, slot,
-                         e->frames_in_flight);
+                         e->sets.frames_in_flight);
     roma_result r = roma_map_get_info(map, info);
     if (r != ROMA_SUCCESS)
         return r;
@@ -123,56 +114,30 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
 
 int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot)
 {
-    return slot == e->last_slot && e->frame == e->last_frame && e->used[slot] > 0;
+    return roma_slot_sets_same_frame(&e->sets, slot, e->frame);
 }
 
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height)
 {
-    if (!roma_image_effect_same_frame(e, slot)) { /* a new frame in this slot: its last use has completed */
-        vkResetDescriptorPool(e->ctx->device, e->pools[slot], 0);
-        e->used[slot] = 0;
-        e->last_slot = slot;
-        e->last_frame = e->frame;
-    }
-    if (e->used[slot] == SETS_PER_SLOT)
-        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "%s: more than %u records in one frame of a slot (count frames in settings.frame)",
-                         e->name, SETS_PER_SLOT);
-    VkDescriptorSet set;
-    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-                                      .descriptorPool = e->pools[slot],
-                                      .descriptorSetCount = 1,
-                                      .pSetLayouts = &e->images_layout};
-    roma_result r = roma_vk_check(e->ctx, vkAllocateDescriptorSets(e->ctx->device, &ai, &set),
-                                  "vkAllocateDescriptorSets");
+    roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
+    VkImageLayout in_layouts[ROMA_IMAGE_EFFECT_MAX_IMAGES];
+    for (uint32_t i = 0; i < e->inputs; ++i)
+        in_layouts[i] = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    if (r == ROMA_SUCCESS)
+        r = roma_slot_sets_write_images(&e->sets, slot, e->images_layout, e->sampler, views, in_layouts, e->inputs,
+                                        e->inputs + e->outputs, &set);
     if (r != ROMA_SUCCESS)
         return r;
-    e->used[slot]++;
-    VkImageLayout in_layout = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    VkDescriptorImageInfo infos[ROMA_IMAGE_EFFECT_MAX_IMAGES];
-    VkWriteDescriptorSet writes[ROMA_IMAGE_EFFECT_MAX_IMAGES + 1];
-    for (uint32_t i = 0; i < e->inputs + e->outputs; ++i) {
-        int input = i < e->inputs;
-        infos[i] = (VkDescriptorImageInfo){input ? e->sampler : VK_NULL_HANDLE, views[i],
-                                           input ? in_layout : VK_IMAGE_LAYOUT_GENERAL};
-        writes[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                           .dstSet = set,
-                                           .dstBinding = i,
-                                           .descriptorCount = 1,
-                                           .descriptorType = input ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                                                                   : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                           .pImageInfo = &infos[i]};
-    }
-    const uint32_t n = e->inputs + e->outputs;
-    writes[n] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                       .dstSet = set,
-                                       .dstBinding = n,
-                                       .descriptorCount = 1,
-                                       .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
-                                       .pTexelBufferView = &info->bom_view};
-    vkUpdateDescriptorSets(e->ctx->device, n + 1, writes, 0, NULL);
+    VkWriteDescriptorSet bom = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                .dstSet = set,
+                                .dstBinding = e->inputs + e->outputs,
+                                .descriptorCount = 1,
+                                .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+                                .pTexelBufferView = &info->bom_view};
+    vkUpdateDescriptorSets(e->ctx->device, 1, &bom, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);

@@ -5,6 +5,7 @@
 #ifndef ROMA_EFFECTS_IMAGE_EFFECT_H
 #define ROMA_EFFECTS_IMAGE_EFFECT_H
 
+#include "effects/slot_sets.h"
 #include "roma/map.h"
 #include "vulkan/vk_internal.h"
 
@@ -14,14 +15,13 @@ typedef struct roma_image_effect {
     roma_context *ctx;
     roma_logger logger;
     const char *name; /* for messages: "roma_ao_effect_record" */
-    uint32_t frames_in_flight, last_slot, used[ROMA_MAX_FRAMES_IN_FLIGHT];
-    uint32_t last_frame, frame;  /* the settings' frame of the last and of this record */
+    uint32_t frame; /* the settings' frame of this record */
     uint32_t inputs, outputs, push_size;
     VkSampler sampler;
     VkDescriptorSetLayout trace_layout, images_layout;
     VkPipelineLayout layout;
     VkPipeline pipeline;
-    VkDescriptorPool pools[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_slot_sets sets; /* set 1 of each record */
 } roma_image_effect;
 
 /* The nearest, clamp-to-edge sampler through which the effects read the engine's images

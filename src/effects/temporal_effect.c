@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
+#include "effects/slot_sets.h"
 #include "roma_shared.h"
 #include "util/log.h"
 #include "vulkan/vk_internal.h"
@@ -21,10 +22,9 @@
 struct roma_temporal_effect {
     roma_context *ctx;
     roma_logger logger;
-    uint32_t frames_in_flight, last_slot, last_frame, used[ROMA_MAX_FRAMES_IN_FLIGHT];
     VkSampler sampler;
     roma_compute_pipeline temporal, atrous;
-    VkDescriptorPool pools[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_slot_sets sets;
 };
 
 static int finite_all(const float *v, int n)
@@ -63,9 +63,7 @@ void roma_temporal_effect_destroy(roma_temporal_effect *e)
     if (!e)
         return;
     roma_context *ctx = e->ctx;
-    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
-        if (e->pools[s])
-            vkDestroyDescriptorPool(ctx->device, e->pools[s], ctx->allocator);
+    roma_slot_sets_free(&e->sets);
     roma_compute_pipeline_destroy(ctx, &e->temporal);
     roma_compute_pipeline_destroy(ctx, &e->atrous);
     if (e->sampler)
@@ -94,8 +92,6 @@ roma_result roma_temporal_effect_create(roma_context *ctx, const roma_temporal_e
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_temporal_effect_create: out of host memory");
     e->ctx = ctx;
     e->logger = *log;
-    e->frames_in_flight = desc.frames_in_flight;
-    e->last_slot = UINT32_MAX;
     roma_result r = roma_nearest_sampler_create(ctx, &e->sampler);
     const VkDescriptorType temporal_types[TEMPORAL_SAMPLED + 1] = {
         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
@@ -110,55 +106,17 @@ roma_result roma_temporal_effect_create(roma_context *ctx, const roma_temporal_e
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "atrous_images.comp", atrous_types, ATROUS_SAMPLED + 2,
                                                sizeof(roma_atrous_images_push), &e->atrous);
-    const uint32_t sets = RECORDS_PER_SLOT * SETS_PER_RECORD;
-    VkDescriptorPoolSize sizes[2] = {
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-         RECORDS_PER_SLOT * (TEMPORAL_SAMPLED + ATROUS_SAMPLED * ROMA_MAX_FILTER_ITERATIONS)},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RECORDS_PER_SLOT * (1u + 2u * ROMA_MAX_FILTER_ITERATIONS)}};
-    VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                     .maxSets = sets,
-                                     .poolSizeCount = 2,
-                                     .pPoolSizes = sizes};
-    for (uint32_t s = 0; s < e->frames_in_flight && r == ROMA_SUCCESS; ++s)
-        r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pi, ctx->allocator, &e->pools[s]),
-                          "vkCreateDescriptorPool");
+    /* Per record: the temporal pass's set and one per filter iteration. */
+    const VkDescriptorPoolSize sizes[2] = {
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, TEMPORAL_SAMPLED + ATROUS_SAMPLED * ROMA_MAX_FILTER_ITERATIONS},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1u + 2u * ROMA_MAX_FILTER_ITERATIONS}};
+    if (r == ROMA_SUCCESS)
+        r = roma_slot_sets_init(&e->sets, ctx, desc.frames_in_flight, RECORDS_PER_SLOT, SETS_PER_RECORD, sizes, 2);
     if (r != ROMA_SUCCESS) {
         roma_temporal_effect_destroy(e);
         return roma_fail(log, r, "roma_temporal_effect_create: cannot create the pipelines or pools");
     }
     *out = e;
-    return ROMA_SUCCESS;
-}
-
-/* A set of `layout` with views[i] at binding i: sampled ones (through the effect's sampler,
- * in layouts[i]) first, then storage images in GENERAL. */
-static roma_result write_set(roma_temporal_effect *e, VkDescriptorPool pool, VkDescriptorSetLayout layout,
-                             const VkImageView *views, const VkImageLayout *layouts, uint32_t sampled,
-                             uint32_t count, VkDescriptorSet *out)
-{
-    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-                                      .descriptorPool = pool,
-                                      .descriptorSetCount = 1,
-                                      .pSetLayouts = &layout};
-    roma_result r =
-        roma_vk_check(e->ctx, vkAllocateDescriptorSets(e->ctx->device, &ai, out), "vkAllocateDescriptorSets");
-    if (r != ROMA_SUCCESS)
-        return r;
-    VkDescriptorImageInfo infos[8];
-    VkWriteDescriptorSet writes[8];
-    for (uint32_t i = 0; i < count; ++i) {
-        infos[i] = (VkDescriptorImageInfo){.sampler = i < sampled ? e->sampler : VK_NULL_HANDLE,
-                                           .imageView = views[i],
-                                           .imageLayout = i < sampled ? layouts[i] : VK_IMAGE_LAYOUT_GENERAL};
-        writes[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                           .dstSet = *out,
-                                           .dstBinding = i,
-                                           .descriptorCount = 1,
-                                           .descriptorType = i < sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                                                                         : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                           .pImageInfo = &infos[i]};
-    }
-    vkUpdateDescriptorSets(e->ctx->device, count, writes, 0, NULL);
     return ROMA_SUCCESS;
 }
 
@@ -218,20 +176,9 @@ roma_result roma_temporal_effect_record(roma_temporal_effect *e, VkCommandBuffer
     if (im->filtered && s.filter_iterations > 1 && !im->scratch)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_temporal_effect_record: %u filter iterations need a scratch image", s.filter_iterations);
-    if (slot >= e->frames_in_flight)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_temporal_effect_record: slot %u of %u", slot,
-                         e->frames_in_flight);
-    /* A new frame of the slot: the GPU is done with its previous one (the slot rules). */
-    if (slot != e->last_slot || s.frame != e->last_frame || e->used[slot] == 0) {
-        vkResetDescriptorPool(e->ctx->device, e->pools[slot], 0);
-        e->used[slot] = 0;
-        e->last_slot = slot;
-        e->last_frame = s.frame;
-    }
-    if (e->used[slot] == RECORDS_PER_SLOT)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_temporal_effect_record: more than %u records in one frame of a slot (count frames in "
-                         "settings.frame)", RECORDS_PER_SLOT);
+    r = roma_slot_sets_begin(&e->sets, log, "roma_temporal_effect_record", slot, s.frame);
+    if (r != ROMA_SUCCESS)
+        return r;
     VkImageLayout input = im->input_layout ? im->input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     VkImageLayout history = im->history_layout ? im->history_layout : VK_IMAGE_LAYOUT_GENERAL;
     /* With reset the history is not read: the current image stands in for the absent views. */
@@ -241,8 +188,8 @@ roma_result roma_temporal_effect_record(roma_temporal_effect *e, VkCommandBuffer
     const VkImageLayout tlayouts[TEMPORAL_SAMPLED] = {input, input, input, im->history ? history : input};
     VkDescriptorSet sets[SETS_PER_RECORD];
     uint32_t iterations = im->filtered ? s.filter_iterations : 0;
-    r = write_set(e, e->pools[slot], e->temporal.set_layout, tviews, tlayouts, TEMPORAL_SAMPLED, TEMPORAL_SAMPLED + 1,
-                  &sets[0]);
+    r = roma_slot_sets_write_images(&e->sets, slot, e->temporal.set_layout, e->sampler, tviews, tlayouts,
+                                    TEMPORAL_SAMPLED, TEMPORAL_SAMPLED + 1, &sets[0]);
     /* Iteration i writes filtered when iterations - 1 - i is even, scratch otherwise, so the
      * last one ends in filtered; each reads what the one before wrote. */
     VkImageView src = im->accumulated;
@@ -250,13 +197,12 @@ roma_result roma_temporal_effect_record(roma_temporal_effect *e, VkCommandBuffer
         VkImageView dst = (iterations - 1 - i) % 2 == 0 ? im->filtered : im->scratch;
         const VkImageView aviews[ATROUS_SAMPLED + 2] = {im->position, im->normal, src, dst};
         const VkImageLayout alayouts[ATROUS_SAMPLED] = {input, input};
-        r = write_set(e, e->pools[slot], e->atrous.set_layout, aviews, alayouts, ATROUS_SAMPLED, ATROUS_SAMPLED + 2,
-                      &sets[1 + i]);
+        r = roma_slot_sets_write_images(&e->sets, slot, e->atrous.set_layout, e->sampler, aviews, alayouts,
+                                        ATROUS_SAMPLED, ATROUS_SAMPLED + 2, &sets[1 + i]);
         src = dst;
     }
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_temporal_effect_record: cannot allocate descriptor sets");
-    ++e->used[slot];
 
     int still = 1;
     for (int i = 0; i < 16; ++i)

@@ -65,9 +65,10 @@ uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
 
 // The surface of a snapped hit: the occupied rotated cell is map cell `cell` of the
 // texel column the ray was moved to, and its bit is set because a point on its axis
-// falls in an occupied BOM cell. Look along that axis in the surface grid, then one
-// surface cell around its middle. cell: map coordinates of the cell's lower corner.
-uint roma_gi_find_surface(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3 cell, out vec3 centre)
+// falls in an occupied BOM cell. Look along that axis in the surface grid (the caller
+// then looks one surface cell around its middle, `centre`). cell: map coordinates of the
+// cell's lower corner.
+uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3 cell, out vec3 centre)
 {
     centre = roma_gi_map_to_world(grid, f, cell + vec3(0.5));
     const float along[5] = float[](0.5, 0.25, 0.75, 0.0, 1.0);
@@ -76,7 +77,7 @@ uint roma_gi_find_surface(roma_gi_scene S, roma_grid_params grid, roma_map_frame
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }
-    return roma_gi_find_surface_around(S, centre);
+    return ROMA_GBUFFER_NO_TRIANGLE;
 }
 
 // Radiance leaving triangle tri, which a bounce ray (origin, dir) hit near h at distance
@@ -155,33 +156,43 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
 vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, roma_grid_params grid, vec3 origin, vec3 dir, float tmin,
                     bool surfaces, uint pixel, uint s, out bool hit, out vec3 hit_point)
 {
-    hit = false;
-    hit_point = origin;
+    // Both routes to a hit end in one surface lookup and one shading call: SIMD devices
+    // that predicate run the code of both sides of a branch.
     float tw = roma_ray_start_hit(origin, dir, tmin);
-    if (tw >= 0.0) {
-        hit = true;
-        hit_point = origin + normalize(dir) * tw;
-        if (!surfaces)
-            return vec3(0.0);
-        vec3 hw = origin + normalize(dir) * (tw + 0.5 * grid.origin.w);
-        return roma_gi_hit_radiance(S, P, roma_gi_find_surface_around(S, hw), hw, origin, dir, tw, pixel, s);
-    }
-    roma_hit h = roma_trace_snapped(origin, dir, tmin, 1.0 / 0.0, true);
-    if ((h.info & ROMA_HIT_FLAG) == 0u)
+    bool walked = tw >= 0.0;
+    roma_hit h = roma_hit(0.0, 0u);
+    if (!walked)
+        h = roma_trace_snapped(origin, dir, tmin, 1.0 / 0.0, true);
+    hit = walked || (h.info & ROMA_HIT_FLAG) != 0u;
+    hit_point = origin;
+    if (!hit)
         return vec3(0.0);
-    hit = true;
-    roma_map_frame f = roma_fetch_frame(ROMA_HIT_MAP(h.info));
-    bool folded = (h.info & ROMA_HIT_FOLDED) != 0u;
-    // A snapped ray travels along its candidate direction (reversed when folded).
-    hit_point = origin + f.dir.xyz * (folded ? -1.0 : 1.0) * h.t;
+    uint tri = ROMA_GBUFFER_NO_TRIANGLE;
+    vec3 centre; // where the surface is looked for around
+    float t;
+    if (walked) {
+        // A surface on the skipped start is the hit, half a BOM cell past where the ray enters it.
+        hit_point = origin + normalize(dir) * tw;
+        centre = origin + normalize(dir) * (tw + 0.5 * grid.origin.w);
+        t = tw;
+    } else {
+        roma_map_frame f = roma_fetch_frame(ROMA_HIT_MAP(h.info));
+        bool folded = (h.info & ROMA_HIT_FOLDED) != 0u;
+        // A snapped ray travels along its candidate direction (reversed when folded).
+        hit_point = origin + f.dir.xyz * (folded ? -1.0 : 1.0) * h.t;
+        t = h.t;
+        if (surfaces) {
+            // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
+            vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
+            float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
+            tri = roma_gi_find_surface_along(S, grid, f, vec3(floor(m.xy), c), centre);
+        }
+    }
     if (!surfaces)
         return vec3(0.0);
-    // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
-    vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
-    float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
-    vec3 centre;
-    uint tri = roma_gi_find_surface(S, grid, f, vec3(floor(m.xy), c), centre);
-    return roma_gi_hit_radiance(S, P, tri, centre, origin, dir, h.t, pixel, s);
+    if (tri == ROMA_GBUFFER_NO_TRIANGLE)
+        tri = roma_gi_find_surface_around(S, centre);
+    return roma_gi_hit_radiance(S, P, tri, centre, origin, dir, t, pixel, s);
 }
 
 #endif // ROMA_GI_BOUNCE_GLSL

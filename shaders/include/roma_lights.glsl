@@ -28,23 +28,26 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ro
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaEmitters { roma_gpu_emitter e[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
 
+// 1 when origin + normalize(v) * [0, tmax] is free (tmax may be +INF). The ROMA query
+// skips its first tmin; the start is walked exactly instead (roma/ray_start.glsl), over
+// roma_start_walk * tmin, and a ray shorter than the skip is walked whole (the query would
+// skip all of it). One walk call: SIMD devices that predicate run both sides of a branch.
+bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_steps)
+{
+    bool whole = !(tmax > tmin);
+    if (roma_ray_start_blocked(origin, v, whole ? tmax : min(roma_start_walk * tmin, tmax)))
+        return false; // (a walk of no length, or NaN, meets nothing)
+    return whole || (roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
+}
+
 // 1 when the segment origin -> target is free between 0 and `shorten` (world
 // units) before the target: a point light next to a surface must not be hidden by
-// that surface's cells. The ROMA query skips its first tmin; the start is walked
-// exactly instead (roma/ray_start.glsl), over ROMA_START_WALK * tmin.
+// that surface's cells.
 bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
                           float tmin, uint max_steps)
 {
     vec3 v = target - origin;
-    float d = length(v);
-    float tmax = d - shorten;
-    // A segment shorter than the skip is walked whole: the ROMA query would skip all of it.
-    if (!(tmax > tmin))
-        return !(tmax > 0.0) || !roma_ray_start_blocked(origin, v, tmax);
-    if (roma_ray_start_blocked(origin, v, min(roma_start_walk * tmin, tmax)))
-        return false;
-    roma_hit h = roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps);
-    return (h.info & ROMA_HIT_FLAG) == 0u;
+    return roma_ray_visible(origin, v, tmin, length(v) - shorten, max_steps);
 }
 
 // Unshadowed irradiance factor of a punctual light at p (scale * cos, 0 when
@@ -101,13 +104,10 @@ vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec
     float f = roma_punctual_factor(light, p, ng, n, l);
     if (f == 0.0)
         return vec3(0.0);
-    bool visible;
-    if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
-        visible = !roma_ray_start_blocked(origin, l, roma_start_walk * tmin) &&
-                  (roma_trace_unsnapped(origin, l, tmin, 1.0 / 0.0, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
-    } else {
-        visible = roma_segment_visible(origin, light.position_type.xyz, offset, tmin, max_steps);
-    }
+    // A directional light's ray is unbounded; one visibility call for both kinds.
+    bool directional = uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL;
+    vec3 v = directional ? l : light.position_type.xyz - origin;
+    bool visible = roma_ray_visible(origin, v, tmin, directional ? 1.0 / 0.0 : length(v) - offset, max_steps);
     return visible ? roma_bounded_irradiance(f, light.color_intensity.rgb) : vec3(0.0);
 }
 

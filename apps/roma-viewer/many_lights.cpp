@@ -3,17 +3,14 @@
 
 #include <cmath>
 
+#include <roma/sampling.h>
+
 namespace {
 
-// A well-mixed 32-bit hash (lowbias32), mapped to [0, 1).
+// A well-mixed hash of x mapped to [0, 1): libroma's own (roma/sampling.h).
 float unit_hash(uint32_t x)
 {
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return float(x >> 8) * (1.0f / 16777216.0f);
+    return roma_u32_to_unit_float(roma_hash_u32(x));
 }
 
 } // namespace

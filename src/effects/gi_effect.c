@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
+#include "effects/lit_record.h"
 #include "passes/light_data.h"
 #include "passes/scene_buffers.h"
 #include "passes/surface_cells.h"
@@ -17,7 +18,6 @@
 #include "roma_shared.h"
 #include "util/log.h"
 
-#define MAX_LIGHTS 65536u
 
 /* What set_scene uploads: replaced as a whole. */
 typedef struct gi_surfaces {
@@ -163,41 +163,25 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
                                   const roma_gi_settings *settings_in)
 {
     const roma_logger *log = e ? &e->base.logger : NULL;
-    if (!e || !cmd || !map || !im || (light_count && !lights))
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_record: %s is NULL",
-                         !e ? "effect" : !cmd ? "cmd" : !map ? "map" : !im ? "images" : "lights");
-    if (!im->width || !im->height || !im->position || !im->normal || !im->output)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_gi_effect_record: width, height, position, normal and output are required");
-    if (light_count > MAX_LIGHTS)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_gi_effect_record: %u lights, at most %u", light_count,
-                         MAX_LIGHTS);
-    for (uint32_t i = 0; i < light_count; ++i)
-        if (!roma_light_valid(&lights[i]))
-            return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                             "roma_gi_effect_record: light %u has an unknown type or a NaN or infinite value", i);
+    static const char name[] = "roma_gi_effect_record";
+    roma_result r = roma_lit_record_check(e ? &e->base : NULL, name, cmd, map, im, lights, light_count);
+    if (r != ROMA_SUCCESS)
+        return r;
     roma_gi_settings s;
-    roma_result r = roma_gi_settings_resolve(settings_in, &s);
+    r = roma_gi_settings_resolve(settings_in, &s);
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_gi_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
-    if (r != ROMA_SUCCESS)
-        return r;
-    /* The lights and the scene record live in buffers per slot: a second record in the
-     * slot's frame would overwrite what the first one's dispatch reads. */
-    if (roma_image_effect_same_frame(&e->base, slot))
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_gi_effect_record: one record per frame slot (slot %u was recorded this frame)", slot);
-    roma_context *ctx = e->base.ctx;
-    r = slot_buffer(ctx, &e->lights[slot], sizeof(roma_gpu_light) * (VkDeviceSize)(light_count ? light_count : 1));
+    /* The lights and the scene record live in buffers per slot (one record per slot and frame). */
+    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
+    roma_context *ctx = r == ROMA_SUCCESS ? e->base.ctx : NULL;
+    uint32_t packed = 0, exact = 0;
+    if (r == ROMA_SUCCESS)
+        r = roma_lit_record_pack(ctx, &e->lights[slot], lights, light_count, 0, &packed, &exact);
     if (r == ROMA_SUCCESS)
         r = slot_buffer(ctx, &e->scene[slot], sizeof(roma_gi_scene));
     if (r != ROMA_SUCCESS)
         return r;
-    uint32_t packed = 0;
-    for (uint32_t i = 0; i < light_count; ++i)
-        packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)e->lights[slot].mapped + packed);
     const gi_surfaces *sf = &e->surfaces;
     const int have_scene = sf->geometry.triangle_count > 0;
     if (have_scene) {

@@ -9,12 +9,12 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
+#include "effects/lit_record.h"
 #include "passes/light_data.h"
 #include "roma_shared.h"
 #include "scene/emitters.h"
 #include "util/log.h"
 
-#define MAX_LIGHTS 65536u
 
 struct roma_light_effect {
     roma_image_effect base;
@@ -147,54 +147,22 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
                                      const roma_light_settings *settings_in)
 {
     const roma_logger *log = e ? &e->base.logger : NULL;
-    if (!e || !cmd || !map || !im || (light_count && !lights))
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_record: %s is NULL",
-                         !e ? "effect" : !cmd ? "cmd" : !map ? "map" : !im ? "images" : "lights");
-    if (!im->width || !im->height || !im->position || !im->normal || !im->output)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_light_effect_record: width, height, position, normal and output are required");
-    if (light_count > MAX_LIGHTS)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_record: %u lights, at most %u",
-                         light_count, MAX_LIGHTS);
-    for (uint32_t i = 0; i < light_count; ++i)
-        if (!roma_light_valid(&lights[i]))
-            return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                             "roma_light_effect_record: light %u has an unknown type or a NaN or infinite value", i);
+    static const char name[] = "roma_light_effect_record";
+    roma_result r = roma_lit_record_check(e ? &e->base : NULL, name, cmd, map, im, lights, light_count);
+    if (r != ROMA_SUCCESS)
+        return r;
     roma_light_settings s;
-    roma_result r = roma_light_settings_resolve(settings_in, &s);
+    r = roma_light_settings_resolve(settings_in, &s);
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_light_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
+    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
+    roma_buffer *buf = &e->lights[slot];
+    uint32_t packed = 0, exact_packed = 0;
+    if (r == ROMA_SUCCESS)
+        r = roma_lit_record_pack(e->base.ctx, buf, lights, light_count, s.exact_light_count, &packed, &exact_packed);
     if (r != ROMA_SUCCESS)
         return r;
-    /* The lights live in one buffer per slot: a second record in the slot's frame would
-     * overwrite what the first one's dispatch reads. */
-    if (roma_image_effect_same_frame(&e->base, slot))
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_light_effect_record: one record per frame slot (slot %u was recorded this frame)", slot);
-    /* The slot's previous use has completed (the slot rules): its buffer may be rewritten or
-     * replaced. */
-    roma_buffer *buf = &e->lights[slot];
-    VkDeviceSize bytes = sizeof(roma_gpu_light) * (VkDeviceSize)(light_count ? light_count : 1);
-    if (buf->size < bytes) {
-        roma_buffer_destroy(e->base.ctx, buf);
-        r = roma_buffer_create(e->base.ctx, bytes,
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                               ROMA_MEMORY_UPLOAD, buf);
-        if (r != ROMA_SUCCESS)
-            return r;
-    }
-    /* Dropped lights (no intensity or colour) shift the rest: count the kept ones among the
-     * first exact_light_count. */
-    uint32_t packed = 0, exact_packed = 0;
-    for (uint32_t i = 0; i < light_count; ++i) {
-        packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)buf->mapped + packed);
-        if (i + 1 == s.exact_light_count)
-            exact_packed = packed;
-    }
-    if (s.exact_light_count > light_count)
-        exact_packed = packed;
     roma_light_images_push push = {.lights = buf->address, .bom = info.bom_address,
                                    .emitters = e->emitter_count ? e->emitters.address : 0,
                                    .cdf = e->emitter_count ? e->cdf.address : 0,

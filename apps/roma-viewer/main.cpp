@@ -288,6 +288,8 @@ struct viewer {
     bool camera_moved = false;       // since the last recorded frame: reproject the history
     float prev_clip_rows[4][4] = {}; // the last recorded frame's world -> clip
     uint32_t scene_failures = 0;     // scenes that could not be opened (dropped files)
+    float gi_pose_time = -1.0f;      // the animation time the GI effect's surfaces were posed at
+    uint32_t gi_pose_clip = 0;
 };
 
 void log_to_stderr(roma_log_level level, roma_result, const char *message, void *)
@@ -391,8 +393,9 @@ void describe_plan(viewer &v)
 }
 
 // Loads a scene (built-in or glTF) and everything made from it; the device must be idle.
-// On failure the previous scene stays.
-bool open_scene(viewer &v, const std::string &name)
+// On failure the previous scene stays. A dropped file opens at its first camera
+// (--gltf-camera names one of the command line's file).
+bool open_scene(viewer &v, const std::string &name, bool dropped = false)
 {
     roma_logger logger{log_to_stderr, nullptr};
     roma_scene *scene = nullptr;
@@ -403,7 +406,7 @@ bool open_scene(viewer &v, const std::string &name)
     } else {
         roma_gltf_desc gd{};
         gd.logger = logger;
-        gd.camera_index = v.opt.gltf_camera;
+        gd.camera_index = dropped ? 0 : v.opt.gltf_camera;
         r = roma_scene_load_gltf(name.c_str(), &gd, &scene);
     }
     if (r != ROMA_SUCCESS) {
@@ -424,6 +427,13 @@ bool open_scene(viewer &v, const std::string &name)
     free_scene(v);
     v.scene = scene;
     roma_scene_get_view(scene, &v.view);
+    // The reference, its coverage and the captured BOM were the previous scene's.
+    v.info.reference_ready = false;
+    v.info.reference_status.clear();
+    roma_image_free(&v.coverage);
+    v.bom_res = 0;
+    v.info.bom_captured = false;
+    v.gi_pose_time = -1.0f;
     v.lights_made = UINT32_MAX; // the many lights follow the new scene's bounds
     v.info.scene_cameras.clear();
     for (uint32_t i = 0; i < v.view.camera_count; ++i)
@@ -462,6 +472,15 @@ bool open_scene(viewer &v, const std::string &name)
         camera_control_set(v.cam, v.view.camera);
     v.accumulated = 0;
     return true;
+}
+
+// The animation's clip may have changed (UI): its duration, and the time within it.
+void follow_clip(viewer &v)
+{
+    if (!v.s.animated || roma_animator_clip_duration(v.animator, v.s.clip, &v.s.duration) != ROMA_SUCCESS)
+        return;
+    if (v.s.time > v.s.duration)
+        v.s.time = v.s.duration > 0.0f ? std::fmod(v.s.time, v.s.duration) : 0.0f;
 }
 
 // --- device, libroma objects, passes ------------------------------------------------------
@@ -553,8 +572,14 @@ bool capture_bom(viewer &v)
     roma_map_get_info(v.map, &mi);
     uint64_t words = uint64_t(mi.resolution) * mi.resolution * mi.resolution / 32;
     vk_buffer_destroy(v.base, v.bom);
-    if (!vk_buffer_create(v.base, words * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, v.bom))
+    v.bom_res = 0;
+    v.info.bom_captured = false;
+    if (!vk_buffer_create(v.base, words * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, v.bom)) {
+        // The slice view's set must not keep pointing at the freed buffer: a small one stands in.
+        if (vk_buffer_create(v.base, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, v.bom))
+            compose_pass_set_buffers(v.base, v.cp, v.reference.buffer, v.bom.buffer);
         return false;
+    }
     roma_result r = roma_map_download_bom(v.map, static_cast<uint32_t *>(v.bom.mapped), words);
     if (r != ROMA_SUCCESS) {
         std::fprintf(stderr, "roma-viewer: cannot download the occupancy map: %s\n", roma_result_string(r));
@@ -711,6 +736,28 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     bool lit = v.view.light_count > 0 || v.view.emissive_triangle_count > 0;
     bool want_direct = s.direct_on && (lit || s.many_lights > 0) && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
     bool want_gi = s.gi_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_GI);
+    bool posed_copies = want_gi || (want_direct && v.view.emissive_triangle_count > 0);
+    if (posed_copies && v.animator && (s.time != v.gi_pose_time || s.clip != v.gi_pose_clip)) {
+        // The GI effect's surfaces and the area lights are CPU copies of the scene
+        // (gi_effect.h): posed anew when the animation moves, between frames, before
+        // this frame records an effect that reads them.
+        vkDeviceWaitIdle(v.base.device);
+        roma_logger logger{log_to_stderr, nullptr};
+        roma_animator_pose pose{s.clip, s.time};
+        roma_scene *posed = nullptr;
+        roma_result r = roma_scene_pose(v.scene, &pose, &logger, &posed);
+        if (r == ROMA_SUCCESS)
+            r = roma_gi_effect_set_scene(v.gi, posed);
+        if (r == ROMA_SUCCESS)
+            r = roma_light_effect_set_area_lights(v.light, posed);
+        roma_scene_destroy(posed);
+        if (r != ROMA_SUCCESS) {
+            std::fprintf(stderr, "roma-viewer: cannot pose the GI surfaces: %s\n", roma_result_string(r));
+            return false;
+        }
+        v.gi_pose_time = s.time;
+        v.gi_pose_clip = s.clip;
+    }
     if (want_ao) {
         roma_ao_images images{};
         images.width = v.gb.width;
@@ -897,10 +944,19 @@ void record_readback(VkCommandBuffer cmd, void *user)
 
 // MAE of the accumulated compared view against the reference, over the pixels the
 // reference saw geometry in (its coverage), as roma-compare --mask computes it.
-bool measure_mae(viewer &v, double &mae, uint64_t &pixels)
+bool measure_mae(viewer &v, double &mae, uint64_t &pixels, std::string &why_not)
 {
-    if (!v.info.reference_ready || v.coverage.width != v.cp.width || v.coverage.height != v.cp.height)
+    if (!v.info.reference_ready || v.coverage.width != v.cp.width || v.coverage.height != v.cp.height) {
+        why_not = "the reference does not match this view's size";
         return false;
+    }
+    // The accumulation holds what is shown: it must be the quantity the reference has.
+    view_mode shown = (v.s.view == VIEW_REFERENCE || v.s.view == VIEW_DIFFERENCE) ? v.compared : v.s.view;
+    if (shown != v.compared) {
+        why_not = std::string("the picture shows another quantity than the reference (") +
+                  (v.compared == VIEW_AO ? "AO" : "direct light") + "): switch to its view first";
+        return false;
+    }
     vkDeviceWaitIdle(v.base.device);
     uint32_t w = v.cp.width, h = v.cp.height;
     vk_buffer display, accum;
@@ -1178,8 +1234,16 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
                 if (arg(0) == kViewNames[k])
                     v.s.view = view_mode(k), act.reset_accumulation = true;
         } else if (st.verb == "res" || st.verb == "angular") {
-            (st.verb == "res" ? v.s.res : v.s.angular) = uint32_t(number(0));
-            act.rebuild_map = act.reset_accumulation = true;
+            // The command line's ranges: RES a power of two in [32, 256], A in [1, 16].
+            uint32_t n = 0;
+            bool res = st.verb == "res";
+            if (res ? parse_u32(arg(0).c_str(), 32, 256, n) && (n & (n - 1)) == 0 : parse_u32(arg(0).c_str(), 1, 16, n)) {
+                (res ? v.s.res : v.s.angular) = n;
+                act.rebuild_map = act.reset_accumulation = true;
+            } else {
+                std::fprintf(stderr, "roma-viewer: script line %d: %s %s is out of range (ignored)\n", st.line,
+                             st.verb.c_str(), arg(0).c_str());
+            }
         } else if (st.verb == "camera") {
             act.scene_camera = int(number(0));
         } else if (st.verb == "resize") {
@@ -1247,7 +1311,7 @@ int run_window(viewer &v)
         }
         for (const std::string &path : in.dropped) {
             vkDeviceWaitIdle(v.base.device);
-            if (open_scene(v, path))
+            if (open_scene(v, path, true))
                 v.accumulated = 0;
             else
                 ++v.scene_failures; // the message is out; the previous scene stays
@@ -1306,14 +1370,15 @@ int run_window(viewer &v)
         if (act.measure) {
             double mae;
             uint64_t pixels;
-            if (measure_mae(v, mae, pixels)) {
+            std::string why_not;
+            if (measure_mae(v, mae, pixels, why_not)) {
                 char line[256];
                 std::snprintf(line, sizeof line, "%s MAE %.4f over %llu covered pixels, %u frames accumulated",
                               v.compared == VIEW_AO ? "AO" : "direct light", mae, (unsigned long long)pixels,
                               v.accumulated);
                 v.info.reference_status = line;
             } else {
-                v.info.reference_status = "no measurement: the reference does not match this view's size";
+                v.info.reference_status = "no measurement: " + why_not;
             }
         }
         if (act.rebuild_map) {
@@ -1322,6 +1387,7 @@ int run_window(viewer &v)
                 return 1;
         }
         bool scene_changed = false;
+        follow_clip(v);
         if (v.s.animated && v.s.playing && v.s.duration > 0.0f) {
             v.s.time = std::fmod(v.s.time + dt * v.s.speed, v.s.duration);
             scene_changed = true;
@@ -1485,8 +1551,10 @@ int run_headless(viewer &v)
         finish_reference(v);
         double mae;
         uint64_t pixels;
-        if (!measure_mae(v, mae, pixels)) {
-            std::fprintf(stderr, "roma-viewer: no comparison with the reference: %s\n", v.info.reference_status.c_str());
+        std::string why_not;
+        if (!measure_mae(v, mae, pixels, why_not)) {
+            std::fprintf(stderr, "roma-viewer: no comparison with the reference: %s\n",
+                         v.info.reference_ready ? why_not.c_str() : v.info.reference_status.c_str());
             return 1;
         }
         std::printf("roma-viewer: %s against the Embree reference (%u samples per pixel): MAE %.4f over %llu "

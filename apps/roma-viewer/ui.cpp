@@ -142,11 +142,12 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         if (info.reference_ready) {
             out.measure |= ImGui::Button("measure MAE");
             ImGui::SameLine();
+            // These views accumulate the compared quantity, not the one shown before: start over.
             if (ImGui::Button("show reference"))
-                s.view = VIEW_REFERENCE;
+                s.view = VIEW_REFERENCE, out.reset_accumulation = true;
             ImGui::SameLine();
             if (ImGui::Button("show difference"))
-                s.view = VIEW_DIFFERENCE;
+                s.view = VIEW_DIFFERENCE, out.reset_accumulation = true;
         }
         if (!info.reference_status.empty())
             ImGui::TextWrapped("%s", info.reference_status.c_str());

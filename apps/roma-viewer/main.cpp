@@ -604,10 +604,25 @@ float effective_ao_radius(const viewer &v)
 void start_reference(viewer &v)
 {
     v.compared = v.s.view == VIEW_DIRECT ? VIEW_DIRECT : VIEW_AO;
+    if (v.compared == VIEW_DIRECT && v.s.many_lights > 0) {
+        // roma-render's reference knows the scene's lights only.
+        v.info.reference_status = "the reference has the scene's own lights: turn the many lights off to compare";
+        v.info.reference_ready = false;
+        return;
+    }
     std::string camera = camera_to_string(camera_control_get(v.cam));
+    // The scene as the viewer shows it: turned (not for animated scenes, as open_scene), posed.
+    std::string scene_options;
+    if (v.opt.up != "+y" && !v.s.animated)
+        scene_options += " --up '" + v.opt.up + "'";
+    if (v.s.animated) {
+        char pose[96];
+        std::snprintf(pose, sizeof pose, " --time %.9g --clip %u", double(v.s.time), v.s.clip);
+        scene_options += pose;
+    }
     bool was_running = v.job.running;
     if (!reference_job_start(v.job, reference_tool_path(), camera, v.gb.width, v.gb.height, v.s.reference_spp,
-                             effective_ao_radius(v), v.info.scene_name))
+                             effective_ao_radius(v), v.info.scene_name, scene_options))
         v.info.reference_status = was_running ? "a reference render is still running" : v.job.message;
     else
         v.info.reference_status = "rendering the reference: " + v.job.command;

@@ -31,7 +31,8 @@ static std::string shell_quote(const std::string &s)
 }
 
 bool reference_job_start(reference_job &job, const std::string &tool, const std::string &camera, uint32_t width,
-                         uint32_t height, uint32_t spp, float ao_radius, const std::string &scene)
+                         uint32_t height, uint32_t spp, float ao_radius, const std::string &scene,
+                         const std::string &scene_options)
 {
     if (job.running) // its worker may still write job.message: leave it alone
         return false;
@@ -45,8 +46,8 @@ bool reference_job_start(reference_job &job, const std::string &tool, const std:
     char args[512];
     std::snprintf(args, sizeof args, " --tracer embree --effects ao,direct --size %ux%u --spp %u --ao-radius %.9g",
                   width, height, spp, double(ao_radius));
-    job.command = shell_quote(tool) + " --scene " + shell_quote(scene) + " --camera " + shell_quote(camera) + args + " --out " +
-                  shell_quote(job.folder) + " 2>&1";
+    job.command = shell_quote(tool) + " --scene " + shell_quote(scene) + " --camera " + shell_quote(camera) + args +
+                  scene_options + " --out " + shell_quote(job.folder) + " 2>&1";
     job.percent = 0;
     job.ok = false;
     job.message.clear();

@@ -22,9 +22,11 @@ struct reference_job {
 // roma-render beside the running executable.
 std::string reference_tool_path();
 // Starts roma-render; false if a job is still running (message untouched) or it cannot start
-// (message set).
+// (message set). scene_options: more roma-render options that make its scene the viewer's
+// (--up, --time, --clip), each argument already quoted for the shell.
 bool reference_job_start(reference_job &job, const std::string &tool, const std::string &camera, uint32_t width,
-                         uint32_t height, uint32_t spp, float ao_radius, const std::string &scene);
+                         uint32_t height, uint32_t spp, float ao_radius, const std::string &scene,
+                         const std::string &scene_options);
 // Once finished: joins the worker. Reads <folder>/<name>.pfm into out (caller frees).
 void reference_job_join(reference_job &job);
 // Joins and removes the folder.

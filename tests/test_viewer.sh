@@ -338,6 +338,8 @@ if command -v xvfb-run >/dev/null; then
   [ "$(json "$dir/resilience.json" scene_failures)" = "1" ] || fail "the malformed file was not refused once"
   grep -q "cannot open malformed.gltf" "$dir/resilience.out" || fail "the malformed file is not named in a message"
   [ "$(json "$dir/resilience.json" validation_messages)" = "0" ] || fail "validation messages in the resilience script"
+  [ "$(json "$dir/resilience.json" resolution) $(json "$dir/resilience.json" angular)" = "64 2" ] \
+    || fail "RES 64 and A 2, set while minimised, did not reach the map"
 
   # The scene's cameras: a glTF file with two, the second picked as the interface's button picks
   # it (script verb camera); a camera the scene lacks is refused with a message.

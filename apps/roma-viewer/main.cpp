@@ -1270,12 +1270,35 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
         } else if (st.verb == "drop") {
             in.dropped.push_back(arg(0));
         } else if (st.verb == "screenshot") {
-            save_pictures(v, arg(0), "");
+            // After this frame is recorded and submitted, as F12: the steps before it have taken effect.
+            act.screenshot = true;
+            act.screenshot_path = arg(0);
         } else if (st.verb == "quit") {
             glfwSetWindowShouldClose(v.window, GLFW_TRUE);
             return;
         }
     }
+}
+
+// What a script asked for while no frame was drawn (a minimised window), into this frame's actions.
+void merge_actions(ui_actions &into, const ui_actions &from)
+{
+    into.reset_accumulation |= from.reset_accumulation;
+    into.rebuild_map |= from.rebuild_map;
+    into.frame_scene |= from.frame_scene;
+    into.capture_bom |= from.capture_bom;
+    into.start_reference |= from.start_reference;
+    into.measure |= from.measure;
+    if (from.screenshot) {
+        into.screenshot = true;
+        into.screenshot_path = from.screenshot_path;
+    }
+    if (from.camera_pasted) {
+        into.camera_pasted = true;
+        std::memcpy(into.camera_text, from.camera_text, sizeof into.camera_text);
+    }
+    if (from.scene_camera >= 0)
+        into.scene_camera = from.scene_camera;
 }
 
 int run_window(viewer &v)
@@ -1293,15 +1316,15 @@ int run_window(viewer &v)
     uint32_t frames_left = v.opt.frames;
     uint32_t swapchain_failures = 0;
     int status = 0;
+    ui_actions pending; // a script's actions while minimised, for the next frame drawn
+    bool pending_moved = false;
     while (!glfwWindowShouldClose(v.window)) {
         glfwPollEvents();
         int fw = 0, fh = 0;
         glfwGetFramebufferSize(v.window, &fw, &fh);
         if (fw == 0 || fh == 0) { // minimised: wait, render nothing (a script goes on)
             if (scripted) {
-                ui_actions none;
-                bool ignored = false;
-                run_script(v, sc, in, none, ignored);
+                run_script(v, sc, in, pending, pending_moved);
                 glfwWaitEventsTimeout(0.02);
             } else {
                 glfwWaitEvents();
@@ -1320,7 +1343,9 @@ int run_window(viewer &v)
             }
             swapchain_failures = 0;
             ImGui_ImplVulkan_SetMinImageCount(v.sc.min_image_count);
-            if (!resize_images(v, v.sc.extent.width, v.sc.extent.height))
+            // A swapchain made anew at the same size (suboptimal, say) keeps the pictures and history.
+            if ((v.sc.extent.width != v.gb.width || v.sc.extent.height != v.gb.height) &&
+                !resize_images(v, v.sc.extent.width, v.sc.extent.height))
                 return 1;
             resize = false;
         }
@@ -1352,7 +1377,10 @@ int run_window(viewer &v)
         v.info.accumulated = v.accumulated;
         v.info.validation_messages = v.base.validation_messages;
         ui_draw(v.s, v.timings, v.info, act);
-        bool moved = handle_input(v, in, dt);
+        bool moved = handle_input(v, in, dt) || pending_moved;
+        merge_actions(act, pending);
+        pending = ui_actions{};
+        pending_moved = false;
         if (scripted)
             run_script(v, sc, in, act, moved);
         if (act.camera_pasted) {
@@ -1461,7 +1489,9 @@ int run_window(viewer &v)
         ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
         vkCmdEndRenderPass(cmd);
         vkEndCommandBuffer(cmd);
-        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+        // Only the swapchain image's first use waits for it (its barrier's source stage): the
+        // frame's other work, transfers of the map build among them, runs before it is acquired.
+        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
         VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
         si.waitSemaphoreCount = 1;
         si.pWaitSemaphores = &v.acquired[slot];
@@ -1488,7 +1518,7 @@ int run_window(viewer &v)
         ++v.frame;
         ++v.accumulated;
         if (act.screenshot || (!ImGui::GetIO().WantCaptureKeyboard && pressed(v.window, in, 2)))
-            save_pictures(v, next_screenshot_name(v), "");
+            save_pictures(v, act.screenshot_path.empty() ? next_screenshot_name(v) : act.screenshot_path, "");
         if (glfwGetKey(v.window, GLFW_KEY_ESCAPE) == GLFW_PRESS)
             glfwSetWindowShouldClose(v.window, GLFW_TRUE);
         if (frames_left && --frames_left == 0)
@@ -1600,8 +1630,11 @@ bool write_stats(const viewer &v, int status)
     roma_json_string(&j, "view", kViewNames[v.s.view]);
     roma_json_string(&j, "camera", camera_to_string(camera_control_get(v.cam)).c_str());
     roma_json_int(&j, "accumulated", v.accumulated);
-    roma_json_int(&j, "resolution", v.s.res);
-    roma_json_int(&j, "angular", v.s.angular);
+    roma_map_info mi{}; // the map's own RES and A: what the last build used
+    if (v.map)
+        roma_map_get_info(v.map, &mi);
+    roma_json_int(&j, "resolution", mi.resolution);
+    roma_json_int(&j, "angular", mi.angular);
     roma_json_begin_array(&j, "passes"); // of the last recorded frame
     for (const std::string &p : v.passes)
         roma_json_string(&j, nullptr, p.c_str());

@@ -1,6 +1,8 @@
 // roma-viewer: the interface (Dear ImGui): settings, timings, camera string, screenshot.
 #pragma once
 
+#include <string>
+
 #include "settings.h"
 
 struct ui_actions {
@@ -8,6 +10,7 @@ struct ui_actions {
     bool rebuild_map = false;        // RES or A changed
     bool frame_scene = false;
     bool screenshot = false;
+    std::string screenshot_path;     // a script's: saved after this frame's submission; empty: numbered
     bool camera_pasted = false;      // camera_text holds a new camera string
     bool capture_bom = false;
     bool start_reference = false;

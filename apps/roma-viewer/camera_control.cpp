@@ -25,7 +25,10 @@ void camera_control_set(camera_control &c, const roma_camera &cam)
         c.target[i] = cam.target[i];
     }
     c.distance = len;
-    c.pitch = std::asin(std::fmax(-1.0f, std::fmin(1.0f, d[1])));
+    // The viewer's camera keeps +y up and no roll (a rolled glTF camera is shown level); a
+    // camera looking straight up or down is tilted to the pitch limit, where +y still gives
+    // the picture an up direction.
+    c.pitch = std::fmax(-kPitchLimit, std::fmin(kPitchLimit, std::asin(std::fmax(-1.0f, std::fmin(1.0f, d[1])))));
     c.yaw = std::atan2(-d[0], -d[2]);
     c.fovy_deg = cam.fovy_deg > 0.0f ? cam.fovy_deg : 45.0f;
 }

@@ -392,6 +392,14 @@ void describe_plan(viewer &v)
     v.info.plan = text;
 }
 
+// The camera framing the scene's bounds at the picture's aspect (the options' size before
+// the first picture is made).
+void frame_scene(viewer &v)
+{
+    uint32_t w = v.gb.width ? v.gb.width : v.opt.width, h = v.gb.height ? v.gb.height : v.opt.height;
+    camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max, float(w) / float(std::max(1u, h)));
+}
+
 // Loads a scene (built-in or glTF) and everything made from it; the device must be idle.
 // On failure the previous scene stays. A dropped file opens at its first camera
 // (--gltf-camera names one of the command line's file).
@@ -466,8 +474,7 @@ bool open_scene(viewer &v, const std::string &name, bool dropped = false)
           dz = v.view.bounds_max[2] - v.view.bounds_min[2];
     v.s.auto_ao_radius = 0.1f * std::sqrt(dx * dx + dy * dy + dz * dz);
     describe_plan(v);
-    camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
-                                float(v.opt.width) / float(v.opt.height));
+    frame_scene(v);
     if (v.view.has_camera)
         camera_control_set(v.cam, v.view.camera);
     v.accumulated = 0;
@@ -1175,8 +1182,7 @@ bool handle_input(viewer &v, input_state &in, float dt)
         if (pressed(v.window, in, 0))
             v.cam.fly = !v.cam.fly;
         if (pressed(v.window, in, 1)) {
-            camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
-                                        float(v.gb.width) / float(v.gb.height));
+            frame_scene(v);
             moved = true;
         }
         if (v.cam.fly) {
@@ -1223,8 +1229,7 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
             return;
         } else if (st.verb == "key") {
             if (arg(0) == "F") {
-                camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max,
-                                            float(v.gb.width) / float(std::max(1u, v.gb.height)));
+                frame_scene(v);
                 moved = true;
             } else if (arg(0) == "TAB") {
                 v.cam.fly = !v.cam.fly;
@@ -1400,7 +1405,7 @@ int run_window(viewer &v)
             }
         }
         if (act.frame_scene) {
-            camera_control_frame_bounds(v.cam, v.view.bounds_min, v.view.bounds_max, float(fw) / float(fh));
+            frame_scene(v);
             moved = true;
         }
         if (act.capture_bom)

@@ -223,6 +223,11 @@ int parse_args(int argc, char **argv, options &o)
     }
     if (o.headless && !o.frames)
         o.frames = 16;
+    if (o.headless && o.settings.view == VIEW_BOM_SLICE && o.frames < 2) {
+        // The slice shows the BOM captured after the first frame's build: a second frame draws it.
+        std::fprintf(stderr, "roma-viewer: the bom-slice view draws from the second frame: 2 frames\n");
+        o.frames = 2;
+    }
     if (o.headless && !o.script.empty()) {
         std::fprintf(stderr, "roma-viewer: --script drives the window; without --headless (Xvfb works)\n");
         return 2;

@@ -1,6 +1,7 @@
 #include "swapchain.h"
 
 #include <algorithm>
+#include <cstdio>
 
 static void destroy_images(const vk_base &b, swapchain &s)
 {
@@ -69,12 +70,22 @@ bool swapchain_create(const vk_base &b, swapchain &s, uint32_t width, uint32_t h
         if (formats.empty())
             return false;
         // UNORM: the picture is sRGB-encoded already, and the interface's colours too.
-        s.format = formats[0].format;
+        VkSurfaceFormatKHR chosen = formats[0];
+        bool unorm = false;
         for (const VkSurfaceFormatKHR &f : formats)
-            if (f.format == VK_FORMAT_B8G8R8A8_UNORM || f.format == VK_FORMAT_R8G8B8A8_UNORM)
-                s.format = f.format;
+            if (!unorm && (f.format == VK_FORMAT_B8G8R8A8_UNORM || f.format == VK_FORMAT_R8G8B8A8_UNORM))
+                chosen = f, unorm = true;
+        if (!unorm)
+            std::fprintf(stderr, "roma-viewer: the window offers no 8-bit UNORM format; colours may look off\n");
+        s.format = chosen.format;
+        s.color_space = chosen.colorSpace;
         if (!create_ui_pass(b, s))
             return false;
+    }
+    // The picture is blitted into the swapchain image.
+    if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)) {
+        std::fprintf(stderr, "roma-viewer: the window's images cannot be written by a transfer (blit)\n");
+        return false;
     }
     VkSwapchainKHR old = s.handle;
     destroy_images(b, s);
@@ -83,7 +94,7 @@ bool swapchain_create(const vk_base &b, swapchain &s, uint32_t width, uint32_t h
     ci.surface = b.surface;
     ci.minImageCount = caps.maxImageCount ? std::min(s.min_image_count + 1, caps.maxImageCount) : s.min_image_count + 1;
     ci.imageFormat = s.format;
-    ci.imageColorSpace = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
+    ci.imageColorSpace = s.color_space;
     ci.imageExtent = extent;
     ci.imageArrayLayers = 1;
     ci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;

@@ -9,6 +9,7 @@
 struct swapchain {
     VkSwapchainKHR handle = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
+    VkColorSpaceKHR color_space = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
     VkExtent2D extent{};
     uint32_t min_image_count = 2;
     std::vector<VkImage> images;

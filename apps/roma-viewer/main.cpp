@@ -706,6 +706,19 @@ void stamp(viewer &v, VkCommandBuffer cmd, uint32_t slot, uint32_t k)
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, v.queries, slot * kStamps + k);
 }
 
+// An effect's inputs: the viewer's G-buffer images (the images struct of roma_ao_effect or
+// of roma_light_effect / roma_gi_effect), and its output.
+template <typename Images> Images gbuffer_images(const viewer &v, VkImageView output)
+{
+    Images images{};
+    images.width = v.gb.width;
+    images.height = v.gb.height;
+    images.position = v.gb.position.view;
+    images.normal = v.gb.normal.view;
+    images.output = output;
+    return images;
+}
+
 bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
 {
     const viewer_settings &s = v.s;
@@ -786,12 +799,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         v.gi_pose_clip = s.clip;
     }
     if (want_ao) {
-        roma_ao_images images{};
-        images.width = v.gb.width;
-        images.height = v.gb.height;
-        images.position = v.gb.position.view;
-        images.normal = v.gb.normal.view;
-        images.output = v.cp.ao.view;
+        roma_ao_images images = gbuffer_images<roma_ao_images>(v, v.cp.ao.view);
         roma_ao_settings as{};
         as.samples = s.ao_samples;
         as.radius = effective_ao_radius(v);
@@ -804,12 +812,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         v.passes.push_back("ao");
     }
     if (want_direct) {
-        roma_light_images images{};
-        images.width = v.gb.width;
-        images.height = v.gb.height;
-        images.position = v.gb.position.view;
-        images.normal = v.gb.normal.view;
-        images.output = v.cp.light.view;
+        roma_light_images images = gbuffer_images<roma_light_images>(v, v.cp.light.view);
         roma_light_settings ls{};
         ls.max_steps = s.max_steps;
         ls.offset_cells = s.offset;
@@ -841,12 +844,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
             v.passes.push_back("many_lights");
     }
     if (want_gi) {
-        roma_light_images images{};
-        images.width = v.gb.width;
-        images.height = v.gb.height;
-        images.position = v.gb.position.view;
-        images.normal = v.gb.normal.view;
-        images.output = v.cp.gi.view;
+        roma_light_images images = gbuffer_images<roma_light_images>(v, v.cp.gi.view);
         roma_gi_settings gs{};
         gs.samples = s.gi_samples;
         gs.max_steps = s.max_steps;
@@ -969,6 +967,30 @@ void record_readback(VkCommandBuffer cmd, void *user)
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+// The last frame's pictures in host memory: the displayed RGBA8 and the accumulated RGBA32F
+// (blocking: waits for the device). Empty buffers on failure.
+struct pictures {
+    const viewer &v;
+    vk_buffer display, accum;
+    bool ok = false;
+    explicit pictures(viewer &viewer_) : v(viewer_)
+    {
+        vkDeviceWaitIdle(v.base.device);
+        VkDeviceSize n = VkDeviceSize(v.cp.width) * v.cp.height;
+        ok = vk_buffer_create(v.base, n * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) &&
+             vk_buffer_create(v.base, n * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum);
+        readback r{&v, display.buffer, accum.buffer};
+        ok = ok && vk_submit_now(v.base, v.pool, record_readback, &r);
+    }
+    ~pictures()
+    {
+        vk_buffer_destroy(v.base, display);
+        vk_buffer_destroy(v.base, accum);
+    }
+    const float *linear() const { return static_cast<const float *>(accum.mapped); }
+    const unsigned char *shown() const { return static_cast<const unsigned char *>(display.mapped); }
+};
+
 // MAE of the accumulated compared view against the reference, over the pixels the
 // reference saw geometry in (its coverage), as roma-compare --mask computes it.
 bool measure_mae(viewer &v, double &mae, uint64_t &pixels, std::string &why_not)
@@ -984,18 +1006,14 @@ bool measure_mae(viewer &v, double &mae, uint64_t &pixels, std::string &why_not)
                   (v.compared == VIEW_AO ? "AO" : "direct light") + "): switch to its view first";
         return false;
     }
-    vkDeviceWaitIdle(v.base.device);
     uint32_t w = v.cp.width, h = v.cp.height;
-    vk_buffer display, accum;
-    bool ok = vk_buffer_create(v.base, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) &&
-              vk_buffer_create(v.base, VkDeviceSize(w) * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum);
-    readback r{&v, display.buffer, accum.buffer};
-    ok = ok && vk_submit_now(v.base, v.pool, record_readback, &r);
+    pictures pics(v);
+    bool ok = pics.ok;
     double sum = 0.0;
     pixels = 0;
     uint32_t channels = v.compared == VIEW_AO ? 1 : 3;
     if (ok) {
-        const float *a = static_cast<const float *>(accum.mapped);
+        const float *a = pics.linear();
         const float *ref = static_cast<const float *>(v.reference.mapped);
         for (size_t i = 0; i < size_t(w) * h; ++i) {
             if (!(v.coverage.pixels[i * v.coverage.channels] > 0.0f))
@@ -1006,8 +1024,6 @@ bool measure_mae(viewer &v, double &mae, uint64_t &pixels, std::string &why_not)
         }
     }
     mae = pixels ? sum / double(pixels * channels) : 0.0;
-    vk_buffer_destroy(v.base, display);
-    vk_buffer_destroy(v.base, accum);
     return ok && pixels > 0;
 }
 
@@ -1016,18 +1032,11 @@ bool measure_mae(viewer &v, double &mae, uint64_t &pixels, std::string &why_not)
 // pixels are cells the voxelization missed, or points on a cell boundary.
 void report_slice(viewer &v)
 {
-    vkDeviceWaitIdle(v.base.device);
     uint32_t w = v.cp.width, h = v.cp.height;
-    vk_buffer display, accum;
-    if (!vk_buffer_create(v.base, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) ||
-        !vk_buffer_create(v.base, VkDeviceSize(w) * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum)) {
-        vk_buffer_destroy(v.base, display);
-        return;
-    }
-    readback r{&v, display.buffer, accum.buffer};
+    pictures pics(v);
     uint64_t occupied = 0, empty = 0;
-    if (vk_submit_now(v.base, v.pool, record_readback, &r)) {
-        const float *a = static_cast<const float *>(accum.mapped);
+    if (pics.ok) {
+        const float *a = pics.linear();
         for (size_t i = 0; i < size_t(w) * h; ++i) {
             occupied += a[4 * i] > 0.85f && a[4 * i + 1] < 0.2f;
             empty += a[4 * i + 2] > 0.85f && a[4 * i] < 0.2f;
@@ -1036,24 +1045,18 @@ void report_slice(viewer &v)
     std::printf("roma-viewer: occupancy slice %c = %u (RES %u): %llu pixels on occupied cells, %llu on empty cells\n",
                 char('x' + v.s.slice_axis), v.s.slice_depth, v.bom_res, (unsigned long long)occupied,
                 (unsigned long long)empty);
-    vk_buffer_destroy(v.base, display);
-    vk_buffer_destroy(v.base, accum);
 }
 
 // The last frame's picture (8-bit PNG) and its accumulated linear values (PFM or EXR by
 // the name's ending; AO and debug views: the value itself; composed and direct: radiance).
 bool save_pictures(viewer &v, const std::string &png, const std::string &linear)
 {
-    vkDeviceWaitIdle(v.base.device);
     uint32_t w = v.cp.width, h = v.cp.height;
-    vk_buffer display, accum;
-    bool ok = vk_buffer_create(v.base, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, display) &&
-              vk_buffer_create(v.base, VkDeviceSize(w) * h * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, accum);
-    readback r{&v, display.buffer, accum.buffer};
-    ok = ok && vk_submit_now(v.base, v.pool, record_readback, &r);
+    pictures pics(v);
+    bool ok = pics.ok;
     if (ok && !png.empty()) {
         std::vector<unsigned char> rgb(size_t(w) * h * 3);
-        const unsigned char *src = static_cast<const unsigned char *>(display.mapped);
+        const unsigned char *src = pics.shown();
         for (size_t i = 0; i < size_t(w) * h; ++i)
             for (int c = 0; c < 3; ++c)
                 rgb[3 * i + c] = src[4 * i + c];
@@ -1067,7 +1070,7 @@ bool save_pictures(viewer &v, const std::string &png, const std::string &linear)
         bool one_channel = v.s.view == VIEW_AO;
         roma_image img{};
         ok = roma_image_alloc(&img, w, h, one_channel ? 1 : 3) == ROMA_SUCCESS;
-        const float *src = static_cast<const float *>(accum.mapped);
+        const float *src = pics.linear();
         for (size_t i = 0; ok && i < size_t(w) * h; ++i)
             for (uint32_t c = 0; c < img.channels; ++c)
                 img.pixels[i * img.channels + c] = src[4 * i + c];
@@ -1082,8 +1085,6 @@ bool save_pictures(viewer &v, const std::string &png, const std::string &linear)
         else
             std::printf("wrote %s (%u frames accumulated)\n", linear.c_str(), v.accumulated);
     }
-    vk_buffer_destroy(v.base, display);
-    vk_buffer_destroy(v.base, accum);
     return ok;
 }
 

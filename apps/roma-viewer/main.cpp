@@ -1280,6 +1280,8 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
             glfwRestoreWindow(v.window);
         } else if (st.verb == "drop") {
             in.dropped.push_back(arg(0));
+        } else if (st.verb == "reference") {
+            act.start_reference = true; // as the interface's button: the current view's reference
         } else if (st.verb == "screenshot") {
             // After this frame is recorded and submitted, as F12: the steps before it have taken effect.
             act.screenshot = true;
@@ -1680,6 +1682,7 @@ void destroy(viewer &v)
     }
     if (v.imgui_pool)
         vkDestroyDescriptorPool(v.base.device, v.imgui_pool, nullptr);
+    reference_job_cancel(v.job); // quitting does not wait for a reference still rendering
     reference_job_cleanup(v.job);
     roma_image_free(&v.coverage);
     vk_buffer_destroy(v.base, v.bom);

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 std::string reference_tool_path()
@@ -52,12 +54,40 @@ bool reference_job_start(reference_job &job, const std::string &tool, const std:
     job.ok = false;
     job.message.clear();
     job.finished = false;
+    job.cancelled = false;
     job.running = true;
     job.worker = std::thread([&job] {
-        FILE *p = popen(job.command.c_str(), "r");
+        // sh -c "exec roma-render ..." in a process group of its own, so that a cancel stops it
+        // (popen gives no pid). Between fork and exec the child calls only what is safe there.
+        std::string shell_command = "exec " + job.command;
+        int fds[2];
+        pid_t pid = -1;
+        if (pipe(fds) == 0) {
+            pid = fork();
+            if (pid == 0) {
+                setpgid(0, 0);
+                dup2(fds[1], 1);
+                dup2(fds[1], 2);
+                close(fds[0]);
+                close(fds[1]);
+                execl("/bin/sh", "sh", "-c", shell_command.c_str(), static_cast<char *>(nullptr));
+                _exit(127);
+            }
+            close(fds[1]);
+            if (pid < 0)
+                close(fds[0]);
+        }
+        FILE *p = pid > 0 ? fdopen(fds[0], "r") : nullptr;
         if (!p) {
             job.message = "cannot run roma-render";
+            if (pid > 0) {
+                close(fds[0]);
+                kill(-pid, SIGTERM);
+                waitpid(pid, nullptr, 0);
+            }
         } else {
+            setpgid(pid, pid); // also here: a cancel right after the fork finds the group
+            job.pid = pid;
             char line[1024];
             std::string last;
             while (std::fgets(line, sizeof line, p)) {
@@ -67,10 +97,13 @@ bool reference_job_start(reference_job &job, const std::string &tool, const std:
                 else if (std::strncmp(line, "wrote ", 6) != 0)
                     last = line;
             }
-            int status = pclose(p);
-            job.ok = status == 0;
+            std::fclose(p);
+            int status = 0;
+            waitpid(pid, &status, 0);
+            job.pid = 0;
+            job.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
             if (!job.ok)
-                job.message = "roma-render failed: " + last;
+                job.message = job.cancelled ? "the reference was cancelled" : "roma-render failed: " + last;
         }
         job.finished = true;
         job.running = false;
@@ -82,6 +115,15 @@ void reference_job_join(reference_job &job)
 {
     if (job.worker.joinable())
         job.worker.join();
+}
+
+void reference_job_cancel(reference_job &job)
+{
+    pid_t pid = job.pid;
+    if (job.running && pid > 0) {
+        job.cancelled = true;
+        kill(-pid, SIGTERM);
+    }
 }
 
 void reference_job_cleanup(reference_job &job)

@@ -5,6 +5,8 @@
 
 #include <roma/image.h>
 
+#include <sys/types.h>
+
 #include <atomic>
 #include <string>
 #include <thread>
@@ -12,7 +14,8 @@
 struct reference_job {
     std::thread worker;
     std::atomic<int> percent{0};
-    std::atomic<bool> running{false}, finished{false};
+    std::atomic<bool> running{false}, finished{false}, cancelled{false};
+    std::atomic<pid_t> pid{0}; // roma-render's, in a process group of its own (0: none)
     bool ok = false;
     std::string folder;  // roma-render's --out
     std::string message; // the error, when not ok
@@ -29,6 +32,8 @@ bool reference_job_start(reference_job &job, const std::string &tool, const std:
                          const std::string &scene_options);
 // Once finished: joins the worker. Reads <folder>/<name>.pfm into out (caller frees).
 void reference_job_join(reference_job &job);
+// Stops a running roma-render (its process group gets SIGTERM); the job finishes not ok.
+void reference_job_cancel(reference_job &job);
 // Joins and removes the folder.
 void reference_job_cleanup(reference_job &job);
 bool reference_job_image(const reference_job &job, const char *name, roma_image *out);

@@ -7,7 +7,7 @@
 bool script_load(const char *path, script &out)
 {
     static const char *verbs[] = {"wait", "key", "drag", "wheel", "set", "view", "res", "angular", "camera", "resize",
-                                  "minimize", "restore", "drop", "screenshot", "quit"};
+                                  "minimize", "restore", "drop", "screenshot", "reference", "quit"};
     std::ifstream in(path);
     if (!in) {
         std::fprintf(stderr, "roma-viewer: cannot read the script %s\n", path);

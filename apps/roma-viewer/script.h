@@ -11,8 +11,9 @@
 //   resize W H                   the window (1 1 is allowed)
 //   minimize | restore
 //   drop FILE                    as if FILE were dropped on the window
-//   screenshot FILE.png          the picture now
-//   quit
+//   screenshot FILE.png          the picture once this frame is drawn
+//   reference                    start the Embree reference of the view (the interface's button)
+//   quit                         (a reference still rendering is stopped)
 #pragma once
 
 #include <cstdint>

@@ -21,12 +21,12 @@ roma_result roma_distance_field_create(roma_context *ctx, VkBuffer bom, uint32_t
     const VkDeviceSize cells = (VkDeviceSize)resolution * resolution * resolution;
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     roma_result r = ROMA_SUCCESS;
-    for (int i = 0; i < 2 && r == ROMA_SUCCESS; ++i)
-        r = roma_buffer_create(ctx, cells * sizeof(uint32_t), usage, ROMA_MEMORY_DEVICE, &out->seed_buffers[i]);
-    if (r == ROMA_SUCCESS && cells / 2 > ctx->properties.limits.maxTexelBufferElements)
+    if (cells / 2 > ctx->properties.limits.maxTexelBufferElements)
         r = roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
                       "distance field: %llu words at RES %u exceed maxTexelBufferElements (%u)",
                       (unsigned long long)(cells / 2), resolution, ctx->properties.limits.maxTexelBufferElements);
+    for (int i = 0; i < 2 && r == ROMA_SUCCESS; ++i)
+        r = roma_buffer_create(ctx, cells * sizeof(uint32_t), usage, ROMA_MEMORY_DEVICE, &out->seed_buffers[i]);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, cells / 2 * sizeof(uint32_t), usage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                ROMA_MEMORY_DEVICE, &out->distances);

@@ -131,6 +131,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
                                         e->inputs + e->outputs, &set);
     if (r != ROMA_SUCCESS)
         return r;
+    roma_slot_sets_commit(&e->sets, slot);
     VkWriteDescriptorSet bom = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                 .dstSet = set,
                                 .dstBinding = e->inputs + e->outputs,

@@ -157,10 +157,11 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
         return roma_fail(log, r, "roma_light_effect_record: invalid settings");
     roma_map_info info;
     r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
+    if (r != ROMA_SUCCESS)
+        return r;
     roma_buffer *buf = &e->lights[slot];
     uint32_t packed = 0, exact_packed = 0;
-    if (r == ROMA_SUCCESS)
-        r = roma_lit_record_pack(e->base.ctx, buf, lights, light_count, s.exact_light_count, &packed, &exact_packed);
+    r = roma_lit_record_pack(e->base.ctx, buf, lights, light_count, s.exact_light_count, &packed, &exact_packed);
     if (r != ROMA_SUCCESS)
         return r;
     roma_light_images_push push = {.lights = buf->address, .bom = info.bom_address,

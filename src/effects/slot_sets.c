@@ -63,8 +63,12 @@ roma_result roma_slot_sets_begin(roma_slot_sets *s, const roma_logger *log, cons
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "%s: more than %u records in one frame of a slot (count frames in settings.frame)", name,
                          s->records_per_frame);
-    ++s->used[slot];
     return ROMA_SUCCESS;
+}
+
+void roma_slot_sets_commit(roma_slot_sets *s, uint32_t slot)
+{
+    ++s->used[slot];
 }
 
 roma_result roma_slot_sets_write_images(roma_slot_sets *s, uint32_t slot, VkDescriptorSetLayout layout,

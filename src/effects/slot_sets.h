@@ -31,6 +31,8 @@ int roma_slot_sets_same_frame(const roma_slot_sets *s, uint32_t slot, uint32_t f
  * a record past records_per_frame (logged, naming `name`). */
 roma_result roma_slot_sets_begin(roma_slot_sets *s, const roma_logger *log, const char *name, uint32_t slot,
                                  uint32_t frame);
+/* Counts the record begun in slot once its sets are written (a failed one does not count). */
+void roma_slot_sets_commit(roma_slot_sets *s, uint32_t slot);
 
 /* A set of `layout` from the slot's pool with views[i] at binding i: the first `sampled`
  * through `sampler` in layouts[i], the rest storage images in GENERAL. */

@@ -203,6 +203,7 @@ roma_result roma_temporal_effect_record(roma_temporal_effect *e, VkCommandBuffer
     }
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_temporal_effect_record: cannot allocate descriptor sets");
+    roma_slot_sets_commit(&e->sets, slot);
 
     int still = 1;
     for (int i = 0; i < 16; ++i)

@@ -127,6 +127,11 @@ roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t heig
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_gbuffer_create: size %ux%u outside 1..%u", width, height,
                          (unsigned)ROMA_GBUFFER_MAX_SIZE);
+    /* The tracing passes read it as a texel buffer of 4 RGBA32F texels a pixel. */
+    if (4ull * width * height > ctx->properties.limits.maxTexelBufferElements)
+        return roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                         "roma_gbuffer_create: %ux%u needs %llu texels, above this device's maxTexelBufferElements "
+                         "(%u)", width, height, 4ull * width * height, ctx->properties.limits.maxTexelBufferElements);
     roma_gbuffer *g = calloc(1, sizeof *g);
     if (!g)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_gbuffer_create: out of memory");

@@ -3,12 +3,18 @@
 #include <string.h>
 
 #include "roma_shared.h"
+#include "util/log.h"
 
 roma_result roma_pixel_list_create(roma_context *ctx, uint32_t width, uint32_t height, roma_pixel_list *out)
 {
     memset(out, 0, sizeof *out);
     if (!ctx || width == 0 || height == 0)
         return ROMA_ERROR_INVALID_ARGUMENT;
+    /* The tracing passes read it as a texel buffer: 4 header words, then a word a pixel. */
+    if (4ull + (uint64_t)width * height > ctx->properties.limits.maxTexelBufferElements)
+        return roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                         "roma_pixel_list_create: %ux%u pixels exceed this device's maxTexelBufferElements (%u)", width,
+                         height, ctx->properties.limits.maxTexelBufferElements);
     out->ctx = ctx;
     out->width = width;
     out->height = height;

@@ -5,7 +5,8 @@
 #include "roma_shared.h"
 
 /* Earlier writes of the G-buffer (fragment/compute), the ROMA build (compute) and clears
- * (transfer) visible to the pass. */
+ * (transfer) visible to the pass: to its storage accesses and to its texel fetches (the
+ * G-buffer, the list and the BOM are uniform texel buffers: sampled reads). */
 static void record_in_barrier(VkCommandBuffer cmd)
 {
     roma_cmd_memory_barrier(cmd,
@@ -13,7 +14,8 @@ static void record_in_barrier(VkCommandBuffer cmd)
                                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_UNIFORM_READ_BIT);
 }
 
 /* The pass's writes visible to later compute passes, transfers and the host. */

@@ -135,5 +135,9 @@ roma_result roma_buffer_view_create(roma_context *ctx, VkBuffer buffer, VkFormat
         .offset = 0,
         .range = VK_WHOLE_SIZE,
     };
-    return roma_vk_check(ctx, vkCreateBufferView(ctx->device, &info, ctx->allocator, out), "vkCreateBufferView");
+    roma_result r = roma_vk_check(ctx, vkCreateBufferView(ctx->device, &info, ctx->allocator, out),
+                                  "vkCreateBufferView");
+    if (r != ROMA_SUCCESS)
+        *out = VK_NULL_HANDLE; /* undefined after a failure: nothing to destroy */
+    return r;
 }

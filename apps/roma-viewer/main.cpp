@@ -1293,6 +1293,27 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
     }
 }
 
+// The slot's previous frame is done (its timings read) before its objects are reused.
+void wait_for_slot(viewer &v, uint32_t slot)
+{
+    if (v.submitted[slot]) {
+        vkWaitForFences(v.base.device, 1, &v.fence[slot], VK_TRUE, UINT64_MAX);
+        read_timings(v, slot);
+    }
+}
+
+// The slot's command buffer, begun, its fence reset (after the slot was waited for).
+VkCommandBuffer begin_slot_commands(viewer &v, uint32_t slot)
+{
+    vkResetFences(v.base.device, 1, &v.fence[slot]);
+    VkCommandBuffer cmd = v.cmd[slot];
+    vkResetCommandBuffer(cmd, 0);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(cmd, &bi);
+    return cmd;
+}
+
 // What a script asked for while no frame was drawn (a minimised window), into this frame's actions.
 void merge_actions(ui_actions &into, const ui_actions &from)
 {
@@ -1455,10 +1476,7 @@ int run_window(viewer &v)
         ImGui::Render();
 
         uint32_t slot = v.frame % kSlots;
-        if (v.submitted[slot]) {
-            vkWaitForFences(v.base.device, 1, &v.fence[slot], VK_TRUE, UINT64_MAX);
-            read_timings(v, slot);
-        }
+        wait_for_slot(v, slot);
         uint32_t image = 0;
         VkResult ar = vkAcquireNextImageKHR(v.base.device, v.sc.handle, UINT64_MAX, v.acquired[slot], VK_NULL_HANDLE,
                                             &image);
@@ -1471,12 +1489,7 @@ int run_window(viewer &v)
             status = 1;
             break;
         }
-        vkResetFences(v.base.device, 1, &v.fence[slot]);
-        VkCommandBuffer cmd = v.cmd[slot];
-        vkResetCommandBuffer(cmd, 0);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vkBeginCommandBuffer(cmd, &bi);
+        VkCommandBuffer cmd = begin_slot_commands(v, slot);
         if (!record_frame(v, slot, cmd)) {
             std::fprintf(stderr, "roma-viewer: recording frame %u failed\n", v.frame);
             vkEndCommandBuffer(cmd);
@@ -1558,16 +1571,8 @@ int run_headless(viewer &v)
             first_done = std::chrono::steady_clock::now();
         }
         uint32_t slot = v.frame % kSlots;
-        if (v.submitted[slot]) {
-            vkWaitForFences(v.base.device, 1, &v.fence[slot], VK_TRUE, UINT64_MAX);
-            read_timings(v, slot);
-        }
-        vkResetFences(v.base.device, 1, &v.fence[slot]);
-        VkCommandBuffer cmd = v.cmd[slot];
-        vkResetCommandBuffer(cmd, 0);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vkBeginCommandBuffer(cmd, &bi);
+        wait_for_slot(v, slot);
+        VkCommandBuffer cmd = begin_slot_commands(v, slot);
         bool ok = record_frame(v, slot, cmd);
         vkEndCommandBuffer(cmd);
         VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};

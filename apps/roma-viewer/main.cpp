@@ -153,8 +153,11 @@ int parse_args(int argc, char **argv, options &o)
                 if (!std::strcmp(v, kViewNames[k]))
                     o.settings.view = static_cast<view_mode>(k), ok = true;
             if (!ok) {
-                std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: composed, ao, direct, gi, albedo, "
-                                     "normal, map, hit-distance, bom-slice, steps, rotated-map, ray-start)\n", v);
+                std::string valid; // the reference views need a reference first: not from here
+                for (uint32_t k = 0; k < VIEW_COUNT; ++k)
+                    if (k != VIEW_REFERENCE && k != VIEW_DIFFERENCE)
+                        valid += std::string(valid.empty() ? "" : ", ") + kViewNames[k];
+                std::fprintf(stderr, "roma-viewer: unknown view '%s' (valid: %s)\n", v, valid.c_str());
                 return 2;
             }
         } else if (a == "--res") {

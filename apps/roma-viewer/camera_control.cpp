@@ -121,8 +121,8 @@ bool camera_control_move(camera_control &c, const float move[3], float dt)
 std::string camera_to_string(const roma_camera &cam)
 {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", cam.eye[0], cam.eye[1], cam.eye[2], cam.target[0],
-                  cam.target[1], cam.target[2], cam.fovy_deg > 0.0f ? cam.fovy_deg : 45.0f);
+    std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", cam.eye[0], cam.eye[1], cam.eye[2],
+                  cam.target[0], cam.target[1], cam.target[2], cam.fovy_deg > 0.0f ? cam.fovy_deg : 45.0f);
     return buf;
 }
 

@@ -1266,7 +1266,9 @@ void run_script(viewer &v, script &sc, input_state &in, ui_actions &act, bool &m
             // The command line's ranges: RES a power of two in [32, 256], A in [1, 16].
             uint32_t n = 0;
             bool res = st.verb == "res";
-            if (res ? parse_u32(arg(0).c_str(), 32, 256, n) && (n & (n - 1)) == 0 : parse_u32(arg(0).c_str(), 1, 16, n)) {
+            bool valid = res ? parse_u32(arg(0).c_str(), 32, 256, n) && (n & (n - 1)) == 0
+                             : parse_u32(arg(0).c_str(), 1, 16, n);
+            if (valid) {
                 (res ? v.s.res : v.s.angular) = n;
                 act.rebuild_map = act.reset_accumulation = true;
             } else {

@@ -14,8 +14,8 @@ roma_result roma_lit_record_check(const roma_image_effect *e, const char *name, 
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "%s: %s is NULL", name,
                          !e ? "effect" : !cmd ? "cmd" : !map ? "map" : !im ? "images" : "lights");
     if (!im->width || !im->height || !im->position || !im->normal || !im->output)
-        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "%s: width, height, position, normal and output are required",
-                         name);
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: width, height, position, normal and output are required", name);
     if (light_count > ROMA_LIT_MAX_LIGHTS)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "%s: %u lights, at most %u", name, light_count,
                          ROMA_LIT_MAX_LIGHTS);

@@ -18,7 +18,6 @@
 #include "roma_shared.h"
 #include "util/log.h"
 
-
 /* What set_scene uploads: replaced as a whole. */
 typedef struct gi_surfaces {
     roma_scene_buffers geometry;
@@ -149,15 +148,6 @@ roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
 
 /* Makes buf hold at least bytes of host-visible storage (the slot's previous use has
  * completed, so it may be replaced). */
-static roma_result slot_buffer(roma_context *ctx, roma_buffer *buf, VkDeviceSize bytes)
-{
-    if (buf->size >= bytes)
-        return ROMA_SUCCESS;
-    roma_buffer_destroy(ctx, buf);
-    return roma_buffer_create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                              ROMA_MEMORY_UPLOAD, buf);
-}
-
 roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                   const roma_light_images *im, const roma_light *lights, uint32_t light_count,
                                   const roma_gi_settings *settings_in)
@@ -174,12 +164,13 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
     roma_map_info info;
     /* The lights and the scene record live in buffers per slot (one record per slot and frame). */
     r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
-    roma_context *ctx = r == ROMA_SUCCESS ? e->base.ctx : NULL;
+    if (r != ROMA_SUCCESS)
+        return r;
+    roma_context *ctx = e->base.ctx;
     uint32_t packed = 0, exact = 0;
+    r = roma_lit_record_pack(ctx, &e->lights[slot], lights, light_count, 0, &packed, &exact);
     if (r == ROMA_SUCCESS)
-        r = roma_lit_record_pack(ctx, &e->lights[slot], lights, light_count, 0, &packed, &exact);
-    if (r == ROMA_SUCCESS)
-        r = slot_buffer(ctx, &e->scene[slot], sizeof(roma_gi_scene));
+        r = roma_lit_slot_buffer(ctx, &e->scene[slot], sizeof(roma_gi_scene));
     if (r != ROMA_SUCCESS)
         return r;
     const gi_surfaces *sf = &e->surfaces;

@@ -21,6 +21,10 @@ roma_result roma_lit_record_check(const roma_image_effect *e, const char *name, 
 roma_result roma_lit_record_begin(roma_image_effect *e, const char *name, uint32_t slot, uint32_t frame,
                                   const roma_map *map, roma_map_info *info);
 
+/* Makes buf, a host-visible storage buffer reached by address, hold at least `bytes`: grown
+ * (made anew) when smaller; the slot's previous use has completed (the slot rules). */
+roma_result roma_lit_slot_buffer(roma_context *ctx, roma_buffer *buf, VkDeviceSize bytes);
+
 /* Packs the lights (dropped ones, without intensity or colour, shift the rest) into buf,
  * grown when too small (the slot's previous use has completed: the slot rules).
  * exact_count: how many of the first lights are exact (roma_light_settings); out_exact: how

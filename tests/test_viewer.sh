@@ -339,7 +339,7 @@ if command -v xvfb-run >/dev/null; then
   grep -q "cannot open malformed.gltf" "$dir/resilience.out" || fail "the malformed file is not named in a message"
   [ "$(json "$dir/resilience.json" validation_messages)" = "0" ] || fail "validation messages in the resilience script"
   [ "$(json "$dir/resilience.json" resolution) $(json "$dir/resilience.json" angular)" = "64 2" ] \
-    || fail "RES 64 and A 2, set while minimised, did not reach the map"
+    || fail "RES 64 and A 2, set by the script, did not reach the map"
 
   # Quitting while the Embree reference renders (640x480 at 1,024 samples a pixel: about 38 s
   # here) stops it: measured 4.9 s to quit with it stopped, 41 s when the viewer waited for it.

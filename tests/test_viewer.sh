@@ -119,7 +119,8 @@ fi
 # 1b''''. GI while a surface moves: tests/viewer/moving_wall.gltf slides a red wall over a
 #       floor under a point light (a node animation). At --time 0.9 the viewer's GI matches
 #       roma-render's of the scene posed at that time, so the bounce hits find the wall where
-#       it is now (the GI effect's surfaces are posed with the animation).
+#       it is now (the GI effect rebuilds its surface grid from the map's animated positions;
+#       the viewer poses nothing on the host for it).
 wall="$(cd "$(dirname "$0")/viewer" && pwd)/moving_wall.gltf"
 wall_cam="0,3,4,0,0.3,0,50"
 "$viewer" --headless --validation --scene "$wall" --time 0.9 --view gi --frames 32 --camera "$wall_cam" \

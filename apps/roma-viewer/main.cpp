@@ -779,11 +779,12 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     bool lit = v.view.light_count > 0 || v.view.emissive_triangle_count > 0;
     bool want_direct = s.direct_on && (lit || s.many_lights > 0) && (shown == VIEW_COMPOSED || shown == VIEW_DIRECT);
     bool want_gi = s.gi_on && lit && (shown == VIEW_COMPOSED || shown == VIEW_GI);
-    bool posed_copies = want_gi || (want_direct && v.view.emissive_triangle_count > 0);
+    // The GI effect follows the map's triangles by itself; the area lights (of the direct
+    // light and of GI's bounce hits) are CPU copies of the scene's emissive triangles
+    // (light_effect.h, gi_effect.h): posed anew when the animation moves, between frames,
+    // before this frame records an effect that reads them.
+    bool posed_copies = (want_gi || want_direct) && v.view.emissive_triangle_count > 0;
     if (posed_copies && v.animator && (s.time != v.gi_pose_time || s.clip != v.gi_pose_clip)) {
-        // The GI effect's surfaces and the area lights are CPU copies of the scene
-        // (gi_effect.h): posed anew when the animation moves, between frames, before
-        // this frame records an effect that reads them.
         vkDeviceWaitIdle(v.base.device);
         roma_logger logger{log_to_stderr, nullptr};
         roma_animator_pose pose{s.clip, s.time};

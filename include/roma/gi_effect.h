@@ -6,9 +6,9 @@
  * tracer's sample dimensions 5 and 6) as snapped closest-hit ROMA queries through the map;
  * the skipped start of each is walked exactly through the map's base occupancy map, so no
  * bounce passes a wall it starts next to. A hit is a voxel, not a surface: a surface grid
- * built from the scene given to roma_gi_effect_set_scene names the triangle there, whose
- * albedo and normals give the light leaving the hit point: the direct light there, from
- * the punctual lights of the record (one un-snapped ROMA shadow ray each; directional
+ * built from the map's triangles names the triangle there, whose albedo (from the scene
+ * given to roma_gi_effect_set_scene) gives the light leaving the hit point: the direct
+ * light there, from the punctual lights of the record (one un-snapped ROMA shadow ray each; directional
  * lights one snapped ray) and from the scene's emissive triangles (one sample per bounce,
  * dimensions 7-9), as the reference tracer computes it. The emission of a surface a
  * bounce hits is not added (it is direct light at the pixel).
@@ -19,12 +19,18 @@
  * radiance of a diffuse surface. Pixels with w <= 0 get 0. Each record is one frame's
  * estimate; accumulate or filter over frames in the engine.
  *
- * Geometry: the bounce hits find their surfaces in the scene given to set_scene, which
- * should hold the triangles the map was made from, where they are. Surfaces that move
- * (animation, instances) are not followed: call set_scene again with the moved scene (the
- * grid is rebuilt, RES^3 cells, at the next record). Point and spot lights are lit by
- * shadow rays; the reflective shadow maps of the ROMA paper (libroma's offline renderer)
- * need a rasterization of the light's view, which is the engine's to make.
+ * Geometry: the bounce hits find their triangles where the map's last build put them. The
+ * record rebuilds the surface grid (RES^3 cells over the map's volume, one invocation per
+ * triangle) whenever that build moved the geometry or the box: new positions (host or
+ * GPU, so skinning and animation are followed), instances added, removed or moved, another
+ * volume; a map whose geometry stands still costs the grid once. The scene given to
+ * set_scene is the one the map was made from: its triangles give the albedo (by index: the
+ * map's triangles start with the scene's; an instance's triangles reflect nothing) and
+ * its emissive triangles the area lights at the hit (where set_scene put them: call it
+ * again when they move). Its vertex normals shade the hits while no build has given the
+ * map new positions; after that the hit triangle's face normal does. Point and spot lights
+ * are lit by shadow rays; the reflective shadow maps of the ROMA paper (libroma's offline
+ * renderer) need a rasterization of the light's view, which is the engine's to make.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. Frame slots: as
@@ -114,24 +120,25 @@ ROMA_API roma_result roma_gi_effect_create(roma_context *context, const roma_gi_
  * The context's thread. */
 ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
 
-/** The surfaces bounce rays light: the scene's triangles (positions, normals, each
- * triangle's material albedo) and its emissive triangles as area lights, copied to the
- * GPU; the surface grid over the scene's bounds is built by the next record (into its
- * command buffer: submit the command buffers in the order they were recorded). Replaces
- * the previous scene (NULL removes it); a failure keeps it. Call it between frames, when
- * no submitted work of this effect is still running.
+/** The materials of the surfaces bounce rays light: the scene the map was made from (each
+ * triangle's material albedo, the vertex normals) and its emissive triangles as area
+ * lights, copied to the GPU. Where the triangles are comes from the map at each record.
+ * Replaces the previous scene (NULL removes it); a failure keeps it. Call it between
+ * frames, when no submitted work of this effect is still running.
  *
  * @param effect  the effect.
  * @param scene   the scene, or NULL; nothing of it is kept.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL effect; ROMA_ERROR_INVALID_SCENE
- *         for a scene with empty bounds; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure
+ *         for a scene without triangles; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure
  *         code (roma_result).
  * @par Threads
  * The context's thread; the scene may be read by other threads meanwhile. */
 ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma_scene *scene);
 
-/** Records the GI pass into cmd: when the scene changed, the surface grid's build (a fill
- * and one compute dispatch), then one compute dispatch of 8 x 8 pixel groups. The lights
+/** Records the GI pass into cmd: when the map's geometry changed since the grid was built
+ * (see above), the surface grid's build (a barrier after earlier compute reads, a fill,
+ * one compute dispatch, a barrier), then one compute dispatch of 8 x 8 pixel groups.
+ * Submit the command buffers of an effect in the order they were recorded. The lights
  * are copied into the slot's storage at record time (up to 65,536; as
  * roma_light_effect_record). One record per frame slot and settings frame. Synchronisation
  * as roma_ao_effect: the map's build and the images' writes must be made visible to
@@ -153,7 +160,8 @@ ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma
  *   roma_gi_settings_resolve rejects, a slot not below frames_in_flight, a second record
  *   in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
- *   a Vulkan failure code (roma_result) for the slot's buffers or descriptor set.
+ *   a Vulkan failure code (roma_result) for the slot's buffers or descriptor sets, or the
+ *   surface grid's first allocation (RES^3 x 4 bytes).
  * @par Threads
  * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_gi_effect_record(roma_gi_effect *effect, VkCommandBuffer cmd, uint32_t slot,

@@ -86,7 +86,7 @@ uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map
 vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, vec3 origin, vec3 dir, float t,
                           uint pixel, uint s)
 {
-    if (tri == ROMA_GBUFFER_NO_TRIANGLE)
+    if (tri >= S.config2.x) // no surface, or an instance without a material
         return vec3(0.0);
     vec3 albedo = RomaVec4s(S.albedo).v[tri].rgb;
     if (!any(greaterThan(albedo, vec3(0.0))))
@@ -109,7 +109,9 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     vec3 y = (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) ? origin + dir * tp : h - ng * dot(ng, h - a);
     // Shading normal: the vertex normals at y, when the mesh has them.
     vec3 n = ng;
-    vec3 n0 = RomaVec4s(S.normals).v[k.x].xyz;
+    vec3 n0 = vec3(0.0);
+    if (max(k.x, max(k.y, k.z)) < S.config2.y) // a branch, not a select: no load past the normals
+        n0 = RomaVec4s(S.normals).v[k.x].xyz;
     if (dot(n0, n0) > 0.0) {
         vec3 e1 = b - a, e2 = c - a, q = y - a;
         float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), q1 = dot(q, e1), q2 = dot(q, e2);

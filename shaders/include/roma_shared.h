@@ -353,7 +353,7 @@ ROMA_STRUCT_END(roma_rsm_view)
  * overlap test, with roma_voxelize_push and the voxelizer's bindings (the
  * cells at ROMA_VOXELIZE_BINDING_BOM, no queue). */
 
-/* What the GI pass needs at a bounce hit (one buffer, written once). */
+/* What the GI pass needs at a bounce hit (one buffer per frame slot). */
 ROMA_STRUCT_BEGIN(roma_gi_scene)
     ROMA_U64(cells);      /* uint per cell of the surface grid, index (z * RES + y) * RES + x */
     ROMA_U64(indices);    /* uint x3 per triangle */
@@ -365,6 +365,8 @@ ROMA_STRUCT_BEGIN(roma_gi_scene)
     ROMA_U64(pad_);
     ROMA_VEC4(grid);      /* xyz: corner of cell (0,0,0); w: cell size */
     ROMA_UVEC4(config);   /* x: RES, y: emitter count, z: punctual light count, w: ROMA_GI_PUNCTUAL_* */
+    ROMA_UVEC4(config2);  /* x: triangles with an albedo (later ones reflect nothing), y: vertices with
+                             normals (triangles with a later vertex use the face normal) */
 ROMA_STRUCT_END(roma_gi_scene)
 
 /* How the GI pass lights a bounce hit with point and spot lights. */

@@ -1,8 +1,10 @@
 /* roma_gi_effect: one-bounce GI on the engine's G-buffer images (shaders/effects/
- * gi_images.comp). The scene's surfaces (geometry, albedo, area lights and the surface grid
- * the bounce hits look up, passes/surface_cells.h) are set between frames; the punctual
- * lights and the roma_gi_scene record that points at them live in host-visible buffers
- * per frame slot. */
+ * gi_images.comp). The scene given between frames brings the surfaces' materials, normals
+ * and area lights; the triangles themselves are the map's, where its last build put them:
+ * the surface grid the bounce hits look up (passes/surface_cells.h) is rebuilt from the
+ * map's positions whenever they or its box have changed, so animation and instances are
+ * followed. The punctual lights and the roma_gi_scene record that points at all of it
+ * live in host-visible buffers per frame slot. */
 #include "roma/gi_effect.h"
 
 #include <math.h>
@@ -11,6 +13,7 @@
 
 #include "effects/image_effect.h"
 #include "effects/lit_record.h"
+#include "map/map_internal.h"
 #include "passes/light_data.h"
 #include "passes/scene_buffers.h"
 #include "passes/surface_cells.h"
@@ -20,16 +23,16 @@
 
 /* What set_scene uploads: replaced as a whole. */
 typedef struct gi_surfaces {
-    roma_scene_buffers geometry;
-    roma_light_data emitters; /* the scene's area lights (its punctual lights come per record) */
-    roma_surface_cells grid;
+    roma_scene_buffers materials; /* albedo per triangle, normals per vertex (its positions go unused) */
+    roma_light_data emitters;     /* the scene's area lights (its punctual lights come per record) */
 } gi_surfaces;
 
 struct roma_gi_effect {
     roma_image_effect base;
     uint32_t surface_resolution;
-    gi_surfaces surfaces; /* geometry.triangle_count == 0: no scene */
-    int grid_pending;     /* the next record builds the grid */
+    gi_surfaces surfaces; /* materials.triangle_count == 0: no scene */
+    roma_surface_cells grid;        /* made on the first record with a scene */
+    uint64_t grid_version;          /* the grid holds the map geometry of this version (0: none) */
     roma_buffer lights[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_buffer scene[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_gi_scene per slot */
 };
@@ -61,9 +64,8 @@ roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_setting
 
 static void surfaces_free(roma_context *ctx, gi_surfaces *s)
 {
-    roma_surface_cells_destroy(&s->grid);
     roma_light_data_destroy(ctx, &s->emitters);
-    roma_scene_buffers_destroy(ctx, &s->geometry);
+    roma_scene_buffers_destroy(ctx, &s->materials);
     memset(s, 0, sizeof *s);
 }
 
@@ -110,6 +112,7 @@ void roma_gi_effect_destroy(roma_gi_effect *e)
         roma_buffer_destroy(ctx, &e->scene[s]);
     }
     surfaces_free(ctx, &e->surfaces);
+    roma_surface_cells_destroy(&e->grid);
     roma_image_effect_free(&e->base);
     free(e);
 }
@@ -122,7 +125,6 @@ roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
     roma_context *ctx = e->base.ctx;
     if (!scene) {
         surfaces_free(ctx, &e->surfaces);
-        e->grid_pending = 0;
         return ROMA_SUCCESS;
     }
     /* Built aside, swapped in only when complete: a failure keeps the previous scene. */
@@ -130,24 +132,43 @@ roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
     memset(&s, 0, sizeof s);
     roma_scene_view v;
     roma_result r = roma_scene_get_view(scene, &v);
+    if (r == ROMA_SUCCESS && !(v.triangle_count > 0))
+        r = roma_fail(log, ROMA_ERROR_INVALID_SCENE, "roma_gi_effect_set_scene: the scene has no triangles");
     if (r == ROMA_SUCCESS)
-        r = roma_scene_buffers_create(ctx, scene, &s.geometry);
+        r = roma_scene_buffers_create(ctx, scene, &s.materials);
     if (r == ROMA_SUCCESS)
         r = roma_light_data_create(ctx, scene, NULL, 0, &s.emitters);
-    if (r == ROMA_SUCCESS)
-        r = roma_surface_cells_create(ctx, &s.geometry, v.bounds_min, v.bounds_max, e->surface_resolution, &s.grid);
     if (r != ROMA_SUCCESS) {
         surfaces_free(ctx, &s);
         return roma_fail(log, r, "roma_gi_effect_set_scene: cannot upload the scene's surfaces");
     }
     surfaces_free(ctx, &e->surfaces);
     e->surfaces = s;
-    e->grid_pending = 1;
     return ROMA_SUCCESS;
 }
 
-/* Makes buf hold at least bytes of host-visible storage (the slot's previous use has
- * completed, so it may be replaced). */
+/* Rebuilds the surface grid from the map's geometry when the grid holds another map's or
+ * an older build's (versions are unique in the context; records nothing otherwise). */
+static roma_result follow_map(roma_gi_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map)
+{
+    if (e->grid_version == map->geometry_version)
+        return ROMA_SUCCESS;
+    roma_result r = ROMA_SUCCESS;
+    if (!e->grid.ctx)
+        r = roma_surface_cells_create(e->base.ctx, e->surface_resolution, &e->grid);
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_place(&e->grid, map->volume_min, map->volume_max);
+    const roma_surface_geometry g = {map->positions.buffer, map->indices.buffer, map->total_triangles};
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_record(&e->grid, cmd, slot, &g);
+    if (r != ROMA_SUCCESS) {
+        e->grid_version = 0; /* whatever was placed or recorded, build it again next time */
+        return roma_fail(&e->base.logger, r, "roma_gi_effect_record: cannot build the surface grid");
+    }
+    e->grid_version = map->geometry_version;
+    return ROMA_SUCCESS;
+}
+
 roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                   const roma_light_images *im, const roma_light *lights, uint32_t light_count,
                                   const roma_gi_settings *settings_in)
@@ -174,22 +195,26 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
     if (r != ROMA_SUCCESS)
         return r;
     const gi_surfaces *sf = &e->surfaces;
-    const int have_scene = sf->geometry.triangle_count > 0;
+    const int have_scene = sf->materials.triangle_count > 0;
     if (have_scene) {
-        const roma_surface_cells *c = &sf->grid;
+        r = follow_map(e, cmd, slot, map);
+        if (r != ROMA_SUCCESS)
+            return r;
+        const roma_surface_cells *c = &e->grid;
+        /* The scene's vertex normals fit the map's vertices only where no build moved them;
+         * elsewhere (animation, instances) the face normals serve. */
+        const uint32_t normals = !map->positions_moved && map->vertex_count == sf->materials.vertex_count
+                                     ? sf->materials.vertex_count
+                                     : 0;
         roma_gi_scene gs = {
-            .cells = c->cells.address, .indices = sf->geometry.indices.address,
-            .positions = sf->geometry.positions.address, .normals = sf->geometry.normals.address,
-            .albedo = sf->geometry.albedo.address, .emitters = sf->emitters.emitters.address,
-            .cdf = sf->emitters.cdf.address,
+            .cells = c->cells.address, .indices = map->indices.address, .positions = map->positions.address,
+            .normals = sf->materials.normals.address, .albedo = sf->materials.albedo.address,
+            .emitters = sf->emitters.emitters.address, .cdf = sf->emitters.cdf.address,
             .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
             .config = {c->resolution, sf->emitters.emitter_count, packed, ROMA_GI_PUNCTUAL_RAYS},
+            .config2 = {sf->materials.triangle_count, normals, 0, 0},
         };
         memcpy(e->scene[slot].mapped, &gs, sizeof gs);
-        if (e->grid_pending) {
-            roma_surface_cells_record(&e->surfaces.grid, cmd);
-            e->grid_pending = 0;
-        }
     }
     roma_gi_images_push push = {
         .scene = have_scene ? e->scene[slot].address : 0, .lights = e->lights[slot].address,

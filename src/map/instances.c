@@ -209,8 +209,10 @@ roma_result roma_map_set_instance_transform(roma_map *map, uint32_t id, const fl
                          "roma_map_set_instance_transform: instance %u is static (add it with ROMA_INSTANCE_DYNAMIC)",
                          id);
     roma_result r = check_transform(map, transform, "roma_map_set_instance_transform");
-    if (r == ROMA_SUCCESS)
+    if (r == ROMA_SUCCESS) {
         memcpy(map->instances[id].transform, transform, sizeof map->instances[id].transform);
+        map->transforms_dirty = 1;
+    }
     return r;
 }
 

@@ -544,6 +544,13 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
         return r;
     roma_map_instances_release(map, 0); /* what the build slots' earlier builds used */
     compute_frame_params(map, &frame, bmin, bmax);
+    if (frame.positions || frame.gpu_positions || layout.changed || map->transforms_dirty || map->builds == 0 ||
+        memcmp(bmin, map->volume_min, sizeof bmin) != 0 || memcmp(bmax, map->volume_max, sizeof bmax) != 0)
+        map->geometry_version = ++map->ctx->geometry_versions;
+    memcpy(map->volume_min, bmin, sizeof bmin);
+    memcpy(map->volume_max, bmax, sizeof bmax);
+    map->positions_moved |= frame.positions || frame.gpu_positions;
+    map->transforms_dirty = 0;
     if (frame.positions) /* later frames without a volume fit these bounds */
         for (int a = 0; a < 3; ++a)
             map->scene_min[a] = pmin[a], map->scene_max[a] = pmax[a];

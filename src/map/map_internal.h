@@ -65,6 +65,13 @@ struct roma_map {
     roma_map_retired *retired;
     uint32_t retired_count, retired_capacity;
     uint64_t builds;              /* builds recorded */
+    /* What readers of the geometry (the GI effect's surface grid) follow: a new version,
+     * unique in the context, with every build that may have moved a triangle or the box
+     * (new positions, instances added, removed or moved, another volume); volume_* is the
+     * last build's box (before the margin); positions_moved: a build has had new positions. */
+    uint64_t geometry_version;
+    float volume_min[3], volume_max[3];
+    int positions_moved, transforms_dirty;
     roma_buffer ray_staging, hit_staging; /* roma_map_trace only */
     roma_buffer cells;              /* occupied-cell list of the scatter rotation (device) */
     uint32_t cell_capacity;

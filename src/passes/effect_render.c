@@ -95,8 +95,9 @@ static roma_result create_gi(renderer *R, const roma_scene *scene)
     const uint32_t routes[2] = {(uint32_t)surfaces, (uint32_t)rsm}; /* gi.comp's constants */
     roma_result r = roma_pixel_pass_create_spec(ctx, "gi.comp", sizeof(roma_gi_push), 1, routes, 2, &R->gi);
     if (r == ROMA_SUCCESS && surfaces)
-        r = roma_surface_cells_create(ctx, &R->geometry, v.bounds_min, v.bounds_max,
-                                      R->plan.maps[R->plan.pass_map[ROMA_PASS_GI]].resolution, &R->surfaces);
+        r = roma_surface_cells_create(ctx, R->plan.maps[R->plan.pass_map[ROMA_PASS_GI]].resolution, &R->surfaces);
+    if (r == ROMA_SUCCESS && surfaces)
+        r = roma_surface_cells_place(&R->surfaces, v.bounds_min, v.bounds_max);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, sizeof(roma_gi_scene),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
@@ -111,6 +112,7 @@ static roma_result create_gi(renderer *R, const roma_scene *scene)
         .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
         .config = {c->resolution, R->lights.emitter_count, R->lights.light_count,
                    R->desc->gi_punctual_rays ? ROMA_GI_PUNCTUAL_RAYS : ROMA_GI_PUNCTUAL_RSM},
+        .config2 = {R->geometry.triangle_count, R->geometry.vertex_count, 0, 0},
     };
     memcpy(R->gi_scene.mapped, &gs, sizeof gs);
     return ROMA_SUCCESS;
@@ -309,8 +311,13 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             break;
         }
         case ROMA_PASS_GI: {
-            if (f == 0 && R->surfaces.ctx)
-                roma_surface_cells_record(&R->surfaces, cmd); /* the scene stands still: once */
+            if (f == 0 && R->surfaces.ctx) { /* the scene stands still: once */
+                const roma_surface_geometry g = {R->geometry.positions.buffer, R->geometry.indices.buffer,
+                                                 R->geometry.triangle_count};
+                r = roma_surface_cells_record(&R->surfaces, cmd, 0, &g);
+                if (r != ROMA_SUCCESS)
+                    break;
+            }
             roma_gi_push push = {
                 .lights = R->lights.lights.address, .views = R->views_buffer.address, .scene = R->gi_scene.address,
                 .bom = bom,

@@ -8,26 +8,13 @@
 static const VkDescriptorType cell_types[3] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
 
-roma_result roma_surface_cells_create(roma_context *ctx, const roma_scene_buffers *geometry, const float bounds_min[3],
-                                      const float bounds_max[3], uint32_t resolution, roma_surface_cells *out)
+roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, roma_surface_cells *out)
 {
     memset(out, 0, sizeof *out);
-    if (!ctx || !geometry || resolution == 0 || resolution > 256)
+    if (!ctx || resolution == 0 || resolution > 256)
         return ROMA_ERROR_INVALID_ARGUMENT;
-    /* Cubic cells over the largest extent, a few percent of margin so that surfaces
-     * on the bounds lie inside. */
-    float extent = 0.0f, centre[3];
-    for (int k = 0; k < 3; ++k) {
-        extent = fmaxf(extent, bounds_max[k] - bounds_min[k]);
-        centre[k] = 0.5f * (bounds_min[k] + bounds_max[k]);
-    }
-    if (!(extent > 0.0f) || !isfinite(extent))
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_SCENE, "GI surface grid: the scene bounds are empty");
-    out->cell = extent * 1.04f / (float)resolution;
-    for (int k = 0; k < 3; ++k)
-        out->origin[k] = centre[k] - 0.5f * (float)resolution * out->cell;
+    out->ctx = ctx;
     out->resolution = resolution;
-    out->triangle_count = geometry->triangle_count;
     const VkDeviceSize bytes = (VkDeviceSize)resolution * resolution * resolution * sizeof(uint32_t);
     roma_result r = roma_buffer_create(ctx, bytes,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
@@ -36,34 +23,55 @@ roma_result roma_surface_cells_create(roma_context *ctx, const roma_scene_buffer
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "surface_cells.comp", cell_types, 3,
                                                sizeof(roma_voxelize_push), &out->pipeline);
-    if (r == ROMA_SUCCESS)
-        r = roma_descriptor_set_create(ctx, &out->pipeline, cell_types, 3, &out->set);
-    if (r != ROMA_SUCCESS) {
-        out->ctx = ctx;
+    if (r != ROMA_SUCCESS)
         roma_surface_cells_destroy(out);
-        return r;
-    }
-    out->ctx = ctx;
-    roma_descriptor_write_buffer(ctx, &out->set, ROMA_VOXELIZE_BINDING_POSITIONS, cell_types[0],
-                                 geometry->positions.buffer);
-    roma_descriptor_write_buffer(ctx, &out->set, ROMA_VOXELIZE_BINDING_INDICES, cell_types[1],
-                                 geometry->indices.buffer);
-    roma_descriptor_write_buffer(ctx, &out->set, ROMA_VOXELIZE_BINDING_BOM, cell_types[2], out->cells.buffer);
-    return ROMA_SUCCESS;
+    return r;
 }
 
 void roma_surface_cells_destroy(roma_surface_cells *cells)
 {
     if (cells->ctx) {
-        roma_descriptor_set_destroy(cells->ctx, &cells->set);
+        for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
+            roma_descriptor_set_destroy(cells->ctx, &cells->sets[s]);
         roma_compute_pipeline_destroy(cells->ctx, &cells->pipeline);
         roma_buffer_destroy(cells->ctx, &cells->cells);
     }
     memset(cells, 0, sizeof *cells);
 }
 
-void roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd)
+roma_result roma_surface_cells_place(roma_surface_cells *cells, const float bounds_min[3], const float bounds_max[3])
 {
+    float extent = 0.0f, centre[3];
+    for (int k = 0; k < 3; ++k) {
+        extent = fmaxf(extent, bounds_max[k] - bounds_min[k]);
+        centre[k] = 0.5f * (bounds_min[k] + bounds_max[k]);
+    }
+    if (!(extent > 0.0f) || !isfinite(extent) || !isfinite(centre[0] + centre[1] + centre[2]))
+        return roma_fail(&cells->ctx->logger, ROMA_ERROR_INVALID_SCENE, "GI surface grid: the bounds are empty");
+    cells->cell = extent * 1.04f / (float)cells->resolution;
+    for (int k = 0; k < 3; ++k)
+        cells->origin[k] = centre[k] - 0.5f * (float)cells->resolution * cells->cell;
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd, uint32_t slot,
+                                      const roma_surface_geometry *geometry)
+{
+    roma_context *ctx = cells->ctx;
+    if (slot >= ROMA_MAX_FRAMES_IN_FLIGHT)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    roma_descriptor_set *set = &cells->sets[slot];
+    if (!set->set) {
+        roma_result r = roma_descriptor_set_create(ctx, &cells->pipeline, cell_types, 3, set);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
+    roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_POSITIONS, cell_types[0], geometry->positions);
+    roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_INDICES, cell_types[1], geometry->indices);
+    roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_BOM, cell_types[2], cells->cells.buffer);
+
+    /* Earlier reads of the grid (the GI passes of frames before) finish before the clear. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0);
     vkCmdFillBuffer(cmd, cells->cells.buffer, 0, VK_WHOLE_SIZE, ROMA_GBUFFER_NO_TRIANGLE);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
@@ -76,12 +84,12 @@ void roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd)
     push.grid.origin[3] = cells->cell;
     push.grid.inv_cell[0] = 1.0f / cells->cell;
     push.grid.dims[0] = cells->resolution;
-    push.config[0] = cells->triangle_count;
+    push.config[0] = geometry->triangle_count;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->pipeline.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->pipeline.layout, 0, 1, &cells->set.set, 0,
-                            NULL);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->pipeline.layout, 0, 1, &set->set, 0, NULL);
     vkCmdPushConstants(cmd, cells->pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    roma_cmd_dispatch_linear(cmd, cells->triangle_count, ROMA_VOXELIZE_WORKGROUP_SIZE);
+    roma_cmd_dispatch_linear(cmd, geometry->triangle_count, ROMA_VOXELIZE_WORKGROUP_SIZE);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    return ROMA_SUCCESS;
 }

@@ -1,34 +1,47 @@
 /* The surface grid of the GI pass (roma_gi_scene in roma_shared.h): which triangle
- * lies in each cell of a grid over the scene, so that a bounce ray's ROMA hit (a
+ * lies in each cell of a grid over the geometry, so that a bounce ray's ROMA hit (a
  * cell, not a triangle) finds the albedo and normal of the surface it reached.
- * The grid is not the BOM's: it stands still (no per-frame jitter) and is built
- * once per scene with the exact voxelizer's overlap test. */
+ * The grid is not the BOM's: it does not jitter, and it is built with the exact
+ * voxelizer's overlap test whenever the geometry it covers has moved. */
 #ifndef ROMA_PASSES_SURFACE_CELLS_H
 #define ROMA_PASSES_SURFACE_CELLS_H
 
-#include "passes/scene_buffers.h"
+#include "roma/map.h" /* ROMA_MAX_FRAMES_IN_FLIGHT */
 #include "vulkan/vk_internal.h"
 
 typedef struct roma_surface_cells {
     roma_context *ctx;
     roma_compute_pipeline pipeline;
-    roma_descriptor_set set;
+    /* One set per frame slot: a build in a slot rewrites that slot's set (the geometry's
+     * buffers may have been replaced), which the slot rules make safe. */
+    roma_descriptor_set sets[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_buffer cells;          /* RES^3 uint */
     uint32_t resolution;
-    float origin[3], cell;      /* corner of cell (0,0,0), cell size */
-    uint32_t triangle_count;
+    float origin[3], cell;      /* of the last build: corner of cell (0,0,0), cell size */
 } roma_surface_cells;
 
-/* A RES^3 grid around the scene bounds over the geometry's positions and indices
- * (which must outlive it). On failure *out is zeroed. */
-roma_result roma_surface_cells_create(roma_context *ctx, const roma_scene_buffers *geometry, const float bounds_min[3],
-                                      const float bounds_max[3], uint32_t resolution, roma_surface_cells *out);
+/* What a build reads: float4 positions per vertex, uint3 indices per triangle. */
+typedef struct roma_surface_geometry {
+    VkBuffer positions, indices;
+    uint32_t triangle_count;
+} roma_surface_geometry;
+
+/* A RES^3 grid (RES at most 256). On failure *out is zeroed. */
+roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, roma_surface_cells *out);
 /* Accepts a zeroed grid. */
 void roma_surface_cells_destroy(roma_surface_cells *cells);
 
-/* Clears the grid and writes every triangle into the cells it overlaps; makes the
- * writes visible to later compute shaders. Reads the geometry's buffers (host writes
- * before the submission). */
-void roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd);
+/* Places the grid around the box [bounds_min, bounds_max]: cubic cells over its largest
+ * extent, a few percent of margin so that surfaces on the bounds lie inside. Empty or
+ * non-finite bounds fail with ROMA_ERROR_INVALID_SCENE and keep the placement. */
+roma_result roma_surface_cells_place(roma_surface_cells *cells, const float bounds_min[3], const float bounds_max[3]);
+
+/* Records the build into cmd where the grid is placed: orders it after earlier reads of
+ * the grid on the queue, clears it, writes every triangle into the cells it overlaps and
+ * makes the writes visible to later compute shaders. The geometry's buffers are read when
+ * cmd executes and must be written before (the map's build makes its positions visible
+ * to compute shaders). A failed set allocation records nothing. */
+roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd, uint32_t slot,
+                                      const roma_surface_geometry *geometry);
 
 #endif /* ROMA_PASSES_SURFACE_CELLS_H */

@@ -28,6 +28,7 @@ struct roma_context {
     uint64_t memory_in_use;           /* bytes of every vkAllocateMemory libroma made */
     int has_geometry_shader;
     uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
+    uint64_t geometry_versions;       /* handed out by the maps' builds (roma_map.geometry_version) */
     /* Compute pipelines shared by every object of the context (compute_pipeline.c): made
      * on first use, kept until the context is destroyed, so a map of another RES or A
      * compiles nothing. The VkPipelineCache serves every pipeline libroma creates. */

@@ -197,6 +197,9 @@ bad_args "--shadow-angular 17" --tracer roma --shadow-angular 17
 bad_args "--max-steps 0" --tracer roma --max-steps 0
 bad_args "unknown option" --no-such-option
 bad_args "--camera with eye == target" --camera 1,2,3,1,2,3,45
+bad_args "--preset bogus" --tracer roma --preset bogus
+bad_args "--budget-ms 0" --tracer roma --budget-ms 0
+bad_args "--budget-ms with --res" --tracer roma --budget-ms 50 --res 64
 [ -e "$dir/bad" ] && fail "roma-render created its output folder despite bad arguments"
 
 # The largest size accepted: lavapipe can neither hold its G-buffer (17 GB) nor read it as
@@ -374,6 +377,45 @@ fi
 expect_status 1 $? "roma-render with an unwritable --stats path"
 "$compare" "$dir/nostats/ao.pfm" "$dir/nostats/ao.pfm" --tolerance abc >/dev/null 2>"$dir/tolerance.err"
 expect_status 2 $? "roma-compare --tolerance abc"
+
+# --- Presets and --budget-ms (roma/presets.h): the preset's RES and A in the stats; a
+#     budget measures each preset once per device, scene, size and effects (fastest first,
+#     stopping at the first over the budget) and reads them back from its cache ---
+"$render" "${common[@]}" --tracer roma --effects ao --preset high --angular 2 --out "$dir/preset" \
+  --stats "$dir/preset/stats.json" >/dev/null 2>"$dir/preset.err"
+expect_status 0 $? "roma-render --preset high" || cat "$dir/preset.err" >&2
+python3 - "$dir/preset/stats.json" <<'PY' || fail "--preset high --angular 2 is not RES 256, A 2 in the stats"
+import json, sys
+s = json.load(open(sys.argv[1]))["settings"]
+assert s["preset"] == "high" and s["resolution"] == 256 and s["angular"] == 2, s
+PY
+budget=(--scene builtin:cornell --size 32x24 --spp 1 --tracer roma --effects ao --budget-cache "$dir/budget.tsv")
+# A budget below the fastest preset's time: low, said to be over the budget, and nothing
+# slower measured.
+"$render" "${budget[@]}" --budget-ms 1e-6 --out "$dir/budget" --stats "$dir/budget/low.json" \
+  >/dev/null 2>"$dir/budget1.err"
+expect_status 0 $? "roma-render --budget-ms 1e-6" || cat "$dir/budget1.err" >&2
+grep -q 'low (RES 128, A 2), the fastest preset, over the budget' "$dir/budget1.err" ||
+  fail "a budget nothing fits does not fall back to low: $(grep budget "$dir/budget1.err")"
+[ "$(wc -l <"$dir/budget.tsv")" -eq 1 ] || fail "a budget below low's time measured more than low"
+# No bound: ultra, the three others measured now, low read from the cache; then all cached.
+"$render" "${budget[@]}" --budget-ms 1e9 --out "$dir/budget" --stats "$dir/budget/stats.json" \
+  >/dev/null 2>"$dir/budget2.err"
+expect_status 0 $? "roma-render --budget-ms 1e9" || cat "$dir/budget2.err" >&2
+grep -q -- '--budget-ms 1e+09: ultra (RES 256, A 8)' "$dir/budget2.err" ||
+  fail "an unbounded budget does not choose ultra: $(grep budget "$dir/budget2.err")"
+[ "$(wc -l <"$dir/budget.tsv")" -eq 4 ] || fail "the budget cache does not hold the four presets' times"
+[ "$(grep -o '(cached)' "$dir/budget2.err" | wc -l)" -eq 1 ] || fail "low's time was not read from the cache"
+"$render" "${budget[@]}" --budget-ms 1e9 --out "$dir/budget" >/dev/null 2>"$dir/budget3.err"
+expect_status 0 $? "roma-render --budget-ms 1e9 (cached)"
+[ "$(grep -o '(cached)' "$dir/budget3.err" | wc -l)" -eq 4 ] || fail "a second run measures again"
+python3 - "$dir/budget/stats.json" "$dir/budget/low.json" <<'PY' || fail "the stats do not record the budget's choice"
+import json, sys
+a = json.load(open(sys.argv[1]))["settings"]
+b = json.load(open(sys.argv[2]))["settings"]
+assert a["preset"] == "ultra" and a["budget"]["fits"] == 1 and len(a["budget"]["ms_per_frame"]) == 4, a
+assert b["preset"] == "low" and b["budget"]["fits"] == 0 and b["resolution"] == 128 and b["angular"] == 2, b
+PY
 
 # Sanitizer builds: a report fails the test even where the expected exit status
 # (1) is the one ASan exits with.

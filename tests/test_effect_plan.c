@@ -154,6 +154,7 @@ static void test_bad_options(void)
         {.effects = ROMA_EFFECT_AO, .resolution = 512},
         {.effects = ROMA_EFFECT_AO, .ao_angular = 17},
         {.effects = ROMA_EFFECT_LIGHTS, .many_light_count = 70000},
+        {.effects = ROMA_EFFECT_AO, .preset = (roma_preset)5},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         memset(&p, 0xab, sizeof p);
@@ -172,8 +173,52 @@ static void test_bad_options(void)
     roma_scene_destroy(s);
 }
 
+/* Presets (roma/presets.h): RES and A of the snapped rays where the options leave them 0;
+ * an explicit value wins; shadow rays keep A 8. */
+static void test_presets(void)
+{
+    roma_scene *s = quad_scene(NULL, 0, 1); /* emissive: GI runs */
+    if (!s)
+        return;
+    static const uint32_t want[][2] = {{128, 4}, {128, 2}, {128, 4}, {256, 4}, {256, 8}};
+    for (unsigned preset = 0; preset <= ROMA_PRESET_COUNT; ++preset) {
+        uint32_t res = 0, angular = 0;
+        CHECK_RESULT(roma_preset_map_settings((roma_preset)preset, &res, &angular), ROMA_SUCCESS);
+        CHECK(res == want[preset][0] && angular == want[preset][1]);
+        roma_effect_options o = {.effects = ROMA_EFFECT_AO | ROMA_EFFECT_GI, .preset = (roma_preset)preset};
+        roma_effect_plan p;
+        CHECK_RESULT(roma_effect_plan_derive(s, &o, NULL, &p), ROMA_SUCCESS);
+        const roma_pass_kind snapped[2] = {ROMA_PASS_AO, ROMA_PASS_GI};
+        for (int i = 0; i < 2; ++i) {
+            const roma_map_config *m = &p.maps[p.pass_map[snapped[i]]];
+            CHECK(p.pass_map[snapped[i]] >= 0 && m->resolution == want[preset][0] && m->angular == want[preset][1]);
+        }
+        o.resolution = 64, o.ao_angular = 3;
+        CHECK_RESULT(roma_effect_plan_derive(s, &o, NULL, &p), ROMA_SUCCESS);
+        CHECK(p.maps[p.pass_map[ROMA_PASS_AO]].resolution == 64 && p.maps[p.pass_map[ROMA_PASS_AO]].angular == 3);
+        CHECK(p.maps[p.pass_map[ROMA_PASS_GI]].angular == want[preset][1]);
+        /* Names: each parses back to itself (any case); the default reads as medium. */
+        roma_preset back = (roma_preset)99;
+        CHECK_RESULT(roma_preset_parse(roma_preset_name((roma_preset)preset), &back), ROMA_SUCCESS);
+        CHECK(back == (preset == ROMA_PRESET_DEFAULT ? ROMA_PRESET_MEDIUM : (roma_preset)preset));
+    }
+    roma_preset p = ROMA_PRESET_LOW;
+    CHECK_RESULT(roma_preset_parse("ULTRA", &p), ROMA_SUCCESS);
+    CHECK(p == ROMA_PRESET_ULTRA);
+    CHECK_RESULT(roma_preset_parse("extreme", &p), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_preset_parse("ultr", &p), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_preset_parse(NULL, &p), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(p == ROMA_PRESET_ULTRA); /* left unchanged */
+    CHECK(roma_preset_name((roma_preset)5) == NULL);
+    uint32_t res = 7;
+    CHECK_RESULT(roma_preset_map_settings((roma_preset)5, &res, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(res == 7);
+    roma_scene_destroy(s);
+}
+
 int main(void)
 {
+    test_presets();
     test_builtins();
     test_custom_scenes();
     test_bad_options();

@@ -34,6 +34,7 @@ int main(void)
         {{.bom_mode = (roma_bom_mode)7}, "bom_mode"},
         {{.margin_cells = 0.25f}, "margin_cells"},
         {{.resolution = 32, .margin_cells = 5.0f}, "margin_cells"},
+        {{.preset = (roma_preset)5}, "preset"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         bad[i].desc.logger = roma_test_logger(&log);
@@ -46,6 +47,20 @@ int main(void)
     CHECK_RESULT(roma_map_create(ctx, NULL, NULL, &map), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_map_create(ctx, NULL, scene, NULL), ROMA_ERROR_INVALID_ARGUMENT);
     roma_map_destroy(NULL);
+
+    /* A preset sets RES and A where the desc leaves them 0. */
+    roma_map *preset_map = NULL;
+    roma_map_info preset_info;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.preset = ROMA_PRESET_LOW}, scene, &preset_map), ROMA_SUCCESS);
+    CHECK(preset_map && roma_map_get_info(preset_map, &preset_info) == ROMA_SUCCESS &&
+          preset_info.resolution == 128 && preset_info.angular == 2);
+    roma_map_destroy(preset_map);
+    preset_map = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.preset = ROMA_PRESET_HIGH, .angular = 3}, scene, &preset_map),
+                 ROMA_SUCCESS);
+    CHECK(preset_map && roma_map_get_info(preset_map, &preset_info) == ROMA_SUCCESS &&
+          preset_info.resolution == 256 && preset_info.angular == 3);
+    roma_map_destroy(preset_map);
 
     /* Zero desc = RES 128, A 4; queries before the first build are refused. */
     CHECK_RESULT(roma_map_create(ctx, NULL, scene, &map), ROMA_SUCCESS);

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "app_common.h"
+#include "budget.h"
 #include "passes/effect_render.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
@@ -29,8 +30,16 @@ static const char *usage =
     "  --tracer embree|roma        embree = CPU reference (ground truth); roma = ROMA on the GPU\n"
     "                              (gi on ROMA: the direct light at each bounce hit, from every light).\n"
     "                              ROMA runs only the passes the scene calls for (see the stats file)\n"
-    "  --res N                     ROMA grid resolution: 32, 64, 128 or 256 (default 128)\n"
-    "  --angular A                 ROMA A x A candidate directions for ao, 1..16 (default 4)\n"
+    "  --res N                     ROMA grid resolution: 32, 64, 128 or 256 (default: the preset's, 128)\n"
+    "  --angular A                 ROMA A x A candidate directions for ao and gi, 1..16 (default: the\n"
+    "                              preset's, 4)\n"
+    "  --preset NAME               ROMA quality preset: low (RES 128, A 2), medium (128, 4, the default),\n"
+    "                              high (256, 4), ultra (256, 8): the measured accuracy-time front;\n"
+    "                              --res and --angular override it\n"
+    "  --budget-ms T               ROMA: the most accurate preset whose time per frame fits T ms here\n"
+    "                              (measured once per device, scene, size and effects, then cached)\n"
+    "  --budget-cache FILE         where those times are kept (default\n"
+    "                              $XDG_CACHE_HOME/libroma/budget.tsv or ~/.cache/libroma/budget.tsv)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
     "  --ao-method roma|voxel-dda|distance-field\n"
@@ -110,6 +119,9 @@ typedef struct options {
     const char *up;      /* --up; NULL = +y */
     const char *animation; /* --animation NAME|INDEX; NULL: --clip */
     uint32_t gltf_camera;
+    roma_preset preset;  /* --preset; 0: none given */
+    double budget_ms;    /* --budget-ms; 0: none */
+    const char *budget_cache; /* --budget-cache; NULL: budget_default_cache() */
 } options;
 
 /* Options that only one tracer reads (a warning when the other ignores them). */
@@ -117,7 +129,8 @@ enum {
     GIVEN_FRAMES = 1u << 0, GIVEN_RES = 1u << 1, GIVEN_ANGULAR = 1u << 2, GIVEN_SHADOW_ANGULAR = 1u << 3,
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
-    GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14
+    GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
+    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16
 };
 
 static const char *const option_names[] = {
@@ -125,7 +138,8 @@ static const char *const option_names[] = {
     "--max-steps", "--gi-punctual", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
     "--background",
-    "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", NULL};
+    "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", "--preset",
+    "--budget-ms", "--budget-cache", NULL};
 
 enum { FORMAT_PFM = 1u << 0, FORMAT_PNG = 1u << 1, FORMAT_EXR = 1u << 2 };
 
@@ -362,6 +376,21 @@ static int parse_args(int argc, char **argv, options *o)
                 return 0;
             }
         } else if (strcmp(a, "--angular") == 0) ok = parse_u32(v, 1, 16, &o->angular), o->given |= GIVEN_ANGULAR;
+        else if (strcmp(a, "--preset") == 0) {
+            o->given |= GIVEN_PRESET;
+            if (roma_preset_parse(v, &o->preset) != ROMA_SUCCESS) {
+                fprintf(stderr, "roma-render: bad value for --preset: '%s' (valid: low, medium, high, ultra)\n", v);
+                return 0;
+            }
+        } else if (strcmp(a, "--budget-ms") == 0) {
+            o->given |= GIVEN_BUDGET;
+            char *end = NULL;
+            o->budget_ms = strtod(v, &end);
+            ok = end != v && !*end && o->budget_ms > 0.0 && isfinite(o->budget_ms);
+        } else if (strcmp(a, "--budget-cache") == 0) {
+            o->budget_cache = v;
+            ok = *v != '\0';
+        }
         else if (strcmp(a, "--shadow-angular") == 0)
             ok = parse_u32(v, 1, 16, &o->shadow_angular), o->given |= GIVEN_SHADOW_ANGULAR;
         else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps), o->given |= GIVEN_MAX_STEPS;
@@ -408,6 +437,14 @@ static int parse_args(int argc, char **argv, options *o)
     if (strcmp(o->tracer, "embree") != 0 && strcmp(o->tracer, "roma") != 0) {
         fprintf(stderr, "roma-render: unknown tracer '%s' (valid: embree, roma)\n", o->tracer);
         return 0;
+    }
+    if ((o->given & GIVEN_BUDGET) && (o->given & (GIVEN_PRESET | GIVEN_RES | GIVEN_ANGULAR))) {
+        fprintf(stderr, "roma-render: --budget-ms chooses the preset: give it without --preset, --res or --angular\n");
+        return 0;
+    }
+    if (o->given & GIVEN_PRESET) { /* the preset's RES and A, unless given */
+        roma_preset_map_settings(o->preset, (o->given & GIVEN_RES) ? NULL : &o->res,
+                                 (o->given & GIVEN_ANGULAR) ? NULL : &o->angular);
     }
     return 1;
 }
@@ -487,6 +524,7 @@ typedef struct run_record {
     notes notes;
     int pass_count;
     const roma_effect_stats *roma; /* ROMA tracer only */
+    const budget_choice *budget;   /* --budget-ms only */
 } run_record;
 
 static void add_pass(run_record *run, const char *name, const char *clock, double ms)
@@ -631,6 +669,19 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
                      effect_names[e]);
     roma_json_string(&j, "effects", effects);
     if (strcmp(o->tracer, "roma") == 0) {
+        if (o->given & (GIVEN_PRESET | GIVEN_BUDGET))
+            roma_json_string(&j, "preset", roma_preset_name(o->preset));
+        if (run->budget) { /* --budget-ms: the choice and the times it was made from */
+            roma_json_begin_object(&j, "budget");
+            roma_json_number(&j, "ms", o->budget_ms);
+            roma_json_int(&j, "fits", run->budget->fits);
+            roma_json_begin_object(&j, "ms_per_frame");
+            for (unsigned p = ROMA_PRESET_LOW; p <= ROMA_PRESET_COUNT; ++p)
+                if (run->budget->ms[p] >= 0.0)
+                    roma_json_number(&j, roma_preset_name((roma_preset)p), run->budget->ms[p]);
+            roma_json_end_object(&j);
+            roma_json_end_object(&j);
+        }
         roma_json_int(&j, "resolution", o->res);
         roma_json_int(&j, "angular", o->angular);
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
@@ -842,13 +893,84 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_FRAMES, "--frames"}, {GIVEN_RES, "--res"}, {GIVEN_ANGULAR, "--angular"},
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
-        {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"}};
+        {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
+        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,
                  roma_only[i].bit == GIVEN_FRAMES ? " (the reference takes all its samples at once: --spp)" : "");
     if (roma && (o->given & GIVEN_THREADS))
         note(n, o->quiet, "--threads sets the reference's CPU threads: --tracer roma ignores it");
+}
+
+/* --budget-ms: one preset's time per frame, the difference between renders of 3 frames and
+ * of 1 divided by 2 (what each more frame costs: the G-buffer, the resolve and the pipelines'
+ * first use are paid once), host-observed; where that difference is not positive (noise on
+ * a tiny image), the mean time of the 3 frames' render. */
+typedef struct budget_probe {
+    roma_context *ctx;
+    const roma_scene *scene;
+    roma_effect_render_desc desc; /* the run's, without progress or outputs */
+} budget_probe;
+
+static double budget_measure(roma_preset preset, void *user)
+{
+    budget_probe *b = user;
+    roma_effect_render_desc d = b->desc;
+    d.options.resolution = 0, d.options.ao_angular = 0, d.options.gi_angular = 0;
+    d.options.preset = preset;
+    double ms[2];
+    const uint32_t frames[2] = {1, 3};
+    for (int i = 0; i < 2; ++i) {
+        d.frames = frames[i];
+        roma_effect_images images;
+        roma_effect_stats stats;
+        double start = roma_app_now_ms();
+        roma_result r = roma_effect_render(b->ctx, b->scene, &d, &images, &stats);
+        ms[i] = roma_app_now_ms() - start;
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: measuring the %s preset failed: %s\n", roma_preset_name(preset),
+                    roma_result_string(r));
+            return -1.0;
+        }
+        roma_effect_images_free(&images);
+    }
+    /* On a tiny image the difference can drown in the noise: then the mean of the 3 frames. */
+    return ms[1] > ms[0] ? (ms[1] - ms[0]) / 2.0 : ms[1] / 3.0;
+}
+
+/* Chooses the preset for o->budget_ms (budget.h) and sets desc's RES and A from it. */
+static int apply_budget(options *o, roma_context *ctx, const roma_context_info *info, const roma_scene *scene,
+                        roma_effect_render_desc *desc, budget_choice *choice)
+{
+    char key[1024];
+    /* Whatever else changes the work of a frame is in the key too. */
+    snprintf(key, sizeof key,
+             "%s|%s|%ux%u|effects %u|spp %u|radius %g|lights %u/%u|shadow A %u|steps %u|ao %d|gi rays %d|start %d",
+             info->device_name, o->scene, o->width, o->height, o->effects, o->spp, (double)o->ao_radius, o->lights,
+             o->lights_per_frame, o->shadow_angular, o->max_steps, (int)o->ao_method, o->gi_rays, o->blind_start);
+    for (char *c = key; *c; ++c)
+        if (*c == '\t' || *c == '\n' || *c == '\r')
+            *c = ' ';
+    budget_probe probe = {ctx, scene, *desc};
+    probe.desc.progress = NULL, probe.desc.out_gbuffer = NULL, probe.desc.out_light_mask = NULL;
+    const char *cache = o->budget_cache ? o->budget_cache : budget_default_cache();
+    if (!budget_choose(o->budget_ms, key, cache, budget_measure, &probe, choice))
+        return 0;
+    o->preset = choice->preset;
+    roma_preset_map_settings(choice->preset, &o->res, &o->angular);
+    desc->options.resolution = o->res, desc->options.ao_angular = o->angular, desc->options.gi_angular = o->angular;
+    if (!o->quiet) {
+        fprintf(stderr, "roma-render: --budget-ms %g: %s (RES %u, A %u)%s; ms a frame:", o->budget_ms,
+                roma_preset_name(choice->preset), o->res, o->angular,
+                choice->fits ? "" : ", the fastest preset, over the budget");
+        for (unsigned p = ROMA_PRESET_LOW; p <= ROMA_PRESET_COUNT; ++p)
+            if (choice->ms[p] >= 0.0)
+                fprintf(stderr, " %s %.1f%s", roma_preset_name((roma_preset)p), choice->ms[p],
+                        choice->cached[p] ? " (cached)" : "");
+        fprintf(stderr, "%s%s\n", cache ? "; cache " : "", cache ? cache : "");
+    }
+    return 1;
 }
 
 int main(int argc, char **argv)
@@ -948,6 +1070,7 @@ int main(int argc, char **argv)
     roma_context *ctx = NULL;
     roma_context_info ctx_info;
     roma_effect_stats roma_stats;
+    budget_choice budget;
     if (strcmp(o.tracer, "roma") == 0) {
         roma_context_desc ctx_desc = {0};
         r = roma_context_create(&ctx_desc, &ctx);
@@ -972,6 +1095,16 @@ int main(int argc, char **argv)
                 .offset_cells = o.offset,
                 .many_light_positions = light_positions,
             };
+            if (o.given & GIVEN_BUDGET) {
+                if (!apply_budget(&o, ctx, &ctx_info, scene, &desc, &budget)) {
+                    roma_context_destroy(ctx);
+                    free(light_positions);
+                    roma_ref_destroy(ref);
+                    roma_scene_destroy(scene);
+                    return 1;
+                }
+                run.budget = &budget;
+            }
             progress_state frames_progress = {"frames", o.quiet, -1, 0.0};
             on_progress(0.0f, &frames_progress);
             desc.progress = on_progress;

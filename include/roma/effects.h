@@ -22,6 +22,7 @@
 
 #include <stdint.h>
 
+#include "roma/presets.h"
 #include "roma/result.h"
 #include "roma/scene.h"
 
@@ -64,12 +65,13 @@ ROMA_API const char *roma_pass_name(roma_pass_kind pass);
  * rays towards lights) and 256 many lights; no effect. */
 typedef struct roma_effect_options {
     uint32_t effects;          /**< ROMA_EFFECT_* bits asked for */
-    uint32_t resolution;       /**< RES of every array: 32, 64, 128 or 256; 0 = 128 */
-    uint32_t ao_angular;       /**< A of the AO array, 1..16; 0 = 4 */
-    uint32_t gi_angular;       /**< A of the GI array; 0 = 4 */
+    uint32_t resolution;       /**< RES of every array: 32, 64, 128 or 256; 0 = the preset's (128) */
+    uint32_t ao_angular;       /**< A of the AO array, 1..16; 0 = the preset's (4) */
+    uint32_t gi_angular;       /**< A of the GI array; 0 = the preset's (4) */
     uint32_t shadow_angular;   /**< A of the array for shadow rays (punctual and area lights); 0 = 8 */
     uint32_t lights_angular;   /**< A of the many-lights array; 0 = 8 */
     uint32_t many_light_count; /**< 1..65536; 0 = 256 */
+    roma_preset preset;        /**< resolution, ao_angular and gi_angular where 0 (roma/presets.h); 0 = medium */
 } roma_effect_options;
 
 /** One ROMA array of a plan. */

@@ -51,6 +51,7 @@
 #include <vulkan/vulkan.h>
 
 #include "roma/context.h"
+#include "roma/presets.h"
 #include "roma/scene.h"
 #include "roma/trace_types.h"
 
@@ -81,8 +82,9 @@ typedef enum roma_bom_mode {
 
 /** Settings of roma_map_create; the zero value is the default (RES 128, A 4, exact BOM). */
 typedef struct roma_map_desc {
-    uint32_t resolution;       /**< RES in {32, 64, 128, 256}; 0 = 128 */
-    uint32_t angular;          /**< A in [1, 16]: A x A maps; 0 = 4 */
+    uint32_t resolution;       /**< RES in {32, 64, 128, 256}; 0 = the preset's (128) */
+    uint32_t angular;          /**< A in [1, 16]: A x A maps; 0 = the preset's (4) */
+    roma_preset preset;        /**< RES and A where they are 0 (roma/presets.h); 0 = medium */
     roma_bom_mode bom_mode; /**< how the BOM is voxelized; 0 = ROMA_BOM_EXACT */
     float margin_cells;        /**< grid cube padding around the traced volume, cells, [0.5, RES/8]; 0 = 1 */
     uint32_t frames_in_flight; /**< frame slots for host-written positions, [1, 8]; 0 = 2 */
@@ -106,7 +108,7 @@ typedef struct roma_map_desc {
  * @param[out] out_map  the new map; NULL on failure.
  * @return ROMA_SUCCESS;
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL out_map, context or scene, a resolution other than
- *   32/64/128/256, A above 16, an unknown bom_mode, frames_in_flight above 8, margin_cells
+ *   32/64/128/256, A above 16, an unknown preset or bom_mode, frames_in_flight above 8, margin_cells
  *   outside [0.5, RES/8];
  *   ROMA_ERROR_INVALID_SCENE: scene bounds empty, not finite or outside the supported range;
  *   ROMA_ERROR_UNSUPPORTED: the A x A maps exceed the device's maxTexelBufferElements;

@@ -15,6 +15,7 @@
  *  - roma/scene.h, roma/gltf.h: immutable triangle scenes, from arrays or glTF files
  *    (library roma_gltf);
  *  - roma/map.h: the map array, its build, instances, and batch traces;
+ *  - roma/presets.h: named quality presets (RES and A) from the measured accuracy-time front;
  *  - roma/trace_types.h: what the C API and the engine's shaders (roma/trace.glsl) share;
  *  - roma/ao_effect.h, roma/light_effect.h, roma/gi_effect.h: AO, shadowed direct light (many
  *    lights too) and one-bounce GI on the engine's G-buffer, recorded into its command buffers;
@@ -38,6 +39,7 @@
 #include "roma/gi_effect.h"
 #include "roma/light_effect.h"
 #include "roma/map.h"
+#include "roma/presets.h"
 #include "roma/result.h"
 #include "roma/sampling.h"
 #include "roma/scene.h"

@@ -153,10 +153,13 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     *out = NULL;
     if (!ctx || !scene)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: context and scene are required");
+    uint32_t preset_res = 0, preset_angular = 0;
+    if (roma_preset_map_settings(desc.preset, &preset_res, &preset_angular) != ROMA_SUCCESS)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_create: unknown preset %d", (int)desc.preset);
     if (desc.resolution == 0)
-        desc.resolution = 128;
+        desc.resolution = preset_res;
     if (desc.angular == 0)
-        desc.angular = 4;
+        desc.angular = preset_angular;
     if (desc.margin_cells == 0.0f)
         desc.margin_cells = 1.0f;
     if (!valid_resolution(desc.resolution))

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "roma/effects.h"
+#include "roma/presets.h"
 #include "roma_shared.h"
 #include "util/log.h"
 
@@ -48,9 +49,13 @@ roma_result roma_effect_plan_derive(const roma_scene *scene, const roma_effect_o
     if (!scene || roma_scene_get_view(scene, &v) != ROMA_SUCCESS)
         return roma_fail(logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_plan_derive: scene is NULL");
     roma_effect_options o = options ? *options : (roma_effect_options){0};
-    if (o.resolution == 0) o.resolution = 128;
-    if (o.ao_angular == 0) o.ao_angular = 4;
-    if (o.gi_angular == 0) o.gi_angular = 4;
+    uint32_t preset_res = 0, preset_angular = 0;
+    if (roma_preset_map_settings(o.preset, &preset_res, &preset_angular) != ROMA_SUCCESS)
+        return roma_fail(logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_plan_derive: unknown preset %d",
+                         (int)o.preset);
+    if (o.resolution == 0) o.resolution = preset_res;
+    if (o.ao_angular == 0) o.ao_angular = preset_angular;
+    if (o.gi_angular == 0) o.gi_angular = preset_angular;
     if (o.shadow_angular == 0) o.shadow_angular = 8;
     if (o.lights_angular == 0) o.lights_angular = 8;
     if (o.many_light_count == 0) o.many_light_count = 256;

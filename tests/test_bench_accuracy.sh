@@ -51,7 +51,8 @@ e1=$(sed -n 's/^frames,ao mae after 1 frames,[0-9]*,[0-9]*,\([0-9.]*\),$/\1/p' "
 e2=$(sed -n 's/^frames,ao mae after 2 frames,[0-9]*,[0-9]*,\([0-9.]*\),$/\1/p' "$dir/accuracy.csv")
 awk -v a="$e1" -v b="$e2" 'BEGIN { exit !(a > 0 && b > 0 && b < a) }' || fail "ROMA's error after 1 and 2 frames: $e1, $e2"
 
-# The fronts, recomputed from the CSV: ROMA and the baselines cost frames x ms per frame,
+# The fronts, recomputed from the CSV: ROMA and the baselines cost frames x ms per frame
+# (the screen-space rows: steps in the CSV's res column),
 # Embree its ms for the image; its row at the reference's own sample count has error 0.
 python3 - "$dir/out.txt" "$dir/accuracy.csv" <<'EOF' || fail "the printed Pareto fronts are not the fronts of the measured points"
 import csv, re, sys
@@ -64,7 +65,8 @@ points = []
 for (name, res, angular), v in values.items():
     if name.endswith(" ms per frame"):
         tag = name[: -len(" ms per frame")]
-        series = {"voxel-dda": "voxel traversal", "distance-field": "distance field"}.get(tag, "ROMA A " + angular)
+        series = {"voxel-dda": "voxel traversal", "distance-field": "distance field",
+                  "screen-space": "screen space (steps)"}.get(tag, "ROMA A " + angular)
         points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
     elif name == "embree ao ms":
         points.append(("Embree (spp)", res, v, values[("embree ao mae", res, angular)], values[("embree ao flip", res, angular)]))

@@ -1,9 +1,10 @@
 /* roma-bench --accuracy: what accuracy costs in time. Ambient occlusion rendered
- * by ROMA (passes/effect_render.h) for every RES x A, and for every RES by two baselines:
+ * by ROMA (passes/effect_render.h) for every RES x A, for every RES by two baselines:
  * the exact traversal of the same voxels (the voxelization's own error) and the distance
- * field built from them every frame and sphere-traced (the ROMA paper's comparator),
- * timed per frame (G-buffer once, then per frame: the array rebuilt with new jitter and
- * the AO pass, from submit to fence on the host), against the Embree reference on the
+ * field built from them every frame and sphere-traced (the ROMA paper's comparator), and
+ * by screen-space AO against the G-buffer's depth at three march lengths; timed per frame
+ * (G-buffer once, then per frame: the array rebuilt with new jitter, none for screen space,
+ * and the AO pass, from submit to fence on the host), against the Embree reference on the
  * same surface points and the same samples. */
 #include "accuracy.h"
 
@@ -172,22 +173,116 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_c
     return 0;
 }
 
+/* What every measured setting shares: the scene, the G-buffer, the reference at its points
+ * (made by the first render), the points of the fronts and the CSV. */
+typedef struct study {
+    roma_context *ctx;
+    const roma_scene *scene;
+    const roma_ref *ref;
+    const roma_bench_accuracy_desc *d;
+    roma_gbuffer_pixel *px;
+    float *ref_ao;
+    roma_image ref_image, coverage;
+    int have_ref;
+    double *times;
+    FILE *csv;
+    roma_bench_point *points;
+    int point_count;
+} study;
+
+/* One setting of one method: runs renders of rd (the first one's error), prints its row
+ * (res_text, a_text: the table's RES and A columns), adds its point (series, label) and its
+ * CSV rows (tag, csv_res, csv_a). Returns 0 with the milliseconds a frame and the MAE. */
+static int measure_setting(study *s, const roma_effect_render_desc *rd, const char *name, const char *tag,
+                           const char *series, const char *label, const char *res_text, const char *a_text,
+                           uint32_t csv_res, uint32_t csv_a, double *out_ms, double *out_mae)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    const size_t n = (size_t)d->width * d->height;
+    const uint32_t samples = d->spp * d->frames;
+    double df_ms = 0.0, flip = NAN, sum = 0.0, bias = 0.0;
+    uint32_t covered = 0;
+    roma_effect_images img;
+    roma_effect_stats st;
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t k = 0; k < d->runs && r == ROMA_SUCCESS; ++k) {
+        double t0 = roma_app_now_ms();
+        r = roma_effect_render(s->ctx, s->scene, rd, &img, &st);
+        s->times[k] = (roma_app_now_ms() - t0) / d->frames;
+        if (r != ROMA_SUCCESS)
+            break;
+        if (k == 0)
+            df_ms = st.distance_field_ms / d->frames;
+        if (!s->have_ref) {
+            /* The G-buffer does not depend on the method or its settings: one reference for all. */
+            for (size_t i = 0; i < n; ++i)
+                s->ref_ao[i] = isfinite(s->px[i].position_t[3])
+                                   ? roma_ref_ao_point(s->ref, s->px[i].position_t, s->px[i].geometric_normal,
+                                                       s->px[i].shading_normal, d->radius, samples, 1, (uint32_t)i)
+                                   : NAN;
+            s->have_ref = 1;
+            for (size_t i = 0; i < n; ++i) {
+                s->coverage.pixels[i] = isfinite(s->ref_ao[i]) ? 1.0f : 0.0f;
+                s->ref_image.pixels[i] = isfinite(s->ref_ao[i]) ? s->ref_ao[i] : 1.0f;
+            }
+        }
+        if (k == 0 && roma_image_flip(&s->ref_image, &img.ao, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
+            flip = NAN;
+        if (k == 0)
+            for (size_t i = 0; i < n; ++i) {
+                if (!isfinite(s->ref_ao[i]))
+                    continue;
+                sum += fabs((double)img.ao.pixels[i] - s->ref_ao[i]);
+                bias += (double)img.ao.pixels[i] - s->ref_ao[i];
+                ++covered;
+            }
+        roma_effect_images_free(&img);
+    }
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: AO (%s) at RES %s, A %s failed: %s\n", name, res_text, a_text,
+                roma_result_string(r));
+        return 1;
+    }
+    const double ms = roma_app_median(s->times, (int)d->runs);
+    const double mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
+    char df_text[16] = "-";
+    if (rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD)
+        snprintf(df_text, sizeof df_text, "%.1f", df_ms);
+    printf("| %s | %s | %s | %.1f | %s | %.4f | %+.4f | %.4f |\n", name, res_text, a_text, ms, df_text, mae, b, flip);
+    roma_bench_point *pt = &s->points[s->point_count++];
+    snprintf(pt->series, sizeof pt->series, "%s", series);
+    snprintf(pt->label, sizeof pt->label, "%s", label);
+    pt->ms = ms * d->frames, pt->mae = mae, pt->flip = flip;
+    if (s->csv) {
+        fprintf(s->csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, csv_res, csv_a, ms);
+        fprintf(s->csv, "accuracy,%s mae,%u,%u,%.6f,\n", tag, csv_res, csv_a, mae);
+        fprintf(s->csv, "accuracy,%s flip,%u,%u,%.6f,\n", tag, csv_res, csv_a, flip);
+        if (rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD)
+            fprintf(s->csv, "accuracy,%s build ms per frame (timestamps),%u,%u,%.6f,ms\n", tag, csv_res, csv_a,
+                    df_ms);
+    }
+    *out_ms = ms;
+    *out_mae = mae;
+    return 0;
+}
+
+/* The screen-space baseline's march lengths: steps per ray. */
+static const uint32_t ssao_steps[] = {8, 16, 32};
+
 int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                         const roma_bench_accuracy_desc *d, FILE *csv)
 {
     const uint32_t w = d->width, h = d->height, samples = d->spp * d->frames;
     roma_camera cam;
     roma_scene_default_camera(scene, (float)w / (float)h, &cam);
-    roma_gbuffer_pixel *px = calloc((size_t)w * h, sizeof *px);
-    float *ref_ao = calloc((size_t)w * h, sizeof *ref_ao);
-    double *times = calloc(d->runs, sizeof *times);
     /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (d->angular_count + 2) + 32 + 3 * 32; /* + the frames curves */
-    roma_bench_point *points = calloc((size_t)max_points, sizeof *points);
-    int point_count = 0;
-    roma_image ref_image = {0}, coverage = {0};
+    const int max_points = d->res_count * (d->angular_count + 2) + 3 + 32 + 3 * 32; /* + the frames curves */
+    study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
+               .px = calloc((size_t)w * h, sizeof(roma_gbuffer_pixel)), .ref_ao = calloc((size_t)w * h, sizeof(float)),
+               .times = calloc(d->runs, sizeof(double)),
+               .points = calloc((size_t)max_points, sizeof(roma_bench_point))};
     int status = 0;
-    if (!px || !ref_ao || !times || !points) {
+    if (!s.px || !s.ref_ao || !s.times || !s.points) {
         status = 1;
         goto done;
     }
@@ -203,9 +298,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
            "| method | RES | A | ms per frame | of which DF build (timestamps) | MAE | bias | FLIP |\n"
            "|---|---|---|---|---|---|---|---|\n",
            w, h, samples, d->spp, d->frames, (double)d->radius, how);
-    int have_ref = 0;
     /* FLIP against the reference over the covered pixels (background 1, as ROMA's images). */
-    if (roma_image_alloc(&ref_image, w, h, 1) != ROMA_SUCCESS || roma_image_alloc(&coverage, w, h, 1) != ROMA_SUCCESS) {
+    if (roma_image_alloc(&s.ref_image, w, h, 1) != ROMA_SUCCESS ||
+        roma_image_alloc(&s.coverage, w, h, 1) != ROMA_SUCCESS) {
         status = 1;
         goto done;
     }
@@ -221,135 +316,93 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             const char *names[3] = {"ROMA", "voxel traversal", "distance field"};
             const char *tags[3] = {"ao", "voxel-dda", "distance-field"};
             const uint32_t angular = dda ? 1u : d->angular[ai];
-            double df_ms = 0.0, flip = NAN;
             roma_effect_render_desc rd = {
                 .camera = cam, .width = w, .height = h,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = d->res[ri], .ao_angular = angular},
-                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = px,
+                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s.px,
                 .ao_method = method,
             };
-            roma_effect_images img;
-            roma_effect_stats st;
-            roma_result r = ROMA_SUCCESS;
-            double sum = 0.0, bias = 0.0;
-            uint32_t covered = 0;
-            for (uint32_t k = 0; k < d->runs && r == ROMA_SUCCESS; ++k) {
-                double t0 = roma_app_now_ms();
-                r = roma_effect_render(ctx, scene, &rd, &img, &st);
-                times[k] = (roma_app_now_ms() - t0) / d->frames;
-                if (r != ROMA_SUCCESS)
-                    break;
-                if (k == 0)
-                    df_ms = st.distance_field_ms / d->frames;
-                if (!have_ref) {
-                    /* The G-buffer does not depend on RES or A: one reference for all. */
-                    for (size_t i = 0; i < (size_t)w * h; ++i)
-                        ref_ao[i] = isfinite(px[i].position_t[3])
-                                        ? roma_ref_ao_point(ref, px[i].position_t, px[i].geometric_normal,
-                                                            px[i].shading_normal, d->radius, samples, 1, (uint32_t)i)
-                                        : NAN;
-                    have_ref = 1;
-                    for (size_t i = 0; i < (size_t)w * h; ++i) {
-                        coverage.pixels[i] = isfinite(ref_ao[i]) ? 1.0f : 0.0f;
-                        ref_image.pixels[i] = isfinite(ref_ao[i]) ? ref_ao[i] : 1.0f;
-                    }
-                }
-                if (k == 0 && roma_image_flip(&ref_image, &img.ao, &coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
-                    flip = NAN;
-                if (k == 0)
-                    for (size_t i = 0; i < (size_t)w * h; ++i) {
-                        if (!isfinite(ref_ao[i]))
-                            continue;
-                        sum += fabs((double)img.ao.pixels[i] - ref_ao[i]);
-                        bias += (double)img.ao.pixels[i] - ref_ao[i];
-                        ++covered;
-                    }
-                roma_effect_images_free(&img);
-            }
-            if (r != ROMA_SUCCESS) {
-                fprintf(stderr, "roma-bench: AO (%s) at RES %u, A %u failed: %s\n", names[method], d->res[ri],
-                        angular, roma_result_string(r));
+            char series[32], label[16], res_text[16], a_text[12] = "-";
+            snprintf(label, sizeof label, "%u", d->res[ri]);
+            snprintf(res_text, sizeof res_text, "%u", d->res[ri]);
+            if (!dda)
+                snprintf(a_text, sizeof a_text, "%u", angular);
+            snprintf(series, sizeof series, dda ? "%s" : "ROMA A %s", dda ? names[method] : a_text);
+            double ms, mae;
+            if (measure_setting(&s, &rd, names[method], tags[method], series, label, res_text, a_text, d->res[ri],
+                                angular, &ms, &mae)) {
                 status = 1;
                 continue;
             }
-            double ms = roma_app_median(times, (int)d->runs);
-            double mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
             if (!dda && d->res[ri] == 128 && angular == 4) {
                 roma_ms_128_4 = ms * d->frames;
                 roma_mae_128_4 = mae;
             }
-            char a_text[12] = "-";
-            if (!dda)
-                snprintf(a_text, sizeof a_text, "%u", angular);
-            char df_text[16] = "-";
-            if (method == ROMA_AO_METHOD_DISTANCE_FIELD)
-                snprintf(df_text, sizeof df_text, "%.1f", df_ms);
-            printf("| %s | %u | %s | %.1f | %s | %.4f | %+.4f | %.4f |\n", names[method], d->res[ri], a_text, ms,
-                   df_text, mae, b, flip);
-            roma_bench_point *pt = &points[point_count++];
-            if (dda)
-                snprintf(pt->series, sizeof pt->series, "%s", names[method]);
-            else
-                snprintf(pt->series, sizeof pt->series, "ROMA A %u", angular);
-            snprintf(pt->label, sizeof pt->label, "%u", d->res[ri]);
-            pt->ms = ms * d->frames, pt->mae = mae, pt->flip = flip;
-            if (csv) {
-                const char *tag = tags[method];
-                fprintf(csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, d->res[ri], angular, ms);
-                fprintf(csv, "accuracy,%s mae,%u,%u,%.6f,\n", tag, d->res[ri], angular, mae);
-                fprintf(csv, "accuracy,%s flip,%u,%u,%.6f,\n", tag, d->res[ri], angular, flip);
-                if (method == ROMA_AO_METHOD_DISTANCE_FIELD)
-                    fprintf(csv, "accuracy,%s build ms per frame (timestamps),%u,%u,%.6f,ms\n", tag, d->res[ri],
-                            angular, df_ms);
-            }
         }
-    if (have_ref && embree_equal_time(ref, px, ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, &ref_image, &coverage,
-                                      times, csv, points, &point_count))
+    /* Screen-space AO against the G-buffer's depth: no map, so no RES (its rays' origin offset
+     * and skipped start are ROMA's at RES 128); one row per march length. */
+    for (size_t i = 0; i < sizeof ssao_steps / sizeof ssao_steps[0]; ++i) {
+        roma_effect_render_desc rd = {
+            .camera = cam, .width = w, .height = h, .options = {.effects = ROMA_EFFECT_AO, .resolution = 128},
+            .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s.px,
+            .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = ssao_steps[i],
+        };
+        char name[48], label[16];
+        snprintf(name, sizeof name, "screen space, %u steps", ssao_steps[i]);
+        snprintf(label, sizeof label, "%u", ssao_steps[i]);
+        double ms, mae;
+        if (measure_setting(&s, &rd, name, "screen-space", "screen space (steps)", label, "-", "-", ssao_steps[i], 0,
+                            &ms, &mae))
+            status = 1;
+    }
+    if (s.have_ref && embree_equal_time(ref, s.px, s.ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, &s.ref_image,
+                                        &s.coverage, s.times, csv, s.points, &s.point_count))
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
-    roma_bench_print_fronts(points, point_count);
+    roma_bench_print_fronts(s.points, s.point_count);
     /* Equal time and equal error against ROMA's defaults (RES 128, A 4); without RES 128 in
      * the run, ROMA A 4 at the first RES listed; without A 4, no such tables (said below). */
     int anchor = -1;
-    for (int i = 0; i < point_count; ++i) {
-        int defaults = strcmp(points[i].series, "ROMA A 4") == 0 && strcmp(points[i].label, "128") == 0;
-        if (defaults || (anchor < 0 && strcmp(points[i].series, "ROMA A 4") == 0))
+    for (int i = 0; i < s.point_count; ++i) {
+        int defaults = strcmp(s.points[i].series, "ROMA A 4") == 0 && strcmp(s.points[i].label, "128") == 0;
+        if (defaults || (anchor < 0 && strcmp(s.points[i].series, "ROMA A 4") == 0))
             anchor = i;
         if (defaults)
             break;
     }
     if (anchor < 0)
         printf("\nNo equal-time or equal-error tables: they compare against ROMA at A 4, not in --angular.\n");
-    roma_bench_print_equal(points, point_count, anchor);
+    roma_bench_print_equal(s.points, s.point_count, anchor);
     if (d->plot_path) {
         char title[160], x_label[160];
         snprintf(title, sizeof title, "Ambient occlusion, %ux%u, %u samples per pixel: error against time", w, h,
                  samples);
         snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baselines: %u frames of %u samples)",
                  d->frames, d->spp);
-        if (roma_bench_plot(points, point_count, title, x_label, 1, d->plot_path))
+        if (roma_bench_plot(s.points, s.point_count, title, x_label, 1, d->plot_path))
             status = 1;
     }
     /* Error against frames: its points follow the others; plotted beside, as NAME_frames.png. */
-    const int frames_first = point_count;
-    if (have_ref && frames_curve(ctx, scene, &cam, d, ref_ao, &ref_image, &coverage, points, &point_count, csv))
+    const int frames_first = s.point_count;
+    if (s.have_ref &&
+        frames_curve(ctx, scene, &cam, d, s.ref_ao, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
         status = 1;
-    if (d->plot_path && point_count > frames_first) {
+    if (d->plot_path && s.point_count > frames_first) {
         char path[1024], title[160], x_label[160];
         const char *dot = strrchr(d->plot_path, '.');
         int stem = dot ? (int)(dot - d->plot_path) : (int)strlen(d->plot_path);
         snprintf(path, sizeof path, "%.*s_frames.png", stem, d->plot_path);
         snprintf(title, sizeof title, "Ambient occlusion, %ux%u: error against frames accumulated (still camera)", w, h);
         snprintf(x_label, sizeof x_label, "frames accumulated (%u samples per pixel each)", d->spp);
-        if (roma_bench_plot(points + frames_first, point_count - frames_first, title, x_label, 0, path))
+        if (roma_bench_plot(s.points + frames_first, s.point_count - frames_first, title, x_label, 0, path))
             status = 1;
     }
 done:
-    free(points);
-    roma_image_free(&ref_image);
-    roma_image_free(&coverage);
-    free(px);
-    free(ref_ao);
-    free(times);
+    free(s.points);
+    roma_image_free(&s.ref_image);
+    roma_image_free(&s.coverage);
+    free(s.px);
+    free(s.ref_ao);
+    free(s.times);
     return status;
 }

@@ -42,10 +42,11 @@ static const char *usage =
     "                              $XDG_CACHE_HOME/libroma/budget.tsv or ~/.cache/libroma/budget.tsv)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
-    "  --ao-method roma|voxel-dda|distance-field\n"
+    "  --ao-method roma|voxel-dda|distance-field|screen-space\n"
     "                              ROMA ao through the ROMA maps (default), or a baseline: every ray\n"
     "                              walked exactly through the voxel grid (the voxelization's own error),\n"
-    "                              or sphere-traced through a distance field built from it every frame\n"
+    "                              sphere-traced through a distance field built from it every frame, or\n"
+    "                              marched in screen space against the G-buffer's depth (ao alone)\n"
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
@@ -313,8 +314,11 @@ static int parse_args(int argc, char **argv, options *o)
                 o->ao_method = ROMA_AO_METHOD_VOXEL_DDA;
             else if (strcmp(v, "distance-field") == 0)
                 o->ao_method = ROMA_AO_METHOD_DISTANCE_FIELD;
+            else if (strcmp(v, "screen-space") == 0)
+                o->ao_method = ROMA_AO_METHOD_SCREEN_SPACE;
             else {
-                fprintf(stderr, "roma-render: unknown ao method '%s' (valid: roma, voxel-dda, distance-field)\n", v);
+                fprintf(stderr, "roma-render: unknown ao method '%s' (valid: roma, voxel-dda, distance-field, "
+                        "screen-space)\n", v);
                 return 0;
             }
         }
@@ -436,6 +440,14 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (strcmp(o->tracer, "embree") != 0 && strcmp(o->tracer, "roma") != 0) {
         fprintf(stderr, "roma-render: unknown tracer '%s' (valid: embree, roma)\n", o->tracer);
+        return 0;
+    }
+    if (o->ao_method == ROMA_AO_METHOD_SCREEN_SPACE && (o->given & GIVEN_EFFECTS) && o->effects != ROMA_EFFECT_AO) {
+        fprintf(stderr, "roma-render: --ao-method screen-space renders AO alone: give --effects ao\n");
+        return 0;
+    }
+    if (o->ao_method == ROMA_AO_METHOD_SCREEN_SPACE && (o->given & GIVEN_AO_RADIUS) && !(o->ao_radius > 0.0f)) {
+        fprintf(stderr, "roma-render: --ao-method screen-space needs a bounded --ao-radius\n");
         return 0;
     }
     if ((o->given & GIVEN_BUDGET) && (o->given & (GIVEN_PRESET | GIVEN_RES | GIVEN_ANGULAR))) {
@@ -871,7 +883,10 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
     float dx = sv->bounds_max[0] - sv->bounds_min[0], dy = sv->bounds_max[1] - sv->bounds_min[1],
           dz = sv->bounds_max[2] - sv->bounds_min[2];
     int lights = sv->light_count > 0, emitters = sv->emissive_triangle_count > 0;
-    if (!(o->given & GIVEN_EFFECTS)) {
+    if (!(o->given & GIVEN_EFFECTS) && roma && o->ao_method == ROMA_AO_METHOD_SCREEN_SPACE) {
+        o->effects = ROMA_EFFECT_AO;
+        note(n, o->quiet, "effects: ao (--ao-method screen-space renders AO alone)");
+    } else if (!(o->given & GIVEN_EFFECTS)) {
         /* What the scene calls for; many lights are synthetic, so only on request. */
         o->effects = ROMA_EFFECT_AO | (lights || emitters ? ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI : 0u);
         note(n, o->quiet, "effects: %s (what the scene calls for%s; --effects to choose, lights for many "

@@ -237,6 +237,13 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world),
                              w: distance field baseline: least step (cells) */
+    /* Screen-space baseline only (roma_ssao.glsl): the camera as a projection, pixel
+     * (x, y) = (width / 2 + dot(v, right) / z, height / 2 - dot(v, up) / z) for
+     * v = point - eye, z = dot(v, forward). */
+    ROMA_VEC4(eye);       /* xyz: the eye; w: thickness of a surface behind its depth (world) */
+    ROMA_VEC4(forward);   /* xyz: unit view direction; w: march steps */
+    ROMA_VEC4(right);     /* xyz: image x, times width / (2 tan(fovy / 2) aspect) */
+    ROMA_VEC4(up);        /* xyz: image y (up), times height / (2 tan(fovy / 2)) */
 ROMA_STRUCT_END(roma_ao_push)
 
 /* ---- Distance field baseline (src/baselines/distance_field.c, shaders/baselines/df_*.comp) ----

@@ -18,12 +18,13 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 // What the rays trace (roma_ao_method, src/passes/ao.h): 0 the ROMA maps; the accuracy
 // study's baselines 1 the BOM, each ray walked exactly from the origin to its end (no
 // snapping, no rotation: the voxelization's own error apart from ROMA's), 2 the distance
-// field built from the BOM, bound in its place, sphere-traced. A constant, so that ROMA's
-// pass carries none of their code.
+// field built from the BOM, bound in its place, sphere-traced, 3 the G-buffer's depth
+// (screen space, no map). A constant, so that ROMA's pass carries none of their code.
 layout(constant_id = 0) const uint ROMA_AO_METHOD = 0u;
 
 #define ROMA_DF_WORD(i) roma_fetch_bom_word(i)
 #include "roma_distance_field.glsl"
+#include "roma_ssao.glsl"
 
 void main()
 {
@@ -51,6 +52,10 @@ void main()
         }
         if (ROMA_AO_METHOD == 2u) {
             open += roma_df_occluded(grid, origin, dir, pc.ray.y, pc.config2.y, pc.ray.w) ? 0u : 1u;
+            continue;
+        }
+        if (ROMA_AO_METHOD == 3u) {
+            open += roma_ssao_blocked(origin, dir, pc.ray.z, pc.ray.y) ? 0u : 1u;
             continue;
         }
         // The skipped start, walked exactly: no ray passes a wall it starts next to.

@@ -22,7 +22,7 @@ roma_result roma_ao_pass_create_mode(roma_context *ctx, roma_ao_method method, r
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     *out = NULL;
-    if (!ctx || (unsigned)method > ROMA_AO_METHOD_DISTANCE_FIELD)
+    if (!ctx || (unsigned)method > ROMA_AO_METHOD_SCREEN_SPACE)
         return ROMA_ERROR_INVALID_ARGUMENT;
     roma_ao_pass *pass = calloc(1, sizeof *pass);
     if (!pass)
@@ -58,6 +58,12 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_pass_record: invalid offset or tmin");
     if (in->spp == 0)
         return ROMA_SUCCESS;
+    roma_camera_frame cam = {0};
+    if (pass->method == ROMA_AO_METHOD_SCREEN_SPACE &&
+        (!(in->radius > 0.0f) || !isfinite(in->radius) || !in->camera ||
+         !roma_camera_make_frame(in->camera, in->width, in->height, &cam)))
+        return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_ao_pass_record: screen-space AO needs a bounded radius and the G-buffer's camera");
     roma_ao_push push = {
         /* the baselines trace the whole ray through the bound BOM or field: no blind start */
         .bom = (in->blind_start && pass->method == ROMA_AO_METHOD_ROMA) ? 0u : 1u,
@@ -65,6 +71,18 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         .ray = {in->offset, in->radius > 0.0f ? in->radius : INFINITY, in->tmin, ROMA_AO_DF_MIN_STEP},
         .config2 = {in->seed, ROMA_AO_DF_MAX_STEPS, 0, 0},
     };
+    if (pass->method == ROMA_AO_METHOD_SCREEN_SPACE) {
+        const float sx = 0.5f * (float)in->width / (cam.tan_half_fovy * cam.aspect);
+        const float sy = 0.5f * (float)in->height / cam.tan_half_fovy;
+        for (int k = 0; k < 3; ++k) {
+            push.eye[k] = cam.origin[k];
+            push.forward[k] = cam.forward[k];
+            push.right[k] = cam.right[k] * sx;
+            push.up[k] = cam.up[k] * sy;
+        }
+        push.eye[3] = ROMA_AO_SSAO_THICKNESS * in->radius;
+        push.forward[3] = (float)(in->ssao_steps ? in->ssao_steps : ROMA_AO_SSAO_STEPS);
+    }
     return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->bom, in->gbuffer_pixels, in->accum,
                                        &push);
 }

@@ -12,6 +12,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/map.h"
 
@@ -31,6 +32,10 @@ typedef struct roma_ao_pass_inputs {
     VkBufferView bom;
     int blind_start;                /* 1: the start is skipped unseen (the rule before the walk) */
     uint32_t spp, frame, seed;
+    /* ROMA_AO_METHOD_SCREEN_SPACE: the camera the G-buffer was rendered with, and the march's
+     * steps (0 = ROMA_AO_SSAO_STEPS). */
+    const roma_camera *camera;
+    uint32_t ssao_steps;
     /* width * height uint32_t, added to; clear it (vkCmdFillBuffer) before frame 0. */
     VkBuffer accum;
 } roma_ao_pass_inputs;
@@ -45,7 +50,15 @@ typedef enum roma_ao_method {
      * map's BOM (baselines/distance_field.h), bound in the BOM's place, at most
      * ROMA_AO_DF_MAX_STEPS steps of at least ROMA_AO_DF_MIN_STEP cells */
     ROMA_AO_METHOD_DISTANCE_FIELD = 2,
+    /* every ray marched in screen space against the G-buffer's one depth layer
+     * (shaders/include/roma_ssao.glsl): no map is read, and a bounded radius is needed */
+    ROMA_AO_METHOD_SCREEN_SPACE = 3,
 } roma_ao_method;
+
+/* The screen-space baseline's march: steps per ray, and how far behind its depth a surface
+ * is taken to extend, as a fraction of the AO radius. */
+#define ROMA_AO_SSAO_STEPS 16u
+#define ROMA_AO_SSAO_THICKNESS 0.5f
 
 /* The ROMA paper's baseline takes up to 64 steps. With half a cell as the least step a ray
  * can clip only the corner of an occupied cell: closed rooms leak on under 0.5% of their

@@ -276,6 +276,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
                 .offset = offset, .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f,
                 .seed = d->seed, .accum = R->accum[p].buffer, .bom = bound, .blind_start = d->blind_ray_start,
+                .camera = d->camera_path ? &d->camera_path[f] : &d->camera, .ssao_steps = d->ssao_steps,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
@@ -381,9 +382,12 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             break;
         roma_gpu_timer_reset(R->timer, cmd);
         roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1};
+        /* Screen-space AO alone reads no map: none is built (its pass binds an unbuilt one). */
+        const int no_build = d->ao_method == ROMA_AO_METHOD_SCREEN_SPACE;
         for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
             roma_gpu_timer_reset(R->build_timers[i], cmd);
-            r = roma_map_record_build(R->maps[i], cmd, &frame, R->build_timers[i]);
+            if (!no_build)
+                r = roma_map_record_build(R->maps[i], cmd, &frame, R->build_timers[i]);
             if (r == ROMA_SUCCESS)
                 r = roma_map_get_info(R->maps[i], &stats->map_info[i]);
         }
@@ -532,9 +536,13 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) ||
         !(desc->rsm_tolerance_cells >= 0.0f) || !isfinite(desc->rsm_tolerance_cells) || desc->rsm_size > 4096)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
-    if ((unsigned)desc->ao_method > ROMA_AO_METHOD_DISTANCE_FIELD)
+    if ((unsigned)desc->ao_method > ROMA_AO_METHOD_SCREEN_SPACE)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: unknown AO method %u",
                          (unsigned)desc->ao_method);
+    if (desc->ao_method == ROMA_AO_METHOD_SCREEN_SPACE &&
+        (desc->options.effects != ROMA_EFFECT_AO || !(desc->ao_radius > 0.0f) || !isfinite(desc->ao_radius)))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_effect_render: screen-space AO renders AO alone, with a bounded radius");
     for (uint32_t f = 0; desc->camera_path && f < (desc->frames ? desc->frames : 1); ++f)
         if (!roma_camera_make_frame(&desc->camera_path[f], desc->width, desc->height, &cf))
             return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: camera %u of the path is degenerate", f);

@@ -50,8 +50,10 @@ typedef struct roma_effect_render_desc {
     /* What AO rays trace (passes/ao.h): ROMA (0, the default) or a baseline of the accuracy
      * study: the exact traversal of the BOM (3D DDA from each ray's origin to its end, no
      * ROMA maps: the voxelization's error apart from ROMA's), or the distance field built
-     * from the BOM every frame and sphere-traced (the ROMA paper's comparator). */
+     * from the BOM every frame and sphere-traced (the ROMA paper's comparator), or screen-space
+     * AO against the G-buffer's depth (AO alone, bounded radius; no map is built). */
     roma_ao_method ao_method;
+    uint32_t ssao_steps;               /* ROMA_AO_METHOD_SCREEN_SPACE: march steps; 0 = ROMA_AO_SSAO_STEPS */
     /* 1: rays skip their first cells without looking (the rule before the exact walk of
      * roma/ray_start.glsl, which keeps rays from passing a wall they start next to). */
     int blind_ray_start;

@@ -1,0 +1,38 @@
+// Screen-space ambient occlusion against the G-buffer's one depth layer: the accuracy
+// study's cheapest baseline (what engines ship without ray tracing; the stochastic depth
+// map method improves on it with more layers). A ray is marched in world space, `steps`
+// equal steps from tmin to tmax, each point projected into the image; it is blocked where
+// the surface the G-buffer holds at that pixel (its plane, at the point's projection) lies in
+// front of the point, by at most
+// `thickness` (a depth buffer knows where surfaces start, not where they end). A point off
+// the image or behind the eye ends the march unblocked: what the image does not see cannot
+// occlude. Include after roma_pixel_bindings.glsl; needs roma_ao_push pc.
+#ifndef ROMA_SSAO_GLSL
+#define ROMA_SSAO_GLSL
+
+bool roma_ssao_blocked(vec3 origin, vec3 dir, float tmin, float tmax)
+{
+    uint steps = uint(pc.forward.w), width = pc.config.x, height = pc.config.y;
+    vec3 eye = pc.eye.xyz, forward = pc.forward.xyz;
+    for (uint i = 0u; i < steps; ++i) {
+        float t = tmin + (tmax - tmin) * (float(i) + 0.5) / float(steps);
+        vec3 v = origin + dir * t - eye;
+        float z = dot(v, forward);
+        vec2 p = vec2(0.5 * float(width) + dot(v, pc.right.xyz) / z, 0.5 * float(height) - dot(v, pc.up.xyz) / z);
+        if (!(z > 0.0 && p.x >= 0.0 && p.y >= 0.0 && p.x < float(width) && p.y < float(height)))
+            return false;
+        roma_gbuffer_pixel g = roma_gbuffer_fetch(uint(p.y) * width + uint(p.x));
+        // The surface's depth where the point projects, from the plane of the pixel's surface
+        // (its depth at the pixel's centre alone would put a plane seen at a grazing angle
+        // in front of points just above it).
+        vec3 s = g.position_t.xyz - eye, n = g.geometric_normal.xyz;
+        float vn = dot(v, n), depth = dot(s, forward);
+        if (abs(vn) > 1e-4 * length(v))
+            depth = z * dot(s, n) / vn;
+        if (g.position_t.w < 1.0 / 0.0 && depth < z && z - depth <= pc.eye.w) // background: t = +INF
+            return true;
+    }
+    return false;
+}
+
+#endif // ROMA_SSAO_GLSL

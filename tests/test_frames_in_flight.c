@@ -15,63 +15,13 @@
 #include "roma/context.h"
 #include "roma/map.h"
 #include "roma/scene.h"
+#include "gpu_images.h"
 #include "harness.h"
 
 #define SLOTS 2
 #define FRAMES 12
 #define RAYS 17
 #define GPU_STRIDE 20 /* bytes: three floats and two of padding, as an engine's vertex may have */
-
-typedef struct host_buffer {
-    VkBuffer buffer;
-    VkDeviceMemory memory;
-    void *mapped;
-    VkDeviceAddress address;
-} host_buffer;
-
-/* A host-visible, coherent buffer reachable by device address: what an engine would use
- * for per-frame uploads and readbacks. */
-static int host_buffer_create(VkPhysicalDevice pd, VkDevice dev, VkDeviceSize size, host_buffer *out)
-{
-    memset(out, 0, sizeof *out);
-    VkBufferCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
-        .size = size,
-        .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-    };
-    if (vkCreateBuffer(dev, &info, NULL, &out->buffer) != VK_SUCCESS)
-        return 0;
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(dev, out->buffer, &req);
-    VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(pd, &props);
-    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < props.memoryTypeCount && type == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & want) == want)
-            type = i;
-    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
-                                       .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
-    VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                  .pNext = &flags,
-                                  .allocationSize = req.size,
-                                  .memoryTypeIndex = type};
-    if (type == UINT32_MAX || vkAllocateMemory(dev, &alloc, NULL, &out->memory) != VK_SUCCESS ||
-        vkBindBufferMemory(dev, out->buffer, out->memory, 0) != VK_SUCCESS ||
-        vkMapMemory(dev, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped) != VK_SUCCESS)
-        return 0;
-    VkBufferDeviceAddressInfo at = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = out->buffer};
-    out->address = vkGetBufferDeviceAddress(dev, &at);
-    return 1;
-}
-
-static void host_buffer_destroy(VkDevice dev, host_buffer *b)
-{
-    if (b->buffer)
-        vkDestroyBuffer(dev, b->buffer, NULL);
-    if (b->memory)
-        vkFreeMemory(dev, b->memory, NULL);
-}
 
 /* A floor (y = 0, [-1, 1]^2) and a closed box, a rigid object that moves: 0.4 wide (x),
  * 0.4 tall (y in [0.2, 0.6]), 0.2 deep (z in [-0.1, 0.1]), centred on x = box_x. */
@@ -138,7 +88,6 @@ int main(void)
     if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS)
         return roma_test_skip("no Vulkan device with validation layers");
     VkDevice dev = roma_context_device(ctx);
-    VkPhysicalDevice pd = roma_context_physical_device(ctx);
 
     float rest[3 * VERTICES];
     pose(box_x_of(0), rest);
@@ -166,13 +115,13 @@ int main(void)
                                       .commandBufferCount = SLOTS};
     CHECK(vkAllocateCommandBuffers(dev, &ai, cmds) == VK_SUCCESS);
     VkFence fences[SLOTS];
-    host_buffer rays_buf[SLOTS], hits_buf[SLOTS], verts_buf[SLOTS];
+    roma_test_host_buffer rays_buf[SLOTS], hits_buf[SLOTS], verts_buf[SLOTS];
     for (int s = 0; s < SLOTS; ++s) {
         VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, .flags = VK_FENCE_CREATE_SIGNALED_BIT};
         CHECK(vkCreateFence(dev, &fi, NULL, &fences[s]) == VK_SUCCESS);
-        CHECK(host_buffer_create(pd, dev, sizeof(roma_ray) * RAYS, &rays_buf[s]));
-        CHECK(host_buffer_create(pd, dev, sizeof(roma_hit) * RAYS, &hits_buf[s]));
-        CHECK(host_buffer_create(pd, dev, GPU_STRIDE * VERTICES, &verts_buf[s]));
+        roma_test_host_buffer_create(ctx, sizeof(roma_ray) * RAYS, &rays_buf[s]);
+        roma_test_host_buffer_create(ctx, sizeof(roma_hit) * RAYS, &hits_buf[s]);
+        roma_test_host_buffer_create(ctx, GPU_STRIDE * VERTICES, &verts_buf[s]);
     }
     if (roma_test_failures)
         return roma_test_finish("test_frames_in_flight");
@@ -255,9 +204,9 @@ int main(void)
     vkDeviceWaitIdle(dev);
     for (int s = 0; s < SLOTS; ++s) {
         vkDestroyFence(dev, fences[s], NULL);
-        host_buffer_destroy(dev, &rays_buf[s]);
-        host_buffer_destroy(dev, &hits_buf[s]);
-        host_buffer_destroy(dev, &verts_buf[s]);
+        roma_test_host_buffer_destroy(dev, &rays_buf[s]);
+        roma_test_host_buffer_destroy(dev, &hits_buf[s]);
+        roma_test_host_buffer_destroy(dev, &verts_buf[s]);
     }
     vkDestroyCommandPool(dev, pool, NULL);
     roma_map_destroy(map);

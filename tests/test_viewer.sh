@@ -254,6 +254,14 @@ grep -q "the file has 1 perspective camera" "$dir/gltf_camera.out" || fail "--gl
   || fail "roma-viewer --stats failed"
 python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["libroma_device_memory_bytes"] > 1000000' \
   "$dir/memory.json" || fail "the stats do not give libroma's device memory"
+# A preset sets the array's RES and A (roma/presets.h); a later --angular overrides its A.
+"$viewer" --headless --validation --frames 1 --size 32x24 --preset low --stats "$dir/preset_low.json" \
+  >/dev/null 2>&1 || fail "roma-viewer --preset low failed"
+"$viewer" --headless --validation --frames 1 --size 32x24 --preset high --angular 3 --stats "$dir/preset_high.json" \
+  >/dev/null 2>&1 || fail "roma-viewer --preset high --angular 3 failed"
+[ "$(json "$dir/preset_low.json" resolution) $(json "$dir/preset_low.json" angular)" = "128 2" ] &&
+  [ "$(json "$dir/preset_high.json" resolution) $(json "$dir/preset_high.json" angular)" = "256 3" ] ||
+  fail "--preset does not set the array's RES and A"
 
 # 2. An animated, skinned glTF played: validation clean, a picture written.
 "$viewer" --headless --validation --scene "$scenes/CesiumMan.glb" --play --frames 6 --size 96x96 \

@@ -56,6 +56,8 @@ const char *kUsage =
     "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance, steps,\n"
     "                       rotated-map (--map K: which of the A x A maps, default 0), ray-start\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
+    "  --preset NAME        ROMA array of a quality preset: low (128, 2), medium (128, 4), high\n"
+    "                       (256, 4), ultra (256, 8); a later --res or --angular overrides it\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
@@ -164,6 +166,10 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 32, 256, o.settings.res) && (o.settings.res & (o.settings.res - 1)) == 0;
         } else if (a == "--angular") {
             ok = parse_u32(v, 1, 16, o.settings.angular);
+        } else if (a == "--preset") {
+            roma_preset p = ROMA_PRESET_DEFAULT;
+            ok = roma_preset_parse(v, &p) == ROMA_SUCCESS &&
+                 roma_preset_map_settings(p, &o.settings.res, &o.settings.angular) == ROMA_SUCCESS;
         } else if (a == "--ao-samples") {
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
         } else if (a == "--ao-skip" || a == "--offset") {

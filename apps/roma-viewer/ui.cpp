@@ -1,6 +1,7 @@
 #include "ui.h"
 
 #include <imgui.h>
+#include <roma/presets.h>
 
 #include <cstdio>
 #include <cstring>
@@ -100,6 +101,19 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         if (ImGui::SliderInt("A (A x A directions)", &a, 1, 16)) {
             s.angular = static_cast<uint32_t>(a);
             out.rebuild_map = out.reset_accumulation = true;
+        }
+        // The quality presets (roma/presets.h): the points of ROMA's measured accuracy-time front.
+        ImGui::TextUnformatted("preset:");
+        for (unsigned p = ROMA_PRESET_LOW; p <= ROMA_PRESET_COUNT; ++p) {
+            uint32_t pr = 0, pa = 0;
+            roma_preset_map_settings(roma_preset(p), &pr, &pa);
+            const bool current = pr == s.res && pa == s.angular;
+            ImGui::SameLine();
+            if (ImGui::RadioButton(roma_preset_name(roma_preset(p)), current) && !current) {
+                s.res = pr;
+                s.angular = pa;
+                out.rebuild_map = out.reset_accumulation = true;
+            }
         }
         ImGui::Text("%u maps, %.1f MiB, cell %.4g", s.angular * s.angular, double(info.map_bytes) / (1 << 20),
                     double(info.grid_cell));

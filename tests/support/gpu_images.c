@@ -15,14 +15,22 @@ uint32_t roma_test_memory_type(VkPhysicalDevice pd, uint32_t bits, VkMemoryPrope
     return 0;
 }
 
-static VkDeviceMemory allocate(roma_context *ctx, const VkMemoryRequirements *req, VkMemoryPropertyFlags want)
+/* pNext: NULL, or a VkMemoryAllocateFlagsInfo (device addresses). */
+static VkDeviceMemory allocate_with(roma_context *ctx, const VkMemoryRequirements *req, VkMemoryPropertyFlags want,
+                                    const void *pNext)
 {
-    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req->size,
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .pNext = pNext,
+                               .allocationSize = req->size,
                                .memoryTypeIndex = roma_test_memory_type(roma_context_physical_device(ctx),
                                                                         req->memoryTypeBits, want)};
     VkDeviceMemory memory = VK_NULL_HANDLE;
     CHECK(vkAllocateMemory(roma_context_device(ctx), &ai, NULL, &memory) == VK_SUCCESS);
     return memory;
+}
+
+static VkDeviceMemory allocate(roma_context *ctx, const VkMemoryRequirements *req, VkMemoryPropertyFlags want)
+{
+    return allocate_with(ctx, req, want, NULL);
 }
 
 void roma_test_image_create(roma_context *ctx, uint32_t width, uint32_t height, VkFormat format,
@@ -84,18 +92,27 @@ void roma_test_submit_and_wait(roma_context *ctx, VkCommandBuffer cmd)
     vkQueueWaitIdle(roma_context_queue(ctx));
 }
 
+/* A host-visible, coherent buffer of the given usage, bound and mapped; allocate_flags: NULL or
+ * a VkMemoryAllocateFlagsInfo. */
+static void create_mapped(roma_context *ctx, VkDeviceSize bytes, VkBufferUsageFlags usage, const void *allocate_flags,
+                          VkBuffer *buffer, VkDeviceMemory *memory, void **mapped)
+{
+    VkDevice dev = roma_context_device(ctx);
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = bytes, .usage = usage};
+    CHECK(vkCreateBuffer(dev, &bi, NULL, buffer) == VK_SUCCESS);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev, *buffer, &req);
+    *memory = allocate_with(ctx, &req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                            allocate_flags);
+    CHECK(vkBindBufferMemory(dev, *buffer, *memory, 0) == VK_SUCCESS);
+    CHECK(vkMapMemory(dev, *memory, 0, VK_WHOLE_SIZE, 0, mapped) == VK_SUCCESS);
+}
+
 void roma_test_staging_create(roma_context *ctx, VkDeviceSize bytes, roma_test_staging *out)
 {
     memset(out, 0, sizeof *out);
-    VkDevice dev = roma_context_device(ctx);
-    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = bytes,
-                             .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
-    CHECK(vkCreateBuffer(dev, &bi, NULL, &out->buffer) == VK_SUCCESS);
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(dev, out->buffer, &req);
-    out->memory = allocate(ctx, &req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    CHECK(vkBindBufferMemory(dev, out->buffer, out->memory, 0) == VK_SUCCESS);
-    CHECK(vkMapMemory(dev, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped) == VK_SUCCESS);
+    create_mapped(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, NULL, &out->buffer,
+                  &out->memory, &out->mapped);
 }
 
 void roma_test_staging_destroy(VkDevice dev, roma_test_staging *staging)
@@ -103,4 +120,24 @@ void roma_test_staging_destroy(VkDevice dev, roma_test_staging *staging)
     vkDestroyBuffer(dev, staging->buffer, NULL);
     vkFreeMemory(dev, staging->memory, NULL);
     memset(staging, 0, sizeof *staging);
+}
+
+void roma_test_host_buffer_create(roma_context *ctx, VkDeviceSize bytes, roma_test_host_buffer *out)
+{
+    memset(out, 0, sizeof *out);
+    VkMemoryAllocateFlagsInfo flags = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
+                                       .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
+    create_mapped(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, &flags,
+                  &out->buffer, &out->memory, &out->mapped);
+    VkBufferDeviceAddressInfo at = {.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = out->buffer};
+    out->address = vkGetBufferDeviceAddress(roma_context_device(ctx), &at);
+}
+
+void roma_test_host_buffer_destroy(VkDevice dev, roma_test_host_buffer *buffer)
+{
+    if (buffer->buffer)
+        vkDestroyBuffer(dev, buffer->buffer, NULL);
+    if (buffer->memory)
+        vkFreeMemory(dev, buffer->memory, NULL);
+    memset(buffer, 0, sizeof *buffer);
 }

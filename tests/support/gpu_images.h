@@ -41,4 +41,16 @@ typedef struct roma_test_staging {
 void roma_test_staging_create(roma_context *ctx, VkDeviceSize bytes, roma_test_staging *out);
 void roma_test_staging_destroy(VkDevice dev, roma_test_staging *staging);
 
+/* A host-visible, coherent storage buffer of `bytes` reachable by device address, mapped:
+ * what an engine uses for per-frame uploads and readbacks that shaders reach by address. */
+typedef struct roma_test_host_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+    VkDeviceAddress address;
+} roma_test_host_buffer;
+void roma_test_host_buffer_create(roma_context *ctx, VkDeviceSize bytes, roma_test_host_buffer *out);
+/* Accepts a zeroed one. */
+void roma_test_host_buffer_destroy(VkDevice dev, roma_test_host_buffer *buffer);
+
 #endif /* ROMA_TEST_GPU_IMAGES_H */

@@ -65,7 +65,7 @@ points = []
 for (name, res, angular), v in values.items():
     if name.endswith(" ms per frame"):
         tag = name[: -len(" ms per frame")]
-        series = {"voxel-dda": "voxel traversal", "distance-field": "distance field",
+        series = {"voxel-dda": "voxel traversal", "distance-field": "distance field", "naadf": "NAADF",
                   "screen-space": "screen space (steps)"}.get(tag, "ROMA A " + angular)
         points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
     elif name == "embree ao ms":

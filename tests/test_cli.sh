@@ -265,14 +265,15 @@ grep -q -- "--gi-punctual is a ROMA setting" "$dir/notes3.err" || fail "--gi-pun
 expect_status 2 $? "roma-render --gi-punctual bogus"
 grep -q "unknown gi route 'bogus'" "$dir/notes4.err" || fail "a bad --gi-punctual does not say why"
 # The AO baselines of the accuracy study render; a bad method lists the valid ones.
-for method in voxel-dda distance-field screen-space; do
+for method in voxel-dda distance-field naadf screen-space; do
   "$render" --tracer roma --effects ao --ao-method "$method" --size 16x12 --spp 1 --res 32 --out "$dir/$method" \
     --stats "$dir/$method/stats.json" >/dev/null 2>&1 || fail "roma-render --ao-method $method failed"
 done
 grep -q '"distance_field_build"' "$dir/distance-field/stats.json" || fail "the stats lack the distance field's build"
+grep -q '"naadf_build"' "$dir/naadf/stats.json" || fail "the stats lack the NAADF hierarchy's build"
 "$render" --tracer roma --effects ao --ao-method bogus --size 16x12 --out "$dir/aom" >/dev/null 2>"$dir/aom.err"
 expect_status 2 $? "roma-render --ao-method bogus"
-grep -q "valid: roma, voxel-dda, distance-field, screen-space" "$dir/aom.err" || fail "a bad --ao-method does not list the methods"
+grep -q "valid: roma, voxel-dda, distance-field, naadf, screen-space" "$dir/aom.err" || fail "a bad --ao-method does not list the methods"
 grep -q -- "--threads sets the reference's CPU threads" "$dir/notes2.err" || fail "--threads with ROMA: no note"
 grep -q "frames 100%" "$dir/notes2.err" || fail "a ROMA render prints no progress"
 grep -q "done in" "$dir/notes2.err" || fail "roma-render does not say how long it took"

@@ -9,9 +9,10 @@
  *   covered pixels above 0.05 and the largest value, with the default ray start (the
  *   skipped start walked through the BOM) and with the blind skip it replaced, which shows
  *   that the figures see leaks (bright seams along every edge where walls meet). The exact
- *   traversal of the BOM (the accuracy study's baseline, no ROMA maps) gives exactly 0; the
- *   sphere-traced distance field (the other baseline) leaks a little: its steps of at
- *   least half a cell clip corners of walls, and rays out of steps count as open.
+ *   traversal of the BOM (the accuracy study's baseline, no ROMA maps) gives exactly 0, and
+ *   so does the NAADF hierarchy over the same voxels; the sphere-traced distance field leaks
+ *   a little: its steps of at least half a cell clip corners of walls, and rays out of steps
+ *   count as open.
  * - A point light outside the box room, 0.3 behind its back wall: direct light on the
  *   ceiling, floor and side walls within 5 cm of that wall, whose shadow rays cross it
  *   within their first cells, stays 0. Farther from the wall the shadow rays meet it in
@@ -111,8 +112,8 @@ static roma_scene *box_room(const float rot[9], int with_light)
 }
 
 /* blind: 1 the blind skip, 2 AO by exact traversal of the BOM, 3 AO sphere-traced through
- * the distance field (the study's baselines; asked with the blind skip too, which they have
- * no use for and must not turn off). */
+ * the distance field, 4 AO through the NAADF hierarchy (the study's baselines; asked with the
+ * blind skip too, which they have no use for and must not turn off). */
 static roma_result render(roma_context *ctx, const roma_scene *scene, uint32_t effects, int blind,
                           roma_gbuffer_pixel *px, roma_effect_images *img)
 {
@@ -125,6 +126,7 @@ static roma_result render(roma_context *ctx, const roma_scene *scene, uint32_t e
                                  .spp = 16, .frames = 8, .seed = 5, .out_gbuffer = px, .blind_ray_start = blind != 0,
                                  .ao_method = blind == 2   ? ROMA_AO_METHOD_VOXEL_DDA
                                                : blind == 3 ? ROMA_AO_METHOD_DISTANCE_FIELD
+                                               : blind == 4 ? ROMA_AO_METHOD_NAADF
                                                             : ROMA_AO_METHOD_ROMA};
     roma_effect_stats st;
     return roma_effect_render(ctx, scene, &d, img, &st);
@@ -153,7 +155,8 @@ static void ao_leaks(roma_context *ctx, const char *name, const roma_scene *scen
         *share = covered ? (double)bright / covered : 1.0;
     }
     printf("%-12s %-9s unbounded AO: %.4f of the pixels above 0.05, largest %.3f\n", name,
-           blind == 3 ? "dist-field" : blind == 2 ? "voxel-dda" : blind ? "blind" : "walk", *share, *max);
+           blind == 4 ? "naadf" : blind == 3 ? "dist-field" : blind == 2 ? "voxel-dda" : blind ? "blind" : "walk", *share,
+           *max);
     roma_effect_images_free(&img);
     free(px);
 }
@@ -170,17 +173,19 @@ static void test_ao(roma_context *ctx)
     for (size_t i = 0; i < sizeof rooms / sizeof rooms[0]; ++i) {
         if (!rooms[i].scene)
             continue;
-        double share, blind_share, dda_share, df_share;
-        float max, blind_max, dda_max, df_max;
+        double share, blind_share, dda_share, df_share, naadf_share;
+        float max, blind_max, dda_max, df_max, naadf_max;
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 0, &share, &max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 1, &blind_share, &blind_max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 2, &dda_share, &dda_max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 3, &df_share, &df_max);
+        ao_leaks(ctx, rooms[i].name, rooms[i].scene, 4, &naadf_share, &naadf_max);
         CHECK(share <= MAX_LEAKING_SHARE);
         CHECK(max <= MAX_AO);
         CHECK(blind_share >= MIN_BLIND_LEAKING_SHARE); /* the figures see leaks when there are some */
         /* Exact traversal of the voxels: a closed voxel room lets nothing out, exactly as Embree. */
         CHECK(dda_max == 0.0f);
+        CHECK(naadf_max == 0.0f); /* the same voxels, empty space skipped a box at a time */
         /* The distance field: steps of at least half a cell can clip a corner of a wall. */
         CHECK(df_share <= MAX_DF_LEAKING_SHARE);
     }

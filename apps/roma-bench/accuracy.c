@@ -1,7 +1,8 @@
 /* roma-bench --accuracy: what accuracy costs in time. Ambient occlusion rendered
- * by ROMA (passes/effect_render.h) for every RES x A, for every RES by two baselines:
- * the exact traversal of the same voxels (the voxelization's own error) and the distance
- * field built from them every frame and sphere-traced (the ROMA paper's comparator), and
+ * by ROMA (passes/effect_render.h) for every RES x A, for every RES by three baselines:
+ * the exact traversal of the same voxels (the voxelization's own error), the distance
+ * field built from them every frame and sphere-traced (the ROMA paper's comparator) and the
+ * NAADF hierarchy built from them every frame (the same voxels, empty space skipped), and
  * by screen-space AO against the G-buffer's depth at three march lengths; timed per frame
  * (G-buffer once, then per frame: the array rebuilt with new jitter, none for screen space,
  * and the AO pass, from submit to fence on the host), against the Embree reference on the
@@ -212,7 +213,7 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
         if (r != ROMA_SUCCESS)
             break;
         if (k == 0)
-            df_ms = st.distance_field_ms / d->frames;
+            df_ms = st.baseline_build_ms / d->frames;
         if (!s->have_ref) {
             /* The G-buffer does not depend on the method or its settings: one reference for all. */
             for (size_t i = 0; i < n; ++i)
@@ -245,8 +246,9 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     }
     const double ms = roma_app_median(s->times, (int)d->runs);
     const double mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
+    const int builds = rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || rd->ao_method == ROMA_AO_METHOD_NAADF;
     char df_text[16] = "-";
-    if (rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD)
+    if (builds)
         snprintf(df_text, sizeof df_text, "%.1f", df_ms);
     printf("| %s | %s | %s | %.1f | %s | %.4f | %+.4f | %.4f |\n", name, res_text, a_text, ms, df_text, mae, b, flip);
     roma_bench_point *pt = &s->points[s->point_count++];
@@ -257,7 +259,7 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
         fprintf(s->csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, csv_res, csv_a, ms);
         fprintf(s->csv, "accuracy,%s mae,%u,%u,%.6f,\n", tag, csv_res, csv_a, mae);
         fprintf(s->csv, "accuracy,%s flip,%u,%u,%.6f,\n", tag, csv_res, csv_a, flip);
-        if (rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD)
+        if (builds)
             fprintf(s->csv, "accuracy,%s build ms per frame (timestamps),%u,%u,%.6f,ms\n", tag, csv_res, csv_a,
                     df_ms);
     }
@@ -276,7 +278,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     roma_camera cam;
     roma_scene_default_camera(scene, (float)w / (float)h, &cam);
     /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (d->angular_count + 2) + 3 + 32 + 3 * 32; /* + the frames curves */
+    const int max_points = d->res_count * (d->angular_count + 3) + 3 + 32 + 3 * 32; /* + the frames curves */
     study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
                .px = calloc((size_t)w * h, sizeof(roma_gbuffer_pixel)), .ref_ao = calloc((size_t)w * h, sizeof(float)),
                .times = calloc(d->runs, sizeof(double)),
@@ -295,7 +297,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
            "time per frame = host-observed render time / frames (%s); error against Embree\n"
            "on the same points and samples, over the pixels that see geometry (FLIP: LDR-FLIP\n"
            "at 67 pixels per degree).\n\n"
-           "| method | RES | A | ms per frame | of which DF build (timestamps) | MAE | bias | FLIP |\n"
+           "| method | RES | A | ms per frame | of which DF or NAADF build (timestamps) | MAE | bias | FLIP |\n"
            "|---|---|---|---|---|---|---|---|\n",
            w, h, samples, d->spp, d->frames, (double)d->radius, how);
     /* FLIP against the reference over the covered pixels (background 1, as ROMA's images). */
@@ -306,15 +308,16 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     }
     double roma_ms_128_4 = 0.0, roma_mae_128_4 = NAN; /* all frames at the defaults */
     for (int ri = 0; ri < d->res_count; ++ri)
-        for (int ai = 0; ai <= d->angular_count + 1; ++ai) {
+        for (int ai = 0; ai <= d->angular_count + 2; ++ai) {
             /* After the A list: the baselines, with one map (they read only the BOM; the
              * one-map rotation they do not need stays in their time). */
-            const roma_ao_method method = ai < d->angular_count    ? ROMA_AO_METHOD_ROMA
-                                          : ai == d->angular_count ? ROMA_AO_METHOD_VOXEL_DDA
-                                                                   : ROMA_AO_METHOD_DISTANCE_FIELD;
+            const roma_ao_method method = ai < d->angular_count        ? ROMA_AO_METHOD_ROMA
+                                          : ai == d->angular_count     ? ROMA_AO_METHOD_VOXEL_DDA
+                                          : ai == d->angular_count + 1 ? ROMA_AO_METHOD_DISTANCE_FIELD
+                                                                       : ROMA_AO_METHOD_NAADF;
             const int dda = method != ROMA_AO_METHOD_ROMA;
-            const char *names[3] = {"ROMA", "voxel traversal", "distance field"};
-            const char *tags[3] = {"ao", "voxel-dda", "distance-field"};
+            const char *names[5] = {"ROMA", "voxel traversal", "distance field", "", "NAADF"};
+            const char *tags[5] = {"ao", "voxel-dda", "distance-field", "", "naadf"};
             const uint32_t angular = dda ? 1u : d->angular[ai];
             roma_effect_render_desc rd = {
                 .camera = cam, .width = w, .height = h,

@@ -42,11 +42,13 @@ static const char *usage =
     "                              $XDG_CACHE_HOME/libroma/budget.tsv or ~/.cache/libroma/budget.tsv)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
-    "  --ao-method roma|voxel-dda|distance-field|screen-space\n"
+    "  --ao-method roma|voxel-dda|distance-field|naadf|screen-space\n"
     "                              ROMA ao through the ROMA maps (default), or a baseline: every ray\n"
     "                              walked exactly through the voxel grid (the voxelization's own error),\n"
-    "                              sphere-traced through a distance field built from it every frame, or\n"
-    "                              marched in screen space against the G-buffer's depth (ao alone)\n"
+    "                              sphere-traced through a distance field built from it every frame,\n"
+    "                              through the NAADF hierarchy built from it every frame (the voxels of\n"
+    "                              voxel-dda, empty space skipped a box at a time), or marched in screen\n"
+    "                              space against the G-buffer's depth (ao alone)\n"
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
@@ -316,9 +318,11 @@ static int parse_args(int argc, char **argv, options *o)
                 o->ao_method = ROMA_AO_METHOD_DISTANCE_FIELD;
             else if (strcmp(v, "screen-space") == 0)
                 o->ao_method = ROMA_AO_METHOD_SCREEN_SPACE;
+            else if (strcmp(v, "naadf") == 0)
+                o->ao_method = ROMA_AO_METHOD_NAADF;
             else {
                 fprintf(stderr, "roma-render: unknown ao method '%s' (valid: roma, voxel-dda, distance-field, "
-                        "screen-space)\n", v);
+                        "naadf, screen-space)\n", v);
                 return 0;
             }
         }
@@ -1138,10 +1142,12 @@ int main(int argc, char **argv)
                     add_pass(&run, roma_pass_name((roma_pass_kind)p), "gpu_timestamp", roma_stats.pass_ms[p]);
                     run.passes[run.pass_count - 1].bytes = roma_stats.pass_bytes[p];
                 }
-                if (o.ao_method == ROMA_AO_METHOD_DISTANCE_FIELD && roma_effect_plan_runs(&roma_stats.plan, ROMA_PASS_AO)) {
+                if ((o.ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || o.ao_method == ROMA_AO_METHOD_NAADF) &&
+                    roma_effect_plan_runs(&roma_stats.plan, ROMA_PASS_AO)) {
                     /* the baseline's generation, part of the ao pass's time */
-                    add_pass(&run, "distance_field_build", "gpu_timestamp", roma_stats.distance_field_ms);
-                    run.passes[run.pass_count - 1].bytes = roma_stats.distance_field_bytes;
+                    add_pass(&run, o.ao_method == ROMA_AO_METHOD_NAADF ? "naadf_build" : "distance_field_build",
+                             "gpu_timestamp", roma_stats.baseline_build_ms);
+                    run.passes[run.pass_count - 1].bytes = roma_stats.baseline_bytes;
                 }
                 run.roma = &roma_stats;
                 if ((o.effects & ROMA_EFFECT_AO) && !write_outputs(&o, "ao", &images.ao, &images.coverage, 1.0f))

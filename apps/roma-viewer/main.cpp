@@ -1699,7 +1699,10 @@ void destroy(viewer &v)
     }
     if (v.imgui_pool)
         vkDestroyDescriptorPool(v.base.device, v.imgui_pool, nullptr);
-    reference_job_cancel(v.job); // quitting does not wait for a reference still rendering
+    if (v.job.running) { // quitting does not wait for a reference still rendering
+        reference_job_cancel(v.job);
+        std::printf("roma-viewer: quitting stopped the reference render\n");
+    }
     reference_job_cleanup(v.job);
     roma_image_free(&v.coverage);
     vk_buffer_destroy(v.base, v.bom);

@@ -262,6 +262,38 @@ ROMA_STRUCT_BEGIN(roma_df_push)
     ROMA_UVEC4(config);   /* x: RES, y: jump step (cells), z: RES^3 */
 ROMA_STRUCT_END(roma_df_push)
 
+/* ---- NAADF baseline (src/baselines/naadf.c, shaders/baselines/naadf_*.comp) ----
+ * The accuracy study's nested cell hierarchy with axis-aligned distance fields (NAADF),
+ * built from the BOM every frame: chunks of 4^3 blocks of 4^3 voxels, each cell empty,
+ * full or mixed, an empty cell holding how many cells of its layer the empty box around it
+ * extends in each of +x, -x, +y, -y, +z, -z. One buffer of words: the chunks ((RES/16)^3, a
+ * word each: state in bits 0-1, 5 bits a direction from bit 2), the blocks ((RES/4)^3, a
+ * word each: state, 2 bits a direction from bit 2, bounded by their chunk), the voxels (RES^3,
+ * 16 bits each, two a word, the lower first: bit 0 occupied, 2 bits a direction from bit 1,
+ * bounded by their block), then, for the build, the chunks' occupancy ((RES/16)^2 words: bit z
+ * of word y * n + x set when that chunk is not empty). Each layer indexed (y * n + x) * n + z,
+ * as the BOM's bits. */
+#define ROMA_NAADF_WORKGROUP_SIZE 64
+#define ROMA_NAADF_BINDING_BOM 0
+#define ROMA_NAADF_BINDING_CELLS 1
+#define ROMA_NAADF_BINDING_MIXED 2
+#define ROMA_NAADF_MAX_GROUPS 65535u /* step 4's workgroups a row: the least maxComputeWorkGroupCount */
+#define ROMA_NAADF_EMPTY 0u
+#define ROMA_NAADF_FULL 1u
+#define ROMA_NAADF_MIXED 2u
+#define ROMA_NAADF_CHUNK_MAX_DISTANCE 31
+#define ROMA_NAADF_MAX_RESOLUTION 512 /* 32 chunks a side: a row of chunks is one word */
+/* The mixed blocks step 1 lists for step 4 (then 3 words each: the block, its 64 voxels). */
+ROMA_STRUCT_BEGIN(roma_naadf_mixed_header)
+    ROMA_UINT count;
+    ROMA_UINT groups_x; /* from here step 4's VkDispatchIndirectCommand, written by step 2 */
+    ROMA_UINT groups_y;
+    ROMA_UINT groups_z;
+ROMA_STRUCT_END(roma_naadf_mixed_header)
+ROMA_STRUCT_BEGIN(roma_naadf_push)
+    ROMA_UVEC4(config);   /* x: RES, y: chunks a side (RES / 16), z: blocks a side (RES / 4), w: cells of the pass */
+ROMA_STRUCT_END(roma_naadf_push)
+
 /* ---- Light passes (src/passes/effect_render.c, shaders/passes/{punctual_lights,soft_shadows,many_lights}.comp) ---- */
 
 /* Irradiance one light (or one area-light sample) may contribute, in W/m^2: a

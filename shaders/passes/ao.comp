@@ -19,12 +19,15 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 // study's baselines 1 the BOM, each ray walked exactly from the origin to its end (no
 // snapping, no rotation: the voxelization's own error apart from ROMA's), 2 the distance
 // field built from the BOM, bound in its place, sphere-traced, 3 the G-buffer's depth
-// (screen space, no map). A constant, so that ROMA's pass carries none of their code.
+// (screen space, no map), 4 the NAADF hierarchy built from the BOM, bound in its place (the
+// voxels of 1, empty space left a box at a time). A constant, so that ROMA's pass carries none of their code.
 layout(constant_id = 0) const uint ROMA_AO_METHOD = 0u;
 
 #define ROMA_DF_WORD(i) roma_fetch_bom_word(i)
 #include "roma_distance_field.glsl"
 #include "roma_ssao.glsl"
+#define ROMA_NAADF_WORD(i) roma_fetch_bom_word(i)
+#include "roma_naadf.glsl"
 
 void main()
 {
@@ -52,6 +55,10 @@ void main()
         }
         if (ROMA_AO_METHOD == 2u) {
             open += roma_df_occluded(grid, origin, dir, pc.ray.y, pc.config2.y, pc.ray.w) ? 0u : 1u;
+            continue;
+        }
+        if (ROMA_AO_METHOD == 4u) {
+            open += roma_naadf_occluded(grid, origin, dir, pc.ray.y) ? 0u : 1u;
             continue;
         }
         if (ROMA_AO_METHOD == 3u) {

@@ -22,7 +22,7 @@ roma_result roma_ao_pass_create_mode(roma_context *ctx, roma_ao_method method, r
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     *out = NULL;
-    if (!ctx || (unsigned)method > ROMA_AO_METHOD_SCREEN_SPACE)
+    if (!ctx || (unsigned)method > ROMA_AO_METHOD_NAADF)
         return ROMA_ERROR_INVALID_ARGUMENT;
     roma_ao_pass *pass = calloc(1, sizeof *pass);
     if (!pass)

@@ -28,7 +28,8 @@ typedef struct roma_ao_pass_inputs {
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */
     /* The map's BOM as a texel buffer (roma_map_info.bom_view), bound: the skipped start is
      * walked through it exactly, an occupied cell blocking the ray (roma/ray_start.glsl).
-     * With ROMA_AO_METHOD_DISTANCE_FIELD: the field's distances (distances_view) instead. */
+     * With ROMA_AO_METHOD_DISTANCE_FIELD: the field's distances (distances_view) instead;
+     * with ROMA_AO_METHOD_NAADF: the hierarchy's cells (cells_view). */
     VkBufferView bom;
     int blind_start;                /* 1: the start is skipped unseen (the rule before the walk) */
     uint32_t spp, frame, seed;
@@ -53,6 +54,10 @@ typedef enum roma_ao_method {
     /* every ray marched in screen space against the G-buffer's one depth layer
      * (shaders/include/roma_ssao.glsl): no map is read, and a bounded radius is needed */
     ROMA_AO_METHOD_SCREEN_SPACE = 3,
+    /* every ray traversed from its origin through the NAADF hierarchy built from the map's BOM
+     * (baselines/naadf.h), bound in the BOM's place: the voxels of ROMA_AO_METHOD_VOXEL_DDA,
+     * empty space left a box at a time */
+    ROMA_AO_METHOD_NAADF = 4,
 } roma_ao_method;
 
 /* The screen-space baseline's march: steps per ray, and how far behind its depth a surface

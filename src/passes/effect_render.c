@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "baselines/distance_field.h"
+#include "baselines/naadf.h"
 #include "passes/ao.h"
 #include "passes/denoiser.h"
 #include "passes/gbuffer.h"
@@ -32,6 +33,7 @@ typedef struct renderer {
     roma_light_data lights;
     roma_ao_pass *ao;
     roma_distance_field distance_field; /* ROMA_AO_METHOD_DISTANCE_FIELD: built every frame */
+    roma_naadf naadf;                   /* ROMA_AO_METHOD_NAADF: built every frame */
     roma_pixel_pass punctual, soft, many, gi;
     roma_pixel_list list; /* covered pixels of the current G-buffer, for every tracing pass */
     roma_gbuffer *rsm[ROMA_MAX_RSM_VIEWS];
@@ -146,11 +148,13 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO))
         r = roma_ao_pass_create_mode(ctx, d->ao_method, &R->ao);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO) &&
-        d->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD) {
+        (d->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || d->ao_method == ROMA_AO_METHOD_NAADF)) {
         roma_map_info info;
         r = roma_map_get_info(R->maps[R->plan.pass_map[ROMA_PASS_AO]], &info);
-        if (r == ROMA_SUCCESS)
+        if (r == ROMA_SUCCESS && d->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD)
             r = roma_distance_field_create(ctx, info.bom_buffer, info.resolution, &R->distance_field);
+        else if (r == ROMA_SUCCESS)
+            r = roma_naadf_create(ctx, info.bom_buffer, info.resolution, &R->naadf);
     }
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS))
         r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), 1, &R->punctual);
@@ -223,6 +227,7 @@ static void destroy_resources(renderer *R)
     roma_buffer_destroy(ctx, &R->views_buffer);
     roma_ao_pass_destroy(R->ao);
     roma_distance_field_destroy(&R->distance_field);
+    roma_naadf_destroy(&R->naadf);
     roma_light_data_destroy(ctx, &R->lights);
     roma_gpu_timer_destroy(R->timer);
     roma_gbuffer_destroy(R->gbuffer);
@@ -271,6 +276,12 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 roma_distance_field_record(&R->distance_field, cmd);
                 roma_gpu_timer_end(R->timer, cmd, scope);
                 bound = R->distance_field.distances_view;
+            }
+            if (R->naadf.ctx) {
+                uint32_t scope = roma_gpu_timer_begin(R->timer, cmd, "naadf");
+                roma_naadf_record(&R->naadf, cmd);
+                roma_gpu_timer_end(R->timer, cmd, scope);
+                bound = R->naadf.cells_view;
             }
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
@@ -433,7 +444,9 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             if (roma_effect_plan_runs(&R->plan, (roma_pass_kind)p))
                 stats->pass_ms[p] += scope_ms(R->timer, roma_pass_name((roma_pass_kind)p));
         if (r == ROMA_SUCCESS && R->distance_field.ctx)
-            stats->distance_field_ms += scope_ms(R->timer, "distance field");
+            stats->baseline_build_ms += scope_ms(R->timer, "distance field");
+        if (r == ROMA_SUCCESS && R->naadf.ctx)
+            stats->baseline_build_ms += scope_ms(R->timer, "naadf");
         if (r == ROMA_SUCCESS && d->progress)
             d->progress((float)(f + 1) / (float)frames, d->progress_user_data);
     }
@@ -536,7 +549,7 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) ||
         !(desc->rsm_tolerance_cells >= 0.0f) || !isfinite(desc->rsm_tolerance_cells) || desc->rsm_size > 4096)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
-    if ((unsigned)desc->ao_method > ROMA_AO_METHOD_SCREEN_SPACE)
+    if ((unsigned)desc->ao_method > ROMA_AO_METHOD_NAADF)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: unknown AO method %u",
                          (unsigned)desc->ao_method);
     if (desc->ao_method == ROMA_AO_METHOD_SCREEN_SPACE &&
@@ -584,7 +597,9 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         stats->pass_bytes[ROMA_PASS_MANY_LIGHTS] += R.mask.size;
     stats->pass_bytes[ROMA_PASS_GI] += R.surfaces.cells.size + R.gi_scene.size; /* the surface grid */
     if (R.distance_field.ctx)
-        stats->distance_field_bytes = roma_distance_field_bytes(&R.distance_field, &stats->distance_field_build_bytes);
+        stats->baseline_bytes = roma_distance_field_bytes(&R.distance_field, &stats->baseline_build_bytes);
+    if (R.naadf.ctx)
+        stats->baseline_bytes = roma_naadf_bytes(&R.naadf, &stats->baseline_build_bytes);
     if (R.gbuffer)
         stats->pass_bytes[ROMA_PASS_GBUFFER] = n * sizeof(roma_gbuffer_pixel);
     stats->pass_bytes[ROMA_PASS_RSM] =

@@ -50,8 +50,10 @@ typedef struct roma_effect_render_desc {
     /* What AO rays trace (passes/ao.h): ROMA (0, the default) or a baseline of the accuracy
      * study: the exact traversal of the BOM (3D DDA from each ray's origin to its end, no
      * ROMA maps: the voxelization's error apart from ROMA's), or the distance field built
-     * from the BOM every frame and sphere-traced (the ROMA paper's comparator), or screen-space
-     * AO against the G-buffer's depth (AO alone, bounded radius; no map is built). */
+     * from the BOM every frame and sphere-traced (the ROMA paper's comparator), or the NAADF
+     * hierarchy built from the BOM every frame (the exact traversal's voxels, empty space left
+     * a box at a time), or screen-space AO against the G-buffer's depth (AO alone, bounded
+     * radius; no map is built). */
     roma_ao_method ao_method;
     uint32_t ssao_steps;               /* ROMA_AO_METHOD_SCREEN_SPACE: march steps; 0 = ROMA_AO_SSAO_STEPS */
     /* 1: rays skip their first cells without looking (the rule before the exact walk of
@@ -104,10 +106,11 @@ typedef struct roma_effect_stats {
     double build_ms[ROMA_PASS_COUNT];  /* per array in plan.maps: BOM + rotation, summed over frames */
     roma_map_info map_info[ROMA_PASS_COUNT];
     uint64_t pass_bytes[ROMA_PASS_COUNT]; /* GPU memory of each pass's own buffers */
-    /* ROMA_AO_METHOD_DISTANCE_FIELD: the field's builds (GPU timestamps summed over frames,
-     * also in the AO pass's time), its memory and the seeds' while building. */
-    double distance_field_ms;
-    uint64_t distance_field_bytes, distance_field_build_bytes;
+    /* ROMA_AO_METHOD_DISTANCE_FIELD and ROMA_AO_METHOD_NAADF: the builds of the structure the
+     * baseline makes from the BOM every frame (GPU timestamps summed over frames, also in the
+     * AO pass's time), its memory and what it uses only while building (the field's seeds). */
+    double baseline_build_ms;
+    uint64_t baseline_bytes, baseline_build_bytes;
 } roma_effect_stats;
 
 roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const roma_effect_render_desc *desc,

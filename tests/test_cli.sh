@@ -271,6 +271,13 @@ for method in voxel-dda distance-field naadf screen-space; do
 done
 grep -q '"distance_field_build"' "$dir/distance-field/stats.json" || fail "the stats lack the distance field's build"
 grep -q '"naadf_build"' "$dir/naadf/stats.json" || fail "the stats lack the NAADF hierarchy's build"
+# Screen-space AO against a stochastic depth map too; its layers only with that method.
+"$render" --tracer roma --effects ao --ao-method screen-space --ssao-layers 2 --ao-radius 0.5 --size 16x12 --spp 1 \
+  --out "$dir/sdmap" --stats "$dir/sdmap/stats.json" >/dev/null 2>&1 || fail "roma-render --ssao-layers 2 failed"
+grep -q '"depth_layers"' "$dir/sdmap/stats.json" || fail "the stats lack the depth layers' rasterization"
+"$render" --tracer roma --effects ao --ssao-layers 2 --size 16x12 --out "$dir/sdmap2" >/dev/null 2>"$dir/sdmap2.err"
+expect_status 2 $? "roma-render --ssao-layers without screen space"
+grep -q -- "--ssao-layers is for --ao-method screen-space" "$dir/sdmap2.err" || fail "--ssao-layers alone: no reason"
 "$render" --tracer roma --effects ao --ao-method bogus --size 16x12 --out "$dir/aom" >/dev/null 2>"$dir/aom.err"
 expect_status 2 $? "roma-render --ao-method bogus"
 grep -q "valid: roma, voxel-dda, distance-field, naadf, screen-space" "$dir/aom.err" || fail "a bad --ao-method does not list the methods"

@@ -9,7 +9,10 @@
  *   that blocks those rays and the baseline matches the reference there, within the
  *   march's steps and the thickness it assumes. Against the reference with the same
  *   samples at the G-buffer's points; the floor pixels whose reference AO is below 0.95
- *   (those the block occludes) are where it is measured.
+ *   (those the block occludes) are where it is measured;
+ * - the same with a stochastic depth map beside the G-buffer's depth: layers that keep
+ *   every fragment give the same image bit for bit; layers that keep half of them hold
+ *   surfaces the camera does not see, and the bias falls.
  * Bounds: measured values (printed) plus a margin. */
 #include <math.h>
 #include <stdio.h>
@@ -33,6 +36,13 @@
  * centre instead of its plane, 0.1497 and -0.1493, and the floor alone down to 0.5. */
 #define NEAR_BLOCK_MAX_ERROR 0.025
 #define NEAR_BLOCK_MAX_BIAS 0.015
+/* With 4 layers of a stochastic depth map (keeping half the fragments): measured 0.0244 and
+ * -0.0160. The layers hold the block's back and the floor behind it, so the rays under the
+ * block's back half are blocked too (the bias falls by 0.0267), and the thickness the
+ * march assumes behind every surface, now behind the block's back as well, over-occludes. */
+#define LAYERED_MAX_ERROR 0.027
+#define LAYERED_MAX_BIAS 0.02
+#define LAYERED_MIN_BIAS_DROP 0.02
 
 /* A 4 x 4 floor at y = 0 and, with block, a 1.2 x 0.8 x 0.4 box on it facing +z. */
 static roma_scene *floor_scene(int block)
@@ -58,9 +68,11 @@ static roma_scene *floor_scene(int block)
     return scene;
 }
 
-/* SSAO of the scene and the reference at its G-buffer points (same samples). */
-static void measure(roma_context *ctx, const roma_scene *scene, float *min_ao, double *near_err, double *near_bias,
-                    uint32_t *near_count)
+/* SSAO of the scene (with layers of a stochastic depth map, each keeping a fragment with
+ * probability keep, 0: the default) and the reference at its G-buffer points (same samples);
+ * ao: NULL or W * H values, the SSAO image. */
+static void measure(roma_context *ctx, const roma_scene *scene, uint32_t layers, float keep, float *ao, float *min_ao,
+                    double *near_err, double *near_bias, uint32_t *near_count)
 {
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
@@ -69,7 +81,8 @@ static void measure(roma_context *ctx, const roma_scene *scene, float *min_ao, d
     CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
     roma_effect_render_desc d = {.camera = v.camera, .width = W, .height = H,
                                  .options = {.effects = ROMA_EFFECT_AO}, .spp = SPP, .frames = FRAMES, .seed = SEED,
-                                 .ao_radius = RADIUS, .out_gbuffer = px, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE};
+                                 .ao_radius = RADIUS, .out_gbuffer = px, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE,
+                                 .ssao_layers = layers, .ssao_keep = keep};
     roma_effect_images img;
     roma_effect_stats st;
     memset(&img, 0, sizeof img);
@@ -79,6 +92,8 @@ static void measure(roma_context *ctx, const roma_scene *scene, float *min_ao, d
     } else {
         double err = 0.0, diff = 0.0;
         *min_ao = 2.0f;
+        if (ao)
+            memcpy(ao, img.ao.pixels, W * H * sizeof *ao);
         for (uint32_t i = 0; i < W * H; ++i) {
             const roma_gbuffer_pixel *p = &px[i];
             if (!isfinite(p->position_t[3]))
@@ -112,17 +127,30 @@ int main(void)
     double err, bias;
     uint32_t near;
     if (flat) {
-        measure(ctx, flat, &min_ao, &err, &bias, &near);
+        measure(ctx, flat, 0, 0.0f, NULL, &min_ao, &err, &bias, &near);
         printf("floor alone: least AO %.4f over the covered pixels\n", (double)min_ao);
         CHECK(min_ao >= FLOOR_MIN_AO);
     }
+    static float one_layer[W * H], copies[W * H];
     if (block) {
-        measure(ctx, block, &min_ao, &err, &bias, &near);
+        measure(ctx, block, 0, 0.0f, one_layer, &min_ao, &err, &bias, &near);
         printf("block on the floor: %u floor pixels it occludes, mean |SSAO - reference| %.4f, bias %+.4f\n", near,
                err, bias);
         CHECK(near > 200);
         CHECK(err <= NEAR_BLOCK_MAX_ERROR);
         CHECK(fabs(bias) <= NEAR_BLOCK_MAX_BIAS);
+        /* Layers that keep every fragment are the G-buffer's depth again: the same image. */
+        double copies_err, copies_bias;
+        measure(ctx, block, 3, 1.0f, copies, &min_ao, &copies_err, &copies_bias, &near);
+        CHECK(memcmp(one_layer, copies, sizeof copies) == 0);
+        /* The stochastic depth map's layers hold the block's back and the floor behind it. */
+        double layered_err, layered_bias;
+        measure(ctx, block, 4, 0.0f, NULL, &min_ao, &layered_err, &layered_bias, &near);
+        printf("with 4 stochastic depth layers: mean |SSAO - reference| %.4f, bias %+.4f\n", layered_err,
+               layered_bias);
+        CHECK(layered_err <= LAYERED_MAX_ERROR);
+        CHECK(fabs(layered_bias) <= LAYERED_MAX_BIAS);
+        CHECK(layered_bias <= bias - LAYERED_MIN_BIAS_DROP);
     }
     /* Refused: other effects with it, an unbounded radius. */
     if (block) {

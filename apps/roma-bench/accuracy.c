@@ -3,7 +3,8 @@
  * the exact traversal of the same voxels (the voxelization's own error), the distance
  * field built from them every frame and sphere-traced (the ROMA paper's comparator) and the
  * NAADF hierarchy built from them every frame (the same voxels, empty space skipped), and
- * by screen-space AO against the G-buffer's depth at three march lengths; timed per frame
+ * by screen-space AO against the G-buffer's depth at three march lengths and against a
+ * stochastic depth map of 2 and 4 layers beside it; timed per frame
  * (G-buffer once, then per frame: the array rebuilt with new jitter, none for screen space,
  * and the AO pass, from submit to fence on the host), against the Embree reference on the
  * same surface points and the same samples. */
@@ -246,7 +247,8 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     }
     const double ms = roma_app_median(s->times, (int)d->runs);
     const double mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
-    const int builds = rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || rd->ao_method == ROMA_AO_METHOD_NAADF;
+    const int builds = rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || rd->ao_method == ROMA_AO_METHOD_NAADF ||
+                       rd->ssao_layers;
     char df_text[16] = "-";
     if (builds)
         snprintf(df_text, sizeof df_text, "%.1f", df_ms);
@@ -268,8 +270,10 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     return 0;
 }
 
-/* The screen-space baseline's march lengths: steps per ray. */
+/* The screen-space baseline's march lengths: steps per ray; then, at the middle length, the
+ * stochastic depth map's layers beside the G-buffer's depth. */
 static const uint32_t ssao_steps[] = {8, 16, 32};
+static const uint32_t ssao_layers[] = {2, 4};
 
 int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                         const roma_bench_accuracy_desc *d, FILE *csv)
@@ -278,7 +282,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     roma_camera cam;
     roma_scene_default_camera(scene, (float)w / (float)h, &cam);
     /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (d->angular_count + 3) + 3 + 32 + 3 * 32; /* + the frames curves */
+    const int max_points = d->res_count * (d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
     study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
                .px = calloc((size_t)w * h, sizeof(roma_gbuffer_pixel)), .ref_ao = calloc((size_t)w * h, sizeof(float)),
                .times = calloc(d->runs, sizeof(double)),
@@ -297,7 +301,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
            "time per frame = host-observed render time / frames (%s); error against Embree\n"
            "on the same points and samples, over the pixels that see geometry (FLIP: LDR-FLIP\n"
            "at 67 pixels per degree).\n\n"
-           "| method | RES | A | ms per frame | of which DF or NAADF build (timestamps) | MAE | bias | FLIP |\n"
+           "| method | RES | A | ms per frame | of which DF, NAADF or depth layers (timestamps) | MAE | bias | FLIP |\n"
            "|---|---|---|---|---|---|---|---|\n",
            w, h, samples, d->spp, d->frames, (double)d->radius, how);
     /* FLIP against the reference over the covered pixels (background 1, as ROMA's images). */
@@ -356,6 +360,20 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         double ms, mae;
         if (measure_setting(&s, &rd, name, "screen-space", "screen space (steps)", label, "-", "-", ssao_steps[i], 0,
                             &ms, &mae))
+            status = 1;
+    }
+    for (size_t i = 0; i < sizeof ssao_layers / sizeof ssao_layers[0]; ++i) {
+        roma_effect_render_desc rd = {
+            .camera = cam, .width = w, .height = h, .options = {.effects = ROMA_EFFECT_AO, .resolution = 128},
+            .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s.px,
+            .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = 16, .ssao_layers = ssao_layers[i],
+        };
+        char name[64], label[16];
+        snprintf(name, sizeof name, "stochastic depth map, %u layers, 16 steps", ssao_layers[i]);
+        snprintf(label, sizeof label, "%u", ssao_layers[i]);
+        double ms, mae;
+        if (measure_setting(&s, &rd, name, "sd-map", "stochastic depth map (layers)", label, "-", "-",
+                            ssao_layers[i], 0, &ms, &mae))
             status = 1;
     }
     if (s.have_ref && embree_equal_time(ref, s.px, s.ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, &s.ref_image,

@@ -31,7 +31,8 @@ static const char *usage =
     "  --accuracy: instead, what accuracy costs in time: AO rendered by ROMA for every RES x A\n"
     "  and by the baselines for every RES (exact voxel traversal, distance field sphere tracing,\n"
     "  NAADF traversal)\n"
-    "  and at 8, 16, 32 steps (screen-space AO against the G-buffer's depth)\n"
+    "  and at 8, 16, 32 steps (screen-space AO against the G-buffer's depth) and against 2 and 4\n"
+    "  stochastic depth layers beside it (16 steps)\n"
     "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
     "  frame and error against Embree on the same samples, and Embree at equal time; the\n"
     "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot).\n";

@@ -49,6 +49,8 @@ static const char *usage =
     "                              through the NAADF hierarchy built from it every frame (the voxels of\n"
     "                              voxel-dda, empty space skipped a box at a time), or marched in screen\n"
     "                              space against the G-buffer's depth (ao alone)\n"
+    "  --ssao-layers K             screen-space ao: also against K layers of a stochastic depth map\n"
+    "                              rasterized every frame (0..8, default 0: the depth buffer alone)\n"
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
@@ -115,6 +117,7 @@ typedef struct options {
     int gi_rays;         /* --gi-punctual rays */
     int blind_start;     /* --ray-start blind */
     roma_ao_method ao_method; /* --ao-method */
+    uint32_t ssao_layers;     /* --ssao-layers */
     float background[3];
     roma_light extra_lights[16];
     uint32_t extra_light_count;
@@ -308,6 +311,7 @@ static int parse_args(int argc, char **argv, options *o)
             }
         }
         else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
+        else if (strcmp(a, "--ssao-layers") == 0) ok = parse_u32(v, 0, ROMA_AO_SSAO_MAX_LAYERS, &o->ssao_layers);
         else if (strcmp(a, "--ao-method") == 0) {
             o->given |= GIVEN_AO_METHOD;
             if (strcmp(v, "roma") == 0)
@@ -448,6 +452,10 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (o->ao_method == ROMA_AO_METHOD_SCREEN_SPACE && (o->given & GIVEN_EFFECTS) && o->effects != ROMA_EFFECT_AO) {
         fprintf(stderr, "roma-render: --ao-method screen-space renders AO alone: give --effects ao\n");
+        return 0;
+    }
+    if (o->ssao_layers && o->ao_method != ROMA_AO_METHOD_SCREEN_SPACE) {
+        fprintf(stderr, "roma-render: --ssao-layers is for --ao-method screen-space\n");
         return 0;
     }
     if (o->ao_method == ROMA_AO_METHOD_SCREEN_SPACE && (o->given & GIVEN_AO_RADIUS) && !(o->ao_radius > 0.0f)) {
@@ -1107,7 +1115,7 @@ int main(int argc, char **argv)
                             .lights_angular = o.shadow_angular, .many_light_count = o.lights},
                 .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
                 .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame, .gi_punctual_rays = o.gi_rays,
-                .blind_ray_start = o.blind_start, .ao_method = o.ao_method,
+                .blind_ray_start = o.blind_start, .ao_method = o.ao_method, .ssao_layers = o.ssao_layers,
                 /* The library takes 0 as its default and a negative value as none. */
                 .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
                 .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,
@@ -1149,6 +1157,9 @@ int main(int argc, char **argv)
                              "gpu_timestamp", roma_stats.baseline_build_ms);
                     run.passes[run.pass_count - 1].bytes = roma_stats.baseline_bytes;
                 }
+                if (o.ssao_layers && roma_effect_plan_runs(&roma_stats.plan, ROMA_PASS_AO))
+                    /* the stochastic depth map's rasterization, beside the ao pass */
+                    add_pass(&run, "depth_layers", "gpu_timestamp", roma_stats.baseline_build_ms);
                 run.roma = &roma_stats;
                 if ((o.effects & ROMA_EFFECT_AO) && !write_outputs(&o, "ao", &images.ao, &images.coverage, 1.0f))
                     status = 1;

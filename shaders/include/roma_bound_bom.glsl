@@ -24,5 +24,7 @@ layout(set = ROMA_BOM_SET, binding = ROMA_BOM_BINDING) uniform usamplerBuffer ro
 
 #define ROMA_RAY_START_FETCH
 uint roma_fetch_bom_word(uint index) { return texelFetch(roma_bom_texels, int(index)).x; }
+// The whole texel, where a pass binds something else in the BOM's place (a view of 4 channels).
+uvec4 roma_fetch_bom_texel(uint index) { return texelFetch(roma_bom_texels, int(index)); }
 
 #endif // ROMA_BOUND_BOM_GLSL

@@ -183,7 +183,8 @@ ROMA_STRUCT_BEGIN(roma_gbuffer_push)
     ROMA_U64(albedo);     /* float4 per triangle */
     ROMA_U64(params);     /* roma_gbuffer_params */
     ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
-    ROMA_UVEC4(config);   /* x: triangle count */
+    ROMA_UVEC4(config);   /* x: triangle count; a stochastic layer: y the probability a fragment
+                             is kept (float bits; 0: all), z the layer's seed */
 ROMA_STRUCT_END(roma_gbuffer_push)
 
 /* Triangle id of pixels without geometry. */
@@ -234,7 +235,8 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(bom);        /* this frame's BOM (roma/ray_start.glsl), 0: rays skip their start blind */
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps */
+    ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps, z: screen-space
+                             baseline: stochastic depth layers beside the G-buffer's */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world),
                              w: distance field baseline: least step (cells) */
     /* Screen-space baseline only (roma_ssao.glsl): the camera as a projection, pixel

@@ -20,8 +20,8 @@ void main()
 {
     roma_gbuffer_params prm = RomaGbufferParams(pc.params).params;
     uvec2 pix = uvec2(gl_FragCoord.xy);
-    if (pix.x >= prm.dims.x || pix.y >= prm.dims.y)
-        return;
+    if (pix.x >= prm.dims.x || pix.y >= prm.dims.y || roma_gbuffer_dropped(pix, v_triangle))
+        return; // a fragment a stochastic layer dropped: one at the depth of the kept one
     RomaGbufferWords out_px = RomaGbufferWords(pc.pixels);
     uint base = 4u * (pix.y * prm.dims.x + pix.x);
     const float inf = uintBitsToFloat(0x7f800000u);

@@ -60,7 +60,7 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         return ROMA_SUCCESS;
     roma_camera_frame cam = {0};
     if (pass->method == ROMA_AO_METHOD_SCREEN_SPACE &&
-        (!(in->radius > 0.0f) || !isfinite(in->radius) || !in->camera ||
+        (!(in->radius > 0.0f) || !isfinite(in->radius) || !in->camera || (in->ssao_layers && !in->bom) ||
          !roma_camera_make_frame(in->camera, in->width, in->height, &cam)))
         return roma_fail(&pass->ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_pass_record: screen-space AO needs a bounded radius and the G-buffer's camera");
@@ -82,6 +82,7 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         }
         push.eye[3] = ROMA_AO_SSAO_THICKNESS * in->radius;
         push.forward[3] = (float)(in->ssao_steps ? in->ssao_steps : ROMA_AO_SSAO_STEPS);
+        push.config2[2] = in->ssao_layers;
     }
     return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->bom, in->gbuffer_pixels, in->accum,
                                        &push);

@@ -37,6 +37,10 @@ typedef struct roma_ao_pass_inputs {
      * steps (0 = ROMA_AO_SSAO_STEPS). */
     const roma_camera *camera;
     uint32_t ssao_steps;
+    /* ... and the stochastic depth map's layers beside the G-buffer's depth (0: none), bound
+     * in place of the BOM (bom: an RGBA32_UINT view of ssao_layers G-buffers one after the
+     * other). */
+    uint32_t ssao_layers;
     /* width * height uint32_t, added to; clear it (vkCmdFillBuffer) before frame 0. */
     VkBuffer accum;
 } roma_ao_pass_inputs;
@@ -51,8 +55,9 @@ typedef enum roma_ao_method {
      * map's BOM (baselines/distance_field.h), bound in the BOM's place, at most
      * ROMA_AO_DF_MAX_STEPS steps of at least ROMA_AO_DF_MIN_STEP cells */
     ROMA_AO_METHOD_DISTANCE_FIELD = 2,
-    /* every ray marched in screen space against the G-buffer's one depth layer
-     * (shaders/include/roma_ssao.glsl): no map is read, and a bounded radius is needed */
+    /* every ray marched in screen space against the G-buffer's depth layer, and the layers
+     * of a stochastic depth map if given (shaders/include/roma_ssao.glsl): no map is read,
+     * and a bounded radius is needed */
     ROMA_AO_METHOD_SCREEN_SPACE = 3,
     /* every ray traversed from its origin through the NAADF hierarchy built from the map's BOM
      * (baselines/naadf.h), bound in the BOM's place: the voxels of ROMA_AO_METHOD_VOXEL_DDA,
@@ -64,6 +69,11 @@ typedef enum roma_ao_method {
  * is taken to extend, as a fraction of the AO radius. */
 #define ROMA_AO_SSAO_STEPS 16u
 #define ROMA_AO_SSAO_THICKNESS 0.5f
+/* The stochastic depth map beside the G-buffer's depth: at most this many layers, each
+ * keeping a fragment with this probability (a pixel's k-th surface from the eye is in a
+ * layer with probability 0.5^k). */
+#define ROMA_AO_SSAO_MAX_LAYERS 8u
+#define ROMA_AO_SSAO_KEEP 0.5f
 
 /* The ROMA paper's baseline takes up to 64 steps. With half a cell as the least step a ray
  * can clip only the corner of an occupied cell: closed rooms leak on under 0.5% of their

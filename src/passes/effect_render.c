@@ -14,6 +14,7 @@
 #include "passes/rsm_views.h"
 #include "passes/scene_buffers.h"
 #include "passes/surface_cells.h"
+#include "roma/sampling.h"
 
 #define PI_F 3.14159265358979323846f
 
@@ -34,6 +35,11 @@ typedef struct renderer {
     roma_ao_pass *ao;
     roma_distance_field distance_field; /* ROMA_AO_METHOD_DISTANCE_FIELD: built every frame */
     roma_naadf naadf;                   /* ROMA_AO_METHOD_NAADF: built every frame */
+    /* Screen-space AO with a stochastic depth map: its layers, rasterized every frame, and
+     * their pixels one after the other, bound to the AO pass in the BOM's place. */
+    roma_gbuffer *sd_layers[ROMA_AO_SSAO_MAX_LAYERS];
+    roma_buffer sd_pixels;
+    VkBufferView sd_view;
     roma_pixel_pass punctual, soft, many, gi;
     roma_pixel_list list; /* covered pixels of the current G-buffer, for every tracing pass */
     roma_gbuffer *rsm[ROMA_MAX_RSM_VIEWS];
@@ -156,6 +162,21 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         else if (r == ROMA_SUCCESS)
             r = roma_naadf_create(ctx, info.bom_buffer, info.resolution, &R->naadf);
     }
+    for (uint32_t l = 0; r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO) && l < d->ssao_layers; ++l)
+        r = roma_gbuffer_create_stochastic(ctx, d->width, d->height, &R->sd_layers[l]);
+    if (r == ROMA_SUCCESS && R->sd_layers[0]) {
+        const VkDeviceSize layer = (VkDeviceSize)pixels * sizeof(roma_gbuffer_pixel);
+        if (4ull * pixels * d->ssao_layers > ctx->properties.limits.maxTexelBufferElements)
+            r = roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                          "roma_effect_render: %u depth layers of %ux%u exceed maxTexelBufferElements", d->ssao_layers,
+                          d->width, d->height);
+        if (r == ROMA_SUCCESS)
+            r = roma_buffer_create(ctx, layer * d->ssao_layers,
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                   ROMA_MEMORY_DEVICE, &R->sd_pixels);
+        if (r == ROMA_SUCCESS)
+            r = roma_buffer_view_create(ctx, R->sd_pixels.buffer, VK_FORMAT_R32G32B32A32_UINT, &R->sd_view);
+    }
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_PUNCTUAL_LIGHTS))
         r = roma_pixel_pass_create(ctx, "punctual_lights.comp", sizeof(roma_punctual_push), 1, &R->punctual);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_SOFT_SHADOWS))
@@ -228,6 +249,11 @@ static void destroy_resources(renderer *R)
     roma_ao_pass_destroy(R->ao);
     roma_distance_field_destroy(&R->distance_field);
     roma_naadf_destroy(&R->naadf);
+    for (uint32_t l = 0; l < ROMA_AO_SSAO_MAX_LAYERS; ++l)
+        roma_gbuffer_destroy(R->sd_layers[l]);
+    if (R->sd_view)
+        vkDestroyBufferView(ctx->device, R->sd_view, ctx->allocator);
+    roma_buffer_destroy(ctx, &R->sd_pixels);
     roma_light_data_destroy(ctx, &R->lights);
     roma_gpu_timer_destroy(R->timer);
     roma_gbuffer_destroy(R->gbuffer);
@@ -283,11 +309,14 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 roma_gpu_timer_end(R->timer, cmd, scope);
                 bound = R->naadf.cells_view;
             }
+            if (R->sd_view)
+                bound = R->sd_view; /* screen space reads no BOM: the depth layers in its place */
             roma_ao_pass_inputs in = {
                 .gbuffer_pixels = pixels_buffer, .width = d->width, .height = d->height, .map = m, .list = &R->list,
                 .offset = offset, .radius = d->ao_radius, .tmin = ao_skip * m->trace_cell, .spp = spp, .frame = f,
                 .seed = d->seed, .accum = R->accum[p].buffer, .bom = bound, .blind_start = d->blind_ray_start,
                 .camera = d->camera_path ? &d->camera_path[f] : &d->camera, .ssao_steps = d->ssao_steps,
+                .ssao_layers = R->sd_view ? d->ssao_layers : 0,
             };
             r = roma_ao_pass_record(R->ao, cmd, &in);
             break;
@@ -372,6 +401,29 @@ static roma_result record_denoise(renderer *R, VkCommandBuffer cmd, uint32_t f, 
     return roma_denoiser_record(&R->denoiser, cmd, &in);
 }
 
+/* The stochastic depth map's layers for frame f (new seeds every frame, so frames average
+ * over layers), copied one after the other into the buffer the AO pass reads. */
+static roma_result record_depth_layers(renderer *R, VkCommandBuffer cmd, const roma_gbuffer_inputs *gin, uint32_t f)
+{
+    const roma_effect_render_desc *d = R->desc;
+    const VkDeviceSize layer = (VkDeviceSize)d->width * d->height * sizeof(roma_gbuffer_pixel);
+    uint32_t scope = roma_gpu_timer_begin(R->timer, cmd, "depth layers");
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t l = 0; l < d->ssao_layers && r == ROMA_SUCCESS; ++l) {
+        roma_gbuffer_inputs in = *gin;
+        in.keep = d->ssao_keep > 0.0f ? d->ssao_keep : ROMA_AO_SSAO_KEEP;
+        in.seed = roma_hash_u32(d->seed ^ roma_hash_u32(f * ROMA_AO_SSAO_MAX_LAYERS + l));
+        r = roma_gbuffer_record(R->sd_layers[l], cmd, &in);
+        VkBufferCopy copy = {0, l * layer, layer};
+        if (r == ROMA_SUCCESS)
+            vkCmdCopyBuffer(cmd, roma_gbuffer_pixels_buffer(R->sd_layers[l]), R->sd_pixels.buffer, 1, &copy);
+    }
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
+    roma_gpu_timer_end(R->timer, cmd, scope);
+    return r;
+}
+
 static roma_result run_frames(renderer *R, roma_effect_stats *stats)
 {
     roma_context *ctx = R->ctx;
@@ -421,6 +473,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
                 if (R->accum[p].buffer)
                     vkCmdFillBuffer(cmd, R->accum[p].buffer, 0, VK_WHOLE_SIZE, 0);
         }
+        if (r == ROMA_SUCCESS && R->sd_view)
+            r = record_depth_layers(R, cmd, &gin, f);
         if (f == 0 && R->rsm_views.count) {
             /* The lights stand still: their RSMs once. */
             scopes[ROMA_PASS_RSM] = roma_gpu_timer_begin(R->timer, cmd, "rsm");
@@ -447,6 +501,8 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             stats->baseline_build_ms += scope_ms(R->timer, "distance field");
         if (r == ROMA_SUCCESS && R->naadf.ctx)
             stats->baseline_build_ms += scope_ms(R->timer, "naadf");
+        if (r == ROMA_SUCCESS && R->sd_view)
+            stats->baseline_build_ms += scope_ms(R->timer, "depth layers");
         if (r == ROMA_SUCCESS && d->progress)
             d->progress((float)(f + 1) / (float)frames, d->progress_user_data);
     }
@@ -552,6 +608,11 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
     if ((unsigned)desc->ao_method > ROMA_AO_METHOD_NAADF)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: unknown AO method %u",
                          (unsigned)desc->ao_method);
+    if ((desc->ssao_layers && desc->ao_method != ROMA_AO_METHOD_SCREEN_SPACE) ||
+        desc->ssao_layers > ROMA_AO_SSAO_MAX_LAYERS || !(desc->ssao_keep >= 0.0f && desc->ssao_keep <= 1.0f))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_effect_render: depth layers (at most %u, kept with a probability in [0, 1]) are for "
+                         "screen-space AO", ROMA_AO_SSAO_MAX_LAYERS);
     if (desc->ao_method == ROMA_AO_METHOD_SCREEN_SPACE &&
         (desc->options.effects != ROMA_EFFECT_AO || !(desc->ao_radius > 0.0f) || !isfinite(desc->ao_radius)))
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,

@@ -56,6 +56,12 @@ typedef struct roma_effect_render_desc {
      * radius; no map is built). */
     roma_ao_method ao_method;
     uint32_t ssao_steps;               /* ROMA_AO_METHOD_SCREEN_SPACE: march steps; 0 = ROMA_AO_SSAO_STEPS */
+    /* ROMA_AO_METHOD_SCREEN_SPACE: the layers of a stochastic depth map rasterized every frame
+     * beside the G-buffer's depth (0: none, at most ROMA_AO_SSAO_MAX_LAYERS), each keeping a
+     * fragment with probability ssao_keep (0 = ROMA_AO_SSAO_KEEP; 1: every layer is the
+     * G-buffer's depth again). */
+    uint32_t ssao_layers;
+    float ssao_keep;
     /* 1: rays skip their first cells without looking (the rule before the exact walk of
      * roma/ray_start.glsl, which keeps rays from passing a wall they start next to). */
     int blind_ray_start;
@@ -108,7 +114,8 @@ typedef struct roma_effect_stats {
     uint64_t pass_bytes[ROMA_PASS_COUNT]; /* GPU memory of each pass's own buffers */
     /* ROMA_AO_METHOD_DISTANCE_FIELD and ROMA_AO_METHOD_NAADF: the builds of the structure the
      * baseline makes from the BOM every frame (GPU timestamps summed over frames, also in the
-     * AO pass's time), its memory and what it uses only while building (the field's seeds). */
+     * AO pass's time), its memory and what it uses only while building (the field's seeds);
+     * with ssao_layers: the stochastic depth map's rasterization (not in the AO pass's time). */
     double baseline_build_ms;
     uint64_t baseline_bytes, baseline_build_bytes;
 } roma_effect_stats;

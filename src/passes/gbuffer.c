@@ -13,7 +13,8 @@ struct roma_gbuffer {
     roma_context *ctx;
     uint32_t width, height;
     VkPipelineLayout layout;
-    VkPipeline depth_pipeline;   /* pass 1: depth only, GREATER (reversed Z) */
+    VkPipeline depth_pipeline;   /* pass 1: depth only, GREATER (reversed Z); stochastic: with discards */
+    int stochastic;              /* a layer of a stochastic depth map (roma_gbuffer_create_stochastic) */
     VkPipeline shade_pipeline;   /* pass 2: EQUAL, early tests, writes the pixels */
     VkImage depth;
     VkDeviceMemory depth_memory;
@@ -33,12 +34,16 @@ static roma_result create_pipelines(roma_gbuffer *g)
         res = roma_shader_module_create(ctx, "gbuffer.vert", &vert);
     if (res == ROMA_SUCCESS)
         res = roma_shader_module_create(ctx, "gbuffer.frag", &frag);
+    VkShaderModule drop = VK_NULL_HANDLE;
+    if (res == ROMA_SUCCESS && g->stochastic)
+        res = roma_shader_module_create(ctx, "gbuffer_stochastic.frag", &drop);
     /* Reversed Z (near = 1, far = 0): the nearest surface has the greatest depth.
      * Pass 2 re-runs the same vertex shader (clip position computed `precise`), so the
      * surviving fragment's depth is bit-identical and EQUAL selects it. The depth pass
-     * needs no fragment shader; the G-buffer goes to a storage buffer. */
+     * needs no fragment shader but in a stochastic layer, where it drops fragments; the
+     * G-buffer goes to a storage buffer. */
     roma_graphics_pipeline_desc depth_pass = {
-        .vert = vert, .layout = g->layout, .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
+        .vert = vert, .frag = drop, .layout = g->layout, .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
         .depth_write = 1, .depth_compare = VK_COMPARE_OP_GREATER,
         .label = "vkCreateGraphicsPipelines (G-buffer depth)",
     };
@@ -55,6 +60,8 @@ static roma_result create_pipelines(roma_gbuffer *g)
         vkDestroyShaderModule(ctx->device, vert, ctx->allocator);
     if (frag)
         vkDestroyShaderModule(ctx->device, frag, ctx->allocator);
+    if (drop)
+        vkDestroyShaderModule(ctx->device, drop, ctx->allocator);
     return res;
 }
 
@@ -116,7 +123,8 @@ static roma_result create_depth(roma_gbuffer *g)
     return res;
 }
 
-roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out)
+static roma_result create_gbuffer(roma_context *ctx, uint32_t width, uint32_t height, int stochastic,
+                                  roma_gbuffer **out)
 {
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
@@ -138,6 +146,7 @@ roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t heig
     g->ctx = ctx;
     g->width = width;
     g->height = height;
+    g->stochastic = stochastic;
     roma_result res = create_pipelines(g);
     if (res == ROMA_SUCCESS)
         res = create_depth(g);
@@ -158,6 +167,16 @@ roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t heig
     }
     *out = g;
     return ROMA_SUCCESS;
+}
+
+roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out)
+{
+    return create_gbuffer(ctx, width, height, 0, out);
+}
+
+roma_result roma_gbuffer_create_stochastic(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out)
+{
+    return create_gbuffer(ctx, width, height, 1, out);
 }
 
 void roma_gbuffer_destroy(roma_gbuffer *g)
@@ -275,6 +294,10 @@ roma_result roma_gbuffer_record(roma_gbuffer *g, VkCommandBuffer cmd, const roma
         .layerCount = 1,
         .pDepthAttachment = &depth_attachment,
     };
+    /* A stochastic layer keeps each fragment with probability keep (the shaders: 0 or 1 keep all). */
+    const float keep = g->stochastic && in->keep > 0.0f && in->keep < 1.0f ? in->keep : 0.0f;
+    uint32_t keep_bits;
+    memcpy(&keep_bits, &keep, sizeof keep_bits);
     roma_gbuffer_push push = {
         .positions = in->positions,
         .normals = in->normals,
@@ -282,7 +305,7 @@ roma_result roma_gbuffer_record(roma_gbuffer *g, VkCommandBuffer cmd, const roma
         .albedo = in->albedo,
         .params = g->params.address,
         .pixels = g->pixels.address,
-        .config = {in->triangle_count, 0, 0, 0},
+        .config = {in->triangle_count, keep_bits, in->seed, 0},
     };
     /* Both passes in one rendering: depth writes of the first draw are ordered
      * before the tests of the second by primitive order. */

@@ -30,6 +30,11 @@ typedef struct roma_gbuffer_inputs {
     /* Near plane distance (> 0): geometry closer to the eye is clipped. Something
      * like 1e-4 of the scene's bounding-box diagonal; reversed Z keeps precision. */
     float near_plane;
+    /* A stochastic layer only (roma_gbuffer_create_stochastic): each fragment is kept with
+     * probability keep (0 or >= 1: all), drawn from a hash of its pixel, its triangle and seed,
+     * so the layer holds the nearest kept surface of each pixel. */
+    float keep;
+    uint32_t seed;
 } roma_gbuffer_inputs;
 
 /* The camera as the shaders project with it (roma_shared.h); 0 for a degenerate camera. */
@@ -38,6 +43,11 @@ int roma_gbuffer_camera_make(const roma_camera *cam, uint32_t width, uint32_t he
 
 /* width, height in 1..16384. */
 roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out);
+/* A layer of a stochastic depth map (the accuracy study's screen-space baseline with more
+ * than one layer, after Vardis et al. 2016): the depth pass drops fragments at random
+ * (roma_gbuffer_inputs.keep, .seed), so each pixel holds a random one of the surfaces behind
+ * it, the nearer ones more often. */
+roma_result roma_gbuffer_create_stochastic(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out);
 /* Accepts NULL. */
 void roma_gbuffer_destroy(roma_gbuffer *g);
 

@@ -11,8 +11,9 @@
 #   make docs            the API reference (doxygen) in build/docs/html
 #   make study           what accuracy costs in time: the accuracy run of roma-bench on the built-in
 #                        room (about 6 to 7 minutes on 2 cores) into docs/bench and its plot into docs/images
-#                        (docs/accuracy-vs-time.md); make study-small: the same at 32x24 (test_bench_accuracy
-#                        runs that command in ctest)
+#                        (docs/accuracy-vs-time.md); a run cut short resumes where it stopped (the points
+#                        it finished are kept in build/ until the run completes); make study-small: the
+#                        same at 32x24 (test_bench_accuracy runs that command in ctest)
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -70,7 +71,9 @@ test-consumers: build
 
 study: build
 	$(BUILD)/apps/roma-bench --accuracy --ao-radius 0.5 --runs 3 --csv docs/bench/cornell_accuracy.csv \
-	    --plot docs/images/accuracy_vs_time_cornell_ao.png > docs/bench/cornell_accuracy.txt
+	    --plot docs/images/accuracy_vs_time_cornell_ao.png --cache $(BUILD)/study_cornell.cache \
+	    > docs/bench/cornell_accuracy.txt
+	rm -f $(BUILD)/study_cornell.cache
 	cat docs/bench/cornell_accuracy.txt
 
 study-small: build

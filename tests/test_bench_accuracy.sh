@@ -29,8 +29,27 @@ if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then
 fi
 
 "${bench_run[@]}" --small --accuracy --ao-radius 0.5 --csv "$dir/accuracy.csv" --plot "$dir/accuracy.png" \
-  >"$dir/out.txt" 2>&1 || { cat "$dir/out.txt" >&2; fail "roma-bench --accuracy --plot failed"; }
+  --cache "$dir/points.cache" >"$dir/out.txt" 2>"$dir/progress.txt" ||
+  { cat "$dir/out.txt" "$dir/progress.txt" >&2; fail "roma-bench --accuracy --plot failed"; }
 cat "$dir/out.txt"
+
+# The same run again with its cache: every point but the first (whose render makes the
+# G-buffer and the reference) comes from the cache, and its row is the same.
+"${bench_run[@]}" --small --accuracy --ao-radius 0.5 --cache "$dir/points.cache" >"$dir/again.txt" \
+  2>"$dir/again_progress.txt" || { cat "$dir/again_progress.txt" >&2; fail "roma-bench --cache (again) failed"; }
+python3 - "$dir/out.txt" "$dir/again.txt" "$dir/progress.txt" "$dir/again_progress.txt" <<'CACHE' ||
+import sys
+def rows(path):  # the method rows of the first table
+    lines = open(path).read().split("\n\n")[2].splitlines()
+    return [l for l in lines if l.startswith("| ") and not l.startswith("| method") and not l.startswith("|---")]
+first, again = rows(sys.argv[1]), rows(sys.argv[2])
+progress = [l for l in open(sys.argv[3]) if l.startswith("roma-bench: [")]
+cached = [l for l in open(sys.argv[4]) if "(from the cache)" in l]
+print("points:", len(first), "measured the first time:", len(progress), "from the cache again:", len(cached))
+sys.exit(0 if len(first) >= 10 and len(progress) == len(first) and len(cached) == len(first) - 1
+         and first[1:] == again[1:] else 1)
+CACHE
+  fail "a second run with the cache did not take its points from it"
 
 # The PNG: its signature and a size no empty plot has (measured: 49,895 bytes; the same
 # two panels with axes and grid but no data: 9,199).
@@ -115,6 +134,8 @@ EOF
 # anything is measured, with a message, and no crash).
 "${bench_run[@]}" --small --plot "$dir/x.png" >/dev/null 2>&1
 [ $? -eq 2 ] || fail "--plot without --accuracy should exit 2"
+"${bench_run[@]}" --small --cache "$dir/x.cache" >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--cache without --accuracy should exit 2"
 for bad in "--plot $dir/missing/x.png" "--csv $dir/missing/x.csv"; do
   # shellcheck disable=SC2086
   "${bench_run[@]}" --small --accuracy $bad >"$dir/bad.txt" 2>&1

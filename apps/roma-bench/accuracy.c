@@ -190,7 +190,46 @@ typedef struct study {
     FILE *csv;
     roma_bench_point *points;
     int point_count;
+    /* Finished points of earlier runs (desc cache_path), and the progress of this one. */
+    char **cached_keys;
+    double (*cached)[5]; /* ms per frame, build ms per frame, MAE, bias, FLIP */
+    int cached_count, measured, total;
 } study;
+
+/* The points an earlier run finished: lines "key\tms\tbuild\tmae\tbias\tflip". */
+static void load_cache(study *s)
+{
+    FILE *f = s->d->cache_path ? fopen(s->d->cache_path, "r") : NULL;
+    char line[1024];
+    while (f && fgets(line, sizeof line, f)) {
+        char *tab = strchr(line, '\t');
+        double v[5];
+        if (!tab || sscanf(tab + 1, "%lf\t%lf\t%lf\t%lf\t%lf", &v[0], &v[1], &v[2], &v[3], &v[4]) != 5)
+            continue;
+        char **keys = realloc(s->cached_keys, (size_t)(s->cached_count + 1) * sizeof *keys);
+        double(*vals)[5] = realloc(s->cached, (size_t)(s->cached_count + 1) * sizeof *vals);
+        if (keys)
+            s->cached_keys = keys;
+        if (vals)
+            s->cached = vals;
+        *tab = '\0';
+        char *key = keys && vals ? strdup(line) : NULL;
+        if (!key)
+            break;
+        s->cached_keys[s->cached_count] = key;
+        memcpy(s->cached[s->cached_count++], v, sizeof v);
+    }
+    if (f)
+        fclose(f);
+}
+
+static const double *find_cached(const study *s, const char *key)
+{
+    for (int i = s->cached_count - 1; i >= 0; --i) /* the latest line wins */
+        if (strcmp(s->cached_keys[i], key) == 0)
+            return s->cached[i];
+    return NULL;
+}
 
 /* One setting of one method: runs renders of rd (the first one's error), prints its row
  * (res_text, a_text: the table's RES and A columns), adds its point (series, label) and its
@@ -207,6 +246,17 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     roma_effect_images img;
     roma_effect_stats st;
     roma_result r = ROMA_SUCCESS;
+    char key[512];
+    snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u",
+             d->cache_key ? d->cache_key : "", d->width, d->height, d->frames, d->spp, (double)d->radius, d->runs, tag,
+             csv_res, csv_a, rd->ssao_steps, rd->ssao_layers);
+    /* The first point is always measured: its render makes the G-buffer and the reference. */
+    const double *cached = s->have_ref ? find_cached(s, key) : NULL;
+    double ms = 0.0, mae = NAN, b = NAN;
+    if (cached) {
+        ms = cached[0], df_ms = cached[1], mae = cached[2], b = cached[3], flip = cached[4];
+        goto report;
+    }
     for (uint32_t k = 0; k < d->runs && r == ROMA_SUCCESS; ++k) {
         double t0 = roma_app_now_ms();
         r = roma_effect_render(s->ctx, s->scene, rd, &img, &st);
@@ -245,8 +295,20 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
                 roma_result_string(r));
         return 1;
     }
-    const double ms = roma_app_median(s->times, (int)d->runs);
-    const double mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
+    ms = roma_app_median(s->times, (int)d->runs);
+    mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
+    if (d->cache_path) {
+        FILE *f = fopen(d->cache_path, "a");
+        if (f) {
+            fprintf(f, "%s\t%.6f\t%.6f\t%.6f\t%.6f\t%.6f\n", key, ms, df_ms, mae, b, flip);
+            fclose(f);
+        } else {
+            fprintf(stderr, "roma-bench: cannot append to the cache %s\n", d->cache_path);
+        }
+    }
+report:
+    fprintf(stderr, "roma-bench: [%d/%d] %s, RES %s, A %s: %.1f ms a frame, MAE %.4f%s\n", ++s->measured, s->total,
+            name, res_text, a_text, ms, mae, cached ? " (from the cache)" : "");
     const int builds = rd->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || rd->ao_method == ROMA_AO_METHOD_NAADF ||
                        rd->ssao_layers;
     char df_text[16] = "-";
@@ -292,6 +354,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         status = 1;
         goto done;
     }
+    load_cache(&s);
+    s.total = d->res_count * (d->angular_count + 3) + (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
+              (int)(sizeof ssao_layers / sizeof ssao_layers[0]);
     char how[64];
     if (d->runs == 1)
         snprintf(how, sizeof how, "one run");
@@ -419,6 +484,10 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             status = 1;
     }
 done:
+    for (int i = 0; i < s.cached_count; ++i)
+        free(s.cached_keys[i]);
+    free(s.cached_keys);
+    free(s.cached);
     free(s.points);
     roma_image_free(&s.ref_image);
     roma_image_free(&s.coverage);

@@ -12,6 +12,10 @@ typedef struct roma_bench_accuracy_desc {
     const uint32_t *res, *angular;
     int res_count, angular_count;
     const char *plot_path; /* NULL, or the PNG of error against time (gnuplot) */
+    /* NULL, or a file of finished points (tab-separated, appended to as they finish): a point
+     * found there under the same key is not measured again, so an interrupted sweep resumes.
+     * The key holds cache_key (the device and the scene) and every setting of the point. */
+    const char *cache_path, *cache_key;
 } roma_bench_accuracy_desc;
 
 /* Prints the table, the Pareto fronts (and CSV rows, the plot); returns 0 on success. */

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "accuracy.h"
@@ -19,7 +20,8 @@
 
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
-    "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R] [--accuracy [--plot FILE.png]]\n"
+    "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R]\n"
+    "                  [--accuracy [--plot FILE.png] [--cache FILE]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
@@ -35,7 +37,10 @@ static const char *usage =
     "  stochastic depth layers beside it (16 steps)\n"
     "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
     "  frame and error against Embree on the same samples, and Embree at equal time; the\n"
-    "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot).\n";
+    "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot);\n"
+    "  --cache FILE keeps every finished point, so that a run cut short resumes where it stopped\n"
+    "  (points of the same device, scene, settings and roma-bench executable are not measured\n"
+    "  again). Progress goes to stderr, a line a point.\n";
 
 static double timer_ms(roma_gpu_timer *timer, const char *name)
 {
@@ -152,7 +157,7 @@ static int writable(const char *path)
 
 int main(int argc, char **argv)
 {
-    const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL;
+    const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL, *cache_path = NULL;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
     int res_n = 3, ang_n = 3, accuracy = 0, small = 0;
     float ao_radius = 0.0f;
@@ -184,13 +189,14 @@ int main(int argc, char **argv)
         else if (v && strcmp(a, "--angular") == 0) ang_n = parse_list(v, ang_list, 4), ++i;
         else if (v && strcmp(a, "--csv") == 0) csv_path = v, ++i;
         else if (v && strcmp(a, "--plot") == 0) plot_path = v, ++i;
+        else if (v && strcmp(a, "--cache") == 0) cache_path = v, ++i;
         else {
             fprintf(stderr, "roma-bench: bad argument %s\n%s", a, usage);
             return 2;
         }
     }
-    if (plot_path && !accuracy) {
-        fprintf(stderr, "roma-bench: --plot draws the --accuracy run\n");
+    if ((plot_path || cache_path) && !accuracy) {
+        fprintf(stderr, "roma-bench: --plot and --cache are for the --accuracy run\n");
         return 2;
     }
     if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
@@ -239,11 +245,17 @@ int main(int argc, char **argv)
     if (csv)
         fprintf(csv, "kind,name,res,angular,value,unit\n");
     if (accuracy) {
+        /* Cached points are those of this device, scene and executable (a rebuilt roma-bench
+         * measures again). */
+        char cache_key[512];
+        struct stat exe;
+        snprintf(cache_key, sizeof cache_key, "%s|%s (%u triangles)|roma-bench of %lld", info.device_name, scene_arg,
+                 sv.triangle_count, stat("/proc/self/exe", &exe) == 0 ? (long long)exe.st_mtime : 0ll);
         roma_bench_accuracy_desc ad = {
             .width = small ? 32 : 160, .height = small ? 24 : 120, .spp = small ? 32 : 64,
             .frames = small ? 2 : 16, .runs = small ? 1 : runs, .radius = ao_radius,
             .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
-            .plot_path = plot_path,
+            .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,
         };
         int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
         if (csv)

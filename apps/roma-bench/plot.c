@@ -155,10 +155,13 @@ static void write_panel(FILE *gp, const roma_bench_point *points, int count, int
     for (int k = 0; k < n; ++k)
         fprintf(gp, "%.6g %.6g\n", points[order[k]].ms, error_of(&points[order[k]], use_flip));
     fprintf(gp, "EOD\nplot ");
+    /* gnuplot's default colours repeat after 8 series: one of 12 each, then a new point shape. */
+    static const char *const colours[12] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00", "#f0e442", "#0072b2",
+                                            "#e51e10", "#000000", "#cc79a7", "#8b4513", "#808000", "#ff69b4"};
     for (int s = 0; s < series; ++s)
-        fprintf(gp, "$%s%d using 1:2 with linespoints lt %d lw 2 pt 7 title \"%s\", "
+        fprintf(gp, "$%s%d using 1:2 with linespoints lc rgb \"%s\" lw 2 pt %d title \"%s\", "
                     "$%s%d using 1:2:3 with labels offset char 0.9,0.6 font \",8\" tc rgb \"gray30\" notitle, ",
-                name, s, s + 1, seen[s], name, s);
+                name, s, colours[s % 12], s < 12 ? 7 : 5, seen[s], name, s);
     if (show_front)
         fprintf(gp, "$%sfront using 1:2 with steps dt 2 lw 1.5 lc rgb \"black\" title \"Pareto front\", "
                     "$%sfront using 1:2 with points pt 6 ps 2 lc rgb \"black\" notitle\n",

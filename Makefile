@@ -10,8 +10,9 @@
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
 #   make docs            the API reference (doxygen) in build/docs/html
 #   make study           what accuracy costs in time: the accuracy run of roma-bench on the built-in
-#                        room (about 6 to 7 minutes on 2 cores) into docs/bench and its plot into docs/images
-#                        (docs/accuracy-vs-time.md); a run cut short resumes where it stopped (the points
+#                        room (5 to 33 minutes on 2 cores) into docs/bench and its plot into docs/images
+#                        (docs/accuracy-vs-time.md), then generation and trace time as the scene grows
+#                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points
 #                        it finished are kept in build/ until the run completes); make study-small: the
 #                        same at 32x24 (test_bench_accuracy runs that command in ctest)
 BUILD ?= build
@@ -74,7 +75,10 @@ study: build
 	    --plot docs/images/accuracy_vs_time_cornell_ao.png --cache $(BUILD)/study_cornell.cache \
 	    > docs/bench/cornell_accuracy.txt
 	rm -f $(BUILD)/study_cornell.cache
-	cat docs/bench/cornell_accuracy.txt
+	$(BUILD)/apps/roma-bench --growth scenes/spot.glb,scenes/dragon_res3.glb,scenes/bunny.glb,scenes/dragon_res2.glb \
+	    --res 64,128,256 --runs 5 --csv docs/bench/growth.csv --plot docs/images/generation_and_trace_growth.png \
+	    > docs/bench/growth.txt
+	cat docs/bench/cornell_accuracy.txt docs/bench/growth.txt
 
 study-small: build
 	mkdir -p $(OUT)/study

@@ -4,29 +4,7 @@
 # printed tables); --plot draws a PNG through gnuplot; Embree's rows carry FLIP.
 # Usage: test_bench_accuracy.sh ROMA_BENCH SCRATCH_DIR
 set -u
-
-if [ $# -ne 2 ]; then
-  echo "usage: $0 ROMA_BENCH SCRATCH_DIR" >&2
-  exit 2
-fi
-bench=$1
-dir=$2
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
-rm -rf "$dir" && mkdir -p "$dir"
-# Under the sanitizers the tool runs with the ASan runtime preloaded; gnuplot, which it
-# starts, gets a clean environment (a shim first on PATH).
-bench_run=("$bench")
-if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then
-  bench_run=(env "LD_PRELOAD=$ROMA_TOOL_PRELOAD" "$bench")
-  mkdir -p "$dir/bin"
-  printf '#!/bin/sh\nexec env -u LD_PRELOAD "%s" "$@"\n' "$(command -v gnuplot)" >"$dir/bin/gnuplot"
-  chmod +x "$dir/bin/gnuplot"
-  export PATH="$dir/bin:$PATH"
-fi
+. "$(dirname "$0")/support/bench_script.sh"
 
 "${bench_run[@]}" --small --accuracy --ao-radius 0.5 --csv "$dir/accuracy.csv" --plot "$dir/accuracy.png" \
   --cache "$dir/points.cache" >"$dir/out.txt" 2>"$dir/progress.txt" ||
@@ -144,8 +122,4 @@ for bad in "--plot $dir/missing/x.png" "--csv $dir/missing/x.csv"; do
     { cat "$dir/bad.txt" >&2; fail "$bad: expected exit 1 and a message, got $rc"; }
 done
 
-if [ "$failures" -ne 0 ]; then
-  echo "test_bench_accuracy: $failures failure(s)" >&2
-  exit 1
-fi
-echo "test_bench_accuracy: passed"
+finish test_bench_accuracy

@@ -15,6 +15,7 @@
 #include "passes/pixel_list.h"
 #include "passes/scene_buffers.h"
 #include "reference.h"
+#include "map/map_internal.h"
 #include "roma/map.h"
 #include "vulkan/vk_internal.h"
 
@@ -90,19 +91,31 @@ double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result 
     return recorded == ROMA_SUCCESS && s == ROMA_SUCCESS ? ms : NAN;
 }
 
-int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, FILE *csv)
+/* What both sides of a frame share: the scene's geometry, its G-buffer from the default camera
+ * (rendered once) and the covered pixels. */
+typedef struct frame_setup {
+    roma_scene_buffers geo;
+    roma_gbuffer *gb;
+    roma_pixel_list list;
+    roma_gbuffer_pixel *px;
+    uint32_t *covered, count;
+} frame_setup;
+
+static void setup_destroy(roma_context *ctx, frame_setup *s)
 {
-    const uint32_t w = d->width, h = d->height, runs = d->runs ? d->runs : 5;
-    roma_scene_buffers geo = {0};
-    roma_gbuffer *gb = NULL;
-    roma_pixel_list list = {0};
-    roma_map *map = NULL;
-    roma_ao_pass *ao = NULL;
-    roma_buffer accum = {0};
-    roma_gbuffer_pixel *px = malloc(sizeof *px * (size_t)w * h);
-    uint32_t *covered = malloc(sizeof *covered * (size_t)w * h);
-    double *samples = malloc(sizeof(double) * runs * 5);
-    int status = 1;
+    roma_pixel_list_destroy(&s->list);
+    roma_gbuffer_destroy(s->gb);
+    roma_scene_buffers_destroy(ctx, &s->geo);
+    free(s->px);
+    free(s->covered);
+    memset(s, 0, sizeof *s);
+}
+
+static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint32_t w, uint32_t h, frame_setup *s)
+{
+    memset(s, 0, sizeof *s);
+    s->px = malloc(sizeof *s->px * (size_t)w * h);
+    s->covered = malloc(sizeof *s->covered * (size_t)w * h);
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);
     float diag = 0.0f;
@@ -110,12 +123,62 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
         diag += (sv.bounds_max[a] - sv.bounds_min[a]) * (sv.bounds_max[a] - sv.bounds_min[a]);
     roma_camera cam;
     roma_scene_default_camera(scene, (float)w / (float)h, &cam);
+    roma_result r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    if (s->px && s->covered)
+        r = roma_scene_buffers_create(ctx, scene, &s->geo);
+    if (r == ROMA_SUCCESS)
+        r = roma_gbuffer_create(ctx, w, h, &s->gb);
+    if (r == ROMA_SUCCESS)
+        r = roma_pixel_list_create(ctx, w, h, &s->list);
+    VkCommandBuffer cmd;
+    if (r == ROMA_SUCCESS)
+        r = roma_begin_one_shot(ctx, &cmd);
+    if (r == ROMA_SUCCESS) {
+        roma_gbuffer_inputs gin = {
+            .positions = s->geo.positions.address, .normals = s->geo.normals.address,
+            .indices = s->geo.indices.address, .albedo = s->geo.albedo.address,
+            .triangle_count = s->geo.triangle_count, .camera = cam, .previous_camera = cam,
+            .near_plane = 1e-4f * sqrtf(diag),
+        };
+        r = roma_gbuffer_record(s->gb, cmd, &gin);
+        if (r == ROMA_SUCCESS)
+            r = roma_pixel_list_record(&s->list, cmd, roma_gbuffer_pixels_address(s->gb));
+        roma_result sr = roma_submit_one_shot(ctx, cmd);
+        if (r == ROMA_SUCCESS)
+            r = sr;
+    }
+    if (r == ROMA_SUCCESS)
+        r = roma_gbuffer_download(s->gb, s->px);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: frame setup failed: %s\n", roma_result_string(r));
+        setup_destroy(ctx, s);
+        return r;
+    }
+    for (uint32_t i = 0; i < w * h; ++i)
+        if (isfinite(s->px[i].position_t[3]))
+            s->covered[s->count++] = i;
+    return ROMA_SUCCESS;
+}
+
+int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, FILE *csv)
+{
+    const uint32_t w = d->width, h = d->height, runs = d->runs ? d->runs : 5;
+    frame_setup fs;
+    roma_map *map = NULL;
+    roma_ao_pass *ao = NULL;
+    roma_buffer accum = {0};
+    double *samples = malloc(sizeof(double) * runs * 5);
+    int status = 1;
     roma_map_desc md = {.resolution = d->resolution, .angular = d->angular};
-    roma_result r = px && covered && samples ? roma_scene_buffers_create(ctx, scene, &geo) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
-    if (r == ROMA_SUCCESS)
-        r = roma_gbuffer_create(ctx, w, h, &gb);
-    if (r == ROMA_SUCCESS)
-        r = roma_pixel_list_create(ctx, w, h, &list);
+    roma_result r = setup_create(ctx, scene, w, h, &fs);
+    if (r != ROMA_SUCCESS) {
+        free(samples);
+        return 1;
+    }
+    const roma_gbuffer_pixel *px = fs.px;
+    const uint32_t *covered = fs.covered, count = fs.count;
+    if (!samples)
+        r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
     if (r == ROMA_SUCCESS)
         r = roma_map_create(ctx, &md, scene, &map);
     if (r == ROMA_SUCCESS)
@@ -124,33 +187,10 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
         r = roma_buffer_create(ctx, 4ull * w * h, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                ROMA_MEMORY_READBACK, &accum);
-    /* The G-buffer and its covered-pixel list, once: both sides need them. */
-    VkCommandBuffer cmd;
-    if (r == ROMA_SUCCESS)
-        r = roma_begin_one_shot(ctx, &cmd);
-    if (r == ROMA_SUCCESS) {
-        roma_gbuffer_inputs gin = {
-            .positions = geo.positions.address, .normals = geo.normals.address, .indices = geo.indices.address,
-            .albedo = geo.albedo.address, .triangle_count = geo.triangle_count, .camera = cam,
-            .previous_camera = cam, .near_plane = 1e-4f * sqrtf(diag),
-        };
-        r = roma_gbuffer_record(gb, cmd, &gin);
-        if (r == ROMA_SUCCESS)
-            r = roma_pixel_list_record(&list, cmd, roma_gbuffer_pixels_address(gb));
-        roma_result s = roma_submit_one_shot(ctx, cmd);
-        if (r == ROMA_SUCCESS)
-            r = s;
-    }
-    if (r == ROMA_SUCCESS)
-        r = roma_gbuffer_download(gb, px);
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-bench: frame setup failed: %s\n", roma_result_string(r));
         goto done;
     }
-    uint32_t count = 0;
-    for (uint32_t i = 0; i < w * h; ++i)
-        if (isfinite(px[i].position_t[3]))
-            covered[count++] = i;
     roma_map_info mi;
     roma_map_frame_desc warm = {.frame = 0, .seed = SEED, .jitter_grid = 1, .jitter_directions = 1};
     roma_map_build(map, &warm, NULL);
@@ -165,8 +205,8 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
     for (int si = 0; si < 2; ++si) {
         const uint32_t spp = spps[si];
         roma_ao_pass_inputs in = {
-            .gbuffer_pixels = roma_gbuffer_pixels_buffer(gb), .width = w, .height = h, .map = &mi,
-            .list = &list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
+            .gbuffer_pixels = roma_gbuffer_pixels_buffer(fs.gb), .width = w, .height = h, .map = &mi,
+            .list = &fs.list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
             .tmin = ROMA_DEFAULT_AO_SKIP_CELLS * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.buffer,
             .bom = mi.bom_view, /* the rays' start walked exactly, as every pass does */
         };
@@ -207,11 +247,87 @@ done:
     roma_buffer_destroy(ctx, &accum);
     roma_ao_pass_destroy(ao);
     roma_map_destroy(map);
-    roma_pixel_list_destroy(&list);
-    roma_gbuffer_destroy(gb);
-    roma_scene_buffers_destroy(ctx, &geo);
-    free(px);
-    free(covered);
+    setup_destroy(ctx, &fs);
     free(samples);
     return status;
+}
+
+/* One step of the build alone (ROMA_MAP_STEP_*), submit to fence. */
+static double step_ms(roma_context *ctx, roma_map *map, uint32_t frame, uint32_t steps)
+{
+    VkCommandBuffer cmd;
+    if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
+        return NAN;
+    roma_map_frame_desc fd = {.frame = frame, .seed = SEED, .jitter_grid = 1, .jitter_directions = 1};
+    return roma_bench_submit_ms(ctx, cmd, roma_map_record_steps(map, cmd, &fd, NULL, steps));
+}
+
+int roma_bench_growth(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, const uint32_t *res,
+                      int res_count, roma_bench_growth_row *rows)
+{
+    const uint32_t w = d->width, h = d->height, runs = d->runs ? d->runs : 5;
+    frame_setup fs;
+    if (setup_create(ctx, scene, w, h, &fs) != ROMA_SUCCESS)
+        return 1;
+    double *samples = malloc(sizeof(double) * runs * 3);
+    roma_buffer accum = {0};
+    roma_ao_pass *ao = NULL;
+    roma_result r = samples ? roma_ao_pass_create(ctx, &ao) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, 4ull * w * h, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                               VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               ROMA_MEMORY_READBACK, &accum);
+    /* Embree's side does not depend on RES: measured once for the scene. */
+    double bvh_ms = NAN, embree_ms = NAN, mean = 0.0;
+    for (uint32_t k = 0; r == ROMA_SUCCESS && k < runs; ++k) {
+        double t0 = roma_app_now_ms();
+        roma_ref *ref = NULL;
+        r = roma_ref_create(scene, NULL, &ref);
+        samples[k] = roma_app_now_ms() - t0;
+        if (r == ROMA_SUCCESS)
+            samples[runs + k] = embree_ao_ms(ref, fs.px, fs.covered, fs.count, 1, d->radius, &mean);
+        roma_ref_destroy(ref);
+    }
+    if (r == ROMA_SUCCESS) {
+        bvh_ms = roma_app_median(samples, (int)runs);
+        embree_ms = roma_app_median(samples + runs, (int)runs);
+    }
+    roma_scene_view sv;
+    roma_scene_get_view(scene, &sv);
+    for (int i = 0; i < res_count && r == ROMA_SUCCESS; ++i) {
+        roma_map *map = NULL;
+        roma_map_desc md = {.resolution = res[i], .angular = d->angular};
+        r = roma_map_create(ctx, &md, scene, &map);
+        if (r != ROMA_SUCCESS)
+            break;
+        roma_map_info mi;
+        roma_map_frame_desc warm = {.frame = 0, .seed = SEED, .jitter_grid = 1, .jitter_directions = 1};
+        roma_map_build(map, &warm, NULL);
+        roma_map_get_info(map, &mi);
+        roma_ao_pass_inputs in = {
+            .gbuffer_pixels = roma_gbuffer_pixels_buffer(fs.gb), .width = w, .height = h, .map = &mi,
+            .list = &fs.list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
+            .tmin = ROMA_DEFAULT_AO_SKIP_CELLS * mi.trace_cell, .spp = 1, .seed = SEED, .accum = accum.buffer,
+            .bom = mi.bom_view,
+        };
+        roma_frame_ms(ctx, map, ao, &in, &accum, 0, 2); /* the AO pipeline's first use, untimed */
+        for (uint32_t k = 0; k < runs; ++k) {
+            samples[k] = step_ms(ctx, map, k, ROMA_MAP_STEP_VOXELIZE);
+            samples[runs + k] = step_ms(ctx, map, k, ROMA_MAP_STEP_ROTATE);
+            samples[2 * runs + k] = roma_frame_ms(ctx, map, ao, &in, &accum, k, 2);
+        }
+        rows[i] = (roma_bench_growth_row){
+            .triangles = sv.triangle_count, .resolution = res[i], .covered = fs.count,
+            .voxelize_ms = roma_app_median(samples, (int)runs), .rotate_ms = roma_app_median(samples + runs, (int)runs),
+            .ao_ms = roma_app_median(samples + 2 * runs, (int)runs), .bvh_ms = bvh_ms, .embree_ao_ms = embree_ms,
+        };
+        roma_map_destroy(map);
+    }
+    if (r != ROMA_SUCCESS)
+        fprintf(stderr, "roma-bench: growth measurement failed: %s\n", roma_result_string(r));
+    roma_buffer_destroy(ctx, &accum);
+    roma_ao_pass_destroy(ao);
+    setup_destroy(ctx, &fs);
+    free(samples);
+    return r == ROMA_SUCCESS ? 0 : 1;
 }

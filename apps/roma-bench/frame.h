@@ -25,4 +25,18 @@ double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result 
 
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *desc, FILE *csv);
 
+/* One row of the growth study: ROMA's build steps and its AO pass at 1 spp over the covered
+ * pixels (host-observed, submit to fence, each step alone) and Embree's BVH build and AO at the
+ * same points and samples (wall clock, all cores), medians of runs. */
+typedef struct roma_bench_growth_row {
+    uint32_t triangles, resolution, covered;
+    double voxelize_ms, rotate_ms, ao_ms, bvh_ms, embree_ao_ms;
+} roma_bench_growth_row;
+
+/* A row for each of res[0 .. res_count) (A = desc->angular, the G-buffer of the scene's
+ * default camera at desc's size); Embree's columns, which do not depend on RES, are measured
+ * once. Returns 0 on success. */
+int roma_bench_growth(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *desc,
+                      const uint32_t *res, int res_count, roma_bench_growth_row *rows);
+
 #endif /* ROMA_BENCH_FRAME_H */

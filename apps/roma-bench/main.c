@@ -10,6 +10,7 @@
 
 #include "accuracy.h"
 #include "frame.h"
+#include "plot.h"
 #include "record_cost.h"
 #include "app_common.h"
 #include "reference.h"
@@ -21,7 +22,7 @@
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
     "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R]\n"
-    "                  [--accuracy [--plot FILE.png] [--cache FILE]]\n"
+    "                  [--accuracy [--plot FILE.png] [--cache FILE]] [--growth LIST [--plot FILE.png]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
@@ -40,7 +41,12 @@ static const char *usage =
     "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot);\n"
     "  --cache FILE keeps every finished point, so that a run cut short resumes where it stopped\n"
     "  (points of the same device, scene, settings and roma-bench executable are not measured\n"
-    "  again). Progress goes to stderr, a line a point.\n";
+    "  again). Progress goes to stderr, a line a point.\n"
+    "  --growth LIST: instead, generation and trace time as the scene grows: for each scene of\n"
+    "  the comma-separated LIST (at most 8) and each RES of --res (A 4), ROMA's voxelize, rotate\n"
+    "  and AO pass at 1 spp over the covered pixels against Embree's BVH build and AO at the same\n"
+    "  points (--size, default 1920x1080; --ao-radius); --plot FILE.png draws them against the\n"
+    "  triangles (at RES 128) and against RES (the largest scene).\n";
 
 static double timer_ms(roma_gpu_timer *timer, const char *name)
 {
@@ -155,9 +161,97 @@ static int writable(const char *path)
     return 1;
 }
 
+/* roma-bench --growth: generation and trace time as the scene grows (the scenes of the list,
+ * each at every RES of the list) and as RES grows (the largest scene), ROMA against Embree. */
+static int run_growth(roma_context *ctx, const char *list, const roma_bench_frame_desc *fd, const uint32_t *res,
+                      int res_n, const char *plot_path, FILE *csv)
+{
+    enum { MAX_SCENES = 8 };
+    roma_bench_growth_row rows[MAX_SCENES][4];
+    char names[MAX_SCENES][256];
+    int scenes = 0, status = 0;
+    printf("\nGeneration and trace as the scene grows: %ux%u, the scene's default camera, A %u, AO radius %s,\n"
+           "1 sample per pixel; ROMA host-observed (each step alone, submit to fence), Embree wall clock on\n"
+           "all cores at the same points and samples; %s.\n\n"
+           "| scene | triangles | covered pixels | RES | voxelize ms | rotate ms | ROMA AO ms | Embree BVH ms "
+           "| Embree AO ms | ROMA build + AO / Embree BVH + AO |\n|---|---|---|---|---|---|---|---|---|---|\n",
+           fd->width, fd->height, fd->angular, fd->radius > 0.0f ? "bounded" : "unbounded",
+           fd->runs == 1 ? "one run" : "medians of the runs (--runs)");
+    for (const char *p = list; *p && scenes < MAX_SCENES;) {
+        size_t len = strcspn(p, ",");
+        snprintf(names[scenes], sizeof names[scenes], "%.*s", (int)len, p);
+        p += len + (p[len] == ',');
+        roma_scene *scene = NULL;
+        roma_result r = roma_app_load_scene(names[scenes], NULL, 0, &scene);
+        if (r != ROMA_SUCCESS || roma_bench_growth(ctx, scene, fd, res, res_n, rows[scenes]) != 0) {
+            fprintf(stderr, "roma-bench: --growth: %s failed: %s\n", names[scenes], roma_result_string(r));
+            roma_scene_destroy(scene);
+            status = 1;
+            continue;
+        }
+        roma_scene_destroy(scene);
+        for (int i = 0; i < res_n; ++i) {
+            const roma_bench_growth_row *g = &rows[scenes][i];
+            printf("| %s | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", names[scenes], g->triangles,
+                   g->covered, g->resolution, g->voxelize_ms, g->rotate_ms, g->ao_ms, g->bvh_ms, g->embree_ao_ms,
+                   (g->voxelize_ms + g->rotate_ms + g->ao_ms) / (g->bvh_ms + g->embree_ao_ms));
+            static const char *const columns[5] = {"voxelize", "rotate", "roma ao", "embree bvh", "embree ao"};
+            const double values[5] = {g->voxelize_ms, g->rotate_ms, g->ao_ms, g->bvh_ms, g->embree_ao_ms};
+            for (int c = 0; c < 5 && csv; ++c)
+                fprintf(csv, "growth,%s triangles %u %s,%u,%u,%.6f,ms\n", names[scenes], g->triangles, columns[c],
+                        g->resolution, fd->angular, values[c]);
+        }
+        ++scenes;
+    }
+    if (!plot_path || scenes == 0)
+        return status;
+    /* Left: every scene at RES 128 (or the list's first RES), by triangles; right: the largest
+     * scene at every RES. */
+    int at = 0, largest = 0;
+    for (int i = 0; i < res_n; ++i)
+        at = res[i] == 128 ? i : at;
+    for (int k = 0; k < scenes; ++k)
+        largest = rows[k][0].triangles > rows[largest][0].triangles ? k : largest;
+    static const char *const series[5] = {"ROMA voxelize", "ROMA rotate", "ROMA AO, 1 spp", "Embree BVH build",
+                                          "Embree AO, 1 spp"};
+    roma_bench_curve left[5], right[5];
+    memset(left, 0, sizeof left);
+    memset(right, 0, sizeof right);
+    for (int c = 0; c < 5; ++c) {
+        snprintf(left[c].name, sizeof left[c].name, "%s", series[c]);
+        snprintf(right[c].name, sizeof right[c].name, "%s", series[c]);
+        for (int k = 0; k < scenes; ++k) { /* by triangles: the order the list gave, sorted below */
+            const roma_bench_growth_row *g = &rows[k][at];
+            const double v[5] = {g->voxelize_ms, g->rotate_ms, g->ao_ms, g->bvh_ms, g->embree_ao_ms};
+            int j = left[c].count++;
+            while (j > 0 && left[c].x[j - 1] > g->triangles) {
+                left[c].x[j] = left[c].x[j - 1], left[c].y[j] = left[c].y[j - 1];
+                --j;
+            }
+            left[c].x[j] = g->triangles, left[c].y[j] = v[c];
+        }
+        for (int i = 0; i < res_n; ++i) {
+            const roma_bench_growth_row *g = &rows[largest][i];
+            const double v[5] = {g->voxelize_ms, g->rotate_ms, g->ao_ms, g->bvh_ms, g->embree_ao_ms};
+            right[c].x[right[c].count] = g->resolution, right[c].y[right[c].count++] = v[c];
+        }
+    }
+    char title[160], left_x[96], right_x[320];
+    snprintf(title, sizeof title,
+             "Generation and trace, %ux%u, 1 sample per pixel: ms against the scene's size and RES", fd->width,
+             fd->height);
+    snprintf(left_x, sizeof left_x, "triangles (RES %u, A %u)", res[at], fd->angular);
+    snprintf(right_x, sizeof right_x, "RES (%s, %u triangles, A %u)", names[largest], rows[largest][0].triangles,
+             fd->angular);
+    if (roma_bench_plot_curves(left, 5, left_x, right, 5, right_x, title, "ms (median)", plot_path) != 0)
+        status = 1;
+    return status;
+}
+
 int main(int argc, char **argv)
 {
     const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL, *cache_path = NULL;
+    const char *growth = NULL;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
     int res_n = 3, ang_n = 3, accuracy = 0, small = 0;
     float ao_radius = 0.0f;
@@ -190,13 +284,14 @@ int main(int argc, char **argv)
         else if (v && strcmp(a, "--csv") == 0) csv_path = v, ++i;
         else if (v && strcmp(a, "--plot") == 0) plot_path = v, ++i;
         else if (v && strcmp(a, "--cache") == 0) cache_path = v, ++i;
+        else if (v && strcmp(a, "--growth") == 0) growth = v, ++i;
         else {
             fprintf(stderr, "roma-bench: bad argument %s\n%s", a, usage);
             return 2;
         }
     }
-    if ((plot_path || cache_path) && !accuracy) {
-        fprintf(stderr, "roma-bench: --plot and --cache are for the --accuracy run\n");
+    if ((plot_path && !accuracy && !growth) || (cache_path && !accuracy) || (growth && accuracy)) {
+        fprintf(stderr, "roma-bench: --plot is for --accuracy or --growth, --cache for --accuracy; not both runs\n");
         return 2;
     }
     if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
@@ -258,6 +353,15 @@ int main(int argc, char **argv)
             .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,
         };
         int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
+        if (csv)
+            fclose(csv);
+        return finish(ctx, scene, ref, timer, status);
+    }
+
+    if (growth) {
+        roma_bench_frame_desc fd = {.width = frame_w, .height = frame_h, .angular = 4, .runs = runs,
+                                    .radius = ao_radius};
+        int status = run_growth(ctx, growth, &fd, res_list, res_n, plot_path, csv);
         if (csv)
             fclose(csv);
         return finish(ctx, scene, ref, timer, status);

@@ -170,40 +170,44 @@ static void write_panel(FILE *gp, const roma_bench_point *points, int count, int
         fprintf(gp, "NaN notitle\n");
 }
 
-int roma_bench_plot(const roma_bench_point *points, int count, const char *title, const char *x_label,
-                    int show_front, const char *png_path)
+/* Starts gnuplot writing a PNG of two panels side by side, log-log; NULL (a message on
+ * stderr) when a text would break its quoting or gnuplot does not start. */
+static FILE *open_plot(const char *png_path, const char *title, const char *const *texts, int text_count,
+                       void (**old_sigpipe)(int))
 {
     /* The strings go into double-quoted gnuplot strings. */
-    const char *texts[3] = {title, x_label, png_path};
-    for (int t = 0; t < 3; ++t)
-        if (!texts[t] || strpbrk(texts[t], "\"\\\n`")) {
+    for (int t = -2; t < text_count; ++t) {
+        const char *text = t == -2 ? png_path : t == -1 ? title : texts[t];
+        if (!text || strpbrk(text, "\"\\\n`")) {
             fprintf(stderr, "roma-bench: cannot plot: quotes, backslashes or newlines in \"%s\"\n",
-                    texts[t] ? texts[t] : "(null)");
-            return 1;
+                    text ? text : "(null)");
+            return NULL;
         }
-    int *order = malloc((size_t)(count ? count : 1) * sizeof *order);
+    }
     /* gnuplot's messages go to our stdout; its own stdout (where it writes the image when the
      * output cannot be opened) goes nowhere. A gnuplot that exits early must not kill us with
      * SIGPIPE while the script is still being written. */
-    void (*old_sigpipe)(int) = signal(SIGPIPE, SIG_IGN);
-    FILE *gp = order ? popen("gnuplot 2>&1 >/dev/null", "w") : NULL;
+    *old_sigpipe = signal(SIGPIPE, SIG_IGN);
+    FILE *gp = popen("gnuplot 2>&1 >/dev/null", "w");
     if (!gp) {
         fprintf(stderr, "roma-bench: cannot start gnuplot\n");
-        signal(SIGPIPE, old_sigpipe);
-        free(order);
-        return 1;
+        signal(SIGPIPE, *old_sigpipe);
+        return NULL;
     }
-    fprintf(gp, "set terminal pngcairo size 1400,560 font \",10\"\nset output \"%s\"\n"
+    fprintf(gp, "set terminal pngcairo noenhanced size 1400,560 font \",10\"\nset output \"%s\"\n"
                 "set multiplot layout 1,2 title \"%s\"\nset logscale xy\nset grid\n"
                 "set key bottom left font \",9\"\n",
             png_path, title);
-    write_panel(gp, points, count, 0, x_label, show_front, order);
-    write_panel(gp, points, count, 1, x_label, show_front, order);
+    return gp;
+}
+
+/* Ends the plot; 0 when gnuplot drew it. */
+static int close_plot(FILE *gp, void (*old_sigpipe)(int), const char *png_path)
+{
     fprintf(gp, "unset multiplot\nset output\n");
     int write_failed = ferror(gp);
     int status = pclose(gp);
     signal(SIGPIPE, old_sigpipe);
-    free(order);
     if (write_failed && status == 0)
         status = -1;
     if (status != 0) {
@@ -212,4 +216,58 @@ int roma_bench_plot(const roma_bench_point *points, int count, const char *title
     }
     printf("\nplot: %s\n", png_path);
     return 0;
+}
+
+int roma_bench_plot(const roma_bench_point *points, int count, const char *title, const char *x_label,
+                    int show_front, const char *png_path)
+{
+    int *order = malloc((size_t)(count ? count : 1) * sizeof *order);
+    void (*old_sigpipe)(int) = SIG_DFL;
+    FILE *gp = order ? open_plot(png_path, title, &x_label, 1, &old_sigpipe) : NULL;
+    if (!gp) {
+        free(order);
+        return 1;
+    }
+    write_panel(gp, points, count, 0, x_label, show_front, order);
+    write_panel(gp, points, count, 1, x_label, show_front, order);
+    free(order);
+    return close_plot(gp, old_sigpipe, png_path);
+}
+
+static void write_curves(FILE *gp, const roma_bench_curve *curves, int count, const char *x_label,
+                         const char *y_label)
+{
+    fprintf(gp, "set xlabel \"%s\"\nset ylabel \"%s\"\n", x_label, y_label);
+    for (int c = 0; c < count; ++c) {
+        fprintf(gp, "$curve%d << EOD\n", c);
+        for (int i = 0; i < curves[c].count && i < 16; ++i)
+            if (curves[c].x[i] > 0.0 && curves[c].y[i] > 0.0) /* log axes */
+                fprintf(gp, "%.6g %.6g\n", curves[c].x[i], curves[c].y[i]);
+        fprintf(gp, "EOD\n");
+    }
+    fprintf(gp, "plot ");
+    for (int c = 0; c < count; ++c)
+        fprintf(gp, "$curve%d using 1:2 with linespoints lw 2 pt 7 title \"%s\"%s", c, curves[c].name,
+                c + 1 < count ? ", " : "\n");
+    if (count == 0)
+        fprintf(gp, "NaN notitle\n");
+}
+
+int roma_bench_plot_curves(const roma_bench_curve *left, int left_count, const char *left_x,
+                           const roma_bench_curve *right, int right_count, const char *right_x, const char *title,
+                           const char *y_label, const char *png_path)
+{
+    const char *texts[3] = {left_x, right_x, y_label};
+    for (int c = 0; c < left_count + right_count; ++c)
+        if (strpbrk(c < left_count ? left[c].name : right[c - left_count].name, "\"\\\n`")) {
+            fprintf(stderr, "roma-bench: cannot plot: quotes, backslashes or newlines in a curve's name\n");
+            return 1;
+        }
+    void (*old_sigpipe)(int) = SIG_DFL;
+    FILE *gp = open_plot(png_path, title, texts, 3, &old_sigpipe);
+    if (!gp)
+        return 1;
+    write_curves(gp, left, left_count, left_x, y_label);
+    write_curves(gp, right, right_count, right_x, y_label);
+    return close_plot(gp, old_sigpipe, png_path);
 }

@@ -30,4 +30,18 @@ void roma_bench_print_equal(const roma_bench_point *points, int count, int ancho
 int roma_bench_plot(const roma_bench_point *points, int count, const char *title, const char *x_label,
                     int show_front, const char *png_path);
 
+/* A curve of a line plot: its name and up to 16 (x, y) points. */
+typedef struct roma_bench_curve {
+    char name[40];
+    int count;
+    double x[16], y[16];
+} roma_bench_curve;
+
+/* Two panels side by side, log-log, a line per curve, each panel with its own x label and
+ * the same y label, drawn by gnuplot into a PNG. Returns 0 on success; a message on stderr
+ * otherwise. */
+int roma_bench_plot_curves(const roma_bench_curve *left, int left_count, const char *left_x,
+                           const roma_bench_curve *right, int right_count, const char *right_x, const char *title,
+                           const char *y_label, const char *png_path);
+
 #endif /* ROMA_BENCH_PLOT_H */

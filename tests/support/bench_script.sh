@@ -1,0 +1,31 @@
+# Sourced by the roma-bench test scripts (test_bench_*.sh ROMA_BENCH SCRATCH_DIR): checks the
+# arguments, empties the scratch folder, defines fail() (counted in $failures) and finish, and
+# bench_run, the command that runs roma-bench. Under the sanitizers the tool runs with the ASan
+# runtime preloaded; gnuplot, which it starts, gets a clean environment (a shim first on PATH).
+if [ $# -ne 2 ]; then
+  echo "usage: $0 ROMA_BENCH SCRATCH_DIR" >&2
+  exit 2
+fi
+bench=$1
+dir=$2
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+finish() { # NAME: the verdict and the exit status
+  if [ "$failures" -ne 0 ]; then
+    echo "$1: $failures failure(s)" >&2
+    exit 1
+  fi
+  echo "$1: passed"
+}
+rm -rf "$dir" && mkdir -p "$dir"
+bench_run=("$bench")
+if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then
+  bench_run=(env "LD_PRELOAD=$ROMA_TOOL_PRELOAD" "$bench")
+  mkdir -p "$dir/bin"
+  printf '#!/bin/sh\nexec env -u LD_PRELOAD "%s" "$@"\n' "$(command -v gnuplot)" >"$dir/bin/gnuplot"
+  chmod +x "$dir/bin/gnuplot"
+  export PATH="$dir/bin:$PATH"
+fi

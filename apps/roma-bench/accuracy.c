@@ -246,12 +246,15 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     roma_effect_images img;
     roma_effect_stats st;
     roma_result r = ROMA_SUCCESS;
-    char key[512];
-    snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u",
-             d->cache_key ? d->cache_key : "", d->width, d->height, d->frames, d->spp, (double)d->radius, d->runs, tag,
-             csv_res, csv_a, rd->ssao_steps, rd->ssao_layers);
+    char key[1024];
+    const int key_length =
+        snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u",
+                 d->cache_key ? d->cache_key : "", d->width, d->height, d->frames, d->spp, (double)d->radius, d->runs,
+                 tag, csv_res, csv_a, rd->ssao_steps, rd->ssao_layers);
+    /* A key cut short would name other points too: such a point is neither read nor kept. */
+    const int keyed = key_length > 0 && (size_t)key_length < sizeof key && !strpbrk(key, "\t\n");
     /* The first point is always measured: its render makes the G-buffer and the reference. */
-    const double *cached = s->have_ref ? find_cached(s, key) : NULL;
+    const double *cached = s->have_ref && keyed ? find_cached(s, key) : NULL;
     double ms = 0.0, mae = NAN, b = NAN;
     if (cached) {
         ms = cached[0], df_ms = cached[1], mae = cached[2], b = cached[3], flip = cached[4];
@@ -297,7 +300,7 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     }
     ms = roma_app_median(s->times, (int)d->runs);
     mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
-    if (d->cache_path) {
+    if (d->cache_path && keyed) {
         FILE *f = fopen(d->cache_path, "a");
         if (f) {
             fprintf(f, "%s\t%.6f\t%.6f\t%.6f\t%.6f\t%.6f\n", key, ms, df_ms, mae, b, flip);

@@ -184,7 +184,8 @@ static int run_growth(roma_context *ctx, const char *list, const roma_bench_fram
         roma_scene *scene = NULL;
         roma_result r = roma_app_load_scene(names[scenes], NULL, 0, &scene);
         if (r != ROMA_SUCCESS || roma_bench_growth(ctx, scene, fd, res, res_n, rows[scenes]) != 0) {
-            fprintf(stderr, "roma-bench: --growth: %s failed: %s\n", names[scenes], roma_result_string(r));
+            fprintf(stderr, "roma-bench: --growth: %s failed%s%s\n", names[scenes], r != ROMA_SUCCESS ? ": " : "",
+                    r != ROMA_SUCCESS ? roma_result_string(r) : "");
             roma_scene_destroy(scene);
             status = 1;
             continue;

@@ -43,6 +43,12 @@ roma_result roma_naadf_create(roma_context *ctx, VkBuffer bom, uint32_t resoluti
         r = roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
                       "NAADF: %llu words at RES %u exceed maxTexelBufferElements (%u)",
                       (unsigned long long)words, resolution, ctx->properties.limits.maxTexelBufferElements);
+    /* The steps bind the whole buffer as a storage buffer. */
+    if (r == ROMA_SUCCESS && words * sizeof(uint32_t) > ctx->properties.limits.maxStorageBufferRange)
+        r = roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                      "NAADF: %llu bytes at RES %u exceed maxStorageBufferRange (%u)",
+                      (unsigned long long)(words * sizeof(uint32_t)), resolution,
+                      ctx->properties.limits.maxStorageBufferRange);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, words * sizeof(uint32_t),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |

@@ -31,14 +31,7 @@ CACHE
 
 # The PNG: its signature and a size no empty plot has (measured: 49,895 bytes; the same
 # two panels with axes and grid but no data: 9,199).
-if [ -f "$dir/accuracy.png" ]; then
-  [ "$(head -c 8 "$dir/accuracy.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
-    fail "accuracy.png is not a PNG"
-  size=$(stat -c %s "$dir/accuracy.png")
-  [ "$size" -gt 40000 ] || fail "accuracy.png has $size bytes: nothing drawn?"
-else
-  fail "no accuracy.png"
-fi
+check_png "$dir/accuracy.png" 40000
 grep -q "^accuracy,embree ao flip," "$dir/accuracy.csv" || fail "no FLIP rows for Embree in the CSV"
 # Error against frames: its plot beside the first, and more frames never worse for ROMA here
 # (2 frames in the small run; measured 0.1245 -> 0.1161).

@@ -20,6 +20,16 @@ finish() { # NAME: the verdict and the exit status
   fi
   echo "$1: passed"
 }
+check_png() { # FILE MIN_BYTES: a PNG's signature, and more bytes than a plot with nothing drawn
+  if [ ! -f "$1" ]; then
+    fail "no $(basename "$1")"
+    return
+  fi
+  [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || fail "$(basename "$1") is not a PNG"
+  local size
+  size=$(stat -c %s "$1")
+  [ "$size" -gt "$2" ] || fail "$(basename "$1") has $size bytes: nothing drawn?"
+}
 rm -rf "$dir" && mkdir -p "$dir"
 bench_run=("$bench")
 if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then

@@ -56,7 +56,8 @@ for (name, res, angular), v in values.items():
     if name.endswith(" ms per frame"):
         tag = name[: -len(" ms per frame")]
         series = {"voxel-dda": "voxel traversal", "distance-field": "distance field", "naadf": "NAADF",
-                  "sd-map": "stochastic depth map (layers)", "screen-space": "screen space (steps)"}.get(tag, "ROMA A " + angular)
+                  "sd-map": "stochastic depth map (layers)",
+                  "screen-space": "screen space (steps)"}.get(tag, "ROMA A " + angular)
         points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
     elif name == "embree ao ms":
         points.append(("Embree (spp)", res, v, values[("embree ao mae", res, angular)], values[("embree ao flip", res, angular)]))

@@ -20,7 +20,8 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 // snapping, no rotation: the voxelization's own error apart from ROMA's), 2 the distance
 // field built from the BOM, bound in its place, sphere-traced, 3 the G-buffer's depth
 // (screen space, no map), 4 the NAADF hierarchy built from the BOM, bound in its place (the
-// voxels of 1, empty space left a box at a time). A constant, so that ROMA's pass carries none of their code.
+// voxels of 1, empty space left a box at a time). A constant, so that ROMA's pass carries
+// none of their code.
 layout(constant_id = 0) const uint ROMA_AO_METHOD = 0u;
 
 #define ROMA_DF_WORD(i) roma_fetch_bom_word(i)

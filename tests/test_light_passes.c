@@ -14,7 +14,8 @@
  * - Stochastic many lights (32 random lights per pixel and frame) against the exact count.
  * - One-bounce GI, 1,024 samples, against roma_ref_indirect_point with the same bounce
  *   directions and light samples: cornell (area light + spot), cornell_spot (the spot by
- *   RSM and by shadow rays) and blinds (sun and emissive sky through a window).
+ *   RSM and by shadow rays) and blinds (sun and emissive sky through a window); on
+ *   cornell also the composed image (direct + GI) from the two tests' sums.
  * - Passes: only those of the plan run (plates: no punctual-light pass; a scene
  *   without lights: no GPU pass at all).
  * Bounds are the measured values (printed) plus a small margin. */
@@ -45,9 +46,12 @@
 #define MAX_EPS_S 0.033           /* measured 0.0276 (target 0.03) */
 /* GI, 1,024 samples (64 x 16 frames), A = 4: relative MAE and |relative bias| against the
  * reference on the same samples, measured + 0.005. */
-#define MAX_GI_CORNELL_MAE 0.221        /* measured 0.2158 */
-#define MAX_GI_CORNELL_BIAS 0.176       /* measured -0.1707: the lamp's ceiling band, below */
+#define MAX_GI_CORNELL_MAE 0.336        /* measured 0.3312: the lamp's ceiling band, below */
+#define MAX_GI_CORNELL_BIAS 0.028       /* measured -0.0225 */
 #define MIN_GI_CEILING_SHARE 0.164      /* measured 0.169 */
+/* The composed image (direct + GI) of the room, the two cases above on the same pixels:
+ * the issue's target is 3%. */
+#define MAX_COMPOSED_CORNELL_BIAS 0.026 /* measured -0.0234 */
 #define MAX_GI_SPOT_MAE 0.252           /* measured 0.2465 (RSM) */
 #define MAX_GI_SPOT_BIAS 0.033          /* measured +0.0271 (RSM) */
 #define MAX_GI_SPOT_RAYS_MAE 0.258      /* measured 0.2522 (shadow rays) */
@@ -58,7 +62,13 @@
 #define MAX_STOCHASTIC_BIAS 0.011  /* measured 0.0057 */
 #define MAX_COUNT_ERR 0.030       /* measured 0.0245, the 4-frame average against the same reference */
 
-static void test_direct_and_many_lights(roma_context *ctx)
+/* Sums over the covered pixels' channels of ROMA's and the reference's radiance. */
+typedef struct radiance_sums {
+    double roma, ref;
+} radiance_sums;
+
+/* direct: receives the direct light's sums (for the composed image). */
+static void test_direct_and_many_lights(roma_context *ctx, radiance_sums *direct)
 {
     roma_scene *scene = NULL;
     CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
@@ -141,6 +151,8 @@ static void test_direct_and_many_lights(roma_context *ctx)
     if (!covered)
         goto done;
     double rel_mae = sum_abs / sum_ref, rel_bias = (sum_roma - sum_ref) / sum_ref;
+    direct->roma = sum_roma;
+    direct->ref = sum_ref;
     eps_v /= covered;
     eps_s /= covered;
     count_err /= covered;
@@ -243,9 +255,11 @@ static void test_planned_passes_only(roma_context *ctx)
 /* The share of the reference's GI on builtin cornell that arrives through bounce hits
  * on the ceiling band where the lamp hangs (y > 1.97: the ceiling at 2 and the lamp at
  * 1.98). The lamp emits from both faces, so its top face lights the ceiling 2 cm above
- * it: a gap under one cell at RES 128 (2.4 cm) and under ROMA's origin offset, which
- * ROMA's shadow rays cannot resolve. Estimated with the reference alone (its own bounce
- * directions, one light sample per hit). */
+ * it: a gap under one cell at RES 128 (2.4 cm) and under ROMA's origin offset. ROMA's
+ * area-light samples take such short segments as free (roma_area_sample_irradiance);
+ * walked, they were blocked and the room's GI bias was -0.171, this share. Estimated with
+ * the reference alone (its own bounce directions, one light sample per hit): it shows
+ * that the bias bound above holds the band's light. */
 static double reference_gi_ceiling_share(const roma_scene *scene, const roma_ref *ref, const roma_gbuffer_pixel *px,
                                          uint32_t samples)
 {
@@ -292,7 +306,8 @@ typedef struct gi_case {
     double max_rel_mae, max_rel_bias;
 } gi_case;
 
-static void test_gi_case(roma_context *ctx, const gi_case *k)
+/* direct: the direct light's sums on cornell's pixels (0 when that test did not run). */
+static void test_gi_case(roma_context *ctx, const gi_case *k, const radiance_sums *direct)
 {
     roma_scene *scene = NULL;
     CHECK_RESULT(roma_scene_create_builtin(k->scene, NULL, &scene), ROMA_SUCCESS);
@@ -345,6 +360,13 @@ static void test_gi_case(roma_context *ctx, const gi_case *k)
         double share = reference_gi_ceiling_share(scene, ref, px, 256);
         printf("    the reference's GI through the lamp's ceiling band (y > 1.97): %.3f of it\n", share);
         CHECK(share >= MIN_GI_CEILING_SHARE);
+        /* The direct test rendered the same camera at the same size: the same pixels. */
+        CHECK(direct->ref > 0.0);
+        if (direct->ref > 0.0) {
+            double composed = (direct->roma + sum_roma - direct->ref - sum_ref) / (direct->ref + sum_ref);
+            printf("    composed (direct + GI): relative bias %+.4f\n", composed);
+            CHECK(fabs(composed) <= MAX_COMPOSED_CORNELL_BIAS);
+        }
     }
 done:
     roma_effect_images_free(&img);
@@ -353,7 +375,7 @@ done:
     roma_scene_destroy(scene);
 }
 
-static void test_gi(roma_context *ctx)
+static void test_gi(roma_context *ctx, const radiance_sums *direct)
 {
     static const gi_case cases[] = {
         /* area light (emissive quad) + spot */
@@ -365,7 +387,7 @@ static void test_gi(roma_context *ctx)
         {"blinds", 0, 64, 16, MAX_GI_BLINDS_MAE, MAX_GI_BLINDS_BIAS},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i)
-            test_gi_case(ctx, &cases[i]);
+            test_gi_case(ctx, &cases[i], direct);
 }
 
 int main(void)
@@ -374,8 +396,9 @@ int main(void)
     if (!ctx)
         return roma_test_finish("test_light_passes");
     test_planned_passes_only(ctx);
-    test_direct_and_many_lights(ctx);
-    test_gi(ctx);
+    radiance_sums direct = {0.0, 0.0};
+    test_direct_and_many_lights(ctx, &direct);
+    test_gi(ctx, &direct);
     roma_test_context_finish(ctx);
     return roma_test_finish("test_light_passes");
 }

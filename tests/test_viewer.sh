@@ -111,9 +111,14 @@ if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/ref
   go=$(metric "$dir/gi_vs_roma.txt" mean_abs)
   gr=$(metric "$dir/gi_vs_reference.txt" mean_abs)
   echo "GI MAE over 19,200 pixels: viewer vs roma-render $go, viewer vs Embree $gr"
-  # Measured: 0.00033 (1% of the mean 0.033) and 0.0123 (ROMA's GI is 16% darker here).
-  below "$go" 0.0005 || fail "the viewer's GI differs from roma-render's by more than 0.0005 (MAE $go)"
-  below "$gr" 0.0135 || fail "the viewer's GI is further from the reference than 0.0135 (MAE $gr)"
+  gb=$(metric "$dir/gi_vs_reference.txt" bias)
+  echo "GI bias against Embree: $gb"
+  # Measured: 0.00056 (1.4% of the mean 0.040), 0.0190 and +0.00069 (+1.7%). Most of the
+  # MAE is the rare bright samples of bounce rays that reach the ceiling the lamp lights
+  # from 2 cm, on both sides, on different pixels.
+  below "$go" 0.0006 || fail "the viewer's GI differs from roma-render's by more than 0.0006 (MAE $go)"
+  below "$gr" 0.020 || fail "the viewer's GI is further from the reference than 0.020 (MAE $gr)"
+  [ -n "$gb" ] && below "${gb#-}" 0.001 || fail "the viewer's GI is biased by more than 0.001 against the reference ($gb)"
 fi
 
 # 1b''''. GI while a surface moves: tests/viewer/moving_wall.gltf slides a red wall over a

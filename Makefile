@@ -75,15 +75,21 @@ study: build
 	    --plot docs/images/accuracy_vs_time_cornell_ao.png --cache $(BUILD)/study_cornell.cache \
 	    > docs/bench/cornell_accuracy.txt
 	rm -f $(BUILD)/study_cornell.cache
+	$(BUILD)/apps/roma-bench --accuracy --effect direct --runs 3 --csv docs/bench/cornell_direct_accuracy.csv \
+	    --plot docs/images/accuracy_vs_time_cornell_direct.png --cache $(BUILD)/study_cornell_direct.cache \
+	    > docs/bench/cornell_direct_accuracy.txt
+	rm -f $(BUILD)/study_cornell_direct.cache
 	$(BUILD)/apps/roma-bench --growth scenes/spot.glb,scenes/dragon_res3.glb,scenes/bunny.glb,scenes/dragon_res2.glb \
 	    --res 64,128,256 --runs 5 --csv docs/bench/growth.csv --plot docs/images/generation_and_trace_growth.png \
 	    > docs/bench/growth.txt
-	cat docs/bench/cornell_accuracy.txt docs/bench/growth.txt
+	cat docs/bench/cornell_accuracy.txt docs/bench/cornell_direct_accuracy.txt docs/bench/growth.txt
 
 study-small: build
 	mkdir -p $(OUT)/study
 	$(BUILD)/apps/roma-bench --small --accuracy --ao-radius 0.5 --csv $(OUT)/study/accuracy.csv \
 	    --plot $(OUT)/study/accuracy.png
+	$(BUILD)/apps/roma-bench --small --accuracy --effect direct --csv $(OUT)/study/direct_accuracy.csv \
+	    --plot $(OUT)/study/direct_accuracy.png
 
 docs: configure
 	cmake --build $(BUILD) --target docs

@@ -1,4 +1,5 @@
-/* roma-bench --accuracy: what accuracy costs in time. Ambient occlusion rendered
+/* roma-bench --accuracy: what accuracy costs in time. Ambient occlusion (or, with
+ * --effect direct, direct light: see the end of this comment) rendered
  * by ROMA (passes/effect_render.h) for every RES x A, for every RES by three baselines:
  * the exact traversal of the same voxels (the voxelization's own error), the distance
  * field built from them every frame and sphere-traced (the ROMA paper's comparator) and the
@@ -7,7 +8,10 @@
  * stochastic depth map of 2 and 4 layers beside it; timed per frame
  * (G-buffer once, then per frame: the array rebuilt with new jitter, none for screen space,
  * and the AO pass, from submit to fence on the host), against the Embree reference on the
- * same surface points and the same samples. */
+ * same surface points and the same samples. Direct light (point, spot and area lights, soft
+ * shadows) is swept the same way for the methods with a shadow ray: ROMA at every RES x A
+ * (the shadow array) with the paper's 8 steps and, at RES 128, with more steps, and the exact
+ * traversal of the BOM to each segment's end at every RES. */
 #include "accuracy.h"
 
 #include <math.h>
@@ -20,35 +24,97 @@
 #include "plot.h"
 #include "reference_internal.h"
 
-/* Embree's AO at the G-buffer's points with spp samples, on every core. */
-typedef struct embree_ao_job {
+/* Channels of the effect's image: AO 1, direct light RGB. */
+static uint32_t effect_channels(roma_bench_effect e)
+{
+    return e == ROMA_BENCH_EFFECT_DIRECT ? 3u : 1u;
+}
+
+/* Embree's AO or direct light at the G-buffer's points with spp samples (seed 1, the
+ * renders' samples), on every core; NAN where the pixel sees nothing. */
+typedef struct embree_job {
     const roma_ref *ref;
     const roma_gbuffer_pixel *px;
     float *out, radius;
     uint32_t spp;
-} embree_ao_job;
+    roma_bench_effect effect;
+} embree_job;
 
-static void embree_ao_pixel(void *ctx, uint32_t i)
+static void embree_pixel(void *ctx, uint32_t i)
 {
-    embree_ao_job *j = ctx;
+    embree_job *j = ctx;
     const roma_gbuffer_pixel *p = &j->px[i];
-    j->out[i] = isfinite(p->position_t[3]) ? roma_ref_ao_point(j->ref, p->position_t, p->geometric_normal,
-                                                               p->shading_normal, j->radius, j->spp, 1, i)
-                                           : NAN;
+    const uint32_t c = effect_channels(j->effect);
+    float *out = &j->out[(size_t)i * c];
+    if (!isfinite(p->position_t[3]))
+        for (uint32_t k = 0; k < c; ++k)
+            out[k] = NAN;
+    else if (j->effect == ROMA_BENCH_EFFECT_DIRECT)
+        roma_ref_direct_point(j->ref, p->position_t, p->geometric_normal, p->shading_normal, p->albedo, j->spp, 1, i,
+                              out);
+    else
+        out[0] = roma_ref_ao_point(j->ref, p->position_t, p->geometric_normal, p->shading_normal, j->radius, j->spp, 1,
+                                   i);
 }
 
-/* The Embree rows: time and error of its AO at a number of samples per pixel, and the error
- * it reaches in the time ROMA takes for its samples at RES 128, A 4 (roma_ms, 0: not run). */
-static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, const float *ref_ao, uint32_t w,
+/* Mean |a - b| and mean a - b over the channels of the pixels where ref is finite; the
+ * count of those pixels. */
+static uint32_t image_error(const float *a, const float *ref, size_t pixels, uint32_t channels, double *mae,
+                            double *bias)
+{
+    double sum = 0.0, signed_sum = 0.0;
+    uint32_t covered = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        if (!isfinite(ref[i * channels]))
+            continue;
+        for (uint32_t k = 0; k < channels; ++k) {
+            sum += fabs((double)a[i * channels + k] - ref[i * channels + k]);
+            signed_sum += (double)a[i * channels + k] - ref[i * channels + k];
+        }
+        ++covered;
+    }
+    *mae = covered ? sum / ((double)covered * channels) : NAN;
+    *bias = covered ? signed_sum / ((double)covered * channels) : NAN;
+    return covered;
+}
+
+/* The image FLIP compares: the values where the reference is finite, elsewhere the
+ * background of ROMA's images (AO 1, light 0). */
+static void fill_compared(roma_image *image, const float *values, const float *ref, size_t pixels,
+                          roma_bench_effect effect)
+{
+    const uint32_t c = effect_channels(effect);
+    const float background = effect == ROMA_BENCH_EFFECT_DIRECT ? 0.0f : 1.0f;
+    for (size_t i = 0; i < pixels; ++i)
+        for (uint32_t k = 0; k < c; ++k)
+            image->pixels[i * c + k] = isfinite(ref[i * c]) ? values[i * c + k] : background;
+}
+
+/* The effect's name in tables and titles, and its tag in the CSV and the cache's keys. */
+static const char *effect_title(roma_bench_effect e)
+{
+    return e == ROMA_BENCH_EFFECT_DIRECT ? "Direct light" : "Ambient occlusion";
+}
+
+static const char *effect_tag(roma_bench_effect e)
+{
+    return e == ROMA_BENCH_EFFECT_DIRECT ? "direct" : "ao";
+}
+
+/* The Embree rows: time and error of its AO or direct light at a number of samples per pixel,
+ * and the error it reaches in the time ROMA takes for its samples at its defaults (RES 128, A 4
+ * for AO, A 8 for the shadow array; roma_ms, 0: not run). */
+static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, const float *ref_values, uint32_t w,
                              uint32_t h, const roma_bench_accuracy_desc *d, double roma_ms, double roma_mae,
                              const roma_image *ref_image, const roma_image *coverage, double *times, FILE *csv,
                              roma_bench_point *points, int *point_count)
 {
     const size_t n = (size_t)w * h;
-    float *ao = malloc(n * sizeof *ao);
+    const uint32_t channels = effect_channels(d->effect);
+    float *values = malloc(n * channels * sizeof *values);
     roma_image image = {0};
-    if (!ao || roma_image_alloc(&image, w, h, 1) != ROMA_SUCCESS) {
-        free(ao);
+    if (!values || roma_image_alloc(&image, w, h, channels) != ROMA_SUCCESS) {
+        free(values);
         return 1;
     }
     const uint32_t total = d->spp * d->frames;
@@ -59,28 +125,22 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
     double best_mae = NAN;
     uint32_t best_spp = 0;
     for (uint32_t spp = 1; spp <= total; spp *= 2) {
-        embree_ao_job job = {ref, px, ao, d->radius, spp};
+        embree_job job = {ref, px, values, d->radius, spp, d->effect};
         for (uint32_t k = 0; k < d->runs; ++k) {
             double t0 = roma_app_now_ms();
-            roma_ref_parallel_for(ref, (uint32_t)n, embree_ao_pixel, &job, NULL, NULL);
+            roma_ref_parallel_for(ref, (uint32_t)n, embree_pixel, &job, NULL, NULL);
             times[k] = roma_app_now_ms() - t0;
         }
-        double ms = roma_app_median(times, (int)d->runs), sum = 0.0;
-        uint32_t covered = 0;
-        for (size_t i = 0; i < n; ++i)
-            if (isfinite(ref_ao[i])) {
-                sum += fabs((double)ao[i] - ref_ao[i]);
-                ++covered;
-            }
-        double mae = covered ? sum / covered : NAN, flip = NAN;
-        for (size_t i = 0; i < n; ++i)
-            image.pixels[i] = isfinite(ref_ao[i]) ? ao[i] : 1.0f;
+        double ms = roma_app_median(times, (int)d->runs), mae, bias, flip = NAN;
+        image_error(values, ref_values, n, channels, &mae, &bias);
+        fill_compared(&image, values, ref_values, n, d->effect);
         if (roma_image_flip(ref_image, &image, coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
         printf("| %u | %.1f | %.4f | %.4f |\n", spp, ms, mae, flip);
+        const char *tag = effect_tag(d->effect);
         if (csv)
-            fprintf(csv, "accuracy,embree ao ms,%u,0,%.6f,ms\naccuracy,embree ao mae,%u,0,%.6f,\n"
-                         "accuracy,embree ao flip,%u,0,%.6f,\n", spp, ms, spp, mae, spp, flip);
+            fprintf(csv, "accuracy,embree %s ms,%u,0,%.6f,ms\naccuracy,embree %s mae,%u,0,%.6f,\n"
+                         "accuracy,embree %s flip,%u,0,%.6f,\n", tag, spp, ms, tag, spp, mae, tag, spp, flip);
         roma_bench_point *pt = &points[(*point_count)++];
         snprintf(pt->series, sizeof pt->series, "Embree (spp)");
         snprintf(pt->label, sizeof pt->label, "%u", spp);
@@ -90,15 +150,16 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
             best_spp = spp;
         }
     }
+    const uint32_t anchor_a = d->effect == ROMA_BENCH_EFFECT_DIRECT ? 8u : 4u;
     if (roma_ms > 0.0 && best_spp)
-        printf("\nIn ROMA's time for its %u samples at RES 128, A 4 (%.0f ms; MAE %.4f against Embree's %u-sample\n"
+        printf("\nIn ROMA's time for its %u samples at RES 128, A %u (%.0f ms; MAE %.4f against Embree's %u-sample\n"
                "image), Embree traces %u samples per pixel: MAE %.4f against its own converged image.\n",
-               total, roma_ms, roma_mae, total, best_spp, best_mae);
+               total, anchor_a, roma_ms, roma_mae, total, best_spp, best_mae);
     else if (roma_ms > 0.0)
-        printf("\nIn ROMA's time for its %u samples at RES 128, A 4 (%.0f ms) Embree traces less than one sample.\n",
-               total, roma_ms);
+        printf("\nIn ROMA's time for its %u samples at RES 128, A %u (%.0f ms) Embree traces less than one sample.\n",
+               total, anchor_a, roma_ms);
     roma_image_free(&image);
-    free(ao);
+    free(values);
     return 0;
 }
 
@@ -138,14 +199,8 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_c
                 fprintf(stderr, "roma-bench: AO over %u frames failed: %s\n", f, roma_result_string(r));
                 return 1;
             }
-            double sum = 0.0;
-            uint32_t covered = 0;
-            for (size_t i = 0; i < (size_t)w * h; ++i)
-                if (isfinite(ref_ao[i])) {
-                    sum += fabs((double)img.ao.pixels[i] - ref_ao[i]);
-                    ++covered;
-                }
-            mae[m] = covered ? sum / covered : NAN;
+            double bias;
+            image_error(img.ao.pixels, ref_ao, (size_t)w * h, 1, &mae[m], &bias);
             if (roma_image_flip(ref_image, &img.ao, coverage, 0.0f, &flip[m], NULL) != ROMA_SUCCESS)
                 flip[m] = NAN;
             roma_effect_images_free(&img);
@@ -183,7 +238,7 @@ typedef struct study {
     const roma_ref *ref;
     const roma_bench_accuracy_desc *d;
     roma_gbuffer_pixel *px;
-    float *ref_ao;
+    float *ref_values; /* the reference at the G-buffer's points: the effect's channels a pixel */
     roma_image ref_image, coverage;
     int have_ref;
     double *times;
@@ -240,17 +295,16 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
 {
     const roma_bench_accuracy_desc *d = s->d;
     const size_t n = (size_t)d->width * d->height;
-    const uint32_t samples = d->spp * d->frames;
-    double df_ms = 0.0, flip = NAN, sum = 0.0, bias = 0.0;
-    uint32_t covered = 0;
+    const uint32_t samples = d->spp * d->frames, channels = effect_channels(d->effect);
+    double df_ms = 0.0, flip = NAN, mae_0 = NAN, bias_0 = NAN;
     roma_effect_images img;
     roma_effect_stats st;
     roma_result r = ROMA_SUCCESS;
     char key[1024];
     const int key_length =
-        snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u",
+        snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u|shadow steps %u",
                  d->cache_key ? d->cache_key : "", d->width, d->height, d->frames, d->spp, (double)d->radius, d->runs,
-                 tag, csv_res, csv_a, rd->ssao_steps, rd->ssao_layers);
+                 tag, csv_res, csv_a, rd->ssao_steps, rd->ssao_layers, rd->max_steps);
     /* A key cut short would name other points too: such a point is neither read nor kept. */
     const int keyed = key_length > 0 && (size_t)key_length < sizeof key && !strpbrk(key, "\t\n");
     /* The first point is always measured: its render makes the G-buffer and the reference. */
@@ -270,36 +324,27 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
             df_ms = st.baseline_build_ms / d->frames;
         if (!s->have_ref) {
             /* The G-buffer does not depend on the method or its settings: one reference for all. */
-            for (size_t i = 0; i < n; ++i)
-                s->ref_ao[i] = isfinite(s->px[i].position_t[3])
-                                   ? roma_ref_ao_point(s->ref, s->px[i].position_t, s->px[i].geometric_normal,
-                                                       s->px[i].shading_normal, d->radius, samples, 1, (uint32_t)i)
-                                   : NAN;
+            embree_job job = {s->ref, s->px, s->ref_values, d->radius, samples, d->effect};
+            roma_ref_parallel_for(s->ref, (uint32_t)n, embree_pixel, &job, NULL, NULL);
             s->have_ref = 1;
-            for (size_t i = 0; i < n; ++i) {
-                s->coverage.pixels[i] = isfinite(s->ref_ao[i]) ? 1.0f : 0.0f;
-                s->ref_image.pixels[i] = isfinite(s->ref_ao[i]) ? s->ref_ao[i] : 1.0f;
-            }
+            for (size_t i = 0; i < n; ++i)
+                s->coverage.pixels[i] = isfinite(s->ref_values[i * channels]) ? 1.0f : 0.0f;
+            fill_compared(&s->ref_image, s->ref_values, s->ref_values, n, d->effect);
         }
-        if (k == 0 && roma_image_flip(&s->ref_image, &img.ao, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
+        const roma_image *out = d->effect == ROMA_BENCH_EFFECT_DIRECT ? &img.direct : &img.ao;
+        if (k == 0 && roma_image_flip(&s->ref_image, out, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
         if (k == 0)
-            for (size_t i = 0; i < n; ++i) {
-                if (!isfinite(s->ref_ao[i]))
-                    continue;
-                sum += fabs((double)img.ao.pixels[i] - s->ref_ao[i]);
-                bias += (double)img.ao.pixels[i] - s->ref_ao[i];
-                ++covered;
-            }
+            image_error(out->pixels, s->ref_values, n, channels, &mae_0, &bias_0);
         roma_effect_images_free(&img);
     }
     if (r != ROMA_SUCCESS) {
-        fprintf(stderr, "roma-bench: AO (%s) at RES %s, A %s failed: %s\n", name, res_text, a_text,
-                roma_result_string(r));
+        fprintf(stderr, "roma-bench: %s (%s) at RES %s, A %s failed: %s\n", effect_title(d->effect), name, res_text,
+                a_text, roma_result_string(r));
         return 1;
     }
     ms = roma_app_median(s->times, (int)d->runs);
-    mae = covered ? sum / covered : NAN, b = covered ? bias / covered : NAN;
+    mae = mae_0, b = bias_0;
     if (d->cache_path && keyed) {
         FILE *f = fopen(d->cache_path, "a");
         if (f) {
@@ -340,45 +385,12 @@ report:
 static const uint32_t ssao_steps[] = {8, 16, 32};
 static const uint32_t ssao_layers[] = {2, 4};
 
-int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
-                        const roma_bench_accuracy_desc *d, FILE *csv)
+/* AO: ROMA at every RES x A, the voxel baselines at every RES, screen space. Sets the time
+ * (all frames) and error of ROMA at RES 128, A 4. */
+static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
-    const uint32_t w = d->width, h = d->height, samples = d->spp * d->frames;
-    roma_camera cam;
-    roma_scene_default_camera(scene, (float)w / (float)h, &cam);
-    /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
-    study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
-               .px = calloc((size_t)w * h, sizeof(roma_gbuffer_pixel)), .ref_ao = calloc((size_t)w * h, sizeof(float)),
-               .times = calloc(d->runs, sizeof(double)),
-               .points = calloc((size_t)max_points, sizeof(roma_bench_point))};
+    const roma_bench_accuracy_desc *d = s->d;
     int status = 0;
-    if (!s.px || !s.ref_ao || !s.times || !s.points) {
-        status = 1;
-        goto done;
-    }
-    load_cache(&s);
-    s.total = d->res_count * (d->angular_count + 3) + (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
-              (int)(sizeof ssao_layers / sizeof ssao_layers[0]);
-    char how[64];
-    if (d->runs == 1)
-        snprintf(how, sizeof how, "one run");
-    else
-        snprintf(how, sizeof how, "median of %u runs", d->runs);
-    printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
-           "time per frame = host-observed render time / frames (%s); error against Embree\n"
-           "on the same points and samples, over the pixels that see geometry (FLIP: LDR-FLIP\n"
-           "at 67 pixels per degree).\n\n"
-           "| method | RES | A | ms per frame | of which DF, NAADF or depth layers (timestamps) | MAE | bias | FLIP |\n"
-           "|---|---|---|---|---|---|---|---|\n",
-           w, h, samples, d->spp, d->frames, (double)d->radius, how);
-    /* FLIP against the reference over the covered pixels (background 1, as ROMA's images). */
-    if (roma_image_alloc(&s.ref_image, w, h, 1) != ROMA_SUCCESS ||
-        roma_image_alloc(&s.coverage, w, h, 1) != ROMA_SUCCESS) {
-        status = 1;
-        goto done;
-    }
-    double roma_ms_128_4 = 0.0, roma_mae_128_4 = NAN; /* all frames at the defaults */
     for (int ri = 0; ri < d->res_count; ++ri)
         for (int ai = 0; ai <= d->angular_count + 2; ++ai) {
             /* After the A list: the baselines, with one map (they read only the BOM; the
@@ -392,9 +404,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
             const char *tags[5] = {"ao", "voxel-dda", "distance-field", "", "naadf"};
             const uint32_t angular = dda ? 1u : d->angular[ai];
             roma_effect_render_desc rd = {
-                .camera = cam, .width = w, .height = h,
+                .camera = *cam, .width = d->width, .height = d->height,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = d->res[ri], .ao_angular = angular},
-                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s.px,
+                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s->px,
                 .ao_method = method,
             };
             char series[32], label[16], res_text[16], a_text[12] = "-";
@@ -404,77 +416,190 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                 snprintf(a_text, sizeof a_text, "%u", angular);
             snprintf(series, sizeof series, dda ? "%s" : "ROMA A %s", dda ? names[method] : a_text);
             double ms, mae;
-            if (measure_setting(&s, &rd, names[method], tags[method], series, label, res_text, a_text, d->res[ri],
+            if (measure_setting(s, &rd, names[method], tags[method], series, label, res_text, a_text, d->res[ri],
                                 angular, &ms, &mae)) {
                 status = 1;
                 continue;
             }
             if (!dda && d->res[ri] == 128 && angular == 4) {
-                roma_ms_128_4 = ms * d->frames;
-                roma_mae_128_4 = mae;
+                *anchor_ms = ms * d->frames;
+                *anchor_mae = mae;
             }
         }
     /* Screen-space AO against the G-buffer's depth: no map, so no RES (its rays' origin offset
      * and skipped start are ROMA's at RES 128); one row per march length. */
     for (size_t i = 0; i < sizeof ssao_steps / sizeof ssao_steps[0]; ++i) {
         roma_effect_render_desc rd = {
-            .camera = cam, .width = w, .height = h, .options = {.effects = ROMA_EFFECT_AO, .resolution = 128},
-            .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s.px,
-            .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = ssao_steps[i],
+            .camera = *cam, .width = d->width, .height = d->height,
+            .options = {.effects = ROMA_EFFECT_AO, .resolution = 128}, .spp = d->spp, .frames = d->frames, .seed = 1,
+            .ao_radius = d->radius, .out_gbuffer = s->px, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE,
+            .ssao_steps = ssao_steps[i],
         };
         char name[48], label[16];
         snprintf(name, sizeof name, "screen space, %u steps", ssao_steps[i]);
         snprintf(label, sizeof label, "%u", ssao_steps[i]);
         double ms, mae;
-        if (measure_setting(&s, &rd, name, "screen-space", "screen space (steps)", label, "-", "-", ssao_steps[i], 0,
+        if (measure_setting(s, &rd, name, "screen-space", "screen space (steps)", label, "-", "-", ssao_steps[i], 0,
                             &ms, &mae))
             status = 1;
     }
     for (size_t i = 0; i < sizeof ssao_layers / sizeof ssao_layers[0]; ++i) {
         roma_effect_render_desc rd = {
-            .camera = cam, .width = w, .height = h, .options = {.effects = ROMA_EFFECT_AO, .resolution = 128},
-            .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s.px,
-            .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = 16, .ssao_layers = ssao_layers[i],
+            .camera = *cam, .width = d->width, .height = d->height,
+            .options = {.effects = ROMA_EFFECT_AO, .resolution = 128}, .spp = d->spp, .frames = d->frames, .seed = 1,
+            .ao_radius = d->radius, .out_gbuffer = s->px, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = 16,
+            .ssao_layers = ssao_layers[i],
         };
         char name[64], label[16];
         snprintf(name, sizeof name, "stochastic depth map, %u layers, 16 steps", ssao_layers[i]);
         snprintf(label, sizeof label, "%u", ssao_layers[i]);
         double ms, mae;
-        if (measure_setting(&s, &rd, name, "sd-map", "stochastic depth map (layers)", label, "-", "-",
+        if (measure_setting(s, &rd, name, "sd-map", "stochastic depth map (layers)", label, "-", "-",
                             ssao_layers[i], 0, &ms, &mae))
             status = 1;
     }
-    if (s.have_ref && embree_equal_time(ref, s.px, s.ref_ao, w, h, d, roma_ms_128_4, roma_mae_128_4, &s.ref_image,
+    return status;
+}
+
+/* More steps for ROMA's un-snapped shadow rays than the paper's 8, at RES 128 and A 8. */
+static const uint32_t shadow_steps[] = {16, 64};
+
+/* Direct light: ROMA at every RES x A of the shadow array (8 steps), the exact traversal of
+ * the BOM at every RES, and ROMA with more steps at RES 128, A 8. Sets the time and error of
+ * ROMA at RES 128, A 8 (the shadow array's default). */
+static int sweep_direct(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    int status = 0;
+    for (int ri = 0; ri < d->res_count; ++ri)
+        for (int ai = 0; ai <= d->angular_count; ++ai) {
+            const int dda = ai == d->angular_count;
+            const uint32_t angular = dda ? 1u : d->angular[ai];
+            roma_effect_render_desc rd = {
+                .camera = *cam, .width = d->width, .height = d->height,
+                .options = {.effects = ROMA_EFFECT_DIRECT, .resolution = d->res[ri], .shadow_angular = angular},
+                .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px,
+                .shadow_method = dda ? ROMA_SHADOW_METHOD_VOXEL_DDA : ROMA_SHADOW_METHOD_ROMA,
+            };
+            char series[32], label[16], res_text[16], a_text[12] = "-";
+            snprintf(label, sizeof label, "%u", d->res[ri]);
+            snprintf(res_text, sizeof res_text, "%u", d->res[ri]);
+            if (!dda)
+                snprintf(a_text, sizeof a_text, "%u", angular);
+            snprintf(series, sizeof series, dda ? "voxel traversal" : "ROMA A %s", a_text);
+            double ms, mae;
+            if (measure_setting(s, &rd, dda ? "voxel traversal" : "ROMA", dda ? "direct-voxel-dda" : "direct", series,
+                                label, res_text, a_text, d->res[ri], angular, &ms, &mae)) {
+                status = 1;
+                continue;
+            }
+            if (!dda && d->res[ri] == 128 && angular == 8) {
+                *anchor_ms = ms * d->frames;
+                *anchor_mae = mae;
+            }
+        }
+    for (size_t i = 0; i < sizeof shadow_steps / sizeof shadow_steps[0]; ++i) {
+        roma_effect_render_desc rd = {
+            .camera = *cam, .width = d->width, .height = d->height,
+            .options = {.effects = ROMA_EFFECT_DIRECT, .resolution = 128, .shadow_angular = 8},
+            .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px, .max_steps = shadow_steps[i],
+        };
+        char name[48], label[16];
+        snprintf(name, sizeof name, "ROMA, %u steps", shadow_steps[i]);
+        snprintf(label, sizeof label, "%u", shadow_steps[i]);
+        double ms, mae;
+        if (measure_setting(s, &rd, name, "direct-steps", "ROMA A 8, RES 128 (steps)", label, "128", "8",
+                            shadow_steps[i], 8, &ms, &mae))
+            status = 1;
+    }
+    return status;
+}
+
+int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+                        const roma_bench_accuracy_desc *d, FILE *csv)
+{
+    const uint32_t w = d->width, h = d->height, samples = d->spp * d->frames, channels = effect_channels(d->effect);
+    const int direct = d->effect == ROMA_BENCH_EFFECT_DIRECT;
+    roma_camera cam;
+    roma_scene_default_camera(scene, (float)w / (float)h, &cam);
+    /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
+    const int max_points = d->res_count * (d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
+    study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
+               .px = calloc((size_t)w * h, sizeof(roma_gbuffer_pixel)),
+               .ref_values = calloc((size_t)w * h * channels, sizeof(float)),
+               .times = calloc(d->runs, sizeof(double)),
+               .points = calloc((size_t)max_points, sizeof(roma_bench_point))};
+    int status = 0;
+    if (!s.px || !s.ref_values || !s.times || !s.points) {
+        status = 1;
+        goto done;
+    }
+    load_cache(&s);
+    s.total = direct ? d->res_count * (d->angular_count + 1) + (int)(sizeof shadow_steps / sizeof shadow_steps[0])
+                     : d->res_count * (d->angular_count + 3) + (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
+                           (int)(sizeof ssao_layers / sizeof ssao_layers[0]);
+    char how[64];
+    if (d->runs == 1)
+        snprintf(how, sizeof how, "one run");
+    else
+        snprintf(how, sizeof how, "median of %u runs", d->runs);
+    if (direct)
+        printf("\nDirect light (point, spot and area lights with their shadows), %ux%u, %u samples per pixel (%u per\n"
+               "frame over %u frames; area-light samples, one shadow ray to each point or spot light a frame):\n"
+               "time per frame = host-observed render time / frames (%s); error against Embree on the\n"
+               "same points and samples, over the pixels that see geometry, RGB (FLIP: LDR-FLIP at 67\n"
+               "pixels per degree). A: the shadow array's.\n\n"
+               "| method | RES | A | ms per frame | - | MAE | bias | FLIP |\n|---|---|---|---|---|---|---|---|\n",
+               w, h, samples, d->spp, d->frames, how);
+    else
+        printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
+               "time per frame = host-observed render time / frames (%s); error against Embree\n"
+               "on the same points and samples, over the pixels that see geometry (FLIP: LDR-FLIP\n"
+               "at 67 pixels per degree).\n\n"
+               "| method | RES | A | ms per frame | of which DF, NAADF or depth layers (timestamps) | MAE | bias | FLIP |\n"
+               "|---|---|---|---|---|---|---|---|\n",
+               w, h, samples, d->spp, d->frames, (double)d->radius, how);
+    /* FLIP against the reference over the covered pixels (background as ROMA's images). */
+    if (roma_image_alloc(&s.ref_image, w, h, channels) != ROMA_SUCCESS ||
+        roma_image_alloc(&s.coverage, w, h, 1) != ROMA_SUCCESS) {
+        status = 1;
+        goto done;
+    }
+    double anchor_ms = 0.0, anchor_mae = NAN; /* ROMA's defaults, all frames */
+    status |= direct ? sweep_direct(&s, &cam, &anchor_ms, &anchor_mae) : sweep_ao(&s, &cam, &anchor_ms, &anchor_mae);
+    if (s.have_ref && embree_equal_time(ref, s.px, s.ref_values, w, h, d, anchor_ms, anchor_mae, &s.ref_image,
                                         &s.coverage, s.times, csv, s.points, &s.point_count))
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
     roma_bench_print_fronts(s.points, s.point_count);
-    /* Equal time and equal error against ROMA's defaults (RES 128, A 4); without RES 128 in
-     * the run, ROMA A 4 at the first RES listed; without A 4, no such tables (said below). */
+    /* Equal time and equal error against ROMA's defaults (RES 128; A 4 for AO, 8 for the
+     * shadow array); without RES 128 in the run, that A at the first RES listed; without the
+     * A, no such tables (said below). */
+    const char *anchor_series = direct ? "ROMA A 8" : "ROMA A 4";
     int anchor = -1;
     for (int i = 0; i < s.point_count; ++i) {
-        int defaults = strcmp(s.points[i].series, "ROMA A 4") == 0 && strcmp(s.points[i].label, "128") == 0;
-        if (defaults || (anchor < 0 && strcmp(s.points[i].series, "ROMA A 4") == 0))
+        int defaults = strcmp(s.points[i].series, anchor_series) == 0 && strcmp(s.points[i].label, "128") == 0;
+        if (defaults || (anchor < 0 && strcmp(s.points[i].series, anchor_series) == 0))
             anchor = i;
         if (defaults)
             break;
     }
     if (anchor < 0)
-        printf("\nNo equal-time or equal-error tables: they compare against ROMA at A 4, not in --angular.\n");
+        printf("\nNo equal-time or equal-error tables: they compare against %s, not in --angular.\n", anchor_series);
     roma_bench_print_equal(s.points, s.point_count, anchor);
     if (d->plot_path) {
         char title[160], x_label[160];
-        snprintf(title, sizeof title, "Ambient occlusion, %ux%u, %u samples per pixel: error against time", w, h,
-                 samples);
+        snprintf(title, sizeof title, "%s, %ux%u, %u samples per pixel: error against time", effect_title(d->effect),
+                 w, h, samples);
         snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baselines: %u frames of %u samples)",
                  d->frames, d->spp);
         if (roma_bench_plot(s.points, s.point_count, title, x_label, 1, d->plot_path))
             status = 1;
     }
-    /* Error against frames: its points follow the others; plotted beside, as NAME_frames.png. */
+    /* Error against frames (AO): its points follow the others; plotted beside, as NAME_frames.png. */
     const int frames_first = s.point_count;
-    if (s.have_ref &&
-        frames_curve(ctx, scene, &cam, d, s.ref_ao, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
+    if (!direct && s.have_ref &&
+        frames_curve(ctx, scene, &cam, d, s.ref_values, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
         status = 1;
     if (d->plot_path && s.point_count > frames_first) {
         char path[1024], title[160], x_label[160];
@@ -495,7 +620,7 @@ done:
     roma_image_free(&s.ref_image);
     roma_image_free(&s.coverage);
     free(s.px);
-    free(s.ref_ao);
+    free(s.ref_values);
     free(s.times);
     return status;
 }

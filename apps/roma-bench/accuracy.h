@@ -6,7 +6,14 @@
 #include "reference.h"
 #include "roma/context.h"
 
+/* What the sweep renders. */
+typedef enum roma_bench_effect {
+    ROMA_BENCH_EFFECT_AO = 0,
+    ROMA_BENCH_EFFECT_DIRECT = 1, /* direct light: point, spot and area lights with their shadow rays */
+} roma_bench_effect;
+
 typedef struct roma_bench_accuracy_desc {
+    roma_bench_effect effect;
     uint32_t width, height, spp, frames, runs;
     float radius;
     const uint32_t *res, *angular;

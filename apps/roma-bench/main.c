@@ -22,7 +22,8 @@
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
     "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R]\n"
-    "                  [--accuracy [--plot FILE.png] [--cache FILE]] [--growth LIST [--plot FILE.png]]\n"
+    "                  [--accuracy [--effect ao|direct] [--plot FILE.png] [--cache FILE]]\n"
+    "                  [--growth LIST [--plot FILE.png]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
@@ -41,7 +42,10 @@ static const char *usage =
     "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot);\n"
     "  --cache FILE keeps every finished point, so that a run cut short resumes where it stopped\n"
     "  (points of the same device, scene, settings and roma-bench executable are not measured\n"
-    "  again). Progress goes to stderr, a line a point.\n"
+    "  again). Progress goes to stderr, a line a point. --effect direct: direct light (point, spot\n"
+    "  and area lights with their shadow rays) instead of AO: ROMA for every RES x A of the shadow\n"
+    "  array with 8 steps and at RES 128, A 8 with 16 and 64, the exact voxel traversal for every\n"
+    "  RES, Embree at equal time.\n"
     "  --growth LIST: instead, generation and trace time as the scene grows: for each scene of\n"
     "  the comma-separated LIST (at most 8) and each RES of --res (A 4), ROMA's voxelize, rotate\n"
     "  and AO pass at 1 spp over the covered pixels against Embree's BVH build and AO at the same\n"
@@ -254,7 +258,8 @@ int main(int argc, char **argv)
     const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL, *cache_path = NULL;
     const char *growth = NULL;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
-    int res_n = 3, ang_n = 3, accuracy = 0, small = 0;
+    int res_n = 3, ang_n = 3, accuracy = 0, small = 0, effect_set = 0;
+    roma_bench_effect effect = ROMA_BENCH_EFFECT_AO;
     float ao_radius = 0.0f;
     uint32_t frame_w = 1920, frame_h = 1080;
     for (int i = 1; i < argc; ++i) {
@@ -268,6 +273,13 @@ int main(int argc, char **argv)
             small = 1;
         } else if (strcmp(a, "--accuracy") == 0) {
             accuracy = 1;
+        } else if (v && strcmp(a, "--effect") == 0) {
+            if (strcmp(v, "ao") != 0 && strcmp(v, "direct") != 0) {
+                fprintf(stderr, "roma-bench: --effect %s: expected ao or direct\n", v);
+                return 2;
+            }
+            effect = strcmp(v, "direct") == 0 ? ROMA_BENCH_EFFECT_DIRECT : ROMA_BENCH_EFFECT_AO;
+            effect_set = 1, ++i;
         } else if (v && strcmp(a, "--ao-radius") == 0) {
             ao_radius = strtof(v, NULL), ++i;
         } else if (v && strcmp(a, "--size") == 0) {
@@ -291,8 +303,9 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if ((plot_path && !accuracy && !growth) || (cache_path && !accuracy) || (growth && accuracy)) {
-        fprintf(stderr, "roma-bench: --plot is for --accuracy or --growth, --cache for --accuracy; not both runs\n");
+    if ((plot_path && !accuracy && !growth) || ((cache_path || effect_set) && !accuracy) || (growth && accuracy)) {
+        fprintf(stderr, "roma-bench: --plot is for --accuracy or --growth, --cache and --effect for --accuracy; not "
+                        "both runs\n");
         return 2;
     }
     if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
@@ -348,7 +361,7 @@ int main(int argc, char **argv)
         snprintf(cache_key, sizeof cache_key, "%s|%s (%u triangles)|roma-bench of %lld", info.device_name, scene_arg,
                  sv.triangle_count, stat("/proc/self/exe", &exe) == 0 ? (long long)exe.st_mtime : 0ll);
         roma_bench_accuracy_desc ad = {
-            .width = small ? 32 : 160, .height = small ? 24 : 120, .spp = small ? 32 : 64,
+            .effect = effect, .width = small ? 32 : 160, .height = small ? 24 : 120, .spp = small ? 32 : 64,
             .frames = small ? 2 : 16, .runs = small ? 1 : runs, .radius = ao_radius,
             .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
             .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,

@@ -21,6 +21,11 @@
 const float ROMA_START_WALK = 4.0;
 float roma_start_walk = ROMA_START_WALK;
 
+// The accuracy study's baseline for shadows: every segment walked exactly through the BOM
+// to its end (3D DDA, no ROMA maps, no step bound): the voxelization's error apart from
+// ROMA's. Set by the direct-light passes from their push constants.
+bool roma_shadow_exact = false;
+
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];
 };
@@ -34,10 +39,21 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 // skip all of it). One walk call: SIMD devices that predicate run both sides of a branch.
 bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_steps)
 {
+    if (roma_shadow_exact) // the offset origin lies above the cells of its own surface
+        return !(roma_bom_walk(origin, v, tmax, 1 << 30) >= 0.0);
     bool whole = !(tmax > tmin);
     if (roma_ray_start_blocked(origin, v, whole ? tmax : min(roma_start_walk * tmin, tmax)))
         return false; // (a walk of no length, or NaN, meets nothing)
-    return whole || (roma_trace_unsnapped(origin, v, tmin, tmax, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
+    if (whole)
+        return true;
+    vec3 d = normalize(v);
+    if ((roma_trace_unsnapped(origin, d, tmin, tmax, false, max_steps).info & ROMA_HIT_FLAG) != 0u)
+        return false;
+    // The bounded walk gives up before far occluders and counts them as free; a segment
+    // with an end is walked back from it too, which finds the walls near the light (a
+    // light outside a room).
+    return isinf(tmax) ||
+           (roma_trace_unsnapped(origin + d * tmax, -d, 0.0, tmax - tmin, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
 }
 
 // 1 when the segment origin -> target is free between 0 and `shorten` (world

@@ -330,7 +330,8 @@ ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(bom);        /* this frame's BOM: the rays' skipped start walked exactly (0: not walked) */
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units), z: 1 = walk
+                             them exactly through the BOM instead (the study's baseline) */
 ROMA_STRUCT_END(roma_punctual_push)
 
 /* roma_light_effect (shaders/effects/lights_images.comp): punctual lights and area lights. */
@@ -363,7 +364,7 @@ ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
+    ROMA_VEC4(ray);       /* as roma_punctual_push */
 ROMA_STRUCT_END(roma_soft_shadows_push)
 
 ROMA_STRUCT_BEGIN(roma_many_lights_push)

@@ -37,8 +37,8 @@ layout(constant_id = 0) const bool ROMA_GI_SURFACES = true;
 layout(constant_id = 1) const bool ROMA_GI_RSM = true;
 
 
-// Radiance leaving hit point h towards the bounce ray's origin, from all RSMs.
-vec3 rsm_radiance(vec3 h)
+// Radiance leaving hit point h towards the bounce ray's origin `from`, from all RSMs.
+vec3 rsm_radiance(vec3 h, vec3 from)
 {
     vec3 L = vec3(0.0);
     uint view_count = gi.config2.y;
@@ -57,6 +57,11 @@ vec3 rsm_radiance(vec3 h)
         vec3 lp = light.position_type.xyz;
         // Shadow-map test: h is lit when it is no farther from the light than the surface the light sees.
         if (distance(lp, h) > distance(lp, y.position_t.xyz) + tolerance)
+            continue;
+        // Only the lit side reflects (the RSM's normal faces the light): a hit on the
+        // inside of a wall one cell thick may land just behind it, where the light
+        // outside the room sees the wall's other face.
+        if (dot(from - y.position_t.xyz, y.geometric_normal.xyz) <= 0.0)
             continue;
         vec3 l;
         float f = roma_punctual_factor(light, y.position_t.xyz, y.geometric_normal.xyz, y.shading_normal.xyz, l);
@@ -94,7 +99,7 @@ void main()
         vec3 hit_point;
         acc += roma_gi_bounce(S, P, grid, origin, dir, gi.ray.y, ROMA_GI_SURFACES, pixel, s, hit, hit_point);
         if (ROMA_GI_RSM && hit)
-            acc += rsm_radiance(hit_point);
+            acc += rsm_radiance(hit_point, origin);
     }
     accum[pixel] += vec4(acc, 0.0);
 }

@@ -28,6 +28,7 @@ void main()
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
+    roma_shadow_exact = pc.ray.z > 0.0;
     vec3 E = vec3(0.0);
     for (uint i = 0u; i < light_count; ++i)
         E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);

@@ -33,6 +33,7 @@ void main()
     float offset = pc.ray.x;
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
+    roma_shadow_exact = pc.ray.z > 0.0;
     vec3 acc = vec3(0.0);
     for (uint k = 0u; k < spp; ++k) {
         uint s = frame * spp + k;

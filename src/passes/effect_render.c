@@ -284,6 +284,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
     const uint32_t lights_steps = d->lights_max_steps ? d->lights_max_steps : 16;
     const float skip_cells = d->skip_cells < 0.0f ? 0.0f : d->skip_cells > 0.0f ? d->skip_cells : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
     const float ao_skip = d->ao_skip_cells < 0.0f ? 0.0f : d->ao_skip_cells > 0.0f ? d->ao_skip_cells : ROMA_DEFAULT_AO_SKIP_CELLS;
+    const float exact_shadows = d->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA ? 1.0f : 0.0f;
     roma_result r = ROMA_SUCCESS;
     for (int p = ROMA_PASS_AO; p < ROMA_PASS_COUNT && r == ROMA_SUCCESS; ++p) {
         if (!roma_effect_plan_runs(plan, (roma_pass_kind)p) || plan->pass_map[p] < 0)
@@ -325,7 +326,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_punctual_push push = {
                 .lights = R->lights.lights.address, .bom = bom,
                 .config = {d->width, d->height, R->lights.light_count, steps},
-                .ray = {offset, skip_cells * m->trace_cell, 0, 0},
+                .ray = {offset, skip_cells * m->trace_cell, exact_shadows, 0},
             };
             r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
@@ -334,7 +335,8 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_soft_shadows_push push = {
                 .emitters = R->lights.emitters.address, .cdf = R->lights.cdf.address, .bom = bom,
                 .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->lights.emitter_count, steps, 0}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
+                .config2 = {d->seed, R->lights.emitter_count, steps, 0},
+                .ray = {offset, skip_cells * m->trace_cell, exact_shadows, 0},
             };
             r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
@@ -605,6 +607,11 @@ roma_result roma_effect_render(roma_context *ctx, const roma_scene *scene, const
         !isfinite(desc->skip_cells) || !isfinite(desc->ao_skip_cells) ||
         !(desc->rsm_tolerance_cells >= 0.0f) || !isfinite(desc->rsm_tolerance_cells) || desc->rsm_size > 4096)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: bad offset, skip, AO radius or RSM size (at most 4096)");
+    if ((unsigned)desc->shadow_method > ROMA_SHADOW_METHOD_VOXEL_DDA ||
+        (desc->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA && desc->blind_ray_start))
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_effect_render: unknown shadow method %u, or the voxel traversal with the blind start "
+                         "(it walks the BOM the blind start leaves unbound)", (unsigned)desc->shadow_method);
     if ((unsigned)desc->ao_method > ROMA_AO_METHOD_NAADF)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_effect_render: unknown AO method %u",
                          (unsigned)desc->ao_method);

@@ -33,6 +33,12 @@
 #include "roma/ao_effect.h"
 #include "roma/light_effect.h"
 
+/* The shadow rays of direct light (the accuracy study's baselines). */
+typedef enum roma_shadow_method {
+    ROMA_SHADOW_METHOD_ROMA = 0,
+    ROMA_SHADOW_METHOD_VOXEL_DDA = 1, /* every segment walked exactly through the BOM, no maps, no step bound */
+} roma_shadow_method;
+
 typedef struct roma_effect_render_desc {
     roma_camera camera;
     uint32_t width, height;
@@ -55,6 +61,9 @@ typedef struct roma_effect_render_desc {
      * a box at a time), or screen-space AO against the G-buffer's depth (AO alone, bounded
      * radius; no map is built). */
     roma_ao_method ao_method;
+    /* What the direct light's shadow rays (point, spot, directional and area lights) trace:
+     * ROMA (0, the default) or the exact traversal of the BOM to their end. */
+    roma_shadow_method shadow_method;
     uint32_t ssao_steps;               /* ROMA_AO_METHOD_SCREEN_SPACE: march steps; 0 = ROMA_AO_SSAO_STEPS */
     /* ROMA_AO_METHOD_SCREEN_SPACE: the layers of a stochastic depth map rasterized every frame
      * beside the G-buffer's depth (0: none, at most ROMA_AO_SSAO_MAX_LAYERS), each keeping a

@@ -118,8 +118,8 @@ void main()
         // One un-snapped shadow ray to the scene's first punctual light (the ROMA part of the
         // light effect's shadow ray, without the walk of its start): how many map texels it
         // walked (heat: black none, white the most); blocked rays dimmed; rays that walked
-        // every step without a hit, leaving the map or reaching the light gave up and count
-        // as lit: magenta (where light can leak in from far occluders).
+        // every step without a hit, leaving the map or reaching the light gave up: magenta
+        // (the light effect then walks them back from the light; what both walks miss leaks).
         value = albedo * 0.35;
         if (frame.steps_light.w > 0.0) {
             vec3 o = pos.xyz + n * pc.offset;

@@ -93,7 +93,8 @@ fi
 direct=$(sed -n 's/.*direct light against the Embree reference.*MAE \([0-9.]*\) over.*/\1/p' "$dir/direct.out")
 echo "direct light MAE (viewer vs Embree): ${direct:-none}"
 # Measured: 0.0034 (the mean reflected radiance is about 0.09).
-[ -n "$direct" ] && below "$direct" 0.0040 || fail "the viewer's direct light is further from the reference than 0.0040 ($direct)"
+[ -n "$direct" ] && below "$direct" 0.0040 ||
+  fail "the viewer's direct light is further from the reference than 0.0040 ($direct)"
 
 # 1b''. One-bounce GI through the public effect (roma_gi_effect, 1 bounce ray a frame) against
 #      roma-render's offline GI pass with the same route for the spot (shadow rays) and the
@@ -116,9 +117,9 @@ if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/ref
   # Measured: 0.00056 (1.4% of the mean 0.040), 0.0190 and +0.00062 (+1.6%). Most of the
   # MAE is the rare bright samples of bounce rays that reach the ceiling the lamp lights
   # from 2 cm, on both sides, on different pixels.
-  below "$go" 0.0006 || fail "the viewer's GI differs from roma-render's by more than 0.0006 (MAE $go)"
+  below "$go" 0.0007 || fail "the viewer's GI differs from roma-render's by more than 0.0007 (MAE $go)"
   below "$gr" 0.020 || fail "the viewer's GI is further from the reference than 0.020 (MAE $gr)"
-  [ -n "$gb" ] && below "${gb#-}" 0.001 || fail "the viewer's GI is biased by more than 0.001 against the reference ($gb)"
+  [ -n "$gb" ] && below "${gb#-}" 0.001 || fail "the viewer's GI is biased by more than 0.001 against Embree ($gb)"
 fi
 
 # 1b''''. GI while a surface moves: tests/viewer/moving_wall.gltf slides a red wall over a

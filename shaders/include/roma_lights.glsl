@@ -36,7 +36,8 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 // 1 when origin + normalize(v) * [0, tmax] is free (tmax may be +INF). The ROMA query
 // skips its first tmin; the start is walked exactly instead (roma/ray_start.glsl), over
 // roma_start_walk * tmin, and a ray shorter than the skip is walked whole (the query would
-// skip all of it). One walk call: SIMD devices that predicate run both sides of a branch.
+// skip all of it). One call of each walk: SIMD devices that predicate run both sides of a
+// branch.
 bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_steps)
 {
     if (roma_shadow_exact) // the offset origin lies above the cells of its own surface
@@ -50,9 +51,11 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     if ((roma_trace_unsnapped(origin, d, tmin, tmax, false, max_steps).info & ROMA_HIT_FLAG) != 0u)
         return false;
     // The bounded walk gives up before far occluders and counts them as free; a segment
-    // with an end is walked back from it too, which finds the walls near the light (a
-    // light outside a room).
-    return isinf(tmax) ||
+    // with an end it gave up on is walked back from that end too, which finds the walls
+    // near the light (a light outside a room). That end has no skip: an area light's end
+    // lies an offset off the emitter, above its cells; a point light within a cell of a
+    // wall can meet the wall's cells there.
+    return isinf(tmax) || !roma_unsnapped_gave_up ||
            (roma_trace_unsnapped(origin + d * tmax, -d, 0.0, tmax - tmin, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
 }
 

@@ -285,6 +285,43 @@ static void test_arguments(roma_context *ctx)
     roma_gbuffer_destroy(gb);
 }
 
+/* A G-buffer that uses another's pipelines (roma_gbuffer_create_sharing, the RSM views and
+ * the depth layers) renders, at another size, what one with its own pipelines renders. */
+static void test_sharing(roma_context *ctx)
+{
+    roma_gbuffer *shared = (roma_gbuffer *)1;
+    CHECK_RESULT(roma_gbuffer_create_sharing(NULL, 8, 8, &shared), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(shared == NULL);
+    const uint32_t w = W / 2, h = H / 2;
+    roma_scene *scene = NULL;
+    roma_scene_buffers g = {0};
+    roma_gbuffer *source = NULL, *own = NULL;
+    roma_gbuffer_pixel *a = calloc((size_t)w * h, sizeof *a), *b = calloc((size_t)w * h, sizeof *b);
+    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
+    CHECK_RESULT(roma_scene_buffers_create(ctx, scene, &g), ROMA_SUCCESS);
+    CHECK_RESULT(roma_gbuffer_create(ctx, W, H, &source), ROMA_SUCCESS);
+    CHECK_RESULT(roma_gbuffer_create_sharing(source, w, h, &shared), ROMA_SUCCESS);
+    CHECK_RESULT(roma_gbuffer_create(ctx, w, h, &own), ROMA_SUCCESS);
+    if (a && b && scene && shared && own) {
+        roma_camera cam;
+        roma_scene_default_camera(scene, (float)w / (float)h, &cam);
+        CHECK_RESULT(render(ctx, shared, &g, &cam, &cam, 1e-3f, a), ROMA_SUCCESS);
+        CHECK_RESULT(render(ctx, own, &g, &cam, &cam, 1e-3f, b), ROMA_SUCCESS);
+        uint32_t covered = 0;
+        for (size_t i = 0; i < (size_t)w * h; ++i)
+            covered += isfinite(a[i].position_t[3]);
+        CHECK(covered > w * h / 2);
+        CHECK(memcmp(a, b, (size_t)w * h * sizeof *a) == 0);
+    }
+    roma_gbuffer_destroy(shared); /* before its source */
+    roma_gbuffer_destroy(own);
+    roma_gbuffer_destroy(source);
+    roma_scene_buffers_destroy(ctx, &g);
+    roma_scene_destroy(scene);
+    free(a);
+    free(b);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -292,6 +329,7 @@ int main(void)
         return roma_test_finish("test_gbuffer");
     CHECK(sizeof(roma_gbuffer_pixel) == 64);
     test_arguments(ctx);
+    test_sharing(ctx);
 
     roma_gbuffer *gb = NULL;
     CHECK_RESULT(roma_gbuffer_create(ctx, W, H, &gb), ROMA_SUCCESS);

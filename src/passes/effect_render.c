@@ -162,8 +162,10 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         else if (r == ROMA_SUCCESS)
             r = roma_naadf_create(ctx, info.bom_buffer, info.resolution, &R->naadf);
     }
+    /* The layers share the first one's pipelines (as the RSM views share the G-buffer's). */
     for (uint32_t l = 0; r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_AO) && l < d->ssao_layers; ++l)
-        r = roma_gbuffer_create_stochastic(ctx, d->width, d->height, &R->sd_layers[l]);
+        r = l == 0 ? roma_gbuffer_create_stochastic(ctx, d->width, d->height, &R->sd_layers[l])
+                   : roma_gbuffer_create_sharing(R->sd_layers[0], d->width, d->height, &R->sd_layers[l]);
     if (r == ROMA_SUCCESS && R->sd_layers[0]) {
         const VkDeviceSize layer = (VkDeviceSize)pixels * sizeof(roma_gbuffer_pixel);
         if (4ull * pixels * d->ssao_layers > ctx->properties.limits.maxTexelBufferElements)
@@ -189,7 +191,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
         r = roma_rsm_views_plan(R->lights.lights.mapped, R->lights.light_count, R->rsm_size, R->near_plane,
                                 &ctx->logger, &R->rsm_views);
         for (uint32_t v = 0; v < R->rsm_views.count && r == ROMA_SUCCESS; ++v) {
-            r = roma_gbuffer_create(ctx, R->rsm_size, R->rsm_size, &R->rsm[v]);
+            r = roma_gbuffer_create_sharing(R->gbuffer, R->rsm_size, R->rsm_size, &R->rsm[v]);
             if (r == ROMA_SUCCESS) {
                 VkDeviceAddress a = roma_gbuffer_pixels_address(R->rsm[v]);
                 R->rsm_views.views[v].info[2] = (uint32_t)a;
@@ -215,7 +217,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
                                &R->mask);
     }
     if (r == ROMA_SUCCESS && R->interactive)
-        r = roma_gbuffer_create(ctx, R->desc->width, R->desc->height, &R->gbuffer_previous);
+        r = roma_gbuffer_create_sharing(R->gbuffer, R->desc->width, R->desc->height, &R->gbuffer_previous);
     if (r == ROMA_SUCCESS && R->interactive) {
         uint32_t mask = 0;
         for (int e = 0; e < 4; ++e)
@@ -249,7 +251,7 @@ static void destroy_resources(renderer *R)
     roma_ao_pass_destroy(R->ao);
     roma_distance_field_destroy(&R->distance_field);
     roma_naadf_destroy(&R->naadf);
-    for (uint32_t l = 0; l < ROMA_AO_SSAO_MAX_LAYERS; ++l)
+    for (uint32_t l = ROMA_AO_SSAO_MAX_LAYERS; l-- > 0;) /* the first, whose pipelines they share, last */
         roma_gbuffer_destroy(R->sd_layers[l]);
     if (R->sd_view)
         vkDestroyBufferView(ctx->device, R->sd_view, ctx->allocator);

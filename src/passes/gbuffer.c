@@ -16,6 +16,7 @@ struct roma_gbuffer {
     VkPipeline depth_pipeline;   /* pass 1: depth only, GREATER (reversed Z); stochastic: with discards */
     int stochastic;              /* a layer of a stochastic depth map (roma_gbuffer_create_stochastic) */
     VkPipeline shade_pipeline;   /* pass 2: EQUAL, early tests, writes the pixels */
+    int shared_pipelines;        /* layout and pipelines are another G-buffer's (roma_gbuffer_create_sharing) */
     VkImage depth;
     VkDeviceMemory depth_memory;
     VkDeviceSize depth_bytes; /* counted against the context's memory use */
@@ -123,8 +124,9 @@ static roma_result create_depth(roma_gbuffer *g)
     return res;
 }
 
+/* source: NULL, or the G-buffer whose pipelines the new one uses (of its kind). */
 static roma_result create_gbuffer(roma_context *ctx, uint32_t width, uint32_t height, int stochastic,
-                                  roma_gbuffer **out)
+                                  const roma_gbuffer *source, roma_gbuffer **out)
 {
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
@@ -147,7 +149,15 @@ static roma_result create_gbuffer(roma_context *ctx, uint32_t width, uint32_t he
     g->width = width;
     g->height = height;
     g->stochastic = stochastic;
-    roma_result res = create_pipelines(g);
+    roma_result res = ROMA_SUCCESS;
+    if (source) {
+        g->layout = source->layout;
+        g->depth_pipeline = source->depth_pipeline;
+        g->shade_pipeline = source->shade_pipeline;
+        g->shared_pipelines = 1;
+    } else {
+        res = create_pipelines(g);
+    }
     if (res == ROMA_SUCCESS)
         res = create_depth(g);
     if (res == ROMA_SUCCESS)
@@ -171,12 +181,23 @@ static roma_result create_gbuffer(roma_context *ctx, uint32_t width, uint32_t he
 
 roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out)
 {
-    return create_gbuffer(ctx, width, height, 0, out);
+    return create_gbuffer(ctx, width, height, 0, NULL, out);
 }
 
 roma_result roma_gbuffer_create_stochastic(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out)
 {
-    return create_gbuffer(ctx, width, height, 1, out);
+    return create_gbuffer(ctx, width, height, 1, NULL, out);
+}
+
+roma_result roma_gbuffer_create_sharing(const roma_gbuffer *source, uint32_t width, uint32_t height,
+                                        roma_gbuffer **out)
+{
+    if (!source) {
+        if (out)
+            *out = NULL;
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    }
+    return create_gbuffer(source->ctx, width, height, source->stochastic, source, out);
 }
 
 void roma_gbuffer_destroy(roma_gbuffer *g)
@@ -193,6 +214,10 @@ void roma_gbuffer_destroy(roma_gbuffer *g)
     if (g->depth_memory)
         vkFreeMemory(dev, g->depth_memory, g->ctx->allocator);
     roma_device_memory_release(g->ctx, g->depth_bytes);
+    if (g->shared_pipelines) {
+        free(g);
+        return;
+    }
     if (g->shade_pipeline)
         vkDestroyPipeline(dev, g->shade_pipeline, g->ctx->allocator);
     if (g->depth_pipeline)

@@ -48,6 +48,11 @@ roma_result roma_gbuffer_create(roma_context *ctx, uint32_t width, uint32_t heig
  * (roma_gbuffer_inputs.keep, .seed), so each pixel holds a random one of the surfaces behind
  * it, the nearer ones more often. */
 roma_result roma_gbuffer_create_stochastic(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer **out);
+/* A G-buffer of the same kind as source (stochastic or not) that uses source's pipelines
+ * instead of creating its own (the viewport is dynamic: any size). Destroy it before
+ * source. */
+roma_result roma_gbuffer_create_sharing(const roma_gbuffer *source, uint32_t width, uint32_t height,
+                                        roma_gbuffer **out);
 /* Accepts NULL. */
 void roma_gbuffer_destroy(roma_gbuffer *g);
 

@@ -57,25 +57,15 @@ static void embree_pixel(void *ctx, uint32_t i)
                                    i);
 }
 
-/* Mean |a - b| and mean a - b over the channels of the pixels where ref is finite; the
- * count of those pixels. */
-static uint32_t image_error(const float *a, const float *ref, size_t pixels, uint32_t channels, double *mae,
-                            double *bias)
+/* Mean |test - reference| and mean test - reference over the channels of the covered
+ * pixels (roma_image_compare); NAN when they cannot be compared. */
+static void image_error(const roma_image *test, const roma_image *reference, const roma_image *coverage, double *mae,
+                        double *bias)
 {
-    double sum = 0.0, signed_sum = 0.0;
-    uint32_t covered = 0;
-    for (size_t i = 0; i < pixels; ++i) {
-        if (!isfinite(ref[i * channels]))
-            continue;
-        for (uint32_t k = 0; k < channels; ++k) {
-            sum += fabs((double)a[i * channels + k] - ref[i * channels + k]);
-            signed_sum += (double)a[i * channels + k] - ref[i * channels + k];
-        }
-        ++covered;
-    }
-    *mae = covered ? sum / ((double)covered * channels) : NAN;
-    *bias = covered ? signed_sum / ((double)covered * channels) : NAN;
-    return covered;
+    roma_image_metrics m;
+    int ok = roma_image_compare(test, reference, coverage, 0.0f, &m) == ROMA_SUCCESS && m.pixel_count > 0;
+    *mae = ok ? m.mean_abs_error : NAN;
+    *bias = ok ? m.mean_a - m.mean_b : NAN;
 }
 
 /* The image FLIP compares: the values where the reference is finite, elsewhere the
@@ -132,8 +122,8 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
             times[k] = roma_app_now_ms() - t0;
         }
         double ms = roma_app_median(times, (int)d->runs), mae, bias, flip = NAN;
-        image_error(values, ref_values, n, channels, &mae, &bias);
         fill_compared(&image, values, ref_values, n, d->effect);
+        image_error(&image, ref_image, coverage, &mae, &bias);
         if (roma_image_flip(ref_image, &image, coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
         printf("| %u | %.1f | %.4f | %.4f |\n", spp, ms, mae, flip);
@@ -172,7 +162,7 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
  * with the same samples (frames x spp) from the equal-time table. Appends the points (x:
  * frames, in ms) and prints the table. */
 static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_camera *cam,
-                        const roma_bench_accuracy_desc *d, const float *ref_ao, const roma_image *ref_image,
+                        const roma_bench_accuracy_desc *d, const roma_image *ref_image,
                         const roma_image *coverage, roma_bench_point *points, int *count, FILE *csv)
 {
     const uint32_t w = d->width, h = d->height;
@@ -203,7 +193,7 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_c
                 return 1;
             }
             double bias;
-            image_error(img.ao.pixels, ref_ao, (size_t)w * h, 1, &mae[m], &bias);
+            image_error(&img.ao, ref_image, coverage, &mae[m], &bias);
             if (roma_image_flip(ref_image, &img.ao, coverage, 0.0f, &flip[m], NULL) != ROMA_SUCCESS)
                 flip[m] = NAN;
             roma_effect_images_free(&img);
@@ -338,7 +328,7 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
         if (k == 0 && roma_image_flip(&s->ref_image, out, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
         if (k == 0)
-            image_error(out->pixels, s->ref_values, n, channels, &mae_0, &bias_0);
+            image_error(out, &s->ref_image, &s->coverage, &mae_0, &bias_0);
         roma_effect_images_free(&img);
     }
     if (r != ROMA_SUCCESS) {
@@ -602,7 +592,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     /* Error against frames (AO): its points follow the others; plotted beside, as NAME_frames.png. */
     const int frames_first = s.point_count;
     if (!direct && s.have_ref &&
-        frames_curve(ctx, scene, &cam, d, s.ref_values, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
+        frames_curve(ctx, scene, &cam, d, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
         status = 1;
     if (d->plot_path && s.point_count > frames_first) {
         char path[1024], title[160], x_label[160];

@@ -93,11 +93,17 @@ static void check_images(const char *name, const roma_effect_images *img, const 
     CHECK(roma_camera_make_frame(cam, W, H, &frame));
     for (uint32_t i = 0; i < W * H; ++i) {
         float ao = img->ao.pixels[i], n = img->lights.pixels[i], c = img->coverage.pixels[i];
-        bad += !(ao >= 0.0f && ao <= 1.0f) + !(n >= 0.0f && n <= (float)LIGHTS) + !(c == 0.0f || c == 1.0f);
-        for (int k = 0; k < 3; ++k) {
-            float a = img->direct.pixels[3 * i + k], b = img->gi.pixels[3 * i + k];
-            bad += !(a >= 0.0f && isfinite(a)) + !(b >= 0.0f && isfinite(b));
-        }
+        uint32_t bad_here =
+            !(ao >= 0.0f && ao <= 1.0f) + !(n >= 0.0f && n <= (float)LIGHTS) + !(c == 0.0f || c == 1.0f);
+        const float *a = &img->direct.pixels[3 * i], *b = &img->gi.pixels[3 * i];
+        for (int k = 0; k < 3; ++k)
+            bad_here += !(a[k] >= 0.0f && isfinite(a[k])) + !(b[k] >= 0.0f && isfinite(b[k]));
+        bad_here += ref && (c == 1.0f) != isfinite(px[i].position_t[3]);
+        if (bad_here && bad < 3)
+            fprintf(stderr, "%s: pixel (%u, %u): ao %.9g, lights %g, coverage %g, t %g, direct (%g %g %g), "
+                    "gi (%g %g %g)\n", name, i % W, i / W, ao, n, c, px[i].position_t[3], a[0], a[1], a[2], b[0],
+                    b[1], b[2]);
+        bad += bad_here;
         if (!ref)
             continue;
         /* The pixel centre's primary ray, as the G-buffer rasterizes it. Pixels whose
@@ -107,7 +113,6 @@ static void check_images(const char *name, const roma_effect_images *img, const 
         roma_ref_hit hit;
         int seen = roma_ref_intersect(ref, org, dir, 0.0f, INFINITY, &hit);
         coverage_diff += (c == 1.0f) != (seen != 0);
-        bad += (c == 1.0f) != isfinite(px[i].position_t[3]);
     }
     if (bad || coverage_diff)
         fprintf(stderr, "%s: %u bad pixel values, %u coverage differences from Embree\n", name, bad, coverage_diff);

@@ -766,10 +766,16 @@ static void check_scale_and_placement(roma_context *ctx)
         measure_room(ctx, s, NULL, res, 0, any1, closest1, unsnapped1);
         uint32_t diff = 0;
         for (uint32_t r = 0; r < ROOM_RAYS; ++r) {
-            diff += any0[r].info != any1[r].info || closest0[r].info != closest1[r].info;
-            diff += (closest0[r].info & 1) && (float)((double)closest0[r].t * s) != closest1[r].t;
-            diff += unsnapped0[r].info != unsnapped1[r].info;
-            diff += (unsnapped0[r].info & 1) && (float)((double)unsnapped0[r].t * s) != unsnapped1[r].t;
+            uint32_t d = any0[r].info != any1[r].info || closest0[r].info != closest1[r].info;
+            d += (closest0[r].info & 1) && (float)((double)closest0[r].t * s) != closest1[r].t;
+            d += unsnapped0[r].info != unsnapped1[r].info;
+            d += (unsnapped0[r].info & 1) && (float)((double)unsnapped0[r].t * s) != unsnapped1[r].t;
+            if (d && diff < 3)
+                fprintf(stderr, "  2^%d ray %u: any %#x / %#x, closest %#x %.9g / %#x %.9g, un-snapped %#x %.9g / "
+                        "%#x %.9g (unit room / scaled, t unscaled)\n", exponents[i], r, any0[r].info, any1[r].info,
+                        closest0[r].info, closest0[r].t, closest1[r].info, (double)closest1[r].t / s,
+                        unsnapped0[r].info, unsnapped0[r].t, unsnapped1[r].info, (double)unsnapped1[r].t / s);
+            diff += d;
         }
         printf("room scaled by 2^%-3d:         %u results differ from the unit room's (scaled)\n", exponents[i], diff);
         CHECK(diff == 0);

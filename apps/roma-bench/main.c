@@ -37,7 +37,7 @@ static const char *usage =
     "  NAADF traversal)\n"
     "  and at 8, 16, 32 steps (screen-space AO against the G-buffer's depth) and against 2 and 4\n"
     "  stochastic depth layers beside it (16 steps)\n"
-    "  (160x120, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
+    "  (160x120 or --size, 1024 samples per pixel over 16 frames; --small: 32x24, 64 over 2), time per\n"
     "  frame and error against Embree on the same samples, and Embree at equal time; the\n"
     "  Pareto fronts of error against time, and with --plot FILE.png their plot (gnuplot);\n"
     "  --cache FILE keeps every finished point, so that a run cut short resumes where it stopped\n"
@@ -262,6 +262,7 @@ int main(int argc, char **argv)
     roma_bench_effect effect = ROMA_BENCH_EFFECT_AO;
     float ao_radius = 0.0f;
     uint32_t frame_w = 1920, frame_h = 1080;
+    int size_set = 0;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0) {
@@ -288,7 +289,7 @@ int main(int argc, char **argv)
                 fprintf(stderr, "roma-bench: --size %s: expected WxH, each 1..16384\n", v);
                 return 2;
             }
-            ++i;
+            size_set = 1, ++i;
         } else if (v && strcmp(a, "--scene") == 0) scene_arg = v, ++i;
         else if (v && strcmp(a, "--rays") == 0) rays_n = (uint32_t)strtoul(v, NULL, 10), ++i;
         else if (v && strcmp(a, "--runs") == 0) runs = (uint32_t)strtoul(v, NULL, 10), ++i;
@@ -361,7 +362,8 @@ int main(int argc, char **argv)
         snprintf(cache_key, sizeof cache_key, "%s|%s (%u triangles)|roma-bench of %lld", info.device_name, scene_arg,
                  sv.triangle_count, stat("/proc/self/exe", &exe) == 0 ? (long long)exe.st_mtime : 0ll);
         roma_bench_accuracy_desc ad = {
-            .effect = effect, .width = small ? 32 : 160, .height = small ? 24 : 120, .spp = small ? 32 : 64,
+            .effect = effect, .width = size_set ? frame_w : small ? 32 : 160,
+            .height = size_set ? frame_h : small ? 24 : 120, .spp = small ? 32 : 64,
             .frames = small ? 2 : 16, .runs = small ? 1 : runs, .radius = ao_radius,
             .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
             .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,

@@ -17,7 +17,8 @@
 // Conventions are those of include/roma/map.h: t is a world-space distance
 // along normalize(dir); closest-hit t is the entry of the first occupied cell.
 // The C mirror in src/trace/cpu_mirror.c evaluates the same float expressions
-// (marked precise here) so that results match bit for bit.
+// (marked precise here) so that results match bit for bit; its divisions and square roots
+// are IEEE's, which roma_div and roma_sqrt give on every device (ROMA_CORRECTED_DIVISION).
 #ifndef ROMA_TRACE_GLSL
 #define ROMA_TRACE_GLSL
 
@@ -62,6 +63,37 @@ struct roma_hit {
 
 const float ROMA_PI = 3.14159265358979323846;
 
+// See ROMA_CORRECTED_DIVISION_CONSTANT_ID in roma/trace_types.h.
+#ifndef ROMA_CORRECTED_DIVISION
+layout(constant_id = ROMA_CORRECTED_DIVISION_CONSTANT_ID) const bool ROMA_CORRECTED_DIVISION = true;
+#endif
+
+// a / b as IEEE division rounds it. The device's reciprocal is refined once and the
+// quotient corrected once from its exact remainder (fma), Markstein's sequence: exact for
+// normal b, 1/b and a / b; elsewhere (an overflowing quotient) the device's quotient.
+float roma_div(float a, float b)
+{
+    if (!ROMA_CORRECTED_DIVISION)
+        return a / b;
+    precise float y0 = 1.0 / b;
+    precise float y = fma(fma(-b, y0, 1.0), y0, y0);
+    precise float q = a * y;
+    precise float c = fma(fma(-q, b, a), y, q);
+    return roma_is_finite(c) && roma_is_normal(y) ? c : a / b;
+}
+
+// sqrt(x) as IEEE's square root rounds it, for positive normal x: the device's root
+// corrected twice from its exact residual (fma).
+float roma_sqrt(float x)
+{
+    precise float s = sqrt(x);
+    if (!ROMA_CORRECTED_DIVISION || !(x > 0.0) || !roma_is_normal(x))
+        return s;
+    precise float h = 0.5 / s;
+    precise float s1 = fma(fma(-s, s, x), h, s);
+    return fma(fma(-s1, s1, x), h, s1);
+}
+
 // Equal-area concentric mapping, hemisphere (z >= 0) -> unit square.
 vec2 roma_hemisphere_to_square(vec3 d)
 {
@@ -104,10 +136,16 @@ bool roma_unit_direction(vec3 d, out vec3 unit)
     float m = max(max(abs(f.x), abs(f.y)), abs(f.z));
     if (!(m > 0.0))
         return false;
-    // A ratio below FLT_MIN (1e10 beside 1e-30) is flushed too, for the same reason.
-    precise vec3 s = roma_flush_subnormal(vec3(f.x / m, f.y / m, f.z / m));
-    precise float len = sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
-    precise float inv_len = 1.0 / len;
+    // Scaled first by the power of two that brings m into [1, 2): exact, and it keeps the
+    // division where devices must divide accurately (Vulkan's 2.5 ulp hold for divisors
+    // up to 2^126; GPUs that divide by a reciprocal lose f / m beyond); f / m itself is
+    // unchanged. A ratio below FLT_MIN (1e10 beside 1e-30) is flushed too, as above.
+    int e = int((floatBitsToUint(m) >> 23) & 0xffu) - 127;
+    vec3 fs = ldexp(f, ivec3(-e));
+    float ms = ldexp(m, -e);
+    precise vec3 s = roma_flush_subnormal(vec3(roma_div(fs.x, ms), roma_div(fs.y, ms), roma_div(fs.z, ms)));
+    precise float len = roma_sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
+    precise float inv_len = roma_div(1.0, len);
     unit = s * inv_len;
     return true;
 }
@@ -278,8 +316,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
             if (!(m0[a] >= 0.0 && m0[a] < fres))
                 return hit;
         } else {
-            precise float ta = (0.0 - m0[a]) / dm[a];
-            precise float tb = (fres - m0[a]) / dm[a];
+            precise float ta = roma_div(0.0 - m0[a], dm[a]);
+            precise float tb = roma_div(fres - m0[a], dm[a]);
             t_in = max(t_in, min(ta, tb));
             t_out = min(t_out, max(ta, tb));
         }
@@ -295,10 +333,10 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
         roma_unsnapped_steps = step + 1u;
-        precise float tx = dm.x > 0.0 ? (float(ix + 1) - m0.x) / dm.x
-                         : dm.x < 0.0 ? (float(ix) - m0.x) / dm.x : 1.0 / 0.0;
-        precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) / dm.y
-                         : dm.y < 0.0 ? (float(iy) - m0.y) / dm.y : 1.0 / 0.0;
+        precise float tx = dm.x > 0.0 ? roma_div(float(ix + 1) - m0.x, dm.x)
+                         : dm.x < 0.0 ? roma_div(float(ix) - m0.x, dm.x) : 1.0 / 0.0;
+        precise float ty = dm.y > 0.0 ? roma_div(float(iy + 1) - m0.y, dm.y)
+                         : dm.y < 0.0 ? roma_div(float(iy) - m0.y, dm.y) : 1.0 / 0.0;
         float t_next = min(min(tx, ty), t_out);
         // dm.z = 0 with an infinite t would give 0 * inf = NaN.
         precise float za = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_cur;
@@ -310,8 +348,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
             if (c >= 0) {
                 hit.info |= ROMA_HIT_FLAG;
                 if (closest) {
-                    precise float tc = dm.z > 0.0 ? (float(c) - m0.z) / dm.z
-                                     : dm.z < 0.0 ? (float(c + 1) - m0.z) / dm.z : t_cur;
+                    precise float tc = dm.z > 0.0 ? roma_div(float(c) - m0.z, dm.z)
+                                     : dm.z < 0.0 ? roma_div(float(c + 1) - m0.z, dm.z) : t_cur;
                     hit.t = max(tc, t_cur);
                 }
                 return hit;

@@ -26,6 +26,13 @@ bool roma_is_finite(float x)
     return (floatBitsToUint(x) & ROMA_FLOAT_EXPONENT) != ROMA_FLOAT_EXPONENT;
 }
 
+// Neither zero, subnormal, NaN nor infinite.
+bool roma_is_normal(float x)
+{
+    uint e = floatBitsToUint(x) & ROMA_FLOAT_EXPONENT;
+    return e != 0u && e != ROMA_FLOAT_EXPONENT;
+}
+
 bool roma_all_finite(vec3 v)
 {
     return roma_is_finite(v.x) && roma_is_finite(v.y) && roma_is_finite(v.z);

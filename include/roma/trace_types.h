@@ -82,6 +82,15 @@ ROMA_STRUCT_END(roma_map_frame)
 /** Number of bindings of the trace set. */
 #define ROMA_TRACE_BINDINGS 2
 
+/** Specialization constant of roma/trace.glsl (a bool, default true): whether its divisions
+ * and square roots correct the device's result to IEEE's (roma_div, roma_sqrt), so that
+ * traces equal the C mirror's bit for bit. GPUs divide approximately (Vulkan allows 2.5 ulp)
+ * and fuse fma, which the correction needs; CPU implementations (lavapipe) divide as IEEE
+ * does and may split fma into two roundings. libroma sets it to
+ * (VkPhysicalDeviceProperties::deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) in its own
+ * pipelines; an engine may do the same, or define ROMA_CORRECTED_DIVISION before including. */
+#define ROMA_CORRECTED_DIVISION_CONSTANT_ID 200
+
 /** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the
  * ray was folded (its direction had z < 0 and was traced backwards in the map of -d). */
 #define ROMA_HIT_FLAG 1u

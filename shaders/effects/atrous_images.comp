@@ -40,7 +40,7 @@ void main()
     n = normalize(n);
     footprint *= float(step);
     const float kernel[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-    vec3 sum = vec3(0.0);
+    vec3 sum = vec3(0.0), lo = centre.rgb, hi = centre.rgb;
     float weights = 0.0;
     for (int dy = -2; dy <= 2; ++dy)
         for (int dx = -2; dx <= 2; ++dx) {
@@ -63,8 +63,12 @@ void main()
             c *= c;
             c *= c;
             float w = kernel[abs(dx)] * kernel[abs(dy)] * c * exp(-plane);
-            sum += w * imageLoad(t_src, q).rgb;
+            vec3 value = imageLoad(t_src, q).rgb;
+            sum += w * value;
             weights += w;
+            lo = min(lo, value);
+            hi = max(hi, value);
         }
-    imageStore(t_dst, p, vec4(weights > 0.0 ? sum / weights : centre.rgb, centre.a));
+    // A weighted mean lies between its taps; a GPU's approximate division may not.
+    imageStore(t_dst, p, vec4(weights > 0.0 ? clamp(sum / weights, lo, hi) : centre.rgb, centre.a));
 }

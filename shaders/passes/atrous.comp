@@ -33,7 +33,7 @@ void main()
     float sigma = pc.edge.x * g.position_t.w * float(step);
     float frames = max(centre.w, 1.0);
     float value_sigma = pc.edge.z * 0.5 * (max(max(centre.r, centre.g), centre.b) + 1e-3) / sqrt(frames);
-    vec3 sum = vec3(0.0);
+    vec3 sum = vec3(0.0), lo = centre.rgb, hi = centre.rgb;
     float weights = 0.0;
     for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
@@ -53,7 +53,11 @@ void main()
             w *= exp(-length(value - centre.rgb) / value_sigma);
             sum += value * w;
             weights += w;
+            lo = min(lo, value);
+            hi = max(hi, value);
         }
     }
-    RomaVec4Out(pc.dst).v[pixel] = vec4(weights > 0.0 ? sum / weights : centre.rgb, centre.w);
+    // A weighted mean lies between its taps; a GPU's approximate division may not (an
+    // AO of 1 averaged to 1.0000001), so the quotient is held there.
+    RomaVec4Out(pc.dst).v[pixel] = vec4(weights > 0.0 ? clamp(sum / weights, lo, hi) : centre.rgb, centre.w);
 }

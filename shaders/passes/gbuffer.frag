@@ -39,8 +39,24 @@ void main()
     vec3 p1 = positions.v[indices.i[3u * tri + 1u]].xyz;
     vec3 p2 = positions.v[indices.i[3u * tri + 2u]].xyz;
 
+    // The point where the pixel centre's ray meets the triangle's plane: an interpolated
+    // position is only as exact as the rasterizer's barycentrics (median relative error
+    // of t 1.6e-5 measured on an NVIDIA GPU, 8e-8 on lavapipe). The interpolated one is
+    // kept where the ray grazes the plane or the two are not within rounding (a sliver).
     vec3 p = v_position;
-    vec3 to_eye = prm.camera.eye.xyz - p;
+    vec3 eye = prm.camera.eye.xyz;
+    vec2 ndc = gl_FragCoord.xy / vec2(prm.dims.xy) * 2.0 - 1.0;
+    vec3 ray = prm.camera.forward.xyz + prm.camera.right.xyz * (ndc.x / prm.camera.right.w)
+             - prm.camera.up.xyz * (ndc.y / prm.camera.up.w);
+    vec3 plane_n = cross(p1 - p0, p2 - p0);
+    float facing = dot(ray, plane_n);
+    vec3 on_plane = eye + ray * (dot(p0 - eye, plane_n) / facing);
+    // A coordinate all three corners share (a floor at y = 0) stays exact, as interpolated.
+    on_plane = mix(on_plane, p0, bvec3(p0.x == p1.x && p1.x == p2.x, p0.y == p1.y && p1.y == p2.y,
+                                       p0.z == p1.z && p1.z == p2.z));
+    if (abs(facing) > 1e-3 * length(ray) * length(plane_n) && distance(on_plane, p) <= 1e-3 * distance(p, eye))
+        p = on_plane;
+    vec3 to_eye = eye - p;
     float t = length(to_eye);
     // Same rules as the reference tracer: geometric normal facing the eye (the
     // view direction for a sliver), shading normal on its side.

@@ -1,6 +1,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roma/trace_types.h"
 #include "vulkan/shader_table.h"
 #include "vulkan/vk_internal.h"
 
@@ -125,11 +126,17 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
     VkShaderModule shader = VK_NULL_HANDLE;
     if (r == ROMA_SUCCESS)
         r = roma_shader_module_create(ctx, module_name, &shader);
-    VkSpecializationMapEntry entries[MAX_STORAGE_BUFFERS];
-    for (uint32_t i = 0; i < constant_count && i < MAX_STORAGE_BUFFERS; ++i)
+    /* The caller's constants (ids 0..n-1), then the context's choice for roma/trace.glsl's
+     * division (ignored by shaders that do not include it). */
+    VkSpecializationMapEntry entries[MAX_STORAGE_BUFFERS + 1];
+    uint32_t values[MAX_STORAGE_BUFFERS + 1];
+    for (uint32_t i = 0; i < constant_count && i < MAX_STORAGE_BUFFERS; ++i) {
         entries[i] = (VkSpecializationMapEntry){i, i * 4, 4};
-    VkSpecializationInfo spec = {constant_count < MAX_STORAGE_BUFFERS ? constant_count : MAX_STORAGE_BUFFERS,
-                                 entries, 4 * (size_t)constant_count, constants};
+        values[i] = constants[i];
+    }
+    entries[constant_count] = (VkSpecializationMapEntry){ROMA_CORRECTED_DIVISION_CONSTANT_ID, constant_count * 4, 4};
+    values[constant_count] = ctx->corrected_division ? VK_TRUE : VK_FALSE;
+    VkSpecializationInfo spec = {constant_count + 1, entries, 4 * (size_t)(constant_count + 1), values};
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo info = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
@@ -137,7 +144,7 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                       .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                       .module = shader,
                       .pName = "main",
-                      .pSpecializationInfo = constant_count ? &spec : NULL},
+                      .pSpecializationInfo = &spec},
             .layout = out->layout,
         };
         r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->allocator, &out->pipeline),

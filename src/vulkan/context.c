@@ -347,6 +347,7 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     }
     if (r == ROMA_SUCCESS) {
         vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
+        ctx->corrected_division = ctx->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
         VkPhysicalDeviceMaintenance3Properties m3 = {
             .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
         VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};

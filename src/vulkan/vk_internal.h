@@ -27,6 +27,9 @@ struct roma_context {
     uint64_t memory_budget;           /* desc.device_memory_budget; 0 = none */
     uint64_t memory_in_use;           /* bytes of every vkAllocateMemory libroma made */
     int has_geometry_shader;
+    /* roma/trace.glsl corrects divisions to IEEE's (ROMA_CORRECTED_DIVISION_CONSTANT_ID):
+     * on every device but CPU implementations, whose division is IEEE's already. */
+    int corrected_division;
     uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
     uint64_t geometry_versions;       /* handed out by the maps' builds (roma_map.geometry_version) */
     /* Compute pipelines shared by every object of the context (compute_pipeline.c): made

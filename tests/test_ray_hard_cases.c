@@ -665,6 +665,8 @@ typedef struct room_error {
     double agreement;    /* snapped any-hit within tmax vs Embree on the snapped ray */
     double median, p99;  /* |closest-hit error| in trace cells vs Embree on the snapped ray */
     double trace_cell;   /* world units */
+    uint32_t mirror_diff; /* un-snapped closest hits that differ from the C mirror's on the same maps */
+    uint64_t map_bits;    /* occupied cells over all maps */
 } room_error;
 
 static int cmp_double(const void *a, const void *b)
@@ -708,9 +710,22 @@ static room_error measure_room(roma_context *ctx, double s, const double off[3],
     CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_SNAPPED_ANY, 0, rays[0], ROOM_RAYS, any, NULL), ROMA_SUCCESS);
     CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_SNAPPED_CLOSEST, 0, rays[1], ROOM_RAYS, closest, NULL),
                  ROMA_SUCCESS);
-    if (out_unsnapped)
+    if (out_unsnapped) {
         CHECK_RESULT(roma_map_trace(f.map, ROMA_TRACE_UNSNAPPED_CLOSEST, 64, rays[1], ROOM_RAYS, out_unsnapped, NULL),
                      ROMA_SUCCESS);
+        for (uint32_t i = 0; i < ROOM_RAYS; ++i) {
+            /* On a stratum edge, where the GPU and the mirror may select apart, the GPU's map. */
+            int folded;
+            uint32_t k = roma_cpu_select_map(rays[1][i].dir, f.info.angular, &folded);
+            uint32_t gk = ROMA_HIT_MAP(out_unsnapped[i].info);
+            int edge = k != gk;
+            roma_hit cpu = roma_cpu_trace(&f.grid, f.frames, f.maps, &rays[1][i], ROMA_TRACE_UNSNAPPED_CLOSEST, 64,
+                                          edge ? (int)gk : -1, edge ? (int)((out_unsnapped[i].info >> 16) & 1u) : 0);
+            e.mirror_diff += !same_hit(out_unsnapped[i], cpu);
+        }
+    }
+    for (uint64_t w = 0; w < (uint64_t)f.info.map_count * f.info.resolution * f.info.resolution * f.grid.dims[1]; ++w)
+        e.map_bits += (uint64_t)__builtin_popcount(f.maps[w]);
     static double err[ROOM_RAYS];
     uint32_t agree = 0, n_err = 0;
     for (uint32_t i = 0; i < ROOM_RAYS && with_reference; ++i) {
@@ -750,8 +765,9 @@ static void check_scale_and_placement(roma_context *ctx)
     static roma_hit any0[ROOM_RAYS], closest0[ROOM_RAYS], any1[ROOM_RAYS], closest1[ROOM_RAYS],
         unsnapped0[ROOM_RAYS], unsnapped1[ROOM_RAYS];
     room_error base = measure_room(ctx, 1.0, NULL, res, 1, any0, closest0, unsnapped0);
-    printf("room, unit scale:             agreement %.4f, closest error median %.3f p99 %.3f trace cells\n",
-           base.agreement, base.median, base.p99);
+    printf("room, unit scale:             agreement %.4f, closest error median %.3f p99 %.3f trace cells; "
+           "%u un-snapped hits differ from the mirror's\n", base.agreement, base.median, base.p99, base.mirror_diff);
+    CHECK(base.mirror_diff == 0);
     /* The unit room itself: measured 0.9812, 0.599 and 2.703, with the margins below. */
     CHECK(base.agreement >= 0.9812 - 0.005);
     CHECK(base.median <= 0.599 + 0.05);
@@ -763,7 +779,7 @@ static void check_scale_and_placement(roma_context *ctx)
     const int exponents[] = {-105, -10, 13, 123};
     for (int i = 0; i < 4; ++i) {
         double s = ldexp(1.0, exponents[i]);
-        measure_room(ctx, s, NULL, res, 0, any1, closest1, unsnapped1);
+        room_error scaled = measure_room(ctx, s, NULL, res, 0, any1, closest1, unsnapped1);
         uint32_t diff = 0;
         for (uint32_t r = 0; r < ROOM_RAYS; ++r) {
             uint32_t d = any0[r].info != any1[r].info || closest0[r].info != closest1[r].info;
@@ -777,8 +793,12 @@ static void check_scale_and_placement(roma_context *ctx)
                         unsnapped0[r].info, unsnapped0[r].t, unsnapped1[r].info, (double)unsnapped1[r].t / s);
             diff += d;
         }
-        printf("room scaled by 2^%-3d:         %u results differ from the unit room's (scaled)\n", exponents[i], diff);
+        printf("room scaled by 2^%-3d:         %u results differ from the unit room's (scaled); occupied cells "
+               "%llu (unit room %llu); %u un-snapped hits differ from the mirror's\n", exponents[i], diff,
+               (unsigned long long)scaled.map_bits, (unsigned long long)base.map_bits, scaled.mirror_diff);
         CHECK(diff == 0);
+        CHECK(scaled.map_bits == base.map_bits);
+        CHECK(scaled.mirror_diff == 0);
     }
 
     /* Other scales and far placements: the error against Embree stays that of the unit room. */

@@ -282,12 +282,21 @@ static int pipeline_create(const engine *e, const char *name, uint32_t push_size
                                      .pSetLayouts = &set_layout,
                                      .pushConstantRangeCount = 1,
                                      .pPushConstantRanges = &range};
+    /* roma/trace.glsl corrects its divisions to IEEE's where the device divides approximately
+     * (GPUs); on a CPU device its division is IEEE's already (roma/trace_types.h). Shaders
+     * that do not include it ignore the constant. */
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(e->physical, &props);
+    VkBool32 corrected = props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+    VkSpecializationMapEntry entry = {ROMA_CORRECTED_DIVISION_CONSTANT_ID, 0, sizeof corrected};
+    VkSpecializationInfo spec = {1, &entry, sizeof corrected, &corrected};
     VkComputePipelineCreateInfo pi = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                   .module = module,
-                  .pName = "main"}};
+                  .pName = "main",
+                  .pSpecializationInfo = &spec}};
     int ok = vkCreatePipelineLayout(e->device, &li, NULL, layout) == VK_SUCCESS;
     pi.layout = *layout;
     ok = ok && vkCreateComputePipelines(e->device, VK_NULL_HANDLE, 1, &pi, NULL, pipeline) == VK_SUCCESS;

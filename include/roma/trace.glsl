@@ -19,6 +19,7 @@
 // The C mirror in src/trace/cpu_mirror.c evaluates the same float expressions
 // (marked precise here) so that results match bit for bit; its divisions and square roots
 // are IEEE's, which roma_div and roma_sqrt give on every device (ROMA_CORRECTED_DIVISION).
+// Map selection's atan may round apart on a stratum edge.
 #ifndef ROMA_TRACE_GLSL
 #define ROMA_TRACE_GLSL
 
@@ -68,30 +69,62 @@ const float ROMA_PI = 3.14159265358979323846;
 layout(constant_id = ROMA_CORRECTED_DIVISION_CONSTANT_ID) const bool ROMA_CORRECTED_DIVISION = true;
 #endif
 
-// a / b as IEEE division rounds it. The device's reciprocal is refined once and the
-// quotient corrected once from its exact remainder (fma), Markstein's sequence: exact for
-// normal b, 1/b and a / b; elsewhere (an overflowing quotient) the device's quotient.
+// The floats after and before a positive finite x; the unbiased exponent of a normal x.
+float roma_next_up(float x) { return uintBitsToFloat(floatBitsToUint(x) + 1u); }
+float roma_next_down(float x) { return uintBitsToFloat(floatBitsToUint(x) - 1u); }
+int roma_exponent(float x) { return int((floatBitsToUint(x) >> 23) & 0xffu) - 127; }
+
+// a / b as IEEE division rounds it, for normal a, b and quotient (elsewhere the device's).
+// Both are scaled into [1, 2) first (exact; the steps below then meet no subnormal), the
+// device's reciprocal is refined once, the quotient corrected once from its exact
+// remainder (fma), and its last bit taken from the exact remainder r at c: x / d lies beyond
+// c's upper half-ulp when r > d u / 2, below its lower one when r < -d u' / 2 (a quotient of
+// floats is never a midpoint).
 float roma_div(float a, float b)
 {
     if (!ROMA_CORRECTED_DIVISION)
         return a / b;
-    precise float y0 = 1.0 / b;
-    precise float y = fma(fma(-b, y0, 1.0), y0, y0);
-    precise float q = a * y;
-    precise float c = fma(fma(-q, b, a), y, q);
-    return roma_is_finite(c) && roma_is_normal(y) ? c : a / b;
+    float A = abs(a), B = abs(b);
+    if (!roma_is_normal(A) || !roma_is_normal(B))
+        return a / b;
+    int e = roma_exponent(A) - roma_exponent(B);
+    if (e < -125 || e > 126)
+        return a / b;
+    precise float x = ldexp(A, -roma_exponent(A)), d = ldexp(B, -roma_exponent(B));
+    precise float y0 = 1.0 / d;
+    precise float y = fma(fma(-d, y0, 1.0), y0, y0);
+    precise float q = x * y;
+    precise float c = fma(fma(-q, d, x), y, q);
+    precise float r = fma(-c, d, x);
+    if (r > d * ((roma_next_up(c) - c) * 0.5))
+        c = roma_next_up(c);
+    else if (r < -(d * ((c - roma_next_down(c)) * 0.5)))
+        c = roma_next_down(c);
+    float result = ldexp(c, e);
+    if (!roma_is_normal(result))
+        return a / b;
+    return (floatBitsToUint(a) ^ floatBitsToUint(b)) >= 0x80000000u ? -result : result;
 }
 
-// sqrt(x) as IEEE's square root rounds it, for positive normal x: the device's root
-// corrected twice from its exact residual (fma).
+// sqrt(x) as IEEE's square root rounds it, for positive normal x: scaled by an even power of
+// two into [1, 4), the device's root corrected once from its exact residual r = x - s^2
+// (fma), then its last bit: sqrt(x) lies beyond s's upper half-ulp when r > s u, below its
+// lower one when r <= -s u'.
 float roma_sqrt(float x)
 {
-    precise float s = sqrt(x);
     if (!ROMA_CORRECTED_DIVISION || !(x > 0.0) || !roma_is_normal(x))
-        return s;
+        return sqrt(x);
+    int k = roma_exponent(x) >> 1; // floor(e / 2)
+    precise float m = ldexp(x, -2 * k);
+    precise float s = sqrt(m);
     precise float h = 0.5 / s;
-    precise float s1 = fma(fma(-s, s, x), h, s);
-    return fma(fma(-s1, s1, x), h, s1);
+    s = fma(fma(-s, s, m), h, s);
+    precise float r = fma(-s, s, m);
+    if (r > s * (roma_next_up(s) - s))
+        s = roma_next_up(s);
+    else if (r <= -(s * (s - roma_next_down(s))))
+        s = roma_next_down(s);
+    return ldexp(s, k);
 }
 
 // Equal-area concentric mapping, hemisphere (z >= 0) -> unit square.
@@ -301,10 +334,16 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
     roma_map_frame f = roma_fetch_frame(k);
-    precise vec3 dm = vec3(
+    precise vec3 dm_raw = vec3(
         (f.to_map_0.x * dn.x + f.to_map_0.y * dn.y) + f.to_map_0.z * dn.z,
         (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
         (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
+    // Below FLT_MIN a component counts as zero (GPUs flush it), so that every reciprocal is
+    // finite. Distances are differences times these reciprocals, divided once per ray: a
+    // division per step, corrected to IEEE's, cost a GPU's walk several times over.
+    vec3 dm = roma_flush_subnormal(dm_raw);
+    vec3 inv = vec3(dm.x != 0.0 ? roma_div(1.0, dm.x) : 0.0, dm.y != 0.0 ? roma_div(1.0, dm.y) : 0.0,
+                    dm.z != 0.0 ? roma_div(1.0, dm.z) : 0.0);
     vec3 m0 = roma_to_map(grid, f, origin);
     if (!roma_all_finite(m0))
         return hit; // an origin so far out that its map coordinates overflow
@@ -316,8 +355,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
             if (!(m0[a] >= 0.0 && m0[a] < fres))
                 return hit;
         } else {
-            precise float ta = roma_div(0.0 - m0[a], dm[a]);
-            precise float tb = roma_div(fres - m0[a], dm[a]);
+            precise float ta = (0.0 - m0[a]) * inv[a];
+            precise float tb = (fres - m0[a]) * inv[a];
             t_in = max(t_in, min(ta, tb));
             t_out = min(t_out, max(ta, tb));
         }
@@ -333,10 +372,10 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
         roma_unsnapped_steps = step + 1u;
-        precise float tx = dm.x > 0.0 ? roma_div(float(ix + 1) - m0.x, dm.x)
-                         : dm.x < 0.0 ? roma_div(float(ix) - m0.x, dm.x) : 1.0 / 0.0;
-        precise float ty = dm.y > 0.0 ? roma_div(float(iy + 1) - m0.y, dm.y)
-                         : dm.y < 0.0 ? roma_div(float(iy) - m0.y, dm.y) : 1.0 / 0.0;
+        precise float tx = dm.x > 0.0 ? (float(ix + 1) - m0.x) * inv.x
+                         : dm.x < 0.0 ? (float(ix) - m0.x) * inv.x : 1.0 / 0.0;
+        precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) * inv.y
+                         : dm.y < 0.0 ? (float(iy) - m0.y) * inv.y : 1.0 / 0.0;
         float t_next = min(min(tx, ty), t_out);
         // dm.z = 0 with an infinite t would give 0 * inf = NaN.
         precise float za = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_cur;
@@ -348,8 +387,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
             if (c >= 0) {
                 hit.info |= ROMA_HIT_FLAG;
                 if (closest) {
-                    precise float tc = dm.z > 0.0 ? roma_div(float(c) - m0.z, dm.z)
-                                     : dm.z < 0.0 ? roma_div(float(c + 1) - m0.z, dm.z) : t_cur;
+                    precise float tc = dm.z > 0.0 ? (float(c) - m0.z) * inv.z
+                                     : dm.z < 0.0 ? (float(c + 1) - m0.z) * inv.z : t_cur;
                     hit.t = max(tc, t_cur);
                 }
                 return hit;

@@ -55,5 +55,6 @@ void main()
         roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
         open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;
     }
-    imageStore(roma_ao_output, at, vec4(float(open) / float(max(spp, 1u))));
+    // Held at 1: a GPU's approximate division may give 1.0000001 for open == spp.
+    imageStore(roma_ao_output, at, vec4(min(float(open) / float(max(spp, 1u)), 1.0)));
 }

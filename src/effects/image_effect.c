@@ -53,13 +53,16 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     VkShaderModule shader = VK_NULL_HANDLE;
     if (r == ROMA_SUCCESS)
         r = roma_shader_module_create(ctx, module, &shader);
+    roma_specialization spec;
+    roma_specialization_make(ctx, NULL, 0, &spec);
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo pi = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
             .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                       .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                       .module = shader,
-                      .pName = "main"},
+                      .pName = "main",
+                      .pSpecializationInfo = &spec.info},
             .layout = e->layout};
         r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &pi, ctx->allocator,
                                                         &e->pipeline),

@@ -1,5 +1,6 @@
 #include "trace/cpu_mirror.h"
 
+#include <float.h>
 #include <math.h>
 
 #include "rotate/directions.h"
@@ -124,9 +125,12 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
 {
     const uint32_t res = grid->dims[0], words = grid->dims[1];
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
-    float dm[3], m0[3];
-    for (int a = 0; a < 3; ++a)
+    float dm[3], inv[3], m0[3];
+    for (int a = 0; a < 3; ++a) {
         dm[a] = (rows[a][0] * dn[0] + rows[a][1] * dn[1]) + rows[a][2] * dn[2];
+        dm[a] = fabsf(dm[a]) < FLT_MIN ? 0.0f : dm[a]; /* as the GLSL: every reciprocal finite */
+        inv[a] = dm[a] != 0.0f ? 1.0f / dm[a] : 0.0f;
+    }
     to_map(grid, f, ray->origin, m0);
     if (!isfinite(m0[0]) || !isfinite(m0[1]) || !isfinite(m0[2]))
         return hit; /* an origin so far out that its map coordinates overflow */
@@ -137,8 +141,8 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
             if (!(m0[a] >= 0.0f && m0[a] < fres))
                 return hit;
         } else {
-            float ta = (0.0f - m0[a]) / dm[a];
-            float tb = (fres - m0[a]) / dm[a];
+            float ta = (0.0f - m0[a]) * inv[a];
+            float tb = (fres - m0[a]) * inv[a];
             t_in = fmaxf(t_in, fminf(ta, tb));
             t_out = fminf(t_out, fmaxf(ta, tb));
         }
@@ -151,10 +155,10 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     int iy = (int)fminf(fmaxf(floorf(py), 0.0f), fres - 1.0f);
     float t_cur = t_in;
     for (uint32_t step = 0; step < max_steps; ++step) {
-        float tx = dm[0] > 0.0f ? ((float)(ix + 1) - m0[0]) / dm[0]
-                 : dm[0] < 0.0f ? ((float)ix - m0[0]) / dm[0] : INFINITY;
-        float ty = dm[1] > 0.0f ? ((float)(iy + 1) - m0[1]) / dm[1]
-                 : dm[1] < 0.0f ? ((float)iy - m0[1]) / dm[1] : INFINITY;
+        float tx = dm[0] > 0.0f ? ((float)(ix + 1) - m0[0]) * inv[0]
+                 : dm[0] < 0.0f ? ((float)ix - m0[0]) * inv[0] : INFINITY;
+        float ty = dm[1] > 0.0f ? ((float)(iy + 1) - m0[1]) * inv[1]
+                 : dm[1] < 0.0f ? ((float)iy - m0[1]) * inv[1] : INFINITY;
         float t_next = fminf(fminf(tx, ty), t_out);
         float za = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_cur;
         float zb = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_next;
@@ -165,8 +169,8 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
             if (c >= 0) {
                 hit.info |= ROMA_HIT_FLAG;
                 if (closest) {
-                    float tc = dm[2] > 0.0f ? ((float)c - m0[2]) / dm[2]
-                             : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) / dm[2] : t_cur;
+                    float tc = dm[2] > 0.0f ? ((float)c - m0[2]) * inv[2]
+                             : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) * inv[2] : t_cur;
                     hit.t = fmaxf(tc, t_cur);
                 }
                 return hit;

@@ -95,6 +95,20 @@ roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *mo
     return roma_compute_pipeline_create_spec(ctx, module_name, types, binding_count, push_size, NULL, 0, out);
 }
 
+void roma_specialization_make(const roma_context *ctx, const uint32_t *constants, uint32_t count,
+                              roma_specialization *out)
+{
+    if (count > ROMA_MAX_SPEC_CONSTANTS)
+        count = ROMA_MAX_SPEC_CONSTANTS;
+    for (uint32_t i = 0; i < count; ++i) {
+        out->entries[i] = (VkSpecializationMapEntry){i, i * 4, 4};
+        out->values[i] = constants[i];
+    }
+    out->entries[count] = (VkSpecializationMapEntry){ROMA_CORRECTED_DIVISION_CONSTANT_ID, count * 4, 4};
+    out->values[count] = ctx->corrected_division ? VK_TRUE : VK_FALSE;
+    out->info = (VkSpecializationInfo){count + 1, out->entries, 4 * (size_t)(count + 1), out->values};
+}
+
 roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *module_name,
                                               const VkDescriptorType *types, uint32_t binding_count,
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
@@ -126,17 +140,8 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
     VkShaderModule shader = VK_NULL_HANDLE;
     if (r == ROMA_SUCCESS)
         r = roma_shader_module_create(ctx, module_name, &shader);
-    /* The caller's constants (ids 0..n-1), then the context's choice for roma/trace.glsl's
-     * division (ignored by shaders that do not include it). */
-    VkSpecializationMapEntry entries[MAX_STORAGE_BUFFERS + 1];
-    uint32_t values[MAX_STORAGE_BUFFERS + 1];
-    for (uint32_t i = 0; i < constant_count && i < MAX_STORAGE_BUFFERS; ++i) {
-        entries[i] = (VkSpecializationMapEntry){i, i * 4, 4};
-        values[i] = constants[i];
-    }
-    entries[constant_count] = (VkSpecializationMapEntry){ROMA_CORRECTED_DIVISION_CONSTANT_ID, constant_count * 4, 4};
-    values[constant_count] = ctx->corrected_division ? VK_TRUE : VK_FALSE;
-    VkSpecializationInfo spec = {constant_count + 1, entries, 4 * (size_t)(constant_count + 1), values};
+    roma_specialization spec;
+    roma_specialization_make(ctx, constants, constant_count, &spec);
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo info = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
@@ -144,7 +149,7 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                       .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                       .module = shader,
                       .pName = "main",
-                      .pSpecializationInfo = &spec},
+                      .pSpecializationInfo = &spec.info},
             .layout = out->layout,
         };
         r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->allocator, &out->pipeline),

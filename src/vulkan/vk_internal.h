@@ -130,6 +130,18 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               const VkDescriptorType *types, uint32_t binding_count,
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
                                               roma_compute_pipeline *out);
+/* Specialization of a compute shader: constants 0..count-1 (uint32 each, at most
+ * ROMA_MAX_SPEC_CONSTANTS), then roma/trace.glsl's ROMA_CORRECTED_DIVISION_CONSTANT_ID with
+ * the context's choice (ignored by shaders that do not include it). Every compute pipeline
+ * libroma creates goes through it. */
+#define ROMA_MAX_SPEC_CONSTANTS 16u
+typedef struct roma_specialization {
+    VkSpecializationMapEntry entries[ROMA_MAX_SPEC_CONSTANTS + 1];
+    uint32_t values[ROMA_MAX_SPEC_CONSTANTS + 1];
+    VkSpecializationInfo info;
+} roma_specialization;
+void roma_specialization_make(const roma_context *ctx, const uint32_t *constants, uint32_t count,
+                              roma_specialization *out);
 /* Pipelines are shared by the whole context (made once per module, bindings, push size
  * and constants): destroy only forgets the caller's copy. */
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);

@@ -718,9 +718,10 @@ static room_error measure_room(roma_context *ctx, double s, const double off[3],
             int folded;
             uint32_t k = roma_cpu_select_map(rays[1][i].dir, f.info.angular, &folded);
             uint32_t gk = ROMA_HIT_MAP(out_unsnapped[i].info);
-            int edge = k != gk;
+            int gfolded = (out_unsnapped[i].info & ROMA_HIT_FOLDED) != 0;
+            int edge = k != gk || folded != gfolded;
             roma_hit cpu = roma_cpu_trace(&f.grid, f.frames, f.maps, &rays[1][i], ROMA_TRACE_UNSNAPPED_CLOSEST, 64,
-                                          edge ? (int)gk : -1, edge ? (int)((out_unsnapped[i].info >> 16) & 1u) : 0);
+                                          edge ? (int)gk : -1, edge ? gfolded : 0);
             e.mirror_diff += !same_hit(out_unsnapped[i], cpu);
         }
     }

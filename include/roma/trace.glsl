@@ -19,7 +19,9 @@
 // The C mirror in src/trace/cpu_mirror.c evaluates the same float expressions
 // (marked precise here) so that results match bit for bit; its divisions and square roots
 // are IEEE's, which roma_div and roma_sqrt give on every device (ROMA_CORRECTED_DIVISION).
-// Map selection's atan may round apart on a stratum edge.
+// Map selection (atan, 1 / sqrt in roma_hemisphere_to_square) may round apart on a stratum
+// edge, and a GPU that flushes subnormal products may differ where they matter (frames of
+// cells near 2^120 world units).
 #ifndef ROMA_TRACE_GLSL
 #define ROMA_TRACE_GLSL
 
@@ -74,12 +76,15 @@ float roma_next_up(float x) { return uintBitsToFloat(floatBitsToUint(x) + 1u); }
 float roma_next_down(float x) { return uintBitsToFloat(floatBitsToUint(x) - 1u); }
 int roma_exponent(float x) { return int((floatBitsToUint(x) >> 23) & 0xffu) - 127; }
 
+// The mantissa of a normal x as a float in [1, 2) (bit operations: exact on every device).
+float roma_mantissa(float x) { return uintBitsToFloat((floatBitsToUint(x) & 0x007fffffu) | 0x3f800000u); }
+
 // a / b as IEEE division rounds it, for normal a, b and quotient (elsewhere the device's).
-// Both are scaled into [1, 2) first (exact; the steps below then meet no subnormal), the
-// device's reciprocal is refined once, the quotient corrected once from its exact
-// remainder (fma), and its last bit taken from the exact remainder r at c: x / d lies beyond
-// c's upper half-ulp when r > d u / 2, below its lower one when r < -d u' / 2 (a quotient of
-// floats is never a midpoint).
+// The mantissas are divided (x, d in [1, 2): no step below meets a subnormal): the device's
+// reciprocal is refined once, the quotient corrected once from its exact remainder (fma),
+// and its last bit taken from the exact remainder r at c: x / d lies beyond c's upper half-ulp
+// when r > d u / 2, below its lower one when r < -d u' / 2 (a quotient of floats is never a
+// midpoint). The exponents are added back as bits.
 float roma_div(float a, float b)
 {
     if (!ROMA_CORRECTED_DIVISION)
@@ -88,9 +93,7 @@ float roma_div(float a, float b)
     if (!roma_is_normal(A) || !roma_is_normal(B))
         return a / b;
     int e = roma_exponent(A) - roma_exponent(B);
-    if (e < -125 || e > 126)
-        return a / b;
-    precise float x = ldexp(A, -roma_exponent(A)), d = ldexp(B, -roma_exponent(B));
+    precise float x = roma_mantissa(A), d = roma_mantissa(B);
     precise float y0 = 1.0 / d;
     precise float y = fma(fma(-d, y0, 1.0), y0, y0);
     precise float q = x * y;
@@ -100,9 +103,10 @@ float roma_div(float a, float b)
         c = roma_next_up(c);
     else if (r < -(d * ((c - roma_next_down(c)) * 0.5)))
         c = roma_next_down(c);
-    float result = ldexp(c, e);
-    if (!roma_is_normal(result))
+    int ec = roma_exponent(c) + e; // c in [0.5, 2]
+    if (ec < -126 || ec > 127)
         return a / b;
+    float result = uintBitsToFloat(floatBitsToUint(c) + uint(e << 23));
     return (floatBitsToUint(a) ^ floatBitsToUint(b)) >= 0x80000000u ? -result : result;
 }
 
@@ -174,8 +178,9 @@ bool roma_unit_direction(vec3 d, out vec3 unit)
     // up to 2^126; GPUs that divide by a reciprocal lose f / m beyond); f / m itself is
     // unchanged. A ratio below FLT_MIN (1e10 beside 1e-30) is flushed too, as above.
     int e = int((floatBitsToUint(m) >> 23) & 0xffu) - 127;
-    vec3 fs = ldexp(f, ivec3(-e));
-    float ms = ldexp(m, -e);
+    // Two steps: Vulkan lets ldexp flush when its exponent is below -126.
+    vec3 fs = ldexp(ldexp(f, ivec3(-(e / 2))), ivec3(-(e - e / 2)));
+    float ms = roma_mantissa(m);
     precise vec3 s = roma_flush_subnormal(vec3(roma_div(fs.x, ms), roma_div(fs.y, ms), roma_div(fs.z, ms)));
     precise float len = roma_sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
     precise float inv_len = roma_div(1.0, len);

@@ -41,6 +41,7 @@ typedef struct engine {
     VkDebugUtilsMessengerEXT messenger;
     VkPhysicalDevice physical;
     VkDevice device;
+    VkBool32 corrected_division; /* roma_context_info's: how its shaders including roma/trace.glsl divide */
     VkQueue queue;
     uint32_t family;
     unsigned validation_messages;
@@ -282,12 +283,9 @@ static int pipeline_create(const engine *e, const char *name, uint32_t push_size
                                      .pSetLayouts = &set_layout,
                                      .pushConstantRangeCount = 1,
                                      .pPushConstantRanges = &range};
-    /* roma/trace.glsl corrects its divisions to IEEE's where the device divides approximately
-     * (GPUs); on a CPU device its division is IEEE's already (roma/trace_types.h). Shaders
-     * that do not include it ignore the constant. */
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(e->physical, &props);
-    VkBool32 corrected = props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+    /* roma/trace.glsl's division rule, as libroma's own pipelines have it
+     * (roma_context_info.corrected_division); shaders that do not include it ignore it. */
+    VkBool32 corrected = e->corrected_division;
     VkSpecializationMapEntry entry = {ROMA_CORRECTED_DIVISION_CONSTANT_ID, 0, sizeof corrected};
     VkSpecializationInfo spec = {1, &entry, sizeof corrected, &corrected};
     VkComputePipelineCreateInfo pi = {
@@ -452,6 +450,9 @@ int main(int argc, char **argv)
     int status = 1;
     if (roma_context_create(&cd, &ctx) != ROMA_SUCCESS)
         goto done;
+    roma_context_info context_info;
+    roma_context_get_info(ctx, &context_info);
+    e.corrected_division = context_info.corrected_division;
     if (character_path) {
         roma_gltf_desc gd = {.logger = logger};
         if (roma_scene_load_gltf(character_path, &gd, &character) != ROMA_SUCCESS ||

@@ -95,11 +95,8 @@ static VkPipeline view_pipeline(const vk_base &b, compose_pass &c, view_mode vie
     VkPipeline &pipeline = c.pipelines[pass][view];
     if (pipeline)
         return pipeline;
-    // The view, and roma/trace.glsl's division rule: corrected to IEEE's except on a CPU device
-    // (roma/trace_types.h), as libroma's own pipelines.
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(b.physical, &props);
-    uint32_t values[2] = {uint32_t(view), props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU ? VK_TRUE : VK_FALSE};
+    // The view, and roma/trace.glsl's division rule as libroma's own pipelines have it.
+    uint32_t values[2] = {uint32_t(view), c.corrected_division};
     VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
                                            {ROMA_CORRECTED_DIVISION_CONSTANT_ID, sizeof(uint32_t), sizeof(uint32_t)}};
     VkSpecializationInfo spec{2, entries, sizeof values, values};

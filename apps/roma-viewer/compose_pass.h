@@ -63,6 +63,7 @@ struct compose_pass {
     uint32_t current_accum = 0;      // the accum image the last recorded frame wrote
     bool filtered = false;           // the last recorded frame shows t[0], the filtered picture
     uint32_t width = 0, height = 0;
+    VkBool32 corrected_division = VK_TRUE; // roma_context_info.corrected_division (set by the viewer)
     VkSampler sampler = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE, trace_layout = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;

@@ -552,6 +552,9 @@ bool create_libroma(viewer &v)
     cd.logger = {log_to_stderr, nullptr};
     if (roma_context_create(&cd, &v.ctx) != ROMA_SUCCESS)
         return false;
+    roma_context_info ci{};
+    roma_context_get_info(v.ctx, &ci);
+    v.cp.corrected_division = ci.corrected_division; // the compose shader traces as libroma does
     roma_ao_effect_desc ad{};
     ad.frames_in_flight = kSlots;
     roma_light_effect_desc ld{};

@@ -174,6 +174,10 @@ typedef struct roma_context_info {
     /** Compute pipelines compiled so far. Every object of the context shares them: a map
      * of another RES or A, or a second map, compiles none (kept until the context goes). */
     uint32_t pipelines_compiled;
+    /** The value libroma gives roma/trace.glsl's ROMA_CORRECTED_DIVISION_CONSTANT_ID in its
+     * own pipelines (roma/trace_types.h): VK_TRUE but on CPU devices. An engine tracing from
+     * its own shaders specializes them with it to trace as libroma does. */
+    VkBool32 corrected_division;
 } roma_context_info;
 
 /** The device and counters of a context.

@@ -88,7 +88,8 @@ ROMA_STRUCT_END(roma_map_frame)
  * and fuse fma, which the correction needs; CPU implementations (lavapipe) divide as IEEE
  * does and may split fma into two roundings. libroma sets it to
  * (VkPhysicalDeviceProperties::deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) in its own
- * pipelines; an engine may do the same, or define ROMA_CORRECTED_DIVISION before including. */
+ * pipelines and reports it in roma_context_info.corrected_division; an engine specializes its own
+ * pipelines with that value, or defines ROMA_CORRECTED_DIVISION before including. */
 #define ROMA_CORRECTED_DIVISION_CONSTANT_ID 200
 
 /** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the

@@ -115,7 +115,7 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               roma_compute_pipeline *out)
 {
     memset(out, 0, sizeof *out);
-    if (binding_count > MAX_STORAGE_BUFFERS || constant_count > MAX_STORAGE_BUFFERS)
+    if (binding_count > MAX_STORAGE_BUFFERS || constant_count > ROMA_MAX_SPEC_CONSTANTS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors or constants for %s",
                          module_name);
     const roma_shared_pipeline *known =

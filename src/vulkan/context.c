@@ -411,6 +411,7 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
                          "roma_context_get_info: %s is NULL", ctx ? "out_info" : "context");
     memcpy(out->device_name, ctx->properties.deviceName, sizeof out->device_name);
     out->device_type = ctx->properties.deviceType;
+    out->corrected_division = ctx->corrected_division ? VK_TRUE : VK_FALSE;
     out->api_version = ctx->properties.apiVersion;
     out->driver_version = ctx->properties.driverVersion;
     out->timestamp_period_ns = ctx->properties.limits.timestampPeriod;

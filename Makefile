@@ -9,8 +9,9 @@
 #                        against it (CMake package, pkg-config); then the same with the Debian
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
 #   make docs            the API reference (doxygen) in build/docs/html
-#   make study           what accuracy costs in time: the accuracy run of roma-bench on the built-in
-#                        room (5 to 33 minutes on 2 cores) into docs/bench and its plot into docs/images
+#   make study           what accuracy costs in time: the accuracy runs of roma-bench on the built-in
+#                        room (AO, direct light, GI, many lights: 40 to 70 minutes on 2 cores) into
+#                        docs/bench and their plots into docs/images
 #                        (docs/accuracy-vs-time.md), then generation and trace time as the scene grows
 #                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points
 #                        it finished are kept in build/ until the run completes); make study-small: the
@@ -79,10 +80,19 @@ study: build
 	    --plot docs/images/accuracy_vs_time_cornell_direct.png --cache $(BUILD)/study_cornell_direct.cache \
 	    > docs/bench/cornell_direct_accuracy.txt
 	rm -f $(BUILD)/study_cornell_direct.cache
+	$(BUILD)/apps/roma-bench --accuracy --effect gi --runs 3 --csv docs/bench/cornell_gi_accuracy.csv \
+	    --plot docs/images/accuracy_vs_time_cornell_gi.png --cache $(BUILD)/study_cornell_gi.cache \
+	    > docs/bench/cornell_gi_accuracy.txt
+	rm -f $(BUILD)/study_cornell_gi.cache
+	$(BUILD)/apps/roma-bench --accuracy --effect lights --runs 3 --csv docs/bench/cornell_lights_accuracy.csv \
+	    --plot docs/images/accuracy_vs_time_cornell_lights.png --cache $(BUILD)/study_cornell_lights.cache \
+	    > docs/bench/cornell_lights_accuracy.txt
+	rm -f $(BUILD)/study_cornell_lights.cache
 	$(BUILD)/apps/roma-bench --growth scenes/spot.glb,scenes/dragon_res3.glb,scenes/bunny.glb,scenes/dragon_res2.glb \
 	    --res 64,128,256 --runs 5 --csv docs/bench/growth.csv --plot docs/images/generation_and_trace_growth.png \
 	    > docs/bench/growth.txt
-	cat docs/bench/cornell_accuracy.txt docs/bench/cornell_direct_accuracy.txt docs/bench/growth.txt
+	cat docs/bench/cornell_accuracy.txt docs/bench/cornell_direct_accuracy.txt docs/bench/cornell_gi_accuracy.txt \
+	    docs/bench/cornell_lights_accuracy.txt docs/bench/growth.txt
 
 study-small: build
 	mkdir -p $(OUT)/study
@@ -90,6 +100,10 @@ study-small: build
 	    --plot $(OUT)/study/accuracy.png
 	$(BUILD)/apps/roma-bench --small --accuracy --effect direct --csv $(OUT)/study/direct_accuracy.csv \
 	    --plot $(OUT)/study/direct_accuracy.png
+	$(BUILD)/apps/roma-bench --small --accuracy --effect gi --csv $(OUT)/study/gi_accuracy.csv \
+	    --plot $(OUT)/study/gi_accuracy.png
+	$(BUILD)/apps/roma-bench --small --accuracy --effect lights --csv $(OUT)/study/lights_accuracy.csv \
+	    --plot $(OUT)/study/lights_accuracy.png
 
 docs: configure
 	cmake --build $(BUILD) --target docs

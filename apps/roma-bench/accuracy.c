@@ -23,21 +23,42 @@
 #include "passes/effect_render.h"
 #include "plot.h"
 #include "reference_internal.h"
+#include "roma/sampling.h"
 
-/* Channels of the effect's image: AO 1, direct light RGB. */
+/* What differs between the swept effects: the name in tables and titles, the tag in the CSV
+ * and the cache's keys, the channels of the image and its background, and the A of ROMA's
+ * defaults (the anchor of the equal-time and equal-error tables). Many lights: the share of
+ * the lights visible from a pixel, one channel. */
+typedef struct effect_info {
+    const char *title, *tag;
+    uint32_t channels;
+    float background;
+    uint32_t anchor_a;
+} effect_info;
+
+static const effect_info effect_infos[] = {
+    [ROMA_BENCH_EFFECT_AO] = {"Ambient occlusion", "ao", 1u, 1.0f, 4u},
+    [ROMA_BENCH_EFFECT_DIRECT] = {"Direct light", "direct", 3u, 0.0f, 8u},
+    [ROMA_BENCH_EFFECT_GI] = {"One-bounce GI", "gi", 3u, 0.0f, 4u},
+    [ROMA_BENCH_EFFECT_LIGHTS] = {"Many-lights visibility", "lights", 1u, 0.0f, 8u},
+};
+
 static uint32_t effect_channels(roma_bench_effect e)
 {
-    return e == ROMA_BENCH_EFFECT_DIRECT ? 3u : 1u;
+    return effect_infos[e].channels;
 }
 
-/* Embree's AO or direct light at the G-buffer's points with spp samples (seed 1, the
- * renders' samples), on every core; NAN where the pixel sees nothing. */
+/* Embree's AO, direct light or GI at the G-buffer's points with spp samples (seed 1, the
+ * renders' samples), or the share of the many lights visible there (no samples), on every
+ * core; NAN where the pixel sees nothing. */
 typedef struct embree_job {
     const roma_ref *ref;
     const roma_gbuffer_pixel *px;
     float *out, radius;
     uint32_t spp;
     roma_bench_effect effect;
+    const float *light_positions;
+    uint32_t light_count;
 } embree_job;
 
 static void embree_pixel(void *ctx, uint32_t i)
@@ -52,6 +73,12 @@ static void embree_pixel(void *ctx, uint32_t i)
     else if (j->effect == ROMA_BENCH_EFFECT_DIRECT)
         roma_ref_direct_point(j->ref, p->position_t, p->geometric_normal, p->shading_normal, p->albedo, j->spp, 1, i,
                               out);
+    else if (j->effect == ROMA_BENCH_EFFECT_GI)
+        roma_ref_indirect_point(j->ref, p->position_t, p->geometric_normal, p->shading_normal, p->albedo, j->spp, 1, i,
+                                out);
+    else if (j->effect == ROMA_BENCH_EFFECT_LIGHTS)
+        out[0] = (float)roma_ref_count_visible_lights(j->ref, p->position_t, p->geometric_normal, p->shading_normal,
+                                                      j->light_positions, j->light_count) / (float)j->light_count;
     else
         out[0] = roma_ref_ao_point(j->ref, p->position_t, p->geometric_normal, p->shading_normal, j->radius, j->spp, 1,
                                    i);
@@ -74,30 +101,31 @@ static void fill_compared(roma_image *image, const float *values, const float *r
                           roma_bench_effect effect)
 {
     const uint32_t c = effect_channels(effect);
-    const float background = effect == ROMA_BENCH_EFFECT_DIRECT ? 0.0f : 1.0f;
+    const float background = effect_infos[effect].background;
     for (size_t i = 0; i < pixels; ++i)
         for (uint32_t k = 0; k < c; ++k)
             image->pixels[i * c + k] = isfinite(ref[i * c]) ? values[i * c + k] : background;
 }
 
-/* The effect's name in tables and titles, and its tag in the CSV and the cache's keys. */
 static const char *effect_title(roma_bench_effect e)
 {
-    return e == ROMA_BENCH_EFFECT_DIRECT ? "Direct light" : "Ambient occlusion";
+    return effect_infos[e].title;
 }
 
 static const char *effect_tag(roma_bench_effect e)
 {
-    return e == ROMA_BENCH_EFFECT_DIRECT ? "direct" : "ao";
+    return effect_infos[e].tag;
 }
 
-/* The Embree rows: time and error of its AO or direct light at a number of samples per pixel,
- * and the error it reaches in the time ROMA takes for its samples at its defaults (RES 128, A 4
- * for AO, A 8 for the shadow array; roma_ms, 0: not run). */
+/* The Embree rows: time and error of its AO, direct light or GI at a number of samples per
+ * pixel, and the error it reaches in the time ROMA takes for its samples at its defaults (RES
+ * 128, A 4 for AO and GI, A 8 for the shadow arrays; roma_ms, 0: not run). Many lights have no
+ * samples: one row, Embree's exact count (the reference itself). */
 static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, const float *ref_values, uint32_t w,
-                             uint32_t h, const roma_bench_accuracy_desc *d, double roma_ms, double roma_mae,
-                             const roma_image *ref_image, const roma_image *coverage, double *times, FILE *csv,
-                             roma_bench_point *points, int *point_count)
+                             uint32_t h, const roma_bench_accuracy_desc *d, const float *light_positions,
+                             uint32_t light_count, double roma_ms, double roma_mae, const roma_image *ref_image,
+                             const roma_image *coverage, double *times, FILE *csv, roma_bench_point *points,
+                             int *point_count)
 {
     const size_t n = (size_t)w * h;
     const uint32_t channels = effect_channels(d->effect);
@@ -107,30 +135,42 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
         free(values);
         return 1;
     }
-    const uint32_t total = d->spp * d->frames;
-    printf("\nEmbree at the same points (%u threads), samples 0 .. spp - 1 of the same sequences; error\n"
-           "against its own %u-sample image (its noise only); time for the whole image (%s):\n\n"
-           "| Embree spp | ms | MAE | FLIP |\n|---|---|---|---|\n",
-           ref->thread_count, total, d->runs == 1 ? "one run" : "median of runs");
-    double best_mae = NAN;
+    const int lights = d->effect == ROMA_BENCH_EFFECT_LIGHTS;
+    const uint32_t total = lights ? 1u : d->spp * d->frames;
+    if (lights)
+        printf("\nEmbree at the same points (%u threads), every segment to each of the %u lights (the reference\n"
+               "itself: error 0); time for the whole image (%s):\n\n| Embree | ms | MAE | FLIP |\n|---|---|---|---|\n",
+               ref->thread_count, light_count, d->runs == 1 ? "one run" : "median of runs");
+    else
+        printf("\nEmbree at the same points (%u threads), samples 0 .. spp - 1 of the same sequences; error\n"
+               "against its own %u-sample image (its noise only); time for the whole image (%s):\n\n"
+               "| Embree spp | ms | MAE | FLIP |\n|---|---|---|---|\n",
+               ref->thread_count, total, d->runs == 1 ? "one run" : "median of runs");
+    double best_mae = NAN, ms = NAN;
     uint32_t best_spp = 0;
     for (uint32_t spp = 1; spp <= total; spp *= 2) {
-        embree_job job = {ref, px, values, d->radius, spp, d->effect};
+        embree_job job = {ref, px, values, d->radius, spp, d->effect, light_positions, light_count};
         for (uint32_t k = 0; k < d->runs; ++k) {
             double t0 = roma_app_now_ms();
             roma_ref_parallel_for(ref, (uint32_t)n, embree_pixel, &job, NULL, NULL);
             times[k] = roma_app_now_ms() - t0;
         }
-        double ms = roma_app_median(times, (int)d->runs), mae, bias, flip = NAN;
+        double mae, bias, flip = NAN;
+        ms = roma_app_median(times, (int)d->runs);
         fill_compared(&image, values, ref_values, n, d->effect);
         image_error(&image, ref_image, coverage, &mae, &bias);
         if (roma_image_flip(ref_image, &image, coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
-        printf("| %u | %.1f | %.4f | %.4f |\n", spp, ms, mae, flip);
+        if (lights)
+            printf("| every segment | %.1f | %.4f | %.4f |\n", ms, mae, flip);
+        else
+            printf("| %u | %.1f | %.4f | %.4f |\n", spp, ms, mae, flip);
         const char *tag = effect_tag(d->effect);
         if (csv)
             fprintf(csv, "accuracy,embree %s ms,%u,0,%.6f,ms\naccuracy,embree %s mae,%u,0,%.6f,\n"
                          "accuracy,embree %s flip,%u,0,%.6f,\n", tag, spp, ms, tag, spp, mae, tag, spp, flip);
+        if (lights) /* the reference itself, error 0: no point of a front or a log-scale plot */
+            continue;
         roma_bench_point *pt = &points[(*point_count)++];
         snprintf(pt->series, sizeof pt->series, "Embree (spp)");
         snprintf(pt->label, sizeof pt->label, "%u", spp);
@@ -140,8 +180,11 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
             best_spp = spp;
         }
     }
-    const uint32_t anchor_a = d->effect == ROMA_BENCH_EFFECT_DIRECT ? 8u : 4u;
-    if (roma_ms > 0.0 && best_spp == total)
+    const uint32_t anchor_a = effect_infos[d->effect].anchor_a;
+    if (lights && roma_ms > 0.0)
+        printf("\nROMA at RES 128, A %u takes %.0f ms for its %u frames (MAE %.4f of the lights' share); Embree's\n"
+               "exact count %.0f ms.\n", anchor_a, roma_ms, ROMA_BENCH_LIGHTS_FRAMES, roma_mae, ms);
+    else if (roma_ms > 0.0 && best_spp == total)
         printf("\nIn less than ROMA's time for its %u samples at RES 128, A %u (%.0f ms; MAE %.4f against Embree's\n"
                "%u-sample image), Embree renders that image itself.\n", total, anchor_a, roma_ms, roma_mae, total);
     else if (roma_ms > 0.0 && best_spp)
@@ -232,6 +275,8 @@ typedef struct study {
     const roma_bench_accuracy_desc *d;
     roma_gbuffer_pixel *px;
     float *ref_values; /* the reference at the G-buffer's points: the effect's channels a pixel */
+    float *light_positions; /* many lights: 3 floats each (roma_many_lights_positions, seed 1) */
+    uint32_t light_count;
     roma_image ref_image, coverage;
     int have_ref;
     double *times;
@@ -295,9 +340,11 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     roma_result r = ROMA_SUCCESS;
     char key[1024];
     const int key_length =
-        snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u|shadow steps %u",
-                 d->cache_key ? d->cache_key : "", d->width, d->height, d->frames, d->spp, (double)d->radius, d->runs,
-                 tag, csv_res, csv_a, rd->ssao_steps, rd->ssao_layers, rd->max_steps);
+        snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u|shadow steps %u"
+                 "|light steps %u|lights %u|punctual rays %d",
+                 d->cache_key ? d->cache_key : "", d->width, d->height, rd->frames, rd->spp, (double)d->radius, d->runs,
+                 tag, csv_res, csv_a, rd->ssao_steps, rd->ssao_layers, rd->max_steps, rd->lights_max_steps,
+                 s->light_count, rd->gi_punctual_rays);
     /* A key cut short would name other points too: such a point is neither read nor kept. */
     const int keyed = key_length > 0 && (size_t)key_length < sizeof key && !strpbrk(key, "\t\n");
     /* The first point is always measured: its render makes the G-buffer and the reference. */
@@ -310,21 +357,28 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     for (uint32_t k = 0; k < d->runs && r == ROMA_SUCCESS; ++k) {
         double t0 = roma_app_now_ms();
         r = roma_effect_render(s->ctx, s->scene, rd, &img, &st);
-        s->times[k] = (roma_app_now_ms() - t0) / d->frames;
+        s->times[k] = (roma_app_now_ms() - t0) / rd->frames;
         if (r != ROMA_SUCCESS)
             break;
         if (k == 0)
-            df_ms = st.baseline_build_ms / d->frames;
+            df_ms = st.baseline_build_ms / rd->frames;
         if (!s->have_ref) {
             /* The G-buffer does not depend on the method or its settings: one reference for all. */
-            embree_job job = {s->ref, s->px, s->ref_values, d->radius, samples, d->effect};
+            embree_job job = {s->ref, s->px, s->ref_values, d->radius, samples, d->effect, s->light_positions,
+                              s->light_count};
             roma_ref_parallel_for(s->ref, (uint32_t)n, embree_pixel, &job, NULL, NULL);
             s->have_ref = 1;
             for (size_t i = 0; i < n; ++i)
                 s->coverage.pixels[i] = isfinite(s->ref_values[i * channels]) ? 1.0f : 0.0f;
             fill_compared(&s->ref_image, s->ref_values, s->ref_values, n, d->effect);
         }
-        const roma_image *out = d->effect == ROMA_BENCH_EFFECT_DIRECT ? &img.direct : &img.ao;
+        const roma_image *out = d->effect == ROMA_BENCH_EFFECT_DIRECT ? &img.direct
+                                : d->effect == ROMA_BENCH_EFFECT_GI   ? &img.gi
+                                : d->effect == ROMA_BENCH_EFFECT_LIGHTS ? &img.lights
+                                                                        : &img.ao;
+        if (d->effect == ROMA_BENCH_EFFECT_LIGHTS) /* the count of visible lights, as their share */
+            for (size_t i = 0; i < n; ++i)
+                img.lights.pixels[i] /= (float)s->light_count;
         if (k == 0 && roma_image_flip(&s->ref_image, out, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
         if (k == 0)
@@ -359,7 +413,7 @@ report:
     roma_bench_point *pt = &s->points[s->point_count++];
     snprintf(pt->series, sizeof pt->series, "%s", series);
     snprintf(pt->label, sizeof pt->label, "%s", label);
-    pt->ms = ms * d->frames, pt->mae = mae, pt->flip = flip;
+    pt->ms = ms * rd->frames, pt->mae = mae, pt->flip = flip;
     if (s->csv) {
         fprintf(s->csv, "accuracy,%s ms per frame,%u,%u,%.6f,ms\n", tag, csv_res, csv_a, ms);
         fprintf(s->csv, "accuracy,%s mae,%u,%u,%.6f,\n", tag, csv_res, csv_a, mae);
@@ -454,6 +508,79 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
     return status;
 }
 
+/* The A of the array a light effect's rays trace (the option of its pass). */
+static void set_angular(roma_effect_options *o, uint32_t angular)
+{
+    if (o->effects == ROMA_EFFECT_DIRECT)
+        o->shadow_angular = angular;
+    else if (o->effects == ROMA_EFFECT_GI)
+        o->gi_angular = angular;
+    else
+        o->lights_angular = angular;
+}
+
+/* A light effect's rows: ROMA at every RES x A of its array (`base` with each RES and A) and
+ * the exact traversal of the BOM at every RES (tags `tag` and `tag`-voxel-dda). Sets the time
+ * (all frames) and error of ROMA at RES 128 and the effect's default A. */
+static int sweep_res_angular(study *s, const roma_effect_render_desc *base, const char *tag, double *anchor_ms,
+                             double *anchor_mae)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    int status = 0;
+    for (int ri = 0; ri < d->res_count; ++ri)
+        for (int ai = 0; ai <= d->angular_count; ++ai) {
+            const int dda = ai == d->angular_count;
+            const uint32_t angular = dda ? 1u : d->angular[ai];
+            roma_effect_render_desc rd = *base;
+            rd.options.resolution = d->res[ri];
+            set_angular(&rd.options, angular);
+            rd.shadow_method = dda ? ROMA_SHADOW_METHOD_VOXEL_DDA : ROMA_SHADOW_METHOD_ROMA;
+            char series[32], label[16], res_text[16], a_text[12] = "-", dda_tag[32];
+            snprintf(label, sizeof label, "%u", d->res[ri]);
+            snprintf(res_text, sizeof res_text, "%u", d->res[ri]);
+            snprintf(dda_tag, sizeof dda_tag, "%s-voxel-dda", tag);
+            if (!dda)
+                snprintf(a_text, sizeof a_text, "%u", angular);
+            snprintf(series, sizeof series, dda ? "voxel traversal" : "ROMA A %s", a_text);
+            double ms, mae;
+            if (measure_setting(s, &rd, dda ? "voxel traversal" : "ROMA", dda ? dda_tag : tag, series, label,
+                                res_text, a_text, d->res[ri], angular, &ms, &mae)) {
+                status = 1;
+                continue;
+            }
+            if (!dda && d->res[ri] == 128 && angular == effect_infos[d->effect].anchor_a) {
+                *anchor_ms = ms * rd.frames;
+                *anchor_mae = mae;
+            }
+        }
+    return status;
+}
+
+/* ROMA at RES 128, A 8 with other step bounds for the un-snapped segments of a light effect
+ * (`base`: direct light or many lights), one row each. */
+static int sweep_steps(study *s, const roma_effect_render_desc *base, const uint32_t *steps, size_t count,
+                       const char *tag)
+{
+    int status = 0;
+    for (size_t i = 0; i < count; ++i) {
+        roma_effect_render_desc rd = *base;
+        rd.options.resolution = 128;
+        set_angular(&rd.options, 8);
+        if (rd.options.effects == ROMA_EFFECT_LIGHTS)
+            rd.lights_max_steps = steps[i];
+        else
+            rd.max_steps = steps[i];
+        char name[48], label[16];
+        snprintf(name, sizeof name, "ROMA, %u steps", steps[i]);
+        snprintf(label, sizeof label, "%u", steps[i]);
+        double ms, mae;
+        if (measure_setting(s, &rd, name, tag, "ROMA A 8, RES 128 (steps)", label, "128", "8", steps[i], 8, &ms,
+                            &mae))
+            status = 1;
+    }
+    return status;
+}
+
 /* More steps for ROMA's un-snapped shadow rays than the paper's 8, at RES 128 and A 8. */
 static const uint32_t shadow_steps[] = {16, 64};
 
@@ -463,74 +590,92 @@ static const uint32_t shadow_steps[] = {16, 64};
 static int sweep_direct(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
     const roma_bench_accuracy_desc *d = s->d;
-    int status = 0;
-    for (int ri = 0; ri < d->res_count; ++ri)
-        for (int ai = 0; ai <= d->angular_count; ++ai) {
-            const int dda = ai == d->angular_count;
-            const uint32_t angular = dda ? 1u : d->angular[ai];
-            roma_effect_render_desc rd = {
-                .camera = *cam, .width = d->width, .height = d->height,
-                .options = {.effects = ROMA_EFFECT_DIRECT, .resolution = d->res[ri], .shadow_angular = angular},
-                .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px,
-                .shadow_method = dda ? ROMA_SHADOW_METHOD_VOXEL_DDA : ROMA_SHADOW_METHOD_ROMA,
-            };
-            char series[32], label[16], res_text[16], a_text[12] = "-";
-            snprintf(label, sizeof label, "%u", d->res[ri]);
-            snprintf(res_text, sizeof res_text, "%u", d->res[ri]);
-            if (!dda)
-                snprintf(a_text, sizeof a_text, "%u", angular);
-            snprintf(series, sizeof series, dda ? "voxel traversal" : "ROMA A %s", a_text);
-            double ms, mae;
-            if (measure_setting(s, &rd, dda ? "voxel traversal" : "ROMA", dda ? "direct-voxel-dda" : "direct", series,
-                                label, res_text, a_text, d->res[ri], angular, &ms, &mae)) {
-                status = 1;
-                continue;
-            }
-            if (!dda && d->res[ri] == 128 && angular == 8) {
-                *anchor_ms = ms * d->frames;
-                *anchor_mae = mae;
-            }
-        }
-    for (size_t i = 0; i < sizeof shadow_steps / sizeof shadow_steps[0]; ++i) {
-        roma_effect_render_desc rd = {
-            .camera = *cam, .width = d->width, .height = d->height,
-            .options = {.effects = ROMA_EFFECT_DIRECT, .resolution = 128, .shadow_angular = 8},
-            .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px, .max_steps = shadow_steps[i],
-        };
-        char name[48], label[16];
-        snprintf(name, sizeof name, "ROMA, %u steps", shadow_steps[i]);
-        snprintf(label, sizeof label, "%u", shadow_steps[i]);
-        double ms, mae;
-        if (measure_setting(s, &rd, name, "direct-steps", "ROMA A 8, RES 128 (steps)", label, "128", "8",
-                            shadow_steps[i], 8, &ms, &mae))
-            status = 1;
-    }
+    const roma_effect_render_desc base = {
+        .camera = *cam, .width = d->width, .height = d->height, .options = {.effects = ROMA_EFFECT_DIRECT},
+        .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px,
+    };
+    int status = sweep_res_angular(s, &base, "direct", anchor_ms, anchor_mae);
+    return sweep_steps(s, &base, shadow_steps, sizeof shadow_steps / sizeof shadow_steps[0], "direct-steps") | status;
+}
+
+/* One-bounce GI: ROMA at every RES x A of the GI array (point and spot lights through their
+ * reflective shadow maps, the default route) and the exact traversal of the BOM at every RES
+ * (bounce rays to their first occupied cell, shadow rays at the hits to their end); at RES 128,
+ * A 4 also the other route for point and spot lights, a shadow ray to each. Sets the time and
+ * error of ROMA at RES 128, A 4. */
+static int sweep_gi(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    const roma_effect_render_desc base = {
+        .camera = *cam, .width = d->width, .height = d->height, .options = {.effects = ROMA_EFFECT_GI},
+        .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px,
+    };
+    int status = sweep_res_angular(s, &base, "gi", anchor_ms, anchor_mae);
+    roma_effect_render_desc rd = base;
+    rd.options.resolution = 128, rd.options.gi_angular = 4, rd.gi_punctual_rays = 1;
+    double ms, mae;
+    if (measure_setting(s, &rd, "ROMA, point and spot lights by shadow rays", "gi-punctual-rays",
+                        "ROMA A 4, shadow rays", "128", "128", "4", 128, 4, &ms, &mae))
+        status = 1;
     return status;
+}
+
+/* More steps for the many-lights pass's un-snapped segments than its default 16, and fewer,
+ * at RES 128 and A 8. */
+static const uint32_t lights_steps[] = {8, 32, 64};
+
+/* Many lights (the share of the lights visible from each pixel, averaged over
+ * ROMA_BENCH_LIGHTS_FRAMES frames of new jitter): ROMA at every RES
+ * x A of the lights' array with 16 steps, the exact traversal of the BOM to each segment's end
+ * at every RES, ROMA at RES 128, A 8 with other step counts. Sets the time and error of ROMA at
+ * RES 128, A 8. */
+static int sweep_lights(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    const roma_effect_render_desc base = {
+        .camera = *cam, .width = d->width, .height = d->height,
+        .options = {.effects = ROMA_EFFECT_LIGHTS, .many_light_count = s->light_count},
+        .spp = 1, .frames = ROMA_BENCH_LIGHTS_FRAMES, .seed = 1, .out_gbuffer = s->px,
+        .many_light_positions = s->light_positions,
+    };
+    int status = sweep_res_angular(s, &base, "lights", anchor_ms, anchor_mae);
+    return sweep_steps(s, &base, lights_steps, sizeof lights_steps / sizeof lights_steps[0], "lights-steps") | status;
 }
 
 int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                         const roma_bench_accuracy_desc *d, FILE *csv)
 {
     const uint32_t w = d->width, h = d->height, samples = d->spp * d->frames, channels = effect_channels(d->effect);
-    const int direct = d->effect == ROMA_BENCH_EFFECT_DIRECT;
+    const int direct = d->effect == ROMA_BENCH_EFFECT_DIRECT, gi = d->effect == ROMA_BENCH_EFFECT_GI,
+              lights = d->effect == ROMA_BENCH_EFFECT_LIGHTS;
     roma_camera cam;
     roma_scene_default_camera(scene, (float)w / (float)h, &cam);
     /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
     const int max_points = d->res_count * (d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
+    roma_scene_view view;
+    roma_scene_get_view(scene, &view);
     study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
                .px = calloc((size_t)w * h, sizeof(roma_gbuffer_pixel)),
                .ref_values = calloc((size_t)w * h * channels, sizeof(float)),
                .times = calloc(d->runs, sizeof(double)),
-               .points = calloc((size_t)max_points, sizeof(roma_bench_point))};
+               .points = calloc((size_t)max_points, sizeof(roma_bench_point)),
+               .light_count = lights ? ROMA_BENCH_MANY_LIGHTS : 0u};
+    if (lights)
+        s.light_positions = malloc(sizeof(float) * 3 * s.light_count);
     int status = 0;
-    if (!s.px || !s.ref_values || !s.times || !s.points) {
+    if (!s.px || !s.ref_values || !s.times || !s.points || (lights && !s.light_positions)) {
         status = 1;
         goto done;
     }
+    if (lights)
+        roma_many_lights_positions(view.bounds_min, view.bounds_max, s.light_count, 1, s.light_positions);
     load_cache(&s);
-    s.total = direct ? d->res_count * (d->angular_count + 1) + (int)(sizeof shadow_steps / sizeof shadow_steps[0])
-                     : d->res_count * (d->angular_count + 3) + (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
-                           (int)(sizeof ssao_layers / sizeof ssao_layers[0]);
+    const int per_res = d->res_count * (d->angular_count + 1);
+    s.total = direct   ? per_res + (int)(sizeof shadow_steps / sizeof shadow_steps[0])
+              : gi     ? per_res + 1
+              : lights ? per_res + (int)(sizeof lights_steps / sizeof lights_steps[0])
+                       : d->res_count * (d->angular_count + 3) + (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
+                             (int)(sizeof ssao_layers / sizeof ssao_layers[0]);
     char how[64];
     if (d->runs == 1)
         snprintf(how, sizeof how, "one run");
@@ -544,6 +689,25 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                "pixels per degree). A: the shadow array's.\n\n"
                "| method | RES | A | ms per frame | - | MAE | bias | FLIP |\n|---|---|---|---|---|---|---|---|\n",
                w, h, samples, d->spp, d->frames, how);
+    else if (gi)
+        printf("\nOne-bounce GI (every light of the scene at the bounce hits), %ux%u, %u samples per pixel (%u per\n"
+               "frame over %u frames; a bounce ray a sample, at its hit one area-light sample and point and spot\n"
+               "lights through their reflective shadow maps or a shadow ray each): time per frame =\n"
+               "host-observed render time / frames (%s); error against Embree on the same points and samples,\n"
+               "over the pixels that see geometry, RGB (FLIP: LDR-FLIP at 67 pixels per degree). A: the GI\n"
+               "array's; the voxel traversal walks bounce rays and shadow rays through the BOM.\n\n"
+               "| method | RES | A | ms per frame | - | MAE | bias | FLIP |\n|---|---|---|---|---|---|---|---|\n",
+               w, h, samples, d->spp, d->frames, how);
+    else if (lights)
+        printf("\nMany-lights visibility: %u point lights spread over the scene's bounds, %ux%u, a segment to\n"
+               "every light from every pixel a frame, over %u frames (each with new grid and direction jitter):\n"
+               "time per frame = host-observed render time / frames (%s); error: the share of the lights\n"
+               "visible from a pixel, averaged over the frames, against Embree's segments from the same\n"
+               "points, over the pixels that see geometry (MAE: the constant-time many-lights paper's\n"
+               "per-pixel shadow error; FLIP: LDR-FLIP at 67 pixels per degree of the share). A: the lights'\n"
+               "array's.\n\n"
+               "| method | RES | A | ms per frame | - | MAE | bias | FLIP |\n|---|---|---|---|---|---|---|---|\n",
+               s.light_count, w, h, ROMA_BENCH_LIGHTS_FRAMES, how);
     else
         printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
                "time per frame = host-observed render time / frames (%s); error against Embree\n"
@@ -559,16 +723,21 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         goto done;
     }
     double anchor_ms = 0.0, anchor_mae = NAN; /* ROMA's defaults, all frames */
-    status |= direct ? sweep_direct(&s, &cam, &anchor_ms, &anchor_mae) : sweep_ao(&s, &cam, &anchor_ms, &anchor_mae);
-    if (s.have_ref && embree_equal_time(ref, s.px, s.ref_values, w, h, d, anchor_ms, anchor_mae, &s.ref_image,
-                                        &s.coverage, s.times, csv, s.points, &s.point_count))
+    status |= direct   ? sweep_direct(&s, &cam, &anchor_ms, &anchor_mae)
+              : gi     ? sweep_gi(&s, &cam, &anchor_ms, &anchor_mae)
+              : lights ? sweep_lights(&s, &cam, &anchor_ms, &anchor_mae)
+                       : sweep_ao(&s, &cam, &anchor_ms, &anchor_mae);
+    if (s.have_ref && embree_equal_time(ref, s.px, s.ref_values, w, h, d, s.light_positions, s.light_count, anchor_ms,
+                                        anchor_mae, &s.ref_image, &s.coverage, s.times, csv, s.points,
+                                        &s.point_count))
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
     roma_bench_print_fronts(s.points, s.point_count);
-    /* Equal time and equal error against ROMA's defaults (RES 128; A 4 for AO, 8 for the
-     * shadow array); without RES 128 in the run, that A at the first RES listed; without the
+    /* Equal time and equal error against ROMA's defaults (RES 128; A 4 for AO and GI, 8 for the
+     * shadow arrays); without RES 128 in the run, that A at the first RES listed; without the
      * A, no such tables (said below). */
-    const char *anchor_series = direct ? "ROMA A 8" : "ROMA A 4";
+    char anchor_series[16];
+    snprintf(anchor_series, sizeof anchor_series, "ROMA A %u", effect_infos[d->effect].anchor_a);
     int anchor = -1;
     for (int i = 0; i < s.point_count; ++i) {
         int defaults = strcmp(s.points[i].series, anchor_series) == 0 && strcmp(s.points[i].label, "128") == 0;
@@ -582,16 +751,23 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     roma_bench_print_equal(s.points, s.point_count, anchor);
     if (d->plot_path) {
         char title[160], x_label[160];
-        snprintf(title, sizeof title, "%s, %ux%u, %u samples per pixel: error against time", effect_title(d->effect),
-                 w, h, samples);
-        snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baselines: %u frames of %u samples)",
-                 d->frames, d->spp);
+        if (lights) {
+            snprintf(title, sizeof title, "%s, %ux%u, %u lights: error against time", effect_title(d->effect), w, h,
+                     s.light_count);
+            snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baseline: %u frames)",
+                     ROMA_BENCH_LIGHTS_FRAMES);
+        } else {
+            snprintf(title, sizeof title, "%s, %ux%u, %u samples per pixel: error against time",
+                     effect_title(d->effect), w, h, samples);
+            snprintf(x_label, sizeof x_label, "ms for the image (ROMA and the baselines: %u frames of %u samples)",
+                     d->frames, d->spp);
+        }
         if (roma_bench_plot(s.points, s.point_count, title, x_label, 1, d->plot_path))
             status = 1;
     }
     /* Error against frames (AO): its points follow the others; plotted beside, as NAME_frames.png. */
     const int frames_first = s.point_count;
-    if (!direct && s.have_ref &&
+    if (d->effect == ROMA_BENCH_EFFECT_AO && s.have_ref &&
         frames_curve(ctx, scene, &cam, d, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
         status = 1;
     if (d->plot_path && s.point_count > frames_first) {
@@ -610,6 +786,7 @@ done:
     free(s.cached_keys);
     free(s.cached);
     free(s.points);
+    free(s.light_positions);
     roma_image_free(&s.ref_image);
     roma_image_free(&s.coverage);
     free(s.px);

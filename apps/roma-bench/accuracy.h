@@ -10,7 +10,15 @@
 typedef enum roma_bench_effect {
     ROMA_BENCH_EFFECT_AO = 0,
     ROMA_BENCH_EFFECT_DIRECT = 1, /* direct light: point, spot and area lights with their shadow rays */
+    ROMA_BENCH_EFFECT_GI = 2,     /* one-bounce GI from every light */
+    ROMA_BENCH_EFFECT_LIGHTS = 3, /* visibility of ROMA_BENCH_MANY_LIGHTS point lights */
 } roma_bench_effect;
+
+/* The many lights of the sweep: the renderer's default count (roma_effect_options), averaged
+ * over a few frames, as an engine's temporal accumulation would for a still camera (and so
+ * that the setup of a render call, its G-buffer included, is shared by several frames). */
+#define ROMA_BENCH_MANY_LIGHTS 256u
+#define ROMA_BENCH_LIGHTS_FRAMES 4u
 
 typedef struct roma_bench_accuracy_desc {
     roma_bench_effect effect;

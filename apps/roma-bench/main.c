@@ -22,7 +22,7 @@
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
     "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R]\n"
-    "                  [--accuracy [--effect ao|direct] [--plot FILE.png] [--cache FILE]]\n"
+    "                  [--accuracy [--effect ao|direct|gi|lights] [--plot FILE.png] [--cache FILE]]\n"
     "                  [--growth LIST [--plot FILE.png]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
@@ -45,7 +45,13 @@ static const char *usage =
     "  again). Progress goes to stderr, a line a point. --effect direct: direct light (point, spot\n"
     "  and area lights with their shadow rays) instead of AO: ROMA for every RES x A of the shadow\n"
     "  array with 8 steps and at RES 128, A 8 with 16 and 64, the exact voxel traversal for every\n"
-    "  RES, Embree at equal time.\n"
+    "  RES, Embree at equal time. --effect gi: one-bounce GI from every light, ROMA for every RES x A\n"
+    "  of the GI array and at RES 128, A 4 with shadow rays instead of reflective shadow maps, the\n"
+    "  exact voxel traversal (bounce rays and the shadow rays at their hits) for every RES,\n"
+    "  Embree at equal time.\n"
+    "  --effect lights: the visibility of 256 point lights over 4 frames, ROMA for every RES x A of\n"
+    "  the lights' array with 16 steps and at RES 128, A 8 with 8, 32 and 64, the exact voxel\n"
+    "  traversal for every RES, against Embree's segments.\n"
     "  --growth LIST: instead, generation and trace time as the scene grows: for each scene of\n"
     "  the comma-separated LIST (at most 8) and each RES of --res (A 4), ROMA's voxelize, rotate\n"
     "  and AO pass at 1 spp over the covered pixels against Embree's BVH build and AO at the same\n"
@@ -275,11 +281,15 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--accuracy") == 0) {
             accuracy = 1;
         } else if (v && strcmp(a, "--effect") == 0) {
-            if (strcmp(v, "ao") != 0 && strcmp(v, "direct") != 0) {
-                fprintf(stderr, "roma-bench: --effect %s: expected ao or direct\n", v);
+            static const char *const names[] = {"ao", "direct", "gi", "lights"};
+            int found = -1;
+            for (int k = 0; k < 4; ++k)
+                found = strcmp(v, names[k]) == 0 ? k : found;
+            if (found < 0) {
+                fprintf(stderr, "roma-bench: --effect %s: expected ao, direct, gi or lights\n", v);
                 return 2;
             }
-            effect = strcmp(v, "direct") == 0 ? ROMA_BENCH_EFFECT_DIRECT : ROMA_BENCH_EFFECT_AO;
+            effect = (roma_bench_effect)found;
             effect_set = 1, ++i;
         } else if (v && strcmp(a, "--ao-radius") == 0) {
             ao_radius = strtof(v, NULL), ++i;

@@ -141,8 +141,10 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
             // of reach of a bounded walk: a snapped any-hit ray sees them all.
             vec3 l;
             float factor = roma_punctual_factor(light, y, ng, n, l);
-            if (factor > 0.0 && !roma_ray_start_blocked(o, l, roma_start_walk * tmin) &&
-                (roma_trace_snapped(o, l, tmin, 1.0 / 0.0, false).info & ROMA_HIT_FLAG) == 0u)
+            // (The accuracy study's exact baseline walks it through the BOM to the grid's edge.)
+            float walked = roma_shadow_exact ? 1.0 / 0.0 : roma_start_walk * tmin;
+            if (factor > 0.0 && !(roma_bom_walk(o, l, walked, roma_shadow_exact ? 1 << 30 : 64) >= 0.0) &&
+                (roma_shadow_exact || (roma_trace_snapped(o, l, tmin, 1.0 / 0.0, false).info & ROMA_HIT_FLAG) == 0u))
                 E += roma_bounded_irradiance(factor, light.color_intensity.rgb);
         } else if (!rsm) {
             E += roma_punctual_irradiance(light, y, ng, n, o, offset, tmin, max_steps);
@@ -154,16 +156,18 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
 // One bounce ray's radiance from the surface it hits (origin: offset off the surface;
 // tmin: the skip, walked exactly through the BOM first: a surface there is the hit, at
 // half a BOM cell along the ray past where the ray enters it). Returns 0 on a miss;
-// hit_point: where the ray hit (for the caller's RSMs), valid when hit.
+// hit_point: where the ray hit (for the caller's RSMs), valid when hit. With
+// roma_shadow_exact (the accuracy study's baseline) the whole ray is walked through the
+// BOM and its shadow rays too: the voxels' error apart from ROMA's.
 vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, roma_grid_params grid, vec3 origin, vec3 dir, float tmin,
                     bool surfaces, uint pixel, uint s, out bool hit, out vec3 hit_point)
 {
     // Both routes to a hit end in one surface lookup and one shading call: SIMD devices
     // that predicate run the code of both sides of a branch.
-    float tw = roma_ray_start_hit(origin, dir, tmin);
+    float tw = roma_bom_walk(origin, dir, roma_shadow_exact ? 1.0 / 0.0 : tmin, roma_shadow_exact ? 1 << 30 : 64);
     bool walked = tw >= 0.0;
     roma_hit h = roma_hit(0.0, 0u);
-    if (!walked)
+    if (!walked && !roma_shadow_exact)
         h = roma_trace_snapped(origin, dir, tmin, 1.0 / 0.0, true);
     hit = walked || (h.info & ROMA_HIT_FLAG) != 0u;
     hit_point = origin;

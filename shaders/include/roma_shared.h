@@ -374,7 +374,7 @@ ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_U64(pad_);
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
+    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units), z: as roma_punctual_push */
 ROMA_STRUCT_END(roma_many_lights_push)
 
 /* ---- One-bounce GI (shaders/passes/gi.comp) ---- */
@@ -421,7 +421,8 @@ ROMA_STRUCT_BEGIN(roma_gi_push)
     ROMA_U64(scene);      /* roma_gi_scene */
     ROMA_U64(bom);        /* as roma_punctual_push */
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: RSM view count, z: max steps of the shadow rays */
+    ROMA_UVEC4(config2);  /* x: seed, y: RSM view count, z: max steps of the shadow rays, w: 1 = bounce and
+                             shadow rays walked exactly through the BOM (the accuracy study's baseline) */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units),
                              w: tmin of the shadow rays at the hit (world units) */
 ROMA_STRUCT_END(roma_gi_push)

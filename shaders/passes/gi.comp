@@ -87,6 +87,7 @@ void main()
         S = RomaGiScene(gi.scene).s;
     roma_grid_params grid = roma_fetch_grid();
     roma_use_ray_start(gi.bom);
+    roma_shadow_exact = gi.config2.w != 0u;
     vec3 acc = vec3(0.0);
     roma_gi_shading P = roma_gi_shading(gi.ray.x, gi.ray.w, gi.config2.z, seed, gi.lights);
     for (uint k = 0u; k < spp; ++k) {

@@ -39,6 +39,7 @@ void main()
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
     roma_start_walk = 1.0; // 256 segments a pixel: the four-fold walk cost 35% more here
+    roma_shadow_exact = pc.ray.z > 0.0;
     // The mask is for evaluation (exact mode): every light tested, in order.
     bool write_mask = (pc.mask.x | pc.mask.y) != 0u && tested == light_count;
     uint first = tested == light_count ? 0u

@@ -350,7 +350,8 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_many_lights_push push = {
                 .positions = R->lights.positions.address, .mask = last ? R->mask.address : 0, .bom = bom,
                 .config = {d->width, d->height, n, lights_steps},
-                .config2 = {d->seed, f, tested, R->mask_words}, .ray = {offset, skip_cells * m->trace_cell, 0, 0},
+                .config2 = {d->seed, f, tested, R->mask_words},
+                .ray = {offset, skip_cells * m->trace_cell, exact_shadows, 0},
             };
             r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
             break;
@@ -367,7 +368,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .lights = R->lights.lights.address, .views = R->views_buffer.address, .scene = R->gi_scene.address,
                 .bom = bom,
                 .config = {d->width, d->height, spp, f},
-                .config2 = {d->seed, R->rsm_views.count, steps, 0},
+                .config2 = {d->seed, R->rsm_views.count, steps, exact_shadows > 0.0f},
                 .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, skip_cells * m->trace_cell},
             };
             r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);

@@ -61,9 +61,11 @@ typedef struct roma_effect_render_desc {
      * a box at a time), or screen-space AO against the G-buffer's depth (AO alone, bounded
      * radius; no map is built). */
     roma_ao_method ao_method;
-    /* What the shadow rays of the direct-light passes (point, spot, directional and area
-     * lights; not many lights or GI) trace: ROMA (0, the default) or the exact traversal of
-     * the BOM to their end. Both take an area-light segment shorter than the two offsets
+    /* What the rays of the light passes trace: ROMA (0, the default) or the exact traversal
+     * of the BOM (the accuracy study's baseline): the shadow rays of direct light (point,
+     * spot, directional and area lights) and of many lights to their end, GI's bounce rays
+     * to their first occupied cell and the shadow rays at their hits (point and spot lights
+     * through RSMs stay RSMs). Both take an area-light segment shorter than the two offsets
      * whose ends cross a surface's plane as free (roma_area_sample_irradiance). */
     roma_shadow_method shadow_method;
     uint32_t ssao_steps;               /* ROMA_AO_METHOD_SCREEN_SPACE: march steps; 0 = ROMA_AO_SSAO_STEPS */

@@ -474,7 +474,12 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
             }
         }
     /* Screen-space AO against the G-buffer's depth: no map, so no RES (its rays' origin offset
-     * and skipped start are ROMA's at RES 128); one row per march length. */
+     * and skipped start are ROMA's at RES 128); one row per march length. It marches a bounded
+     * radius: unbounded AO has no such rows. */
+    if (!(d->radius > 0.0f)) {
+        printf("\n(Screen-space AO and the stochastic depth map march a bounded radius: no rows for unbounded AO.)\n");
+        return status;
+    }
     for (size_t i = 0; i < sizeof ssao_steps / sizeof ssao_steps[0]; ++i) {
         roma_effect_render_desc rd = {
             .camera = *cam, .width = d->width, .height = d->height,
@@ -674,8 +679,10 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     s.total = direct   ? per_res + (int)(sizeof shadow_steps / sizeof shadow_steps[0])
               : gi     ? per_res + 1
               : lights ? per_res + (int)(sizeof lights_steps / sizeof lights_steps[0])
-                       : d->res_count * (d->angular_count + 3) + (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
-                             (int)(sizeof ssao_layers / sizeof ssao_layers[0]);
+                       : d->res_count * (d->angular_count + 3) +
+                             (d->radius > 0.0f ? (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
+                                                     (int)(sizeof ssao_layers / sizeof ssao_layers[0])
+                                               : 0);
     char how[64];
     if (d->runs == 1)
         snprintf(how, sizeof how, "one run");

@@ -11,7 +11,7 @@
 #   make docs            the API reference (doxygen) in build/docs/html
 #   make study           what accuracy costs in time: the accuracy runs of roma-bench on the built-in
 #                        room (AO, direct light, GI, many lights) and unbounded AO on 2CylinderEngine
-#                        (75 to 105 minutes on 2 cores) into docs/bench and their plots into docs/images
+#                        (75 to 103 minutes on 2 cores) into docs/bench and their plots into docs/images
 #                        (docs/accuracy-vs-time.md), then generation and trace time as the scene grows
 #                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points
 #                        it finished are kept in build/ until the run completes); make study-small: the

@@ -16,11 +16,14 @@
  * - A point light outside the box room, 0.3 behind its back wall: direct light on the
  *   ceiling, floor and side walls within 5 cm of that wall, whose shadow rays cross it
  *   within their first cells, stays 0. Farther from the wall the shadow rays meet it in
- *   the rotated maps, where a wall one cell thick can have holes at oblique angles; the
- *   un-snapped walk stops after 8 texels (the paper's bounded steps) and walks the segment
- *   back from the light as far (without that: 1,948 and 1,724 of 2,537 pixels lit). The
- *   few pixels lit there are bounded; shadow rays walked exactly through the BOM to their
- *   end (the accuracy study's baseline) light none. GI from that light (bounce hits lit through the
+ *   the rotated maps, where a wall one cell thick is a staircase the walk tests column to
+ *   column (test_thin_walls; before that test 41 and 12 pixels were lit here, now 27 and 4);
+ *   the un-snapped walk stops after 8 texels (the paper's bounded steps) and walks the segment
+ *   back from the light as far (without that: 1,948 and 1,724 of 2,537 pixels lit), so what
+ *   lies beyond both walks counts as open (16 steps: 20 and 2 pixels, but GI 2.4% darker on
+ *   the default room, 5.2% on blinds). The few pixels lit there are bounded; shadow rays
+ *   walked exactly through the BOM to their end (the accuracy study's baseline) light none.
+ *   GI from that light (bounce hits lit through the
  *   light's RSM) stays 0: only the side of a wall the light sees reflects it. GI by the exact
  *   traversal (bounce rays and a shadow ray to the light walked through the BOM) lets in a
  *   little where a hit's shading point lands beyond an edge, outside the room; GI with a ROMA
@@ -48,10 +51,10 @@
 #define MIN_BLIND_LEAKING_SHARE 0.005
 #define MAX_NEAR_WALL_DIRECT 1e-6 /* measured 0 */
 #define MAX_DF_LEAKING_SHARE 0.006 /* measured at most 0.0046 (cornell) */
-#define MAX_FAR_LIT_SHARE 0.018   /* lit pixels 5 cm and farther from the wall: measured at most 0.0161 */
+#define MAX_FAR_LIT_SHARE 0.012   /* lit pixels 5 cm and farther from the wall: measured at most 0.0106 */
 #define MAX_EXACT_OUTSIDE_GI 3e-4 /* the same by the exact traversal: measured 2.1e-4 and 2.5e-4 */
 #define MAX_EXACT_OUTSIDE_GI_PIXELS 50u /* ... lit in 38 and 46 pixels of about 3,000 */
-#define MAX_RAYS_ROUTE_OUTSIDE_GI 0.08 /* the shadow-ray route: measured 0.065 and 0.073 (a leak) */
+#define MAX_RAYS_ROUTE_OUTSIDE_GI 0.075 /* the shadow-ray route: measured 0.062 and 0.072 (a leak) */
 #define MAX_OUTSIDE_GI 1e-6       /* GI mean from the light outside: measured 0 (0.0147 without the side test) */
 
 typedef struct room {
@@ -211,12 +214,14 @@ static void test_ao(roma_context *ctx)
     roma_scene_destroy(turned_box);
 }
 
-/* Direct light from a point light outside the room. */
-static void test_light_outside(roma_context *ctx, const char *name, const float rot[9])
+/* Direct light from a point light outside the room. Returns the pixels within 5 cm of the
+ * wall that the blind skip lit. */
+static uint32_t test_light_outside(roma_context *ctx, const char *name, const float rot[9])
 {
+    uint32_t blind_near_lit = 0;
     roma_scene *scene = box_room(rot, 1);
     if (!scene)
-        return;
+        return 0;
     static const int variants[] = {0, 1, 5}; /* the walk, the blind skip, the exact traversal */
     for (int vi = 0; vi < 3; ++vi) {
         const int blind = variants[vi];
@@ -261,12 +266,13 @@ static void test_light_outside(roma_context *ctx, const char *name, const float 
                 /* The exact traversal of a closed voxel room lets nothing in, as Embree. */
                 CHECK(near_lit + band_lit + far_lit == 0);
             } else
-                CHECK(near_lit > 0); /* the figure sees the leak of the blind skip */
+                blind_near_lit = near_lit;
         }
         roma_effect_images_free(&img);
         free(px);
     }
     roma_scene_destroy(scene);
+    return blind_near_lit;
 }
 
 /* GI from the light outside (its RSM lights the bounce hits; the exact traversal's shadow rays). */
@@ -315,10 +321,12 @@ static void test_gi_outside(roma_context *ctx, const char *name, const float rot
      * moved blinds' GI bias from -3.8% to -6.3% (test_light_passes), so it is not. */
     CHECK(lit[2] <= MAX_EXACT_OUTSIDE_GI_PIXELS && mean[2] <= MAX_EXACT_OUTSIDE_GI);
     /* GI's other route for point and spot lights, a ROMA shadow ray from each bounce hit,
-     * leaks: the shadow rays run through the GI array (A 4), where a wall one cell thick has
-     * holes at oblique angles and the bounded walk from each end leaves the middle unseen; an
-     * array of A 8 (the direct light's) leaks less. Measured: mean 0.065 (box) and 0.073
-     * (turned), at A 8 0.0055 and 0.031. The RSM route (the default) lets nothing in. */
+     * leaks: the shadow rays run through the GI array (A 4), where the bounded walk from each
+     * end leaves the middle of a segment unseen; an array of A 8 (the direct light's) leaks
+     * less. Measured: mean 0.062 (box) and 0.072 (turned), at A 8 0.0038 and 0.030 (before
+     * the walk's staircase test 0.065, 0.073, 0.0055, 0.031; with 16 steps 0.0054 and 0.055).
+     * The turned box's share that more steps do not remove is the shading point of a hit near
+     * an edge landing beyond it, as above. The RSM route (the default) lets nothing in. */
     CHECK(mean[3] <= MAX_RAYS_ROUTE_OUTSIDE_GI);
     CHECK(mean[4] < mean[3]);
     roma_scene_destroy(scene);
@@ -332,8 +340,10 @@ int main(void)
     test_ao(ctx);
     float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, turned[9];
     rotation((const float[3]){1, 2, 3}, 0.5235988f, turned);
-    test_light_outside(ctx, "box", identity);
-    test_light_outside(ctx, "turned box", turned);
+    /* The figure sees the blind skip's leak (the box: 14 of 38 pixels, the turned box none). */
+    uint32_t blind_near_lit = test_light_outside(ctx, "box", identity);
+    blind_near_lit += test_light_outside(ctx, "turned box", turned);
+    CHECK(blind_near_lit > 0);
     test_gi_outside(ctx, "box", identity);
     test_gi_outside(ctx, "turned box", turned);
     roma_test_context_finish(ctx);

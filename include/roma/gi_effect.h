@@ -31,10 +31,10 @@
  * map new positions; after that the hit triangle's face normal does. Point and spot lights
  * are lit by shadow rays; the reflective shadow maps of the ROMA paper (libroma's offline
  * renderer) need a rasterization of the light's view, which is the engine's to make. Those
- * shadow rays go through the map's rotated arrays with bounded steps, where a wall one voxel
- * thick has holes at oblique angles: a point or spot light outside a closed room lights its
- * inside a little through them (measured in docs/accuracy.md); keep such lights out of the
- * record where that matters.
+ * shadow rays walk the map's rotated arrays with bounded steps from each end, and what lies
+ * beyond both walks counts as open: a point or spot light outside a closed room lights its
+ * inside a little past a wall in the middle of a long segment (measured in docs/accuracy.md);
+ * keep such lights out of the record where that matters.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. Frame slots: as

@@ -374,6 +374,16 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     // Clamped as floats: converting an out-of-range float to int is undefined.
     int ix = int(clamp(floor(px), 0.0, fres - 1.0));
     int iy = int(clamp(floor(py), 0.0, fres - 1.0));
+    // The maps sample a column along its centre, so a thin wall the ray crosses at a slant
+    // is a staircase whose steps can shift from one column to the next by more than the
+    // wall is thick, and a ray can pass between two steps. Each column is also tested past
+    // the ray's exit, over `reach` (one texel of travel along the faster xy axis): a cell
+    // there is the wall ahead, and the ray is blocked when the next column holds a cell
+    // before the ray's entry as far back. Both at once only where a surface runs across
+    // the ray between the two columns; a surface beside the ray is seen as before.
+    float dxy = max(abs(dm.x), abs(dm.y));
+    float reach = dxy > 0.0 ? roma_div(1.0, dxy) : 1.0 / 0.0;
+    bool ahead = false;
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
         roma_unsnapped_steps = step + 1u;
@@ -382,14 +392,20 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
         precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) * inv.y
                          : dm.y < 0.0 ? (float(iy) - m0.y) * inv.y : 1.0 / 0.0;
         float t_next = min(min(tx, ty), t_out);
+        float ta = ahead ? max(t_cur - reach, t_in) : t_cur, tb = min(t_next + reach, t_out);
         // dm.z = 0 with an infinite t would give 0 * inf = NaN.
-        precise float za = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_cur;
-        precise float zb = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_next;
+        precise float za = dm.z == 0.0 ? m0.z : m0.z + dm.z * ta;
+        precise float zb = dm.z == 0.0 ? m0.z : m0.z + dm.z * tb;
+        precise float z_exit = dm.z == 0.0 ? m0.z : m0.z + dm.z * t_next;
+        bool upward = dm.z >= 0.0;
+        // The cell the ray leaves the column in; the cells found past it are ahead.
+        int exit_cell = z_exit < 0.0 ? -1 : z_exit >= fres ? int(res) : int(floor(min(z_exit, fres - 0.5)));
         int c_lo, c_hi;
         if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi)) {
             uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
-            int c = roma_first_cell(base, c_lo, c_hi, dm.z >= 0.0);
-            if (c >= 0) {
+            int c = roma_first_cell(base, c_lo, c_hi, upward);
+            ahead = c >= 0 && (upward ? c > exit_cell : c < exit_cell);
+            if (c >= 0 && !ahead) {
                 hit.info |= ROMA_HIT_FLAG;
                 if (closest) {
                     precise float tc = dm.z > 0.0 ? (float(c) - m0.z) * inv.z
@@ -398,6 +414,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
                 }
                 return hit;
             }
+        } else {
+            ahead = false;
         }
         if (t_next >= t_out)
             return hit;

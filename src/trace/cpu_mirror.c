@@ -153,6 +153,10 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     float py = dm[1] == 0.0f ? m0[1] : m0[1] + dm[1] * t_in;
     int ix = (int)fminf(fmaxf(floorf(px), 0.0f), fres - 1.0f);
     int iy = (int)fminf(fmaxf(floorf(py), 0.0f), fres - 1.0f);
+    /* Each column also tested past the ray's exit: a wall's staircase (trace.glsl says why). */
+    float dxy = fmaxf(fabsf(dm[0]), fabsf(dm[1]));
+    float reach = dxy > 0.0f ? 1.0f / dxy : INFINITY;
+    int ahead = 0;
     float t_cur = t_in;
     for (uint32_t step = 0; step < max_steps; ++step) {
         float tx = dm[0] > 0.0f ? ((float)(ix + 1) - m0[0]) * inv[0]
@@ -160,13 +164,18 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
         float ty = dm[1] > 0.0f ? ((float)(iy + 1) - m0[1]) * inv[1]
                  : dm[1] < 0.0f ? ((float)iy - m0[1]) * inv[1] : INFINITY;
         float t_next = fminf(fminf(tx, ty), t_out);
-        float za = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_cur;
-        float zb = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_next;
+        float ta = ahead ? fmaxf(t_cur - reach, t_in) : t_cur, tb = fminf(t_next + reach, t_out);
+        float za = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * ta;
+        float zb = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * tb;
+        float z_exit = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_next;
+        int upward = dm[2] >= 0.0f;
+        int exit_cell = z_exit < 0.0f ? -1 : z_exit >= fres ? (int)res : (int)floorf(fminf(z_exit, fres - 0.5f));
         int c_lo, c_hi;
         if (cell_range(fminf(za, zb), fmaxf(za, zb), res, &c_lo, &c_hi)) {
             uint32_t base = ((k * res + (uint32_t)iy) * res + (uint32_t)ix) * words;
-            int c = first_cell(maps, base, c_lo, c_hi, dm[2] >= 0.0f);
-            if (c >= 0) {
+            int c = first_cell(maps, base, c_lo, c_hi, upward);
+            ahead = c >= 0 && (upward ? c > exit_cell : c < exit_cell);
+            if (c >= 0 && !ahead) {
                 hit.info |= ROMA_HIT_FLAG;
                 if (closest) {
                     float tc = dm[2] > 0.0f ? ((float)c - m0[2]) * inv[2]
@@ -175,6 +184,8 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
                 }
                 return hit;
             }
+        } else {
+            ahead = 0;
         }
         if (t_next >= t_out)
             return hit;

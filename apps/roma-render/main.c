@@ -278,7 +278,8 @@ static int parse_args(int argc, char **argv, options *o)
     o->out = "out";
     o->tracer = "embree";
     o->width = 640, o->height = 480, o->effects = ROMA_EFFECT_AO, o->spp = 64, o->frames = 1; /* effects: see say_what_happens */
-    o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8, o->max_steps = 8;
+    o->lights = 256, o->seed = 1, o->res = 128, o->angular = 4, o->shadow_angular = 8;
+    o->max_steps = ROMA_DEFAULT_SHADOW_STEPS;
     o->skip = o->ao_skip = -1.0f;
     o->formats = FORMAT_PFM | FORMAT_PNG;
     o->exposure = 1.0f;

@@ -379,8 +379,9 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     // wall is thick, and a ray can pass between two steps. Each column is also tested past
     // the ray's exit, over `reach` (one texel of travel along the faster xy axis): a cell
     // there is the wall ahead, and the ray is blocked when the next column holds a cell
-    // before the ray's entry as far back. Both at once only where a surface runs across
-    // the ray between the two columns; a surface beside the ray is seen as before.
+    // before the ray's entry as far back. Both at once where a surface runs across the ray
+    // between the two columns, or where two stand about a texel off either side of it (a
+    // ray along a narrow slot is blocked more often: docs/accuracy.md weighs the two).
     float dxy = max(abs(dm.x), abs(dm.y));
     float reach = dxy > 0.0 ? roma_div(1.0, dxy) : 1.0 / 0.0;
     bool ahead = false;

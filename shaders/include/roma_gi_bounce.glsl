@@ -103,10 +103,19 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     if (dot(ng, dir) > 0.0)
         ng = -ng; // the side the ray arrives from
     // The point: where the ray meets the triangle's plane when that is near the hit,
-    // otherwise the hit moved onto the plane.
+    // otherwise the hit moved onto the plane. The ray's point can lie beyond an edge of the
+    // surface, behind another one (a snapped ray is not the ray; near a corner the ray
+    // meets the other wall's plane outside the room): it is taken only when the BOM shows
+    // nothing between it and the hit's point, in front of the surface.
     float dn = dot(ng, dir);
     float tp = dot(ng, a - origin) / dn;
-    vec3 y = (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) ? origin + dir * tp : h - ng * dot(ng, h - a);
+    vec3 y_hit = h - ng * dot(ng, h - a);
+    vec3 y = y_hit;
+    if (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) {
+        vec3 from = y_hit + ng * P.offset, to = origin + dir * tp + ng * P.offset;
+        if (!(roma_bom_walk(from, to - from, length(to - from), 64) >= 0.0))
+            y = origin + dir * tp;
+    }
     // Shading normal: the vertex normals at y, when the mesh has them.
     vec3 n = ng;
     vec3 n0 = vec3(0.0);

@@ -326,10 +326,10 @@ static void test_gi_outside(roma_context *ctx, const char *name, const float rot
      * leaks: the shadow rays run through the GI array (A 4), where the bounded walk from each
      * end leaves the middle of a segment unseen; an array of A 8 (the direct light's) leaks
      * less. Measured: mean 0.060 (box) and 0.070 (turned), at A 8 0.0020 and 0.028 (before
-     * the walk's staircase test 0.065, 0.073, 0.0055, 0.031; with 16 steps 0.0054 and 0.055,
-     * without a bound 0.0051 and 0.055).
-     * The turned box's share that more steps do not remove is the shading point of a hit near
-     * an edge landing beyond it, as above. The RSM route (the default) lets nothing in. */
+     * the walk's staircase test and the shading-point check 0.065, 0.073, 0.0055, 0.031; with
+     * 16 steps 0.0054 and 0.055, without a bound 0.0051 and 0.055, both before the check).
+     * What lets in the turned box's share that more steps do not remove is not yet known
+     * (docs/accuracy.md). The RSM route (the default) lets nothing in. */
     CHECK(mean[3] <= MAX_RAYS_ROUTE_OUTSIDE_GI);
     CHECK(mean[4] < mean[3]);
     roma_scene_destroy(scene);

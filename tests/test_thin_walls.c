@@ -13,7 +13,7 @@
  *
  * The cost: in a slot, two such walls 5 or 6 cells apart, a segment along its middle can
  * meet a cell of one wall past a column's exit and of the other before the next column's
- * entry, and is blocked. Measured (A 4 and 8, three slants): 60,886 of 240,000 blocked,
+ * entry, and is blocked. Measured (A 4 and 8, three orientations): 60,886 of 240,000 blocked,
  * 1,923 before. Testing past the exit over half a texel instead of one: 148 pass the walls,
  * 13,021 blocked in slots; over two texels: 10 and 119,235, and more of the many lights'
  * segments in the default room blocked (test_light_passes: eps_s 0.0313 against 0.0285).

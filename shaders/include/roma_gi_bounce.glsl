@@ -1,7 +1,8 @@
 // One-bounce GI's bounce hits (passes/gi.comp and the public roma_gi_effect's
 // effects/gi_images.comp): a snapped closest hit is a cell, not a surface; the surface
 // grid of roma_gi_scene names the triangle in the cells around it, which gives the point
-// where the ray meets that triangle's plane, its normals and its albedo, and the light
+// where the ray meets that triangle's plane (when the BOM shows nothing between that point
+// and the hit), its normals and its albedo, and the light
 // leaving that point is the direct light there, as the reference computes it: one
 // area-light sample (dimensions 7-9) and directional lights through ROMA shadow rays,
 // point and spot lights by shadow rays too (ROMA_GI_PUNCTUAL_RAYS) or left to the caller.
@@ -106,14 +107,17 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     // otherwise the hit moved onto the plane. The ray's point can lie beyond an edge of the
     // surface, behind another one (a snapped ray is not the ray; near a corner the ray
     // meets the other wall's plane outside the room): it is taken only when the BOM shows
-    // nothing between it and the hit's point, in front of the surface.
+    // nothing between it and the hit's point, in front of the surface, walked whole (a
+    // snapped ray's point can be far off to the side: beyond 64 cells the hit's point is
+    // taken). Without the BOM (the blind ray start) the ray's point is taken unchecked.
     float dn = dot(ng, dir);
     float tp = dot(ng, a - origin) / dn;
     vec3 y_hit = h - ng * dot(ng, h - a);
     vec3 y = y_hit;
     if (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) {
         vec3 from = y_hit + ng * P.offset, to = origin + dir * tp + ng * P.offset;
-        if (!(roma_bom_walk(from, to - from, length(to - from), 64) >= 0.0))
+        bool near = roma_start_bom_ == uvec2(0u) || length(to - from) <= 64.0 * roma_start_grid_.origin.w;
+        if (near && !(roma_bom_walk(from, to - from, length(to - from), 128) >= 0.0))
             y = origin + dir * tp;
     }
     // Shading normal: the vertex normals at y, when the mesh has them.

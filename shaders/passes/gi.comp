@@ -6,7 +6,8 @@
 // reference's dimensions 5 and 6, sample frame * spp + k) traced as snapped
 // closest-hit ROMA queries. A hit is a cell, not a surface: the surface grid
 // (roma_gi_scene) names the triangle in the cells around it, which gives the
-// point where the ray meets that triangle's plane, its normals and its albedo.
+// point where the ray meets that triangle's plane (roma_gi_bounce.glsl checks it
+// against the BOM), its normals and its albedo.
 // The light leaving that point is the direct light there, as the reference
 // computes it: one area-light sample (dimensions 7-9) and every directional
 // light through ROMA shadow rays; point and spot lights by shadow rays too, or

@@ -253,16 +253,47 @@ uint roma_texel_base(uint k, uint x, uint y, uint res, uint words)
 // First occupied cell in [c_lo, c_hi] of a texel, scanning up (dir_sign > 0) or down; -1 if none.
 // One loop for both directions: on devices that run both sides of a branch (predicated
 // SIMD), two loops would cost twice.
-int roma_first_cell(uint base, int c_lo, int c_hi, bool upward)
+int roma_first_cell_word(uint base, int c_lo, int c_hi, bool upward, out uint word)
 {
+    word = 0u;
     uint w_lo = uint(c_lo) >> 5, w_hi = uint(c_hi) >> 5;
     for (uint i = 0u; i <= w_hi - w_lo; ++i) {
         uint w = upward ? w_lo + i : w_hi - i;
-        uint bits = roma_fetch_word(base + w) & roma_range_mask(c_lo, c_hi, w);
-        if (bits != 0u)
+        uint fetched = roma_fetch_word(base + w);
+        uint bits = fetched & roma_range_mask(c_lo, c_hi, w);
+        if (bits != 0u) {
+            word = fetched;
             return int(w) * 32 + (upward ? findLSB(bits) : findMSB(bits));
+        }
     }
     return -1;
+}
+
+int roma_first_cell(uint base, int c_lo, int c_hi, bool upward)
+{
+    uint word;
+    return roma_first_cell_word(base, c_lo, c_hi, upward, word);
+}
+
+// The last occupied cell of the run of occupied cells that starts at cell c, going up
+// (upward) or down the column, looked for in c's word (given: already fetched) and the
+// next: a longer run ends there (walls within a degree of the map's axis; a loop to the
+// column's end gave the same on test_thin_walls and test_closed_rooms and cost CPU devices,
+// which run every lane of a loop to the group's longest, 10% of the many-lights pass).
+int roma_run_end(uint base, int c, bool upward, uint res, uint word)
+{
+    int w = c >> 5, b = c & 31;
+    // The cells past c in its word, in the direction of travel.
+    uint empty = ~word & (upward ? (b == 31 ? 0u : 0xffffffffu << uint(b + 1)) : (b == 0 ? 0u : 0xffffffffu >> uint(32 - b)));
+    if (empty == 0u) {
+        w += upward ? 1 : -1;
+        if (w < 0 || w >= int(res >> 5u))
+            return upward ? int(res) - 1 : 0;
+        empty = ~roma_fetch_word(base + uint(w));
+        if (empty == 0u)
+            return upward ? w * 32 + 31 : w * 32;
+    }
+    return upward ? w * 32 + findLSB(empty) - 1 : w * 32 + findMSB(empty) + 1;
 }
 
 // A ray is traced only with a finite origin and tmin <= tmax (NaN bounds miss).
@@ -374,17 +405,17 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     // Clamped as floats: converting an out-of-range float to int is undefined.
     int ix = int(clamp(floor(px), 0.0, fres - 1.0));
     int iy = int(clamp(floor(py), 0.0, fres - 1.0));
-    // The maps sample a column along its centre, so a thin wall the ray crosses at a slant
-    // is a staircase whose steps can shift from one column to the next by more than the
-    // wall is thick, and a ray can pass between two steps. Each column is also tested past
-    // the ray's exit, over `reach` (one texel of travel along the faster xy axis): a cell
-    // there is the wall ahead, and the ray is blocked when the next column holds a cell
-    // before the ray's entry as far back. Both at once where a surface runs across the ray
-    // between the two columns, or where two stand about a texel off either side of it (a
-    // ray along a narrow slot is blocked more often: docs/accuracy.md weighs the two).
-    float dxy = max(abs(dm.x), abs(dm.y));
-    float reach = dxy > 0.0 ? roma_div(1.0, dxy) : 1.0 / 0.0;
-    bool ahead = false;
+    // The maps sample a column along its centre, so a thin wall that runs close to the map's
+    // z axis is a staircase whose steps shift from one column to the next by more than a
+    // step is long, and a ray can pass between two steps. Each column is also searched
+    // ROMA_RUN_WINDOW cells past the ray's exit: a cell there starts a step of a wall ahead,
+    // and the next column is searched back from the ray's entry as far as that step is long
+    // (a cell more, less its distance from the exit). A cell found there is the wall's next
+    // step behind the ray: the ray went through the wall between the two columns. A search
+    // back that leaves the map cannot see that step and blocks the ray too. A ray along a
+    // narrow slot can meet a cell of each wall so and is blocked (docs/accuracy.md weighs it).
+    float run_window = ROMA_RUN_WINDOW * abs(inv.z);
+    float back = 0.0; // how far before its entry a column is searched (ray parameter)
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
         roma_unsnapped_steps = step + 1u;
@@ -393,7 +424,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
         precise float ty = dm.y > 0.0 ? (float(iy + 1) - m0.y) * inv.y
                          : dm.y < 0.0 ? (float(iy) - m0.y) * inv.y : 1.0 / 0.0;
         float t_next = min(min(tx, ty), t_out);
-        float ta = ahead ? max(t_cur - reach, t_in) : t_cur, tb = min(t_next + reach, t_out);
+        precise float ta = t_cur - back;
+        precise float tb = min(t_next + run_window, t_out);
         // dm.z = 0 with an infinite t would give 0 * inf = NaN.
         precise float za = dm.z == 0.0 ? m0.z : m0.z + dm.z * ta;
         precise float zb = dm.z == 0.0 ? m0.z : m0.z + dm.z * tb;
@@ -401,22 +433,28 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
         bool upward = dm.z >= 0.0;
         // The cell the ray leaves the column in; the cells found past it are ahead.
         int exit_cell = z_exit < 0.0 ? -1 : z_exit >= fres ? int(res) : int(floor(min(z_exit, fres - 0.5)));
-        int c_lo, c_hi;
-        if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi)) {
-            uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
-            int c = roma_first_cell(base, c_lo, c_hi, upward);
-            ahead = c >= 0 && (upward ? c > exit_cell : c < exit_cell);
-            if (c >= 0 && !ahead) {
-                hit.info |= ROMA_HIT_FLAG;
-                if (closest) {
-                    precise float tc = dm.z > 0.0 ? (float(c) - m0.z) * inv.z
-                                     : dm.z < 0.0 ? (float(c + 1) - m0.z) * inv.z : t_cur;
-                    hit.t = max(tc, t_cur);
-                }
-                return hit;
+        bool unseen = back > 0.0 && (upward ? za < 0.0 : za >= fres);
+        uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
+        int c = -1, c_lo, c_hi;
+        uint word = 0u;
+        if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi))
+            c = roma_first_cell_word(base, c_lo, c_hi, upward, word);
+        bool ahead = c >= 0 && (upward ? c > exit_cell : c < exit_cell);
+        if ((c >= 0 && !ahead) || (c < 0 && unseen)) {
+            hit.info |= ROMA_HIT_FLAG;
+            if (closest) {
+                precise float tc = c < 0 ? t_cur
+                                 : dm.z > 0.0 ? (float(c) - m0.z) * inv.z
+                                 : dm.z < 0.0 ? (float(c + 1) - m0.z) * inv.z : t_cur;
+                hit.t = max(tc, t_cur);
             }
-        } else {
-            ahead = false;
+            return hit;
+        }
+        back = 0.0;
+        if (ahead) {
+            precise float gap = upward ? float(c) - z_exit : z_exit - float(c + 1);
+            precise float span = float(abs(roma_run_end(base, c, upward, res, word) - c) + 2) - gap;
+            back = max(span, 0.0) * abs(inv.z);
         }
         if (t_next >= t_out)
             return hit;

@@ -92,6 +92,10 @@ ROMA_STRUCT_END(roma_map_frame)
  * pipelines with that value, or defines ROMA_CORRECTED_DIVISION before including. */
 #define ROMA_CORRECTED_DIVISION_CONSTANT_ID 200
 
+/** Cells an un-snapped walk searches each column past the ray's exit for a step of a thin
+ * wall ahead (roma_trace_unsnapped in roma/trace.glsl; the C mirror uses the same value). */
+#define ROMA_RUN_WINDOW 16.0
+
 /** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the
  * ray was folded (its direction had z < 0 and was traced backwards in the map of -d). */
 #define ROMA_HIT_FLAG 1u

@@ -2,6 +2,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "rotate/directions.h"
 
@@ -90,6 +91,24 @@ static int first_cell(const uint32_t *maps, uint32_t base, int c_lo, int c_hi, i
     return -1;
 }
 
+/* The last occupied cell of the run that starts at cell c, going up or down the column,
+ * looked for in c's word and the next, as roma_run_end in trace.glsl. */
+static int run_end(const uint32_t *maps, uint32_t base, int c, int upward, uint32_t res)
+{
+    int w = c >> 5, b = c & 31;
+    uint32_t empty = ~maps[base + (uint32_t)w] &
+                     (upward ? (b == 31 ? 0u : 0xffffffffu << (b + 1)) : (b == 0 ? 0u : 0xffffffffu >> (32 - b)));
+    if (!empty) {
+        w += upward ? 1 : -1;
+        if (w < 0 || w >= (int)(res >> 5))
+            return upward ? (int)res - 1 : 0;
+        empty = ~maps[base + (uint32_t)w];
+        if (!empty)
+            return upward ? w * 32 + 31 : w * 32;
+    }
+    return upward ? w * 32 + __builtin_ctz(empty) - 1 : w * 32 + 31 - __builtin_clz(empty) + 1;
+}
+
 static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
                               int folded, const uint32_t *maps, const roma_ray *ray, int closest,
                               roma_hit hit)
@@ -153,10 +172,10 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     float py = dm[1] == 0.0f ? m0[1] : m0[1] + dm[1] * t_in;
     int ix = (int)fminf(fmaxf(floorf(px), 0.0f), fres - 1.0f);
     int iy = (int)fminf(fmaxf(floorf(py), 0.0f), fres - 1.0f);
-    /* Each column also tested past the ray's exit: a wall's staircase (trace.glsl says why). */
-    float dxy = fmaxf(fabsf(dm[0]), fabsf(dm[1]));
-    float reach = dxy > 0.0f ? 1.0f / dxy : INFINITY;
-    int ahead = 0;
+    /* Each column also searched past the ray's exit for a step of a thin wall ahead, and the
+     * next column back from its entry for the wall's next step (trace.glsl says why). */
+    const float run_window = (float)ROMA_RUN_WINDOW * fabsf(inv[2]);
+    float back = 0.0f;
     float t_cur = t_in;
     for (uint32_t step = 0; step < max_steps; ++step) {
         float tx = dm[0] > 0.0f ? ((float)(ix + 1) - m0[0]) * inv[0]
@@ -164,28 +183,33 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
         float ty = dm[1] > 0.0f ? ((float)(iy + 1) - m0[1]) * inv[1]
                  : dm[1] < 0.0f ? ((float)iy - m0[1]) * inv[1] : INFINITY;
         float t_next = fminf(fminf(tx, ty), t_out);
-        float ta = ahead ? fmaxf(t_cur - reach, t_in) : t_cur, tb = fminf(t_next + reach, t_out);
+        float ta = t_cur - back, tb = fminf(t_next + run_window, t_out);
         float za = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * ta;
         float zb = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * tb;
         float z_exit = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_next;
         int upward = dm[2] >= 0.0f;
         int exit_cell = z_exit < 0.0f ? -1 : z_exit >= fres ? (int)res : (int)floorf(fminf(z_exit, fres - 0.5f));
-        int c_lo, c_hi;
-        if (cell_range(fminf(za, zb), fmaxf(za, zb), res, &c_lo, &c_hi)) {
-            uint32_t base = ((k * res + (uint32_t)iy) * res + (uint32_t)ix) * words;
-            int c = first_cell(maps, base, c_lo, c_hi, upward);
-            ahead = c >= 0 && (upward ? c > exit_cell : c < exit_cell);
-            if (c >= 0 && !ahead) {
-                hit.info |= ROMA_HIT_FLAG;
-                if (closest) {
-                    float tc = dm[2] > 0.0f ? ((float)c - m0[2]) * inv[2]
-                             : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) * inv[2] : t_cur;
-                    hit.t = fmaxf(tc, t_cur);
-                }
-                return hit;
+        int unseen = back > 0.0f && (upward ? za < 0.0f : za >= fres);
+        uint32_t base = ((k * res + (uint32_t)iy) * res + (uint32_t)ix) * words;
+        int c = -1, c_lo, c_hi;
+        if (cell_range(fminf(za, zb), fmaxf(za, zb), res, &c_lo, &c_hi))
+            c = first_cell(maps, base, c_lo, c_hi, upward);
+        int ahead = c >= 0 && (upward ? c > exit_cell : c < exit_cell);
+        if ((c >= 0 && !ahead) || (c < 0 && unseen)) {
+            hit.info |= ROMA_HIT_FLAG;
+            if (closest) {
+                float tc = c < 0 ? t_cur
+                         : dm[2] > 0.0f ? ((float)c - m0[2]) * inv[2]
+                         : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) * inv[2] : t_cur;
+                hit.t = fmaxf(tc, t_cur);
             }
-        } else {
-            ahead = 0;
+            return hit;
+        }
+        back = 0.0f;
+        if (ahead) {
+            float gap = upward ? (float)c - z_exit : z_exit - (float)(c + 1);
+            float span = (float)(abs(run_end(maps, base, c, upward, res) - c) + 2) - gap;
+            back = fmaxf(span, 0.0f) * fabsf(inv[2]);
         }
         if (t_next >= t_out)
             return hit;

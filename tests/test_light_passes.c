@@ -47,17 +47,19 @@
 /* GI, 1,024 samples (64 x 16 frames), A = 4: relative MAE and |relative bias| against the
  * reference on the same samples, measured + 0.005. */
 #define MAX_GI_CORNELL_MAE 0.335        /* measured 0.3304: the lamp's ceiling band, below */
-#define MAX_GI_CORNELL_BIAS 0.026       /* measured -0.0220 */
+#define MAX_GI_CORNELL_BIAS 0.026       /* measured -0.0238 */
 #define MIN_GI_CEILING_SHARE 0.164      /* measured 0.169 */
 /* The composed image (direct + GI) of the room, the two cases above on the same pixels:
  * the issue's target is 3%. */
-#define MAX_COMPOSED_CORNELL_BIAS 0.028 /* measured -0.0250 */
+#define MAX_COMPOSED_CORNELL_BIAS 0.028 /* measured -0.0256 */
 #define MAX_GI_SPOT_MAE 0.252           /* measured 0.2463 (RSM) */
 #define MAX_GI_SPOT_BIAS 0.030          /* measured +0.0248 (RSM) */
-#define MAX_GI_SPOT_RAYS_MAE 0.258      /* measured 0.2532 (shadow rays) */
-#define MAX_GI_SPOT_RAYS_BIAS 0.026     /* measured +0.0235 (shadow rays) */
-#define MAX_GI_BLINDS_MAE 0.269         /* measured 0.2650 */
-#define MAX_GI_BLINDS_BIAS 0.043        /* measured -0.0396: the walk back from the sky, docs/accuracy.md */
+#define MAX_GI_SPOT_RAYS_MAE 0.257      /* measured 0.2517 (shadow rays) */
+#define MAX_GI_SPOT_RAYS_BIAS 0.022     /* measured +0.0186 (shadow rays) */
+#define MAX_GI_BLINDS_MAE 0.255         /* measured 0.2501 */
+#define MAX_GI_BLINDS_BIAS 0.063        /* measured -0.0585; -0.0396 while snapped hits found from
+                                         * behind a surface were shaded on its far side (the window
+                                         * wall's is in the sun; docs/accuracy.md) */
 #define MAX_STOCHASTIC_ERR 0.026   /* measured 0.0203 (sampling noise of 512 tests per pixel) */
 #define MAX_STOCHASTIC_BIAS 0.011  /* measured 0.0055 */
 #define MAX_COUNT_ERR 0.030       /* measured 0.0259, the 4-frame average against the same reference */

@@ -56,8 +56,16 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     // near the light (a light outside a room). That end has no skip: an area light's end
     // lies an offset off the emitter, above its cells; a point light within a cell of a
     // wall can meet the wall's cells there.
-    return isinf(tmax) || !roma_unsnapped_gave_up ||
-           (roma_trace_unsnapped(origin + d * tmax, -d, 0.0, tmax - tmin, false, max_steps).info & ROMA_HIT_FLAG) == 0u;
+    // A ray without an end (the sun) has its occluders anywhere to the scene's edge (a
+    // room's roof and walls, a window's blinds): beyond the walk it is traced snapped, as
+    // GI traces the sun, which sees them all, off the ray by up to half a stratum. Counted
+    // open beyond the walk, a closed room with the sun outside was lit in a third of its
+    // pixels; walked to the map's edge instead (tried) `blinds` came out as dark.
+    if (!roma_unsnapped_gave_up)
+        return true;
+    return isinf(tmax) ? (roma_trace_snapped(origin, d, tmin, tmax, false).info & ROMA_HIT_FLAG) == 0u
+                       : (roma_trace_unsnapped(origin + d * tmax, -d, 0.0, tmax - tmin, false, max_steps).info &
+                          ROMA_HIT_FLAG) == 0u;
 }
 
 // 1 when the segment origin -> target is free between 0 and `shorten` (world

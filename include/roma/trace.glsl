@@ -277,9 +277,9 @@ int roma_first_cell(uint base, int c_lo, int c_hi, bool upward)
 
 // The last occupied cell of the run of occupied cells that starts at cell c, going up
 // (upward) or down the column, looked for in c's word (given: already fetched) and the
-// next: a longer run ends there (walls within a degree of the map's axis; a loop to the
-// column's end gave the same on test_thin_walls and test_closed_rooms and cost CPU devices,
-// which run every lane of a loop to the group's longest, 10% of the many-lights pass).
+// next: a longer run ends there (walls within a degree of the map's axis). A loop to the
+// column's end gave the same on test_thin_walls and test_closed_rooms at about the same
+// cost on CPU devices; c's word alone cost less and let more rays through walls.
 int roma_run_end(uint base, int c, bool upward, uint res, uint word)
 {
     int w = c >> 5, b = c & 31;
@@ -411,8 +411,10 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     // ROMA_RUN_WINDOW cells past the ray's exit: a cell there starts a step of a wall ahead,
     // and the next column is searched back from the ray's entry as far as that step is long
     // (a cell more, less its distance from the exit). A cell found there is the wall's next
-    // step behind the ray: the ray went through the wall between the two columns. A search
-    // back that leaves the map cannot see that step and blocks the ray too. A ray along a
+    // step behind the ray: the ray went through the wall between the two columns, at t_cur.
+    // The search back may reach before the ray's start (tmin): what it finds there is that
+    // step, not a hit before tmin. A search back that leaves the map and finds no cell
+    // cannot see the step and blocks the ray too. A ray along a
     // narrow slot can meet a cell of each wall so and is blocked (docs/accuracy.md weighs it).
     float run_window = ROMA_RUN_WINDOW * abs(inv.z);
     float back = 0.0; // how far before its entry a column is searched (ray parameter)

@@ -58,9 +58,11 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     // wall can meet the wall's cells there.
     // A ray without an end (the sun) has its occluders anywhere to the scene's edge (a
     // room's roof and walls, a window's blinds): beyond the walk it is traced snapped, as
-    // GI traces the sun, which sees them all, off the ray by up to half a stratum. Counted
-    // open beyond the walk, a closed room with the sun outside was lit in a third of its
-    // pixels; walked to the map's edge instead (tried) `blinds` came out as dark.
+    // GI traces the sun, which sees them all, off the ray by up to half a stratum, from
+    // tmin: started where the walk stopped (tried), the column began beyond the walls next
+    // to some points and 90 of the closed room's 3,072 pixels were lit. Counted open beyond
+    // the walk, a closed room with the sun outside was lit in a third of its pixels; walked
+    // to the map's edge instead (tried) `blinds` came out about as dark.
     if (!roma_unsnapped_gave_up)
         return true;
     return isinf(tmax) ? (roma_trace_snapped(origin, d, tmin, tmax, false).info & ROMA_HIT_FLAG) == 0u

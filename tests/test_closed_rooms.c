@@ -45,6 +45,7 @@
 #include "passes/effect_render.h"
 #include "roma/builtin_scenes.h"
 #include "roma/light_effect.h"
+#include "roma_shared.h"
 #include "trace/cpu_mirror.h"
 
 #define W 64u
@@ -64,9 +65,6 @@
 #define MAX_RAYS_ROUTE_OUTSIDE_GI 0.065 /* the shadow-ray route: measured 0.059 and 0.017 (a leak) */
 #define MAX_UNBOUNDED_PASSING 20u /* segments walked without a step bound: measured 0 and 16 (box, A 8) */
 #define MAX_OUTSIDE_GI 1e-6       /* GI mean from the light outside: measured 0 (0.0147 without the side test) */
-
-/* The passes walk a shadow ray's first skips exactly (ROMA_START_WALK, roma_lights.glsl). */
-#define ROMA_START_WALK_SKIPS 4.0f
 
 typedef struct room {
     roma_scene *scene;
@@ -473,7 +471,7 @@ static uint32_t unbounded_segments_passing(roma_context *ctx, const char *name, 
             for (int a = 0; a < 3; ++a)
                 v[a] = light[a] - world[a];
             float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-            if (crossing * len <= ROMA_START_WALK_SKIPS * tmin)
+            if (crossing * len <= ROMA_START_WALK * tmin)
                 continue; /* the walked start sees the wall */
             roma_ray r = {{world[0], world[1], world[2]}, tmin, {v[0] / len, v[1] / len, v[2] / len}, len};
             roma_ray back = {{light[0], light[1], light[2]}, 0.0f, {-r.dir[0], -r.dir[1], -r.dir[2]}, len - tmin};

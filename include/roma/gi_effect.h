@@ -33,8 +33,8 @@
  * renderer) need a rasterization of the light's view, which is the engine's to make. Those
  * shadow rays walk the map's rotated arrays with bounded steps from each end, and what lies
  * beyond both walks counts as open: a point or spot light outside a closed room lights its
- * inside a little (measured in docs/accuracy.md, where not all of it is explained yet); keep
- * such lights out of the record where that matters.
+ * inside a little (measured in docs/accuracy.md); keep such lights out of the record where
+ * that matters.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. Frame slots: as

@@ -103,9 +103,9 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     ng /= area2;
     if (dot(ng, dir) > 0.0)
         ng = -ng; // the side the ray arrives from
-    // A snapped ray (its candidate's column, through the origin's texel) can find a surface
-    // from the side the ray's origin is not on: near a wall the column can start on the
-    // wall's far side. Such a hit is not one the ray can reach.
+    // A surface whose plane lies behind the ray's origin is not one the ray can reach: a
+    // snapped ray (its candidate's column, through the origin's texel) can find a wall from
+    // its far side, where the column starts next to it.
     if (dot(ng, origin - a) < 0.0)
         return vec3(0.0);
     // The point: where the ray meets the triangle's plane when that is near the hit,

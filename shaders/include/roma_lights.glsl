@@ -18,8 +18,7 @@
 // can have holes. Measured on test_closed_rooms (a light behind the wall; before the
 // walk's staircase test, roma_trace_unsnapped): 15 of 46 surface pixels within 10 cm of
 // the wall lit with one skip length, 3 with four. A pass
-// may walk less (roma_start_walk).
-const float ROMA_START_WALK = 4.0;
+// may walk less (roma_start_walk). ROMA_START_WALK: roma_shared.h, shared with the tests.
 float roma_start_walk = ROMA_START_WALK;
 
 // The accuracy study's baseline for shadows: every segment walked exactly through the BOM

@@ -13,6 +13,9 @@
 #define ROMA_FLOAT float
 #endif
 
+/* Skip lengths of a shadow ray's start walked exactly through the BOM (roma_lights.glsl). */
+#define ROMA_START_WALK 4.0f
+
 /* util/fill_u32.comp: writes value + index * stride into a storage buffer. */
 #define ROMA_FILL_WORKGROUP_SIZE 64
 #define ROMA_FILL_BINDING_OUTPUT 0

@@ -140,7 +140,7 @@ static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame
 
 static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
                                 const uint32_t *maps, const roma_ray *ray, const float dn[3], int closest,
-                                uint32_t max_steps, roma_hit hit)
+                                uint32_t max_steps, roma_cpu_walk_counts *counts, roma_hit hit)
 {
     const uint32_t res = grid->dims[0], words = grid->dims[1];
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
@@ -203,10 +203,19 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
                          : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) * inv[2] : t_cur;
                 hit.t = fmaxf(tc, t_cur);
             }
+            if (counts) {
+                /* A cell wholly before the column's entry was found only by the search back. */
+                float z_entry = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_cur;
+                counts->unseen_hits += c < 0;
+                int before_entry = upward ? (float)(c + 1) <= z_entry : (float)c >= z_entry;
+                counts->back_hits += c >= 0 && back > 0.0f && before_entry;
+            }
             return hit;
         }
         back = 0.0f;
         if (ahead) {
+            if (counts)
+                ++counts->steps_ahead;
             float gap = upward ? (float)c - z_exit : z_exit - (float)(c + 1);
             float span = (float)(abs(run_end(maps, base, c, upward, res) - c) + 2) - gap;
             back = fmaxf(span, 0.0f) * fabsf(inv[2]);
@@ -228,6 +237,14 @@ roma_hit roma_cpu_trace(const roma_grid_params *grid, const roma_map_frame *fram
                         const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
                         uint32_t max_steps, int map_override, int folded_override)
 {
+    return roma_cpu_trace_counted(grid, frames, maps, ray, mode, max_steps, map_override, folded_override, NULL);
+}
+
+roma_hit roma_cpu_trace_counted(const roma_grid_params *grid, const roma_map_frame *frames,
+                                const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
+                                uint32_t max_steps, int map_override, int folded_override,
+                                roma_cpu_walk_counts *counts)
+{
     float unit[3];
     const float *o = ray->origin;
     int valid = roma_unit_direction(ray->dir, unit) && isfinite(o[0]) && isfinite(o[1]) &&
@@ -244,5 +261,5 @@ roma_hit roma_cpu_trace(const roma_grid_params *grid, const roma_map_frame *fram
     int closest = (mode & 1) != 0;
     if (mode == ROMA_TRACE_SNAPPED_ANY || mode == ROMA_TRACE_SNAPPED_CLOSEST)
         return trace_snapped(grid, &frames[k], k, folded, maps, ray, closest, hit);
-    return trace_unsnapped(grid, &frames[k], k, maps, ray, unit, closest, max_steps ? max_steps : 8, hit);
+    return trace_unsnapped(grid, &frames[k], k, maps, ray, unit, closest, max_steps ? max_steps : 8, counts, hit);
 }

@@ -1,6 +1,7 @@
-/* Plain C mirror of the GPU rotation and trace (shaders/rotate/rotate_gather.comp, which the scatter rotation matches bit for bit, and
- * include/roma/trace.glsl): same parameters, same float expressions in
- * the same order, so tests can check the GPU bit for bit on a downloaded BOM. */
+/* Plain C mirror of the GPU rotation and trace (shaders/rotate/rotate_gather.comp, which the
+ * scatter rotation matches bit for bit, and include/roma/trace.glsl): same parameters, same
+ * float expressions in the same order, so tests can check the GPU bit for bit on a
+ * downloaded BOM. */
 #ifndef ROMA_CPU_MIRROR_H
 #define ROMA_CPU_MIRROR_H
 
@@ -22,5 +23,19 @@ uint32_t roma_cpu_select_map(const float dir[3], uint32_t angular, int *folded);
 roma_hit roma_cpu_trace(const roma_grid_params *grid, const roma_map_frame *frames,
                         const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
                         uint32_t max_steps, int map_override, int folded_override);
+
+/* What the un-snapped walks of roma_cpu_trace_counted met, summed over calls, so that a
+ * test can show its rays reach every branch of the walk it compares the GPU on. */
+typedef struct roma_cpu_walk_counts {
+    uint64_t steps_ahead; /* columns where a cell past the ray's exit started a wall's step ahead */
+    uint64_t back_hits;   /* rays blocked by a cell the next column's search back found before its entry */
+    uint64_t unseen_hits; /* rays blocked because that search back left the map with no cell found */
+} roma_cpu_walk_counts;
+
+/* roma_cpu_trace, adding to *counts (may be NULL) what an un-snapped walk met. */
+roma_hit roma_cpu_trace_counted(const roma_grid_params *grid, const roma_map_frame *frames,
+                                const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
+                                uint32_t max_steps, int map_override, int folded_override,
+                                roma_cpu_walk_counts *counts);
 
 #endif /* ROMA_CPU_MIRROR_H */

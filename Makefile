@@ -10,8 +10,8 @@
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
 #   make docs            the API reference (doxygen) in build/docs/html
 #   make study           what accuracy costs in time: the accuracy runs of roma-bench on the built-in
-#                        room (AO, direct light, GI, many lights), direct light and GI on the built-in
-#                        blinds and unbounded AO on 2CylinderEngine (90 to 125 minutes on 2 cores) into
+#                        room (AO, direct light, GI, many lights), the same but AO on the built-in
+#                        blinds and unbounded AO on 2CylinderEngine (90 to 130 minutes on 2 cores) into
 #                        docs/bench and their plots into docs/images
 #                        (docs/accuracy-vs-time.md), then generation and trace time as the scene grows
 #                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points
@@ -97,6 +97,10 @@ study: build
 	    --csv docs/bench/blinds_gi_accuracy.csv --plot docs/images/accuracy_vs_time_blinds_gi.png \
 	    --cache $(BUILD)/study_blinds_gi.cache > docs/bench/blinds_gi_accuracy.txt
 	rm -f $(BUILD)/study_blinds_gi.cache
+	$(BUILD)/apps/roma-bench --accuracy --scene builtin:blinds --effect lights --runs 3 \
+	    --csv docs/bench/blinds_lights_accuracy.csv --plot docs/images/accuracy_vs_time_blinds_lights.png \
+	    --cache $(BUILD)/study_blinds_lights.cache > docs/bench/blinds_lights_accuracy.txt
+	rm -f $(BUILD)/study_blinds_lights.cache
 	$(BUILD)/apps/roma-bench --accuracy --scene scenes/2CylinderEngine.glb --runs 3 --csv docs/bench/engine_accuracy.csv \
 	    --plot docs/images/accuracy_vs_time_engine_ao.png --cache $(BUILD)/study_engine.cache \
 	    > docs/bench/engine_accuracy.txt
@@ -106,7 +110,7 @@ study: build
 	    > docs/bench/growth.txt
 	cat docs/bench/cornell_accuracy.txt docs/bench/cornell_direct_accuracy.txt docs/bench/cornell_gi_accuracy.txt \
 	    docs/bench/cornell_lights_accuracy.txt docs/bench/blinds_direct_accuracy.txt docs/bench/blinds_gi_accuracy.txt \
-	    docs/bench/engine_accuracy.txt docs/bench/growth.txt
+	    docs/bench/blinds_lights_accuracy.txt docs/bench/engine_accuracy.txt docs/bench/growth.txt
 
 study-small: build
 	mkdir -p $(OUT)/study

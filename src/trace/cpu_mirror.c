@@ -207,7 +207,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
                 /* A cell wholly before the column's entry was found only by the search back. */
                 float z_entry = dm[2] == 0.0f ? m0[2] : m0[2] + dm[2] * t_cur;
                 counts->unseen_hits += c < 0;
-                int before_entry = upward ? (float)(c + 1) <= z_entry : (float)c >= z_entry;
+                int before_entry = upward ? (float)(c + 1) <= z_entry : (float)c > z_entry;
                 counts->back_hits += c >= 0 && back > 0.0f && before_entry;
             }
             return hit;

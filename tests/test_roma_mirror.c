@@ -36,10 +36,6 @@ static void make_rays(const roma_map_info *info, uint32_t n, uint32_t seed, roma
     }
 }
 
-/* What the un-snapped rays of every case met in the walk, so the test shows it compared the
- * GPU with the mirror on each of the walk's branches. */
-static roma_cpu_walk_counts walk_counts;
-
 static int same_hit(roma_hit a, roma_hit b)
 {
     return a.info == b.info && memcmp(&a.t, &b.t, sizeof a.t) == 0;
@@ -82,9 +78,10 @@ static const char *mode_name(roma_bom_mode mode)
          : mode == ROMA_BOM_DOMINANT ? "dominant    " : "conservative";
 }
 
-/* Returns the number of occupied BOM cells. */
+/* Returns the number of occupied BOM cells; adds what the un-snapped rays met in the walk
+ * to *walk_counts. */
 static uint64_t check_scene(roma_context *ctx, roma_scene *scene, const char *name, uint32_t res,
-                            uint32_t angular, roma_bom_mode mode)
+                            uint32_t angular, roma_bom_mode mode, roma_cpu_walk_counts *walk_counts)
 {
     roma_map_desc desc = {.resolution = res, .angular = angular, .bom_mode = mode};
     roma_map *map = NULL;
@@ -132,7 +129,7 @@ static uint64_t check_scene(roma_context *ctx, roma_scene *scene, const char *na
                 ++selection;
             roma_hit cpu = roma_cpu_trace_counted(&grid, frames, maps, &rays[i], (roma_trace_mode)m, 8,
                                                   (int)ROMA_HIT_MAP(gpu[i].info), (gpu[i].info >> 16) & 1,
-                                                  &walk_counts);
+                                                  walk_counts);
             hits += gpu[i].info & 1;
             if (!same_hit(cpu, gpu[i])) {
                 if (mismatch < 3)
@@ -184,27 +181,30 @@ int main(void)
     if (!ctx)
         return roma_test_finish("test_roma_mirror");
     roma_scene *cornell = NULL, *blinds = NULL, *spot = NULL;
+    /* What the un-snapped rays of every case met in the walk, so the test shows it compared the
+     * GPU with the mirror on each of the walk's branches. */
+    roma_cpu_walk_counts walk_counts = {0, 0, 0};
     CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &cornell), ROMA_SUCCESS);
     CHECK_RESULT(roma_scene_create_builtin("blinds", NULL, &blinds), ROMA_SUCCESS);
-    check_scene(ctx, cornell, "cornell", 32, 2, ROMA_BOM_UNION3);
-    check_scene(ctx, cornell, "cornell", 64, 3, ROMA_BOM_EXACT);
-    check_scene(ctx, blinds, "blinds", 128, 4, ROMA_BOM_EXACT);
+    check_scene(ctx, cornell, "cornell", 32, 2, ROMA_BOM_UNION3, &walk_counts);
+    check_scene(ctx, cornell, "cornell", 64, 3, ROMA_BOM_EXACT, &walk_counts);
+    check_scene(ctx, blinds, "blinds", 128, 4, ROMA_BOM_EXACT, &walk_counts);
     /* Every other BOM cell occupied: the cell list (RES^3 / 16) overflows and the
      * gather rotates instead. */
     roma_scene *dense = dense_planes(32);
     if (dense) {
-        uint64_t cells = check_scene(ctx, dense, "dense", 32, 2, ROMA_BOM_EXACT);
+        uint64_t cells = check_scene(ctx, dense, "dense", 32, 2, ROMA_BOM_EXACT, &walk_counts);
         CHECK(cells > 32 * 32 * 32 / 16);
         roma_scene_destroy(dense);
     }
-    check_scene(ctx, cornell, "cornell", 64, 4, ROMA_BOM_DOMINANT);
-    check_scene(ctx, blinds, "blinds", 128, 3, ROMA_BOM_CONSERVATIVE);
+    check_scene(ctx, cornell, "cornell", 64, 4, ROMA_BOM_DOMINANT, &walk_counts);
+    check_scene(ctx, blinds, "blinds", 128, 3, ROMA_BOM_CONSERVATIVE, &walk_counts);
     /* 81 maps at RES 128: more than 65535 workgroups, so the 2D dispatch path runs. */
-    check_scene(ctx, cornell, "cornell", 128, 9, ROMA_BOM_CONSERVATIVE);
+    check_scene(ctx, cornell, "cornell", 128, 9, ROMA_BOM_CONSERVATIVE, &walk_counts);
     char path[1024];
     if (roma_test_scene_file("spot.glb", path, sizeof path) &&
         roma_scene_load_gltf(path, NULL, &spot) == ROMA_SUCCESS)
-        check_scene(ctx, spot, "spot", 64, 8, ROMA_BOM_CONSERVATIVE);
+        check_scene(ctx, spot, "spot", 64, 8, ROMA_BOM_CONSERVATIVE, &walk_counts);
     else
         printf("spot.glb not available: skipping that case\n");
     /* Every branch of the un-snapped walk met by rays the GPU answered as the mirror did. */

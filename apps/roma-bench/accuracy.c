@@ -734,19 +734,10 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
               : gi     ? sweep_gi(&s, &cam, &anchor_ms, &anchor_mae)
               : lights ? sweep_lights(&s, &cam, &anchor_ms, &anchor_mae)
                        : sweep_ao(&s, &cam, &anchor_ms, &anchor_mae);
-    if (s.have_ref) {
-        /* The scale the MAE and bias are read against. */
-        double sum = 0.0;
-        size_t covered = 0;
-        for (size_t i = 0; i < (size_t)w * h; ++i)
-            if (s.coverage.pixels[i] > 0.0f) {
-                ++covered;
-                for (uint32_t c = 0; c < channels; ++c)
-                    sum += s.ref_image.pixels[i * channels + c];
-            }
-        if (covered)
-            printf("\nThe reference's mean over those pixels: %.4f.\n", sum / (double)(covered * channels));
-    }
+    roma_image_metrics ref_metrics; /* the scale the MAE and bias are read against */
+    if (s.have_ref && roma_image_compare(&s.ref_image, &s.ref_image, &s.coverage, 0.0f, &ref_metrics) == ROMA_SUCCESS &&
+        ref_metrics.pixel_count > 0)
+        printf("\nThe reference's mean over those pixels: %.4f.\n", ref_metrics.mean_b);
     if (s.have_ref && embree_equal_time(ref, s.px, s.ref_values, w, h, d, s.light_positions, s.light_count, anchor_ms,
                                         anchor_mae, &s.ref_image, &s.coverage, s.times, csv, s.points,
                                         &s.point_count))

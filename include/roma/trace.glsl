@@ -219,7 +219,7 @@ vec3 roma_to_map_rows(vec4 r0, vec4 r1, vec4 r2, vec3 p)
 // World position -> map cell coordinates of frame f (roma/trace_types.h).
 vec3 roma_to_map(roma_grid_params grid, roma_map_frame f, vec3 p)
 {
-    precise vec3 r = p - grid.origin.xyz;
+    precise vec3 r = (p - grid.origin.xyz) * grid.inv_cell.y;
     return roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, r);
 }
 
@@ -326,8 +326,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
     roma_map_frame f = roma_fetch_frame(k);
-    precise vec3 r = origin - grid.origin.xyz;
-    vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, r);
+    vec3 m = roma_to_map(grid, f, origin);
     // Finite first (an origin ~1e38 away overflows): the range test must not meet a NaN.
     if (!roma_all_finite(m) || !(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
         return hit;
@@ -376,7 +375,9 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
         (f.to_map_2.x * dn.x + f.to_map_2.y * dn.y) + f.to_map_2.z * dn.z);
     // Below FLT_MIN a component counts as zero (GPUs flush it), so that every reciprocal is
     // finite. Distances are differences times these reciprocals, divided once per ray: a
-    // division per step, corrected to IEEE's, cost a GPU's walk several times over.
+    // division per step, corrected to IEEE's, cost a GPU's walk several times over. The walk's
+    // distances are in grid units (world times grid.inv_cell.y, a power of two), which stay
+    // normal floats at every supported scale; the hit's distance goes back to world units.
     vec3 dm = roma_flush_subnormal(dm_raw);
     vec3 inv = vec3(dm.x != 0.0 ? roma_div(1.0, dm.x) : 0.0, dm.y != 0.0 ? roma_div(1.0, dm.y) : 0.0,
                     dm.z != 0.0 ? roma_div(1.0, dm.z) : 0.0);
@@ -385,7 +386,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
         return hit; // an origin so far out that its map coordinates overflow
     float fres = float(res);
     // Clip to the map's xy slab.
-    float t_in = tmin, t_out = tmax;
+    float t_in = tmin * grid.inv_cell.y, t_out = tmax * grid.inv_cell.y;
     for (int a = 0; a < 2; ++a) {
         if (dm[a] == 0.0) {
             if (!(m0[a] >= 0.0 && m0[a] < fres))
@@ -448,7 +449,8 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
                 precise float tc = c < 0 ? t_cur
                                  : dm.z > 0.0 ? (float(c) - m0.z) * inv.z
                                  : dm.z < 0.0 ? (float(c + 1) - m0.z) * inv.z : t_cur;
-                hit.t = max(tc, t_cur);
+                // tmin in grid units may have flushed to zero on a GPU: the bound holds in world units.
+                hit.t = max(max(tc, t_cur) * grid.inv_cell.z, tmin);
             }
             return hit;
         }

@@ -47,20 +47,22 @@
 /** Placement of the BOM grid this frame (world space). */
 ROMA_STRUCT_BEGIN(roma_grid_params)
     ROMA_VEC4(origin);    /**< xyz: corner of cell (0,0,0); w: cell size */
-    ROMA_VEC4(inv_cell);  /**< x: 1 / cell size */
+    ROMA_VEC4(inv_cell);  /**< x: 1 / cell size; y: the grid unit u, the power of two
+                               in (0.5, 1] / cell size; z: 1 / u */
     ROMA_UVEC4(dims);     /**< x: RES, y: words per texel, z: A, w: map count */
 ROMA_STRUCT_END(roma_grid_params)
 
 /** One ray-aligned map. world -> map cell coordinates, from the position relative to the
- * grid origin (r = p - grid.origin.xyz, which keeps full precision far from the world
- * origin): m_i = dot(to_map_i.xyz, r) + to_map_i.w (evaluated as
+ * grid origin in grid units (r = (p - grid.origin.xyz) * grid.inv_cell.y, which keeps full
+ * precision far from the world origin, and rows near 1 whose products stay normal floats at
+ * every scale): m_i = dot(to_map_i.xyz, r) + to_map_i.w (evaluated as
  * ((x*r.x + y*r.y) + z*r.z) + w, without contraction). map -> BOM cell
  * coordinates: b = map_to_bom_0.xyz * m.x + map_to_bom_1.xyz * m.y + map_to_bom_2.xyz * m.z
  * + map_to_bom_3.xyz (same evaluation order). */
 ROMA_STRUCT_BEGIN(roma_map_frame)
-    ROMA_VEC4(to_map_0);  /**< world -> map cell x: xyz row, w offset */
-    ROMA_VEC4(to_map_1);  /**< world -> map cell y: xyz row, w offset */
-    ROMA_VEC4(to_map_2);  /**< world -> map cell z: xyz row, w offset */
+    ROMA_VEC4(to_map_0);  /**< grid units -> map cell x: xyz row, w offset */
+    ROMA_VEC4(to_map_1);  /**< grid units -> map cell y: xyz row, w offset */
+    ROMA_VEC4(to_map_2);  /**< grid units -> map cell z: xyz row, w offset */
     ROMA_VEC4(map_to_bom_0); /**< xyz: BOM cell coordinates per unit of map x */
     ROMA_VEC4(map_to_bom_1); /**< xyz: BOM cell coordinates per unit of map y */
     ROMA_VEC4(map_to_bom_2); /**< xyz: BOM cell coordinates per unit of map z */

@@ -207,7 +207,7 @@ vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, roma_grid_params grid, v
         t = h.t;
         if (surfaces) {
             // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
-            vec3 m = roma_to_map_rows(f.to_map_0, f.to_map_1, f.to_map_2, origin - grid.origin.xyz);
+            vec3 m = roma_to_map(grid, f, origin);
             float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
             tri = roma_gi_find_surface_along(S, grid, f, vec3(floor(m.xy), c), centre);
         }

@@ -30,8 +30,8 @@ void main()
     ivec3 c = ivec3(packed & 0xffu, (packed >> 8u) & 0xffu, packed >> 16u);
     uint res = grid.dims.x, words = grid.dims.y;
     roma_map_frame f = frames[k];
-    // BOM cell -> map coordinates: m = to_map . (b * cell) + to_map.w.
-    float cell = grid.origin.w;
+    // BOM cell -> map coordinates: m = to_map . (b * cell) + to_map.w, in grid units.
+    float cell = grid.origin.w * grid.inv_cell.y;
     vec3 centre = (vec3(c) + 0.5) * cell;
     vec3 rx = f.to_map_0.xyz, ry = f.to_map_1.xyz, rz = f.to_map_2.xyz;
     vec3 m = vec3(dot(rx, centre) + f.to_map_0.w, dot(ry, centre) + f.to_map_1.w, dot(rz, centre) + f.to_map_2.w);

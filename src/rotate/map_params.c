@@ -50,6 +50,13 @@ int roma_compute_grid(const float bmin[3], const float bmax[3], uint32_t res, ui
     }
     out->origin[3] = (float)cell;
     out->inv_cell[0] = (float)(1.0 / cell);
+    /* The power of two nearest below 1 / cell, and its inverse: map frames are stored in grid
+     * units (world / cell, to a power of two) so that their products stay normal floats at
+     * every supported scale; a GPU flushes subnormals, the C mirror does not. */
+    int e;
+    frexp(cell, &e);
+    out->inv_cell[1] = (float)ldexp(1.0, 1 - e);
+    out->inv_cell[2] = (float)ldexp(1.0, e - 1);
     out->dims[0] = res;
     out->dims[1] = res / 32u;
     out->dims[2] = angular;
@@ -91,7 +98,7 @@ void roma_compute_map_frame(const roma_grid_params *grid, const float dir_in[3],
         double c = (hi[a] - lo[a]) / res;
         out->cell[a] = (float)c;
         for (int i = 0; i < 3; ++i) {
-            to_map[a][i] = (float)(axes[a][i] / c);
+            to_map[a][i] = (float)(axes[a][i] / (c * (double)grid->inv_cell[1]));
             to_bom[a][i] = (float)(axes[a][i] * c * inv_bom_cell);
             corner[i] += axes[a][i] * lo[a];
         }

@@ -46,7 +46,8 @@ uint32_t roma_cpu_select_map(const float dir[3], uint32_t angular, int *folded)
 static void to_map(const roma_grid_params *grid, const roma_map_frame *f, const float p[3], float m[3])
 {
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
-    float r[3] = {p[0] - grid->origin[0], p[1] - grid->origin[1], p[2] - grid->origin[2]};
+    const float u = grid->inv_cell[1]; /* grid units: trace_types.h */
+    float r[3] = {(p[0] - grid->origin[0]) * u, (p[1] - grid->origin[1]) * u, (p[2] - grid->origin[2]) * u};
     for (int a = 0; a < 3; ++a)
         m[a] = ((rows[a][0] * r[0] + rows[a][1] * r[1]) + rows[a][2] * r[2]) + rows[a][3];
 }
@@ -154,7 +155,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
     if (!isfinite(m0[0]) || !isfinite(m0[1]) || !isfinite(m0[2]))
         return hit; /* an origin so far out that its map coordinates overflow */
     const float fres = (float)res;
-    float t_in = ray->tmin, t_out = ray->tmax;
+    float t_in = ray->tmin * grid->inv_cell[1], t_out = ray->tmax * grid->inv_cell[1]; /* grid units */
     for (int a = 0; a < 2; ++a) {
         if (dm[a] == 0.0f) {
             if (!(m0[a] >= 0.0f && m0[a] < fres))
@@ -201,7 +202,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
                 float tc = c < 0 ? t_cur
                          : dm[2] > 0.0f ? ((float)c - m0[2]) * inv[2]
                          : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) * inv[2] : t_cur;
-                hit.t = fmaxf(tc, t_cur);
+                hit.t = fmaxf(fmaxf(tc, t_cur) * grid->inv_cell[2], ray->tmin);
             }
             if (counts) {
                 /* A cell wholly before the column's entry was found only by the search back. */

@@ -376,8 +376,9 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     // Below FLT_MIN a component counts as zero (GPUs flush it), so that every reciprocal is
     // finite. Distances are differences times these reciprocals, divided once per ray: a
     // division per step, corrected to IEEE's, cost a GPU's walk several times over. The walk's
-    // distances are in grid units (world times grid.inv_cell.y, a power of two), which stay
-    // normal floats at every supported scale; the hit's distance goes back to world units.
+    // distances are in grid units (world times grid.inv_cell.y, a power of two), so its terms
+    // have the same magnitudes at every scene scale (in world units they fell below FLT_MIN in
+    // scenes 1e37 wide); the hit's distance goes back to world units.
     vec3 dm = roma_flush_subnormal(dm_raw);
     vec3 inv = vec3(dm.x != 0.0 ? roma_div(1.0, dm.x) : 0.0, dm.y != 0.0 ? roma_div(1.0, dm.y) : 0.0,
                     dm.z != 0.0 ? roma_div(1.0, dm.z) : 0.0);

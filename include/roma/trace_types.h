@@ -47,8 +47,8 @@
 /** Placement of the BOM grid this frame (world space). */
 ROMA_STRUCT_BEGIN(roma_grid_params)
     ROMA_VEC4(origin);    /**< xyz: corner of cell (0,0,0); w: cell size */
-    ROMA_VEC4(inv_cell);  /**< x: 1 / cell size; y: the grid unit u, the power of two
-                               in (0.5, 1] / cell size; z: 1 / u */
+    ROMA_VEC4(inv_cell);  /**< x: 1 / cell size; y: the grid unit u, the smallest power of
+                               two at or above 1 / cell size; z: 1 / u */
     ROMA_UVEC4(dims);     /**< x: RES, y: words per texel, z: A, w: map count */
 ROMA_STRUCT_END(roma_grid_params)
 

@@ -50,7 +50,7 @@ int roma_compute_grid(const float bmin[3], const float bmax[3], uint32_t res, ui
     }
     out->origin[3] = (float)cell;
     out->inv_cell[0] = (float)(1.0 / cell);
-    /* The power of two nearest below 1 / cell, and its inverse: map frames are stored in grid
+    /* The smallest power of two at or above 1 / cell, and its inverse: map frames are stored in grid
      * units (world / cell, to a power of two) so that their products stay normal floats at
      * every supported scale; a GPU flushes subnormals, the C mirror does not. */
     int e;

@@ -1040,6 +1040,16 @@ int main(void)
     check_supported_range(ctx);
     check_degenerate_scenes(ctx);
     check_frames(ctx, cornell);
+    /* The crafted directions (scaled to 2^100 and past 2^127, subnormal components, axes)
+     * through the corrected division and square root that GPUs trace with, on this device
+     * too: IEEE's results from correctly rounded products and sums, the mirror's bits. */
+    roma_context *corrected = roma_test_context_flags(ROMA_CONTEXT_CORRECTED_DIVISION);
+    if (corrected) {
+        printf("with the corrected division:\n");
+        check_crafted(corrected, cornell, 64, 4, (roma_map_frame_desc){.frame = 3, .seed = 7, .jitter_grid = 1,
+                                                                         .jitter_directions = 1});
+        roma_test_context_finish(corrected);
+    }
     roma_scene_destroy(cornell);
     roma_test_context_finish(ctx);
     return roma_test_finish("test_ray_hard_cases");

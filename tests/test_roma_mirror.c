@@ -214,6 +214,22 @@ int main(void)
     CHECK(walk_counts.steps_ahead > 0);
     CHECK(walk_counts.back_hits > 0);
     CHECK(walk_counts.unseen_hits > 0);
+
+    /* The corrected division and square root (roma_div, roma_sqrt), which GPUs trace with, on
+     * this device too: from correctly rounded products and sums they must give IEEE's
+     * quotients and roots, the mirror's, bit for bit. */
+    roma_context *corrected = roma_test_context_flags(ROMA_CONTEXT_CORRECTED_DIVISION);
+    if (corrected) {
+        roma_context_info info;
+        roma_context_get_info(corrected, &info);
+        printf("corrected division (%s by default on this device):\n",
+               info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? "off" : "on");
+        CHECK(info.corrected_division == VK_TRUE);
+        roma_cpu_walk_counts unused = {0, 0, 0};
+        check_scene(corrected, cornell, "cornell", 64, 3, ROMA_BOM_EXACT, &unused);
+        check_scene(corrected, blinds, "blinds", 128, 4, ROMA_BOM_EXACT, &unused);
+        roma_test_context_finish(corrected);
+    }
     roma_scene_destroy(cornell);
     roma_scene_destroy(blinds);
     roma_scene_destroy(spot);

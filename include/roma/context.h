@@ -51,8 +51,8 @@ extern "C" {
  */
 typedef struct roma_context roma_context;
 
-/** Bits of roma_context_desc.flags. All three apply to libroma's own device only and are
- * ignored when roma_context_desc.external is set. */
+/** Bits of roma_context_desc.flags. The first three apply to libroma's own device only and
+ * are ignored when roma_context_desc.external is set. */
 typedef enum roma_context_flags {
     /** Enable the Khronos validation layer and route its messages to the logger;
      * creation fails with ROMA_ERROR_MISSING_FEATURE if the layer is absent. */
@@ -61,7 +61,12 @@ typedef enum roma_context_flags {
     ROMA_CONTEXT_REQUIRE_GPU = 1u << 1,
     /** Validation with synchronization validation (hazards between commands, across
      * submissions); implies ROMA_CONTEXT_VALIDATION. Own device only. */
-    ROMA_CONTEXT_SYNC_VALIDATION = 1u << 2
+    ROMA_CONTEXT_SYNC_VALIDATION = 1u << 2,
+    /** Trace with the corrected division and square root (roma/trace.glsl's roma_div and
+     * roma_sqrt, IEEE's rounding from correctly rounded products and sums) on CPU devices
+     * too, where they are off by default (their division is IEEE's already, and the
+     * correction costs time): a test of the correction on any device. Own or external. */
+    ROMA_CONTEXT_CORRECTED_DIVISION = 1u << 3
 } roma_context_flags;
 
 /** A device the engine created and owns, adopted by roma_context_create (it must outlive the
@@ -175,7 +180,8 @@ typedef struct roma_context_info {
      * of another RES or A, or a second map, compiles none (kept until the context goes). */
     uint32_t pipelines_compiled;
     /** The value libroma gives roma/trace.glsl's ROMA_CORRECTED_DIVISION_CONSTANT_ID in its
-     * own pipelines (roma/trace_types.h): VK_TRUE but on CPU devices. An engine tracing from
+     * own pipelines (roma/trace_types.h): VK_TRUE but on CPU devices (there too with
+     * ROMA_CONTEXT_CORRECTED_DIVISION). An engine tracing from
      * its own shaders specializes them with it to trace as libroma does. */
     VkBool32 corrected_division;
 } roma_context_info;

@@ -79,12 +79,27 @@ int roma_exponent(float x) { return int((floatBitsToUint(x) >> 23) & 0xffu) - 12
 // The mantissa of a normal x as a float in [1, 2) (bit operations: exact on every device).
 float roma_mantissa(float x) { return uintBitsToFloat((floatBitsToUint(x) & 0x007fffffu) | 0x3f800000u); }
 
+// x - a * b rounded once, as a fused fma(-a, b, x) rounds it, for a * b within a factor of
+// two of x (so that x - p below is exact), from correctly rounded products and sums alone:
+// Vulkan lets fma round twice. a * b = p + e exactly (Dekker's product, Veltkamp's split
+// of each 24-bit mantissa into halves of 12 bits); `precise` keeps every step unfused.
+float roma_residual(float x, float a, float b)
+{
+    precise float ca = 4097.0 * a, cb = 4097.0 * b;
+    precise float ah = ca - (ca - a), bh = cb - (cb - b);
+    precise float al = a - ah, bl = b - bh;
+    precise float p = a * b;
+    precise float e = (((ah * bh - p) + ah * bl) + al * bh) + al * bl;
+    precise float r = (x - p) - e;
+    return r;
+}
+
 // a / b as IEEE division rounds it, for normal a, b and quotient (elsewhere the device's).
 // The mantissas are divided (x, d in [1, 2): no step below meets a subnormal): the device's
-// reciprocal is refined once, the quotient corrected once from its exact remainder (fma),
-// and its last bit taken from the exact remainder r at c: x / d lies beyond c's upper half-ulp
-// when r > d u / 2, below its lower one when r < -d u' / 2 (a quotient of floats is never a
-// midpoint). The exponents are added back as bits.
+// quotient is corrected once from its remainder, which brings it within an ulp, and its last
+// bit is taken from the exact remainder r at c (roma_residual): x / d lies beyond c's upper
+// half-ulp when r > d u / 2, below its lower one when r < -d u' / 2 (a quotient of floats is
+// never a midpoint). The exponents are added back as bits.
 float roma_div(float a, float b)
 {
     if (!ROMA_CORRECTED_DIVISION)
@@ -94,11 +109,10 @@ float roma_div(float a, float b)
         return a / b;
     int e = roma_exponent(A) - roma_exponent(B);
     precise float x = roma_mantissa(A), d = roma_mantissa(B);
-    precise float y0 = 1.0 / d;
-    precise float y = fma(fma(-d, y0, 1.0), y0, y0);
+    precise float y = 1.0 / d;
     precise float q = x * y;
-    precise float c = fma(fma(-q, d, x), y, q);
-    precise float r = fma(-c, d, x);
+    precise float c = q + roma_residual(x, q, d) * y;
+    precise float r = roma_residual(x, c, d);
     if (r > d * ((roma_next_up(c) - c) * 0.5))
         c = roma_next_up(c);
     else if (r < -(d * ((c - roma_next_down(c)) * 0.5)))
@@ -111,9 +125,9 @@ float roma_div(float a, float b)
 }
 
 // sqrt(x) as IEEE's square root rounds it, for positive normal x: scaled by an even power of
-// two into [1, 4), the device's root corrected once from its exact residual r = x - s^2
-// (fma), then its last bit: sqrt(x) lies beyond s's upper half-ulp when r > s u, below its
-// lower one when r <= -s u'.
+// two into [1, 4), the device's root corrected once from its residual r = x - s^2
+// (roma_residual), then its last bit: sqrt(x) lies beyond s's upper half-ulp when r > s u,
+// below its lower one when r <= -s u'.
 float roma_sqrt(float x)
 {
     if (!ROMA_CORRECTED_DIVISION || !(x > 0.0) || !roma_is_normal(x))
@@ -122,8 +136,8 @@ float roma_sqrt(float x)
     precise float m = ldexp(x, -2 * k);
     precise float s = sqrt(m);
     precise float h = 0.5 / s;
-    s = fma(fma(-s, s, m), h, s);
-    precise float r = fma(-s, s, m);
+    s = s + roma_residual(m, s, s) * h;
+    precise float r = roma_residual(m, s, s);
     if (r > s * (roma_next_up(s) - s))
         s = roma_next_up(s);
     else if (r <= -(s * (s - roma_next_down(s))))

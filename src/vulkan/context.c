@@ -312,7 +312,8 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     roma_context_desc defaults = {0};
     if (!desc)
         desc = &defaults;
-    const uint32_t known_flags = ROMA_CONTEXT_VALIDATION | ROMA_CONTEXT_REQUIRE_GPU | ROMA_CONTEXT_SYNC_VALIDATION;
+    const uint32_t known_flags = ROMA_CONTEXT_VALIDATION | ROMA_CONTEXT_REQUIRE_GPU | ROMA_CONTEXT_SYNC_VALIDATION |
+                                 ROMA_CONTEXT_CORRECTED_DIVISION;
     if (desc->flags & ~known_flags)
         return roma_fail(&desc->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_context_create: unknown flags 0x%x", desc->flags & ~known_flags);
@@ -347,7 +348,8 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
     }
     if (r == ROMA_SUCCESS) {
         vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
-        ctx->corrected_division = ctx->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+        ctx->corrected_division = ctx->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU ||
+                                  (ctx->flags & ROMA_CONTEXT_CORRECTED_DIVISION) != 0;
         VkPhysicalDeviceMaintenance3Properties m3 = {
             .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
         VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};

@@ -46,8 +46,13 @@ unsigned roma_test_sync_validation_flags(void)
 
 roma_context *roma_test_context(void)
 {
+    return roma_test_context_flags(0);
+}
+
+roma_context *roma_test_context_flags(unsigned flags)
+{
     roma_context_desc desc = {0};
-    desc.flags = ROMA_CONTEXT_VALIDATION;
+    desc.flags = ROMA_CONTEXT_VALIDATION | flags;
     desc.logger.fn = count_validation;
     roma_context *ctx = NULL;
     roma_result r = roma_context_create(&desc, &ctx);

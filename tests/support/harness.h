@@ -57,6 +57,8 @@ unsigned roma_test_sync_validation_flags(void);
 
 /* Context with validation on; on failure prints why and returns NULL. */
 roma_context *roma_test_context(void);
+/* The same with more roma_context_flags. */
+roma_context *roma_test_context_flags(unsigned flags);
 /* Destroys ctx after checking it saw no validation error (counts a failure if it did). */
 void roma_test_context_finish(roma_context *ctx);
 

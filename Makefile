@@ -13,7 +13,7 @@
 #                        room (AO, direct light, GI, many lights), direct light, GI and many
 #                        lights on the built-in blinds, unbounded AO on 2CylinderEngine and (RES 64
 #                        and 128) on the bunny, dragon_res3, tabletop, spot, CesiumMan and Fox
-#                        (2 to 3 hours on 2 cores) into
+#                        (105 to 150 minutes on 2 cores) into
 #                        docs/bench and their plots into docs/images
 #                        (docs/accuracy-vs-time.md), then generation and trace time as the scene grows
 #                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points

@@ -80,7 +80,7 @@ int roma_exponent(float x) { return int((floatBitsToUint(x) >> 23) & 0xffu) - 12
 float roma_mantissa(float x) { return uintBitsToFloat((floatBitsToUint(x) & 0x007fffffu) | 0x3f800000u); }
 
 // x - a * b rounded once, as a fused fma(-a, b, x) rounds it, for a * b within a factor of
-// two of x (so that x - p below is exact), from correctly rounded products and sums alone:
+// two of x (so that x - p below is exact), from products and sums rounded to nearest alone:
 // Vulkan lets fma round twice. a * b = p + e exactly (Dekker's product, Veltkamp's split
 // of each 24-bit mantissa into halves of 12 bits); `precise` keeps every step unfused.
 float roma_residual(float x, float a, float b)

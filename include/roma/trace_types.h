@@ -86,11 +86,11 @@ ROMA_STRUCT_END(roma_map_frame)
 
 /** Specialization constant of roma/trace.glsl (a bool, default true): whether its divisions
  * and square roots correct the device's result to IEEE's (roma_div, roma_sqrt), so that
- * traces equal the C mirror's bit for bit. GPUs divide approximately (Vulkan allows 2.5 ulp)
- * and fuse fma, which the correction needs; CPU implementations (lavapipe) divide as IEEE
- * does and may split fma into two roundings. libroma sets it to
- * (VkPhysicalDeviceProperties::deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) in its own
- * pipelines and reports it in roma_context_info.corrected_division; an engine specializes its own
+ * traces equal the C mirror's bit for bit. GPUs divide approximately (Vulkan allows 2.5 ulp);
+ * the correction needs only products and sums rounded to nearest (no fma). CPU
+ * implementations (lavapipe) divide as IEEE does already. libroma sets it to
+ * (VkPhysicalDeviceProperties::deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU, or
+ * ROMA_CONTEXT_CORRECTED_DIVISION) in its own pipelines and reports it in roma_context_info.corrected_division; an engine specializes its own
  * pipelines with that value, or defines ROMA_CORRECTED_DIVISION before including. */
 #define ROMA_CORRECTED_DIVISION_CONSTANT_ID 200
 

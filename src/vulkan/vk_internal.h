@@ -28,7 +28,8 @@ struct roma_context {
     uint64_t memory_in_use;           /* bytes of every vkAllocateMemory libroma made */
     int has_geometry_shader;
     /* roma/trace.glsl corrects divisions to IEEE's (ROMA_CORRECTED_DIVISION_CONSTANT_ID):
-     * on every device but CPU implementations, whose division is IEEE's already. */
+     * on every device but CPU implementations, whose division is IEEE's already, and on
+     * those too with ROMA_CONTEXT_CORRECTED_DIVISION. */
     int corrected_division;
     uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
     uint64_t geometry_versions;       /* handed out by the maps' builds (roma_map.geometry_version) */

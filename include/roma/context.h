@@ -63,7 +63,7 @@ typedef enum roma_context_flags {
      * submissions); implies ROMA_CONTEXT_VALIDATION. Own device only. */
     ROMA_CONTEXT_SYNC_VALIDATION = 1u << 2,
     /** Trace with the corrected division and square root (roma/trace.glsl's roma_div and
-     * roma_sqrt, IEEE's rounding from correctly rounded products and sums) on CPU devices
+     * roma_sqrt, IEEE's rounding from products and sums rounded to nearest) on CPU devices
      * too, where they are off by default (their division is IEEE's already, and the
      * correction costs time): a test of the correction on any device. Own or external. */
     ROMA_CONTEXT_CORRECTED_DIVISION = 1u << 3

@@ -54,9 +54,9 @@ ROMA_STRUCT_END(roma_grid_params)
 
 /** One ray-aligned map. world -> map cell coordinates, from the position relative to the
  * grid origin in grid units (r = (p - grid.origin.xyz) * grid.inv_cell.y, which keeps full
- * precision far from the world origin, and rows near 1 whose products stay normal floats at
- * every scale): m_i = dot(to_map_i.xyz, r) + to_map_i.w (evaluated as
- * ((x*r.x + y*r.y) + z*r.z) + w, without contraction). map -> BOM cell
+ * precision far from the world origin, and rows near 1 at every scene scale):
+ * m_i = dot(to_map_i.xyz, r) + to_map_i.w (evaluated as ((x*r.x + y*r.y) + z*r.z) + w,
+ * without contraction). map -> BOM cell
  * coordinates: b = map_to_bom_0.xyz * m.x + map_to_bom_1.xyz * m.y + map_to_bom_2.xyz * m.z
  * + map_to_bom_3.xyz (same evaluation order). */
 ROMA_STRUCT_BEGIN(roma_map_frame)
@@ -90,8 +90,9 @@ ROMA_STRUCT_END(roma_map_frame)
  * the correction needs only products and sums rounded to nearest (no fma). CPU
  * implementations (lavapipe) divide as IEEE does already. libroma sets it to
  * (VkPhysicalDeviceProperties::deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU, or
- * ROMA_CONTEXT_CORRECTED_DIVISION) in its own pipelines and reports it in roma_context_info.corrected_division; an engine specializes its own
- * pipelines with that value, or defines ROMA_CORRECTED_DIVISION before including. */
+ * ROMA_CONTEXT_CORRECTED_DIVISION) in its own pipelines and reports it in
+ * roma_context_info.corrected_division; an engine specializes its own pipelines with that
+ * value, or defines ROMA_CORRECTED_DIVISION before including. */
 #define ROMA_CORRECTED_DIVISION_CONSTANT_ID 200
 
 /** Cells an un-snapped walk searches each column past the ray's exit for a step of a thin

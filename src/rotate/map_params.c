@@ -50,9 +50,10 @@ int roma_compute_grid(const float bmin[3], const float bmax[3], uint32_t res, ui
     }
     out->origin[3] = (float)cell;
     out->inv_cell[0] = (float)(1.0 / cell);
-    /* The smallest power of two at or above 1 / cell, and its inverse: map frames are stored in grid
-     * units (world / cell, to a power of two) so that their products stay normal floats at
-     * every supported scale; a GPU flushes subnormals, the C mirror does not. */
+    /* The smallest power of two at or above 1 / cell, and its inverse: map frames are stored
+     * in grid units (world / cell, to a power of two) so that the un-snapped walk's terms have
+     * the same magnitudes at every scene scale (in world units they fell below FLT_MIN in
+     * scenes 1e37 wide, which a GPU flushes and the C mirror does not). */
     int e;
     frexp(cell, &e);
     out->inv_cell[1] = (float)ldexp(1.0, 1 - e);

@@ -1042,7 +1042,7 @@ int main(void)
     check_frames(ctx, cornell);
     /* The crafted directions (scaled to 2^100 and past 2^127, subnormal components, axes)
      * through the corrected division and square root that GPUs trace with, on this device
-     * too: IEEE's results from correctly rounded products and sums, the mirror's bits. */
+     * too: IEEE's results from products and sums rounded to nearest, the mirror's bits. */
     roma_context *corrected = roma_test_context_flags(ROMA_CONTEXT_CORRECTED_DIVISION);
     if (corrected) {
         printf("with the corrected division:\n");

@@ -12,6 +12,7 @@
 
 #include "app_common.h"
 #include "budget.h"
+#include "effect_api.h"
 #include "passes/effect_render.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
@@ -54,9 +55,17 @@ static const char *usage =
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
+    "  --route api|internal        ROMA through libroma's public effect passes (roma_ao_effect,\n"
+    "                              roma_light_effect, roma_gi_effect) on a G-buffer of primary rays, as\n"
+    "                              an engine records them (the default where they can: ao, direct, gi),\n"
+    "                              or through the internal renderer, which also has the study's\n"
+    "                              baselines, the lights effect and reflective shadow maps (taken by\n"
+    "                              itself when those are asked for; the choice is printed)\n"
     "  --gi-punctual rsm|rays      ROMA gi from point and spot lights: their reflective shadow maps\n"
-    "                              (default) or one shadow ray per light at each bounce hit (less\n"
-    "                              memory; lets a light outside a closed room in: docs/accuracy.md)\n"
+    "                              (the internal renderer) or one shadow ray per light at each bounce\n"
+    "                              hit (the public GI effect's way; the default on the api route, rsm on\n"
+    "                              the internal one; rays let a light outside a closed room in:\n"
+    "                              docs/accuracy.md)\n"
     "  --skip C                    ROMA shadow rays skip their first C trace cells (default 1)\n"
     "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.6)\n"
     "  --offset C                  ROMA rays start C trace cells off the surface (default 1.5)\n"
@@ -116,6 +125,7 @@ typedef struct options {
     float exposure;
     int reinhard;        /* --tonemap reinhard */
     int gi_rays;         /* --gi-punctual rays */
+    int route;           /* --route: ROUTE_AUTO, ROUTE_API, ROUTE_INTERNAL */
     int blind_start;     /* --ray-start blind */
     roma_ao_method ao_method; /* --ao-method */
     uint32_t ssao_layers;     /* --ssao-layers */
@@ -137,12 +147,15 @@ enum {
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
-    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16
+    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17
 };
+
+/* How ROMA's images are made (effect_api.h). */
+enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--gi-punctual", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
+    "--max-steps", "--gi-punctual", "--route", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
     "--background",
     "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", "--preset",
@@ -337,6 +350,14 @@ static int parse_args(int argc, char **argv, options *o)
             o->given |= GIVEN_RAY_START;
             if (!o->blind_start && strcmp(v, "walk") != 0) {
                 fprintf(stderr, "roma-render: unknown ray start '%s' (valid: walk, blind)\n", v);
+                return 0;
+            }
+        }
+        else if (strcmp(a, "--route") == 0) {
+            o->route = strcmp(v, "api") == 0 ? ROUTE_API : strcmp(v, "internal") == 0 ? ROUTE_INTERNAL : -1;
+            o->given |= GIVEN_ROUTE;
+            if (o->route < 0) {
+                fprintf(stderr, "roma-render: unknown route '%s' (valid: api, internal)\n", v);
                 return 0;
             }
         }
@@ -549,7 +570,8 @@ typedef struct run_record {
     pass_record passes[16];
     notes notes;
     int pass_count;
-    const roma_effect_stats *roma; /* ROMA tracer only */
+    const roma_effect_stats *roma; /* ROMA tracer, internal route */
+    const effect_api_result *api;  /* ROMA tracer, public effect passes */
     const budget_choice *budget;   /* --budget-ms only */
 } run_record;
 
@@ -637,6 +659,27 @@ static int write_extras(const options *o, const roma_image *coverage, const roma
     return ok;
 }
 
+/* The ROMA arrays the plan built every frame (one per distinct RES, A). */
+static void write_arrays(roma_json *j, const roma_effect_plan *plan, const roma_map_info *info, const double *build_ms)
+{
+    roma_json_begin_array(j, "roma_arrays");
+    for (uint32_t i = 0; i < plan->map_count; ++i) {
+        const roma_map_info *m = &info[i];
+        roma_json_begin_object(j, NULL);
+        roma_json_int(j, "resolution", m->resolution);
+        roma_json_int(j, "angular", m->angular);
+        roma_json_int(j, "maps", m->map_count);
+        roma_json_int(j, "bom_bytes", (long long)m->bom_bytes);
+        roma_json_int(j, "maps_bytes", (long long)m->maps_bytes);
+        roma_json_int(j, "params_bytes", (long long)m->params_bytes);
+        roma_json_int(j, "geometry_bytes", (long long)m->geometry_bytes);
+        roma_json_string(j, "clock", "gpu_timestamp");
+        roma_json_number(j, "build_ms", build_ms[i]);
+        roma_json_end_object(j);
+    }
+    roma_json_end_array(j);
+}
+
 static int write_stats(const options *o, const roma_scene_view *sv, const roma_camera *cam,
                        const run_record *run)
 {
@@ -708,6 +751,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
             roma_json_end_object(&j);
             roma_json_end_object(&j);
         }
+        roma_json_string(&j, "route", run->api ? "api" : "internal");
         roma_json_int(&j, "resolution", o->res);
         roma_json_int(&j, "angular", o->angular);
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
@@ -727,26 +771,10 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_number(&j, "fovy_deg", cam->fovy_deg);
     roma_json_end_object(&j);
     roma_json_end_object(&j);
-    if (run->roma) {
-        /* The ROMA arrays the plan built every frame (one per distinct RES, A). */
-        const roma_effect_stats *st = run->roma;
-        roma_json_begin_array(&j, "roma_arrays");
-        for (uint32_t i = 0; i < st->plan.map_count; ++i) {
-            const roma_map_info *m = &st->map_info[i];
-            roma_json_begin_object(&j, NULL);
-            roma_json_int(&j, "resolution", m->resolution);
-            roma_json_int(&j, "angular", m->angular);
-            roma_json_int(&j, "maps", m->map_count);
-            roma_json_int(&j, "bom_bytes", (long long)m->bom_bytes);
-            roma_json_int(&j, "maps_bytes", (long long)m->maps_bytes);
-            roma_json_int(&j, "params_bytes", (long long)m->params_bytes);
-            roma_json_int(&j, "geometry_bytes", (long long)m->geometry_bytes);
-            roma_json_string(&j, "clock", "gpu_timestamp");
-            roma_json_number(&j, "build_ms", st->build_ms[i]);
-            roma_json_end_object(&j);
-        }
-        roma_json_end_array(&j);
-    }
+    if (run->roma)
+        write_arrays(&j, &run->roma->plan, run->roma->map_info, run->roma->build_ms);
+    else if (run->api)
+        write_arrays(&j, &run->api->plan, run->api->map_info, run->api->build_ms);
     roma_json_begin_array(&j, "notes");
     for (int i = 0; i < run->notes.count; ++i)
         roma_json_string(&j, NULL, run->notes.text[i]);
@@ -770,6 +798,69 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     }
     printf("wrote %s\n", o->stats);
     return 1;
+}
+
+/* ROMA through the public effect passes (1), the internal renderer (0), or refused (-1: --route
+ * api with a request they cannot render). Printed and noted in the stats. */
+static int choose_route(const options *o, notes *n)
+{
+    if (strcmp(o->tracer, "roma") != 0)
+        return 0;
+    const char *why = effect_api_unsupported(o->effects, o->ao_method != ROMA_AO_METHOD_ROMA,
+                                             (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays, o->blind_start);
+    if (!why && (o->given & GIVEN_BUDGET))
+        why = "--budget-ms calibrates on the internal renderer's frames";
+    if (o->route == ROUTE_API && why) {
+        fprintf(stderr, "roma-render: --route api: %s\n", why);
+        return -1;
+    }
+    if (o->route == ROUTE_INTERNAL || why) {
+        note(n, o->quiet, "ROMA through the internal renderer: %s", why ? why : "--route internal");
+        return 0;
+    }
+    note(n, o->quiet, "ROMA through libroma's public effect passes on a G-buffer of primary rays (--route)%s",
+         o->effects & ROMA_EFFECT_GI ? "; gi from point and spot lights by shadow rays" : "");
+    return 1;
+}
+
+/* --route api: the images from effect_api_render, written; the passes' times in run. */
+static int render_api(const options *o, roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+                      const roma_camera *cam, run_record *run, effect_api_result *res)
+{
+    progress_state frames_progress = {"frames", o->quiet, -1, 0.0};
+    on_progress(0.0f, &frames_progress);
+    effect_api_desc d = {
+        .camera = *cam, .width = o->width, .height = o->height,
+        .options = {.effects = o->effects, .resolution = o->res, .ao_angular = o->angular, .gi_angular = o->angular,
+                    .shadow_angular = o->shadow_angular, .lights_angular = o->shadow_angular},
+        .spp = o->spp, .frames = o->frames, .seed = o->seed, .ao_radius = o->ao_radius, .offset_cells = o->offset,
+        /* The library takes 0 as its default and a negative value as none. */
+        .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
+        .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
+        .max_steps = o->max_steps, .progress = on_progress, .progress_user_data = &frames_progress};
+    double start = roma_app_now_ms();
+    roma_result r = effect_api_render(ctx, scene, ref, &d, res);
+    add_pass(run, "roma_total", "cpu_wall", roma_app_now_ms() - start);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-render: ROMA rendering failed: %s\n", roma_result_string(r));
+        return 1;
+    }
+    run->api = res;
+    add_pass(run, "gbuffer", "cpu_wall", res->gbuffer_ms);
+    if (res->ao.pixels)
+        add_pass(run, "ao", "gpu_timestamp", res->ao_ms);
+    if (roma_effect_plan_runs(&res->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
+        roma_effect_plan_runs(&res->plan, ROMA_PASS_SOFT_SHADOWS))
+        add_pass(run, "direct", "gpu_timestamp", res->direct_ms);
+    if (roma_effect_plan_runs(&res->plan, ROMA_PASS_GI))
+        add_pass(run, "gi", "gpu_timestamp", res->gi_ms);
+    if ((o->effects & ROMA_EFFECT_AO) && !write_outputs(o, "ao", &res->ao, &res->coverage, 1.0f))
+        return 1;
+    if ((o->effects & ROMA_EFFECT_DIRECT) && !write_outputs(o, "direct", &res->direct, &res->coverage, 1.0f))
+        return 1;
+    if ((o->effects & ROMA_EFFECT_GI) && !write_outputs(o, "gi", &res->gi, &res->coverage, 1.0f))
+        return 1;
+    return write_extras(o, &res->coverage, &res->direct, &res->gi) ? 0 : 1;
 }
 
 /* The default camera of a scene without one: libroma's direction (front, upper right) and
@@ -923,7 +1014,7 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
-        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}};
+        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,
@@ -1054,6 +1145,11 @@ int main(int argc, char **argv)
     run_record run = {.device_kind = "cpu", .device_name = "Embree 3 reference (CPU)",
                       .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
     say_what_happens(&o, &sv, &run.notes);
+    const int api_route = choose_route(&o, &run.notes);
+    if (api_route < 0) {
+        roma_scene_destroy(scene);
+        return 2;
+    }
     roma_camera cam = o.camera;
     if (!o.has_camera && sv.has_camera)
         cam = sv.camera;
@@ -1099,6 +1195,7 @@ int main(int argc, char **argv)
     roma_context *ctx = NULL;
     roma_context_info ctx_info;
     roma_effect_stats roma_stats;
+    effect_api_result api_result = {0};
     budget_choice budget;
     if (strcmp(o.tracer, "roma") == 0) {
         roma_context_desc ctx_desc = {0};
@@ -1110,6 +1207,10 @@ int main(int argc, char **argv)
             roma_context_get_info(ctx, &ctx_info);
             run.device_kind = ctx_info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? "cpu_vulkan" : "gpu";
             run.device_name = ctx_info.device_name;
+        }
+        if (ctx && api_route) {
+            status = render_api(&o, ctx, scene, ref, &cam, &run, &api_result);
+        } else if (ctx) {
             roma_effect_render_desc desc = {
                 .camera = cam, .width = o.width, .height = o.height,
                 .options = {.effects = o.effects, .resolution = o.res, .ao_angular = o.angular,
@@ -1237,6 +1338,13 @@ int main(int argc, char **argv)
     roma_image_free(&kept_gi);
     if (status == 0 && o.stats && !write_stats(&o, &sv, &cam, &run))
         status = 1;
+    const uint32_t validation_errors = roma_context_validation_error_count(ctx);
+    if (validation_errors) {
+        fprintf(stderr, "roma-render: %u Vulkan validation error%s (above)\n", validation_errors,
+                validation_errors == 1 ? "" : "s");
+        status = 1;
+    }
+    effect_api_result_free(&api_result);
     if (status == 0 && !o.quiet)
         fprintf(stderr, "roma-render: done in %.1f s\n", (roma_app_now_ms() - started) / 1000.0);
     roma_context_destroy(ctx);

@@ -77,6 +77,10 @@ void roma_ref_intersect_batch(const roma_ref *ref, uint32_t n, const float *orgs
 /* Offset origin for secondary rays leaving a surface point along geometric normal gn. */
 void roma_ref_offset_origin(const roma_ref *ref, const float p[3], const float gn[3], float out[3]);
 
+/* The albedo the estimators shade a triangle with: its material's base colour (grey 0.8
+ * where it has none). 3 floats owned by the scene. */
+const float *roma_ref_triangle_albedo(const roma_ref *ref, uint32_t triangle);
+
 /* --- Point estimators (the building blocks of the images; tests call them directly) --- */
 
 /* AO visibility at p with normal n: cosine-weighted, spp samples, rays of length

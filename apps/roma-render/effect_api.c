@@ -1,0 +1,591 @@
+/* roma-render's ROMA images through the public effect API (effect_api.h). Uses libroma's public
+ * headers and the reference tracer only. */
+#include "effect_api.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app_common.h"
+
+#define PI_F 3.14159265358979323846f
+
+enum { IN_POSITION, IN_NORMAL, IN_GEOMETRIC, OUT_AO, OUT_DIRECT, OUT_GI, IMAGE_COUNT };
+#define INPUTS 3
+
+typedef struct gpu_image {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+    VkFormat format;
+    VkDeviceSize bytes_per_pixel;
+} gpu_image;
+
+typedef struct host_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+} host_buffer;
+
+/* What an engine holds for these passes: its command buffer, images and libroma's objects. */
+typedef struct engine {
+    roma_context *ctx;
+    VkDevice device;
+    VkPhysicalDeviceMemoryProperties memory;
+    VkDeviceSize max_allocation;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    gpu_image images[IMAGE_COUNT];
+    host_buffer upload, readback;
+    roma_map *maps[ROMA_PASS_COUNT];
+    roma_ao_effect *ao;
+    roma_light_effect *light;
+    roma_gi_effect *gi;
+    roma_gpu_timer *timer;
+    uint64_t bytes;
+} engine;
+
+const char *effect_api_unsupported(uint32_t effects, int baseline, int rsm, int blind_start)
+{
+    if (effects & ROMA_EFFECT_LIGHTS)
+        return "the lights effect counts visible lights, which no public pass outputs (roma_light_effect adds "
+               "many lights to the direct light instead)";
+    if (baseline)
+        return "--ao-method names a baseline of the accuracy study, which is not a public pass";
+    if (rsm)
+        return "--gi-punctual rsm: reflective shadow maps need a rasterization of each light's view, which "
+               "the public GI effect leaves to the engine";
+    if (blind_start)
+        return "--ray-start blind is a rule of the study, not a setting of the public passes";
+    return NULL;
+}
+
+static roma_result from_vk(VkResult vr, const char *what)
+{
+    if (vr == VK_SUCCESS)
+        return ROMA_SUCCESS;
+    fprintf(stderr, "roma-render: %s failed (VkResult %d)\n", what, (int)vr);
+    return vr == VK_ERROR_OUT_OF_HOST_MEMORY     ? ROMA_ERROR_OUT_OF_HOST_MEMORY
+           : vr == VK_ERROR_OUT_OF_DEVICE_MEMORY ? ROMA_ERROR_OUT_OF_DEVICE_MEMORY
+           : vr == VK_ERROR_DEVICE_LOST          ? ROMA_ERROR_DEVICE_LOST
+                                                 : ROMA_ERROR_VULKAN;
+}
+
+static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropertyFlags want, VkDeviceMemory *out)
+{
+    if (req.size > e->max_allocation) {
+        fprintf(stderr, "roma-render: out of device memory: an image or buffer of %llu bytes is larger than the "
+                "device's largest allocation (%llu bytes)\n", (unsigned long long)req.size,
+                (unsigned long long)e->max_allocation);
+        return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
+    }
+    uint32_t type = UINT32_MAX;
+    for (uint32_t i = 0; i < e->memory.memoryTypeCount && type == UINT32_MAX; ++i)
+        if ((req.memoryTypeBits & (1u << i)) && (e->memory.memoryTypes[i].propertyFlags & want) == want)
+            type = i;
+    if (type == UINT32_MAX) {
+        fprintf(stderr, "roma-render: no memory type with the properties 0x%x\n", (unsigned)want);
+        return ROMA_ERROR_MISSING_FEATURE;
+    }
+    VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                               .memoryTypeIndex = type};
+    roma_result r = from_vk(vkAllocateMemory(e->device, &ai, NULL, out), "vkAllocateMemory (out of device memory?)");
+    if (r == ROMA_SUCCESS)
+        e->bytes += req.size;
+    return r;
+}
+
+static roma_result image_create(engine *e, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                                gpu_image *out)
+{
+    out->format = format;
+    out->bytes_per_pixel = format == VK_FORMAT_R32_SFLOAT ? 4 : 16;
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                            .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
+                            .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage};
+    roma_result r = from_vk(vkCreateImage(e->device, &ii, NULL, &out->image), "vkCreateImage");
+    VkMemoryRequirements req;
+    if (r == ROMA_SUCCESS) {
+        vkGetImageMemoryRequirements(e->device, out->image, &req);
+        r = allocate(e, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &out->memory);
+    }
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkBindImageMemory(e->device, out->image, out->memory, 0), "vkBindImageMemory");
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
+                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
+                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkCreateImageView(e->device, &vi, NULL, &out->view), "vkCreateImageView");
+    return r;
+}
+
+static roma_result buffer_create(engine *e, VkDeviceSize size, VkBufferUsageFlags usage, host_buffer *out)
+{
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage};
+    roma_result r = from_vk(vkCreateBuffer(e->device, &bi, NULL, &out->buffer), "vkCreateBuffer");
+    VkMemoryRequirements req;
+    if (r == ROMA_SUCCESS) {
+        vkGetBufferMemoryRequirements(e->device, out->buffer, &req);
+        r = allocate(e, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                     &out->memory);
+    }
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkBindBufferMemory(e->device, out->buffer, out->memory, 0), "vkBindBufferMemory");
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkMapMemory(e->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped), "vkMapMemory");
+    return r;
+}
+
+static void engine_free(engine *e)
+{
+    if (e->fence)
+        vkDestroyFence(e->device, e->fence, NULL);
+    if (e->pool)
+        vkDestroyCommandPool(e->device, e->pool, NULL);
+    for (int i = 0; i < IMAGE_COUNT; ++i) {
+        gpu_image *im = &e->images[i];
+        if (im->view)
+            vkDestroyImageView(e->device, im->view, NULL);
+        if (im->image)
+            vkDestroyImage(e->device, im->image, NULL);
+        if (im->memory)
+            vkFreeMemory(e->device, im->memory, NULL);
+    }
+    host_buffer *buffers[2] = {&e->upload, &e->readback};
+    for (int i = 0; i < 2; ++i) {
+        if (buffers[i]->buffer)
+            vkDestroyBuffer(e->device, buffers[i]->buffer, NULL);
+        if (buffers[i]->memory)
+            vkFreeMemory(e->device, buffers[i]->memory, NULL);
+    }
+    roma_gpu_timer_destroy(e->timer);
+    roma_gi_effect_destroy(e->gi);
+    roma_light_effect_destroy(e->light);
+    roma_ao_effect_destroy(e->ao);
+    for (int i = 0; i < ROMA_PASS_COUNT; ++i)
+        roma_map_destroy(e->maps[i]);
+}
+
+/* The G-buffer: the reference's primary ray through each pixel's centre, written straight into
+ * the upload buffer (position with w = 1 on a hit, 0 on a miss; shading and geometric normals);
+ * the albedo is kept on the host for the resolve. */
+static void trace_gbuffer(const roma_ref *ref, const effect_api_desc *d, float *upload, float *albedo)
+{
+    roma_camera_frame frame;
+    roma_camera_make_frame(&d->camera, d->width, d->height, &frame);
+    const size_t n = (size_t)d->width * d->height;
+    float *position = upload, *normal = upload + 4 * n, *geometric = upload + 8 * n;
+    for (uint32_t y = 0; y < d->height; ++y)
+        for (uint32_t x = 0; x < d->width; ++x) {
+            const size_t i = (size_t)y * d->width + x;
+            float org[3], dir[3];
+            roma_camera_ray(&frame, (float)x + 0.5f, (float)y + 0.5f, org, dir);
+            roma_ref_hit hit;
+            const int covered = roma_ref_intersect(ref, org, dir, 0.0f, INFINITY, &hit);
+            const float *a = covered ? roma_ref_triangle_albedo(ref, hit.triangle) : NULL;
+            for (int c = 0; c < 3; ++c) {
+                position[4 * i + c] = covered ? hit.position[c] : 0.0f;
+                normal[4 * i + c] = covered ? hit.shading_normal[c] : 0.0f;
+                geometric[4 * i + c] = covered ? hit.geometric_normal[c] : 0.0f;
+                albedo[3 * i + c] = covered ? a[c] : 0.0f;
+            }
+            position[4 * i + 3] = covered ? 1.0f : 0.0f;
+            normal[4 * i + 3] = geometric[4 * i + 3] = 0.0f;
+        }
+}
+
+static void image_barrier(VkCommandBuffer cmd, const gpu_image *im, VkImageLayout from, VkImageLayout to,
+                          VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                          VkAccessFlags2 dst_access)
+{
+    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
+                               .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access,
+                               .oldLayout = from, .newLayout = to,
+                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                               .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = im->image,
+                               .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
+                            .pImageMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+static void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
+                          .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                            .pMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+/* Frame 0 only: the G-buffer into its images (sampled from then on), the outputs to GENERAL. */
+static void record_upload(engine *e, uint32_t width, uint32_t height)
+{
+    VkCommandBuffer cmd = e->cmd;
+    const VkDeviceSize plane = (VkDeviceSize)width * height * 16;
+    for (int i = 0; i < INPUTS; ++i) {
+        gpu_image *im = &e->images[i];
+        image_barrier(cmd, im, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                      0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy = {.bufferOffset = plane * (VkDeviceSize)i,
+                                  .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                  .imageExtent = {width, height, 1}};
+        vkCmdCopyBufferToImage(cmd, e->upload.buffer, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        image_barrier(cmd, im, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
+    for (int i = INPUTS; i < IMAGE_COUNT; ++i)
+        if (e->images[i].image)
+            image_barrier(cmd, &e->images[i], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                          VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+/* The outputs' copies to the host: their offsets in the readback buffer. */
+static VkDeviceSize readback_offset(const engine *e, int image, uint32_t width, uint32_t height)
+{
+    VkDeviceSize offset = 0;
+    for (int i = INPUTS; i < image; ++i)
+        if (e->images[i].image)
+            offset += (VkDeviceSize)width * height * e->images[i].bytes_per_pixel;
+    return offset;
+}
+
+/* Every frame but the first: the outputs back to GENERAL once the last frame's copies read them. */
+static void record_outputs_writable(engine *e)
+{
+    for (int i = INPUTS; i < IMAGE_COUNT; ++i)
+        if (e->images[i].image)
+            image_barrier(e->cmd, &e->images[i], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                          VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+static void record_readback(engine *e, uint32_t width, uint32_t height)
+{
+    for (int i = INPUTS; i < IMAGE_COUNT; ++i) {
+        if (!e->images[i].image)
+            continue;
+        image_barrier(e->cmd, &e->images[i], VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        VkBufferImageCopy copy = {.bufferOffset = readback_offset(e, i, width, height),
+                                  .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                  .imageExtent = {width, height, 1}};
+        vkCmdCopyImageToBuffer(e->cmd, e->images[i].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, e->readback.buffer,
+                               1, &copy);
+    }
+    memory_barrier(e->cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                   VK_ACCESS_2_HOST_READ_BIT);
+}
+
+typedef struct frame_job {
+    const effect_api_desc *d;
+    const roma_scene_view *view;
+    const effect_api_result *out;
+    roma_ao_settings ao;
+    roma_light_settings light;
+    roma_gi_settings gi;
+} frame_job;
+
+/* One frame: the arrays' builds, then each effect on its array, each in a timer scope. */
+static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
+{
+    const effect_api_desc *d = job->d;
+    const roma_effect_plan *plan = &job->out->plan;
+    VkCommandBuffer cmd = e->cmd;
+    roma_gpu_timer_reset(e->timer, cmd);
+    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1};
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "build");
+        r = roma_map_record_build(e->maps[i], cmd, &frame, NULL);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
+    const roma_light *lights = job->view->lights;
+    const uint32_t light_count = job->view->light_count;
+    if (r == ROMA_SUCCESS && e->ao) {
+        roma_ao_settings s = job->ao;
+        s.frame = f;
+        roma_ao_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
+                             e->images[IN_GEOMETRIC].view, e->images[OUT_AO].view, 0};
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "ao");
+        r = roma_ao_effect_record(e->ao, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_AO]], &im, &s);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
+    if (r == ROMA_SUCCESS && e->light) {
+        roma_light_settings s = job->light;
+        s.frame = f;
+        int m = plan->pass_map[ROMA_PASS_PUNCTUAL_LIGHTS] >= 0 ? plan->pass_map[ROMA_PASS_PUNCTUAL_LIGHTS]
+                                                                : plan->pass_map[ROMA_PASS_SOFT_SHADOWS];
+        roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
+                                e->images[IN_GEOMETRIC].view, e->images[OUT_DIRECT].view, 0};
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "direct");
+        r = roma_light_effect_record(e->light, cmd, 0, e->maps[m], &im, lights, light_count, &s);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
+    if (r == ROMA_SUCCESS && e->gi) {
+        roma_gi_settings s = job->gi;
+        s.frame = f;
+        roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
+                                e->images[IN_GEOMETRIC].view, e->images[OUT_GI].view, 0};
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "gi");
+        r = roma_gi_effect_record(e->gi, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_GI]], &im, lights, light_count,
+                                  &s);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
+    return r;
+}
+
+/* The timer's scopes of the frame just finished, added to the result's sums. */
+static roma_result add_timings(engine *e, effect_api_result *out)
+{
+    roma_gpu_timing t[ROMA_PASS_COUNT + 3];
+    uint32_t count = ROMA_PASS_COUNT + 3;
+    roma_result r = roma_gpu_timer_read(e->timer, t, &count);
+    uint32_t build = 0;
+    for (uint32_t i = 0; i < count && r == ROMA_SUCCESS; ++i) {
+        if (strcmp(t[i].name, "build") == 0 && build < ROMA_PASS_COUNT)
+            out->build_ms[build++] += t[i].milliseconds;
+        else if (strcmp(t[i].name, "ao") == 0)
+            out->ao_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "direct") == 0)
+            out->direct_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "gi") == 0)
+            out->gi_ms += t[i].milliseconds;
+    }
+    return r;
+}
+
+/* The frame's outputs added to the sums kept in the result's images (covered pixels only). */
+static void accumulate(const engine *e, const effect_api_desc *d, const float *position, effect_api_result *out)
+{
+    const size_t n = (size_t)d->width * d->height;
+    const char *base = e->readback.mapped;
+    const float *ao = e->images[OUT_AO].image ? (const float *)(base + readback_offset(e, OUT_AO, d->width, d->height))
+                                              : NULL;
+    const float *direct = e->images[OUT_DIRECT].image
+                              ? (const float *)(base + readback_offset(e, OUT_DIRECT, d->width, d->height))
+                              : NULL;
+    const float *gi = e->images[OUT_GI].image ? (const float *)(base + readback_offset(e, OUT_GI, d->width, d->height))
+                                              : NULL;
+    for (size_t i = 0; i < n; ++i) {
+        if (!(position[4 * i + 3] > 0.0f))
+            continue;
+        if (ao)
+            out->ao.pixels[i] += ao[i];
+        for (int c = 0; c < 3; ++c) {
+            if (direct)
+                out->direct.pixels[3 * i + c] += direct[4 * i + c];
+            if (gi)
+                out->gi.pixels[3 * i + c] += gi[4 * i + c];
+        }
+    }
+}
+
+/* Sums to the reference's quantities: the mean visibility, albedo / pi times the mean irradiance. */
+static void resolve(const effect_api_desc *d, const float *position, const float *albedo, uint32_t frames,
+                    effect_api_result *out)
+{
+    const size_t n = (size_t)d->width * d->height;
+    for (size_t i = 0; i < n; ++i) {
+        const int covered = position[4 * i + 3] > 0.0f;
+        out->coverage.pixels[i] = covered ? 1.0f : 0.0f;
+        if (out->ao.pixels)
+            out->ao.pixels[i] = covered ? out->ao.pixels[i] / (float)frames : 1.0f;
+        for (int c = 0; c < 3; ++c) {
+            if (out->direct.pixels)
+                out->direct.pixels[3 * i + c] *= albedo[3 * i + c] / PI_F / (float)frames;
+            if (out->gi.pixels)
+                out->gi.pixels[3 * i + c] *= albedo[3 * i + c] / PI_F / (float)frames;
+        }
+    }
+}
+
+static roma_result create_objects(engine *e, const roma_scene *scene, const effect_api_desc *d,
+                                  effect_api_result *out)
+{
+    roma_effect_options options = d->options;
+    options.effects &= ROMA_EFFECT_AO | ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI;
+    roma_result r = roma_effect_plan_derive(scene, &options, NULL, &out->plan);
+    const roma_effect_plan *plan = &out->plan;
+    for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
+        roma_map_desc md = {.resolution = plan->maps[i].resolution, .angular = plan->maps[i].angular,
+                            .frames_in_flight = 1};
+        r = roma_map_create(e->ctx, &md, scene, &e->maps[i]);
+        if (r == ROMA_SUCCESS)
+            r = roma_map_get_info(e->maps[i], &out->map_info[i]);
+    }
+    const int lit = roma_effect_plan_runs(plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
+                    roma_effect_plan_runs(plan, ROMA_PASS_SOFT_SHADOWS);
+    const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1};
+    const roma_light_effect_desc light_desc = {.frames_in_flight = 1};
+    const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1};
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO))
+        r = roma_ao_effect_create(e->ctx, &ao_desc, &e->ao);
+    if (r == ROMA_SUCCESS && lit)
+        r = roma_light_effect_create(e->ctx, &light_desc, &e->light);
+    if (r == ROMA_SUCCESS && lit)
+        r = roma_light_effect_set_area_lights(e->light, scene);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_GI))
+        r = roma_gi_effect_create(e->ctx, &gi_desc, &e->gi);
+    if (r == ROMA_SUCCESS && e->gi)
+        r = roma_gi_effect_set_scene(e->gi, scene);
+    if (r == ROMA_SUCCESS)
+        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 3, &e->timer);
+    return r;
+}
+
+static roma_result create_images(engine *e, const effect_api_desc *d)
+{
+    const uint32_t w = d->width, h = d->height;
+    const VkImageUsageFlags in_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const VkImageUsageFlags out_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    roma_result r = ROMA_SUCCESS;
+    for (int i = 0; i < INPUTS && r == ROMA_SUCCESS; ++i)
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, &e->images[i]);
+    if (r == ROMA_SUCCESS && e->ao)
+        r = image_create(e, w, h, VK_FORMAT_R32_SFLOAT, out_usage, &e->images[OUT_AO]);
+    if (r == ROMA_SUCCESS && e->light)
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_DIRECT]);
+    if (r == ROMA_SUCCESS && e->gi)
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_GI]);
+    if (r == ROMA_SUCCESS)
+        r = buffer_create(e, (VkDeviceSize)w * h * 16 * INPUTS, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &e->upload);
+    if (r == ROMA_SUCCESS)
+        r = buffer_create(e, readback_offset(e, IMAGE_COUNT, w, h) + 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          &e->readback);
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                  .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                  .queueFamilyIndex = roma_context_queue_family(e->ctx)};
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkCreateCommandPool(e->device, &pi, NULL, &e->pool), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = e->pool,
+                                      .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkAllocateCommandBuffers(e->device, &ai, &e->cmd), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    if (r == ROMA_SUCCESS)
+        r = from_vk(vkCreateFence(e->device, &fi, NULL, &e->fence), "vkCreateFence");
+    return r;
+}
+
+static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_job *job, const float *position,
+                              effect_api_result *out)
+{
+    const uint32_t frames = d->frames ? d->frames : 1;
+    VkQueue queue = roma_context_queue(e->ctx);
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t f = 0; f < frames && r == ROMA_SUCCESS; ++f) {
+        VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+        r = from_vk(vkBeginCommandBuffer(e->cmd, &bi), "vkBeginCommandBuffer");
+        if (r != ROMA_SUCCESS)
+            break;
+        if (f == 0)
+            record_upload(e, d->width, d->height);
+        else
+            record_outputs_writable(e);
+        r = record_frame(e, job, f);
+        if (r == ROMA_SUCCESS)
+            record_readback(e, d->width, d->height);
+        VkResult ended = vkEndCommandBuffer(e->cmd);
+        if (r == ROMA_SUCCESS)
+            r = from_vk(ended, "vkEndCommandBuffer");
+        VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
+                           .pCommandBuffers = &e->cmd};
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkQueueSubmit(queue, 1, &si, e->fence), "vkQueueSubmit");
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkWaitForFences(e->device, 1, &e->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkResetFences(e->device, 1, &e->fence), "vkResetFences");
+        if (r == ROMA_SUCCESS)
+            r = add_timings(e, out);
+        if (r == ROMA_SUCCESS)
+            accumulate(e, d, position, out);
+        if (r == ROMA_SUCCESS && d->progress)
+            d->progress((float)(f + 1) / (float)frames, d->progress_user_data);
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkResetCommandBuffer(e->cmd, 0), "vkResetCommandBuffer");
+    }
+    return r;
+}
+
+roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+                              const effect_api_desc *d, effect_api_result *out)
+{
+    memset(out, 0, sizeof *out);
+    roma_camera_frame check;
+    if (!ctx || !scene || !ref || !d || !d->width || !d->height ||
+        !roma_camera_make_frame(&d->camera, d->width, d->height, &check))
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    roma_scene_view view;
+    roma_scene_get_view(scene, &view);
+    roma_context_info info;
+    roma_context_get_info(ctx, &info);
+    engine e = {.ctx = ctx, .device = roma_context_device(ctx), .max_allocation = info.max_allocation_size};
+    vkGetPhysicalDeviceMemoryProperties(roma_context_physical_device(ctx), &e.memory);
+    if (!e.max_allocation)
+        e.max_allocation = UINT64_MAX;
+    roma_result r = create_objects(&e, scene, d, out);
+    if (r == ROMA_SUCCESS)
+        r = create_images(&e, d);
+    const size_t n = (size_t)d->width * d->height;
+    float *albedo = r == ROMA_SUCCESS ? malloc(n * 3 * sizeof(float)) : NULL;
+    if (r == ROMA_SUCCESS && !albedo)
+        r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    if (r == ROMA_SUCCESS)
+        r = roma_image_alloc(&out->coverage, d->width, d->height, 1);
+    /* An effect asked for that the scene cannot show (direct light without lights) stays black. */
+    const uint32_t effects = d->options.effects;
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_AO))
+        r = roma_image_alloc(&out->ao, d->width, d->height, 1);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_DIRECT))
+        r = roma_image_alloc(&out->direct, d->width, d->height, 3);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_GI))
+        r = roma_image_alloc(&out->gi, d->width, d->height, 3);
+    const float *position = e.upload.mapped;
+    if (r == ROMA_SUCCESS) {
+        const double t0 = roma_app_now_ms();
+        trace_gbuffer(ref, d, e.upload.mapped, albedo);
+        out->gbuffer_ms = roma_app_now_ms() - t0;
+    }
+    const float radius = d->ao_radius > 0.0f && isfinite(d->ao_radius) ? d->ao_radius : 0.0f;
+    const uint32_t spp = d->spp ? d->spp : 1;
+    frame_job job = {
+        .d = d, .view = &view, .out = out,
+        .ao = {.samples = spp, .radius = radius, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,
+               .seed = d->seed},
+        .light = {.max_steps = d->max_steps, .offset_cells = d->offset_cells, .skip_cells = d->skip_cells,
+                  .area_samples = spp, .seed = d->seed},
+        .gi = {.samples = spp, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,
+               .shadow_skip_cells = d->skip_cells, .max_steps = d->max_steps, .seed = d->seed},
+    };
+    if (r == ROMA_SUCCESS)
+        r = run_frames(&e, d, &job, position, out);
+    if (r == ROMA_SUCCESS)
+        resolve(d, position, albedo, d->frames ? d->frames : 1, out);
+    out->effect_bytes = e.bytes;
+    if (r != ROMA_SUCCESS && e.device)
+        vkDeviceWaitIdle(e.device); /* nothing of this call may still run when its objects go */
+    engine_free(&e);
+    free(albedo);
+    if (r != ROMA_SUCCESS)
+        effect_api_result_free(out);
+    return r;
+}
+
+void effect_api_result_free(effect_api_result *result)
+{
+    if (!result)
+        return;
+    roma_image_free(&result->ao);
+    roma_image_free(&result->direct);
+    roma_image_free(&result->gi);
+    roma_image_free(&result->coverage);
+}

@@ -1,0 +1,56 @@
+/* roma-render's ROMA images through libroma's public effect API, as an engine records them:
+ * roma-render is the engine. Its G-buffer is the reference tracer's primary rays (pixel
+ * centres, the points the Embree reference shades), uploaded into images it owns; every frame
+ * it records, into one command buffer of its own, the build of each ROMA array the effect
+ * plan needs (new jitter each frame) and the AO, light and GI effects on those images, then
+ * copies their outputs to the host, submits, waits and adds them up: the accumulation over
+ * frames is a loop around the public passes. Frame f uses samples f*spp .. f*spp+spp-1, as
+ * the reference at spp*frames samples does.
+ *
+ * What the public API has no pass for stays with roma-render's internal renderer (the
+ * accuracy study's baselines, the many-lights visibility counts, reflective shadow maps):
+ * effect_api_unsupported says why a request needs it. */
+#ifndef ROMA_RENDER_EFFECT_API_H
+#define ROMA_RENDER_EFFECT_API_H
+
+#include <stdint.h>
+
+#include "reference.h"
+#include "roma/roma.h"
+
+typedef struct effect_api_desc {
+    roma_camera camera;
+    uint32_t width, height;
+    roma_effect_options options; /* effects (ao, direct, gi), RES, A per pass */
+    uint32_t spp;                /* per frame: AO rays, area-light samples, GI bounces; 0 = 1 */
+    uint32_t frames;             /* 0 = 1 */
+    uint32_t seed;
+    float ao_radius;             /* <= 0 or infinite: unbounded */
+    /* As the public settings take them: 0 = the library's default, a negative skip = none. */
+    float offset_cells, skip_cells, ao_skip_cells;
+    uint32_t max_steps;
+    void (*progress)(float fraction, void *user_data); /* after each frame */
+    void *progress_user_data;
+} effect_api_desc;
+
+typedef struct effect_api_result {
+    /* ao 1 channel (1 where nothing was seen), direct and gi RGB radiance (albedo / pi times the
+     * effects' irradiance), coverage 1 where a primary ray hit: the reference's layout. */
+    roma_image ao, direct, gi, coverage;
+    roma_effect_plan plan;
+    roma_map_info map_info[ROMA_PASS_COUNT]; /* per array of plan.maps */
+    double build_ms[ROMA_PASS_COUNT];        /* per array: GPU timestamps summed over frames */
+    double ao_ms, direct_ms, gi_ms;          /* each effect's records: GPU timestamps summed */
+    double gbuffer_ms;                       /* the primary rays, host clock */
+    uint64_t effect_bytes;                   /* the G-buffer, output and transfer memory made here */
+} effect_api_result;
+
+/* NULL when the public effects can render this request, else the reason they cannot
+ * (a static string naming the option). */
+const char *effect_api_unsupported(uint32_t effects, int baseline, int rsm, int blind_start);
+
+roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+                              const effect_api_desc *desc, effect_api_result *out);
+void effect_api_result_free(effect_api_result *result);
+
+#endif /* ROMA_RENDER_EFFECT_API_H */

@@ -12,8 +12,9 @@
 #   make study           what accuracy costs in time: the accuracy runs of roma-bench on the built-in
 #                        room (AO, direct light, GI, many lights), direct light, GI and many
 #                        lights on the built-in blinds, unbounded AO on 2CylinderEngine and (RES 64
-#                        and 128) on the bunny, dragon_res3, tabletop, spot, CesiumMan and Fox
-#                        (105 to 150 minutes on 2 cores) into
+#                        and 128) on the bunny, dragon_res3, tabletop, spot, CesiumMan and Fox,
+#                        many lights on those and 2CylinderEngine
+#                        (110 to 155 minutes on 2 cores) into
 #                        docs/bench and their plots into docs/images
 #                        (docs/accuracy-vs-time.md), then generation and trace time as the scene grows
 #                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points
@@ -111,6 +112,15 @@ study: build
 	    $(BUILD)/apps/roma-bench --accuracy --scene $$f --res 64,128 --runs 3 --csv docs/bench/$${s}_accuracy.csv \
 	        --plot docs/images/accuracy_vs_time_$${s}_ao.png --cache $(BUILD)/study_$$s.cache \
 	        > docs/bench/$${s}_accuracy.txt && rm -f $(BUILD)/study_$$s.cache || exit 1; done
+	$(BUILD)/apps/roma-bench --accuracy --effect lights --scene scenes/2CylinderEngine.glb --runs 3 \
+	    --csv docs/bench/engine_lights_accuracy.csv --plot docs/images/accuracy_vs_time_engine_lights.png \
+	    --cache $(BUILD)/study_engine_lights.cache > docs/bench/engine_lights_accuracy.txt
+	rm -f $(BUILD)/study_engine_lights.cache
+	for s in bunny dragon_res3 tabletop spot CesiumMan Fox; do f=$$(ls scenes/$$s.gl*) && \
+	    $(BUILD)/apps/roma-bench --accuracy --effect lights --scene $$f --runs 3 \
+	        --csv docs/bench/$${s}_lights_accuracy.csv --plot docs/images/accuracy_vs_time_$${s}_lights.png \
+	        --cache $(BUILD)/study_$${s}_lights.cache > docs/bench/$${s}_lights_accuracy.txt && \
+	        rm -f $(BUILD)/study_$${s}_lights.cache || exit 1; done
 	$(BUILD)/apps/roma-bench --growth scenes/spot.glb,scenes/dragon_res3.glb,scenes/bunny.glb,scenes/dragon_res2.glb \
 	    --res 64,128,256 --runs 5 --csv docs/bench/growth.csv --plot docs/images/generation_and_trace_growth.png \
 	    > docs/bench/growth.txt
@@ -118,7 +128,8 @@ study: build
 	    docs/bench/cornell_lights_accuracy.txt docs/bench/blinds_direct_accuracy.txt docs/bench/blinds_gi_accuracy.txt \
 	    docs/bench/blinds_lights_accuracy.txt docs/bench/engine_accuracy.txt docs/bench/bunny_accuracy.txt \
 	    docs/bench/dragon_res3_accuracy.txt docs/bench/tabletop_accuracy.txt docs/bench/spot_accuracy.txt \
-	    docs/bench/CesiumMan_accuracy.txt docs/bench/Fox_accuracy.txt \
+	    docs/bench/CesiumMan_accuracy.txt docs/bench/Fox_accuracy.txt docs/bench/engine_lights_accuracy.txt \
+	    $(foreach s,bunny dragon_res3 tabletop spot CesiumMan Fox,docs/bench/$(s)_lights_accuracy.txt) \
 	    docs/bench/growth.txt
 
 study-small: build

@@ -25,6 +25,9 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 OUT ?= out
 ASAN_BUILD ?= build-asan
+# The shared scenes make study sweeps besides the built-in ones and 2CylinderEngine.
+STUDY_SCENES = scenes/bunny.glb scenes/dragon_res3.glb scenes/tabletop.gltf scenes/spot.glb scenes/CesiumMan.glb \
+               scenes/Fox.glb
 FUZZ_BUILD ?= build-fuzz
 
 .PHONY: deps configure build run test test-sanitize test-fuzz test-consumers docs study study-small clean
@@ -108,7 +111,7 @@ study: build
 	    --plot docs/images/accuracy_vs_time_engine_ao.png --cache $(BUILD)/study_engine.cache \
 	    > docs/bench/engine_accuracy.txt
 	rm -f $(BUILD)/study_engine.cache
-	for s in bunny dragon_res3 tabletop spot CesiumMan Fox; do f=$$(ls scenes/$$s.gl*) && \
+	for f in $(STUDY_SCENES); do s=$$(basename $${f%.*}) && \
 	    $(BUILD)/apps/roma-bench --accuracy --scene $$f --res 64,128 --runs 3 --csv docs/bench/$${s}_accuracy.csv \
 	        --plot docs/images/accuracy_vs_time_$${s}_ao.png --cache $(BUILD)/study_$$s.cache \
 	        > docs/bench/$${s}_accuracy.txt && rm -f $(BUILD)/study_$$s.cache || exit 1; done
@@ -116,7 +119,7 @@ study: build
 	    --csv docs/bench/engine_lights_accuracy.csv --plot docs/images/accuracy_vs_time_engine_lights.png \
 	    --cache $(BUILD)/study_engine_lights.cache > docs/bench/engine_lights_accuracy.txt
 	rm -f $(BUILD)/study_engine_lights.cache
-	for s in bunny dragon_res3 tabletop spot CesiumMan Fox; do f=$$(ls scenes/$$s.gl*) && \
+	for f in $(STUDY_SCENES); do s=$$(basename $${f%.*}) && \
 	    $(BUILD)/apps/roma-bench --accuracy --effect lights --scene $$f --runs 3 \
 	        --csv docs/bench/$${s}_lights_accuracy.csv --plot docs/images/accuracy_vs_time_$${s}_lights.png \
 	        --cache $(BUILD)/study_$${s}_lights.cache > docs/bench/$${s}_lights_accuracy.txt && \
@@ -129,7 +132,7 @@ study: build
 	    docs/bench/blinds_lights_accuracy.txt docs/bench/engine_accuracy.txt docs/bench/bunny_accuracy.txt \
 	    docs/bench/dragon_res3_accuracy.txt docs/bench/tabletop_accuracy.txt docs/bench/spot_accuracy.txt \
 	    docs/bench/CesiumMan_accuracy.txt docs/bench/Fox_accuracy.txt docs/bench/engine_lights_accuracy.txt \
-	    $(foreach s,bunny dragon_res3 tabletop spot CesiumMan Fox,docs/bench/$(s)_lights_accuracy.txt) \
+	    $(foreach f,$(STUDY_SCENES),docs/bench/$(basename $(notdir $(f)))_lights_accuracy.txt) \
 	    docs/bench/growth.txt
 
 study-small: build

@@ -58,8 +58,8 @@ cam="0,1,1.9,0,0.9,0,60"
   || { cat "$dir/viewer.out" >&2; fail "roma-viewer --headless (AO view) failed"; }
 "$render" --tracer embree --effects ao --spp 256 --ao-radius 0.5 --camera "$cam" --size 160x120 --quiet \
   --out "$dir/reference" >/dev/null 2>&1 || fail "roma-render --tracer embree failed"
-"$render" --tracer roma --effects ao --spp 8 --frames 32 --ao-radius 0.5 --camera "$cam" --size 160x120 --quiet \
-  --out "$dir/roma" >/dev/null 2>&1 || fail "roma-render --tracer roma failed"
+"$render" --tracer roma --route internal --effects ao --spp 8 --frames 32 --ao-radius 0.5 --camera "$cam" \
+  --size 160x120 --quiet --out "$dir/roma" >/dev/null 2>&1 || fail "roma-render --tracer roma failed"
 if [ -f "$dir/viewer_ao.pfm" ] && [ -f "$dir/reference/ao.pfm" ] && [ -f "$dir/roma/ao.pfm" ]; then
   "$compare" "$dir/viewer_ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_reference.txt"
   "$compare" "$dir/viewer_ao.pfm" "$dir/roma/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_roma.txt"
@@ -101,8 +101,8 @@ echo "direct light MAE (viewer vs Embree): ${direct:-none}"
 #      same samples, and against the reference.
 "$viewer" --headless --validation --view gi --frames 32 --camera "$cam" --size 160x120 \
   --linear "$dir/viewer_gi.pfm" >"$dir/gi.out" 2>&1 || { cat "$dir/gi.out" >&2; fail "roma-viewer --view gi failed"; }
-"$render" --tracer roma --effects gi --gi-punctual rays --spp 1 --frames 32 --camera "$cam" --size 160x120 --quiet \
-  --out "$dir/roma_gi" >/dev/null 2>&1 || fail "roma-render --effects gi failed"
+"$render" --tracer roma --route internal --effects gi --gi-punctual rays --spp 1 --frames 32 --camera "$cam" \
+  --size 160x120 --quiet --out "$dir/roma_gi" >/dev/null 2>&1 || fail "roma-render --effects gi failed"
 "$render" --tracer embree --effects gi --spp 256 --camera "$cam" --size 160x120 --quiet \
   --out "$dir/reference_gi" >/dev/null 2>&1 || fail "roma-render --tracer embree --effects gi failed"
 if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/reference_gi/gi.pfm" ]; then
@@ -132,8 +132,8 @@ wall_cam="0,3,4,0,0.3,0,50"
 "$viewer" --headless --validation --scene "$wall" --time 0.9 --view gi --frames 32 --camera "$wall_cam" \
   --size 160x120 --linear "$dir/wall_gi.pfm" >"$dir/wall_gi.out" 2>&1 \
   || { cat "$dir/wall_gi.out" >&2; fail "roma-viewer --view gi on the moving wall failed"; }
-"$render" --scene "$wall" --time 0.9 --tracer roma --effects gi --gi-punctual rays --spp 1 --frames 32 \
-  --camera "$wall_cam" --size 160x120 --quiet --out "$dir/wall_roma" >/dev/null 2>&1 \
+"$render" --scene "$wall" --time 0.9 --tracer roma --route internal --effects gi --gi-punctual rays --spp 1 \
+  --frames 32 --camera "$wall_cam" --size 160x120 --quiet --out "$dir/wall_roma" >/dev/null 2>&1 \
   || fail "roma-render --effects gi on the moving wall failed"
 if [ -f "$dir/wall_gi.pfm" ] && [ -f "$dir/wall_roma/gi.pfm" ]; then
   "$compare" "$dir/wall_gi.pfm" "$dir/wall_roma/gi.pfm" --mask "$dir/wall_roma/coverage.pfm" >"$dir/wall_gi.txt"

@@ -1,5 +1,5 @@
 /* roma-render's ROMA images through the public effect API (effect_api.h). Uses libroma's public
- * headers and the reference tracer only. */
+ * headers, the reference tracer (for the G-buffer) and the apps' clock only. */
 #include "effect_api.h"
 
 #include <math.h>
@@ -73,7 +73,9 @@ static roma_result from_vk(VkResult vr, const char *what)
                                                  : ROMA_ERROR_VULKAN;
 }
 
-static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropertyFlags want, VkDeviceMemory *out)
+/* Memory of the first type with `prefer`, else of the first with `want`. */
+static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropertyFlags want,
+                            VkMemoryPropertyFlags prefer, VkDeviceMemory *out, VkMemoryPropertyFlags *out_flags)
 {
     if (req.size > e->max_allocation) {
         fprintf(stderr, "roma-render: out of device memory: an image or buffer of %llu bytes is larger than the "
@@ -82,9 +84,12 @@ static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropert
         return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
     }
     uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < e->memory.memoryTypeCount && type == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (e->memory.memoryTypes[i].propertyFlags & want) == want)
-            type = i;
+    for (int pass = 0; pass < 2 && type == UINT32_MAX; ++pass) {
+        const VkMemoryPropertyFlags flags = pass == 0 ? prefer | want : want;
+        for (uint32_t i = 0; i < e->memory.memoryTypeCount && type == UINT32_MAX; ++i)
+            if ((req.memoryTypeBits & (1u << i)) && (e->memory.memoryTypes[i].propertyFlags & flags) == flags)
+                type = i;
+    }
     if (type == UINT32_MAX) {
         fprintf(stderr, "roma-render: no memory type with the properties 0x%x\n", (unsigned)want);
         return ROMA_ERROR_MISSING_FEATURE;
@@ -92,8 +97,13 @@ static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropert
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
                                .memoryTypeIndex = type};
     roma_result r = from_vk(vkAllocateMemory(e->device, &ai, NULL, out), "vkAllocateMemory (out of device memory?)");
-    if (r == ROMA_SUCCESS)
+    if (r == ROMA_SUCCESS) {
         e->bytes += req.size;
+        if (out_flags)
+            *out_flags = e->memory.memoryTypes[type].propertyFlags;
+    } else {
+        *out = VK_NULL_HANDLE;
+    }
     return r;
 }
 
@@ -106,35 +116,42 @@ static roma_result image_create(engine *e, uint32_t width, uint32_t height, VkFo
                             .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
                             .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage};
     roma_result r = from_vk(vkCreateImage(e->device, &ii, NULL, &out->image), "vkCreateImage");
+    if (r != ROMA_SUCCESS)
+        out->image = VK_NULL_HANDLE;
     VkMemoryRequirements req;
     if (r == ROMA_SUCCESS) {
         vkGetImageMemoryRequirements(e->device, out->image, &req);
-        r = allocate(e, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &out->memory);
+        r = allocate(e, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory, NULL);
     }
     if (r == ROMA_SUCCESS)
         r = from_vk(vkBindImageMemory(e->device, out->image, out->memory, 0), "vkBindImageMemory");
     VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
                                 .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
                                 .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    if (r == ROMA_SUCCESS)
-        r = from_vk(vkCreateImageView(e->device, &vi, NULL, &out->view), "vkCreateImageView");
+    if (r == ROMA_SUCCESS && (r = from_vk(vkCreateImageView(e->device, &vi, NULL, &out->view), "vkCreateImageView")))
+        out->view = VK_NULL_HANDLE;
     return r;
 }
 
-static roma_result buffer_create(engine *e, VkDeviceSize size, VkBufferUsageFlags usage, host_buffer *out)
+/* A host-visible buffer, mapped; `prefer`: HOST_CACHED for one the host reads. */
+static roma_result buffer_create(engine *e, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags prefer,
+                                 host_buffer *out)
 {
     VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage};
     roma_result r = from_vk(vkCreateBuffer(e->device, &bi, NULL, &out->buffer), "vkCreateBuffer");
+    if (r != ROMA_SUCCESS)
+        out->buffer = VK_NULL_HANDLE;
     VkMemoryRequirements req;
     if (r == ROMA_SUCCESS) {
         vkGetBufferMemoryRequirements(e->device, out->buffer, &req);
-        r = allocate(e, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                     &out->memory);
+        r = allocate(e, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, prefer,
+                     &out->memory, NULL);
     }
     if (r == ROMA_SUCCESS)
         r = from_vk(vkBindBufferMemory(e->device, out->buffer, out->memory, 0), "vkBindBufferMemory");
-    if (r == ROMA_SUCCESS)
-        r = from_vk(vkMapMemory(e->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped), "vkMapMemory");
+    if (r == ROMA_SUCCESS && (r = from_vk(vkMapMemory(e->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped),
+                                          "vkMapMemory")))
+        out->mapped = NULL;
     return r;
 }
 
@@ -166,34 +183,6 @@ static void engine_free(engine *e)
     roma_ao_effect_destroy(e->ao);
     for (int i = 0; i < ROMA_PASS_COUNT; ++i)
         roma_map_destroy(e->maps[i]);
-}
-
-/* The G-buffer: the reference's primary ray through each pixel's centre, written straight into
- * the upload buffer (position with w = 1 on a hit, 0 on a miss; shading and geometric normals);
- * the albedo is kept on the host for the resolve. */
-static void trace_gbuffer(const roma_ref *ref, const effect_api_desc *d, float *upload, float *albedo)
-{
-    roma_camera_frame frame;
-    roma_camera_make_frame(&d->camera, d->width, d->height, &frame);
-    const size_t n = (size_t)d->width * d->height;
-    float *position = upload, *normal = upload + 4 * n, *geometric = upload + 8 * n;
-    for (uint32_t y = 0; y < d->height; ++y)
-        for (uint32_t x = 0; x < d->width; ++x) {
-            const size_t i = (size_t)y * d->width + x;
-            float org[3], dir[3];
-            roma_camera_ray(&frame, (float)x + 0.5f, (float)y + 0.5f, org, dir);
-            roma_ref_hit hit;
-            const int covered = roma_ref_intersect(ref, org, dir, 0.0f, INFINITY, &hit);
-            const float *a = covered ? roma_ref_triangle_albedo(ref, hit.triangle) : NULL;
-            for (int c = 0; c < 3; ++c) {
-                position[4 * i + c] = covered ? hit.position[c] : 0.0f;
-                normal[4 * i + c] = covered ? hit.shading_normal[c] : 0.0f;
-                geometric[4 * i + c] = covered ? hit.geometric_normal[c] : 0.0f;
-                albedo[3 * i + c] = covered ? a[c] : 0.0f;
-            }
-            position[4 * i + 3] = covered ? 1.0f : 0.0f;
-            normal[4 * i + 3] = geometric[4 * i + 3] = 0.0f;
-        }
 }
 
 static void image_barrier(VkCommandBuffer cmd, const gpu_image *im, VkImageLayout from, VkImageLayout to,
@@ -228,8 +217,8 @@ static void record_upload(engine *e, uint32_t width, uint32_t height)
     const VkDeviceSize plane = (VkDeviceSize)width * height * 16;
     for (int i = 0; i < INPUTS; ++i) {
         gpu_image *im = &e->images[i];
-        image_barrier(cmd, im, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
-                      0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        image_barrier(cmd, im, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy copy = {.bufferOffset = plane * (VkDeviceSize)i,
                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {width, height, 1}};
@@ -245,13 +234,14 @@ static void record_upload(engine *e, uint32_t width, uint32_t height)
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
-/* The outputs' copies to the host: their offsets in the readback buffer. */
+/* The outputs' copies to the host: their offsets in the readback buffer, each a multiple of 16
+ * bytes (a copy's buffer offset is a multiple of its texel's size, 16 for RGBA32F). */
 static VkDeviceSize readback_offset(const engine *e, int image, uint32_t width, uint32_t height)
 {
     VkDeviceSize offset = 0;
     for (int i = INPUTS; i < image; ++i)
         if (e->images[i].image)
-            offset += (VkDeviceSize)width * height * e->images[i].bytes_per_pixel;
+            offset += ((VkDeviceSize)width * height * e->images[i].bytes_per_pixel + 15u) & ~(VkDeviceSize)15u;
     return offset;
 }
 
@@ -362,7 +352,7 @@ static roma_result add_timings(engine *e, effect_api_result *out)
 }
 
 /* The frame's outputs added to the sums kept in the result's images (covered pixels only). */
-static void accumulate(const engine *e, const effect_api_desc *d, const float *position, effect_api_result *out)
+static void accumulate(const engine *e, const effect_api_desc *d, effect_api_result *out)
 {
     const size_t n = (size_t)d->width * d->height;
     const char *base = e->readback.mapped;
@@ -374,7 +364,7 @@ static void accumulate(const engine *e, const effect_api_desc *d, const float *p
     const float *gi = e->images[OUT_GI].image ? (const float *)(base + readback_offset(e, OUT_GI, d->width, d->height))
                                               : NULL;
     for (size_t i = 0; i < n; ++i) {
-        if (!(position[4 * i + 3] > 0.0f))
+        if (!(out->coverage.pixels[i] > 0.0f))
             continue;
         if (ao)
             out->ao.pixels[i] += ao[i];
@@ -388,13 +378,11 @@ static void accumulate(const engine *e, const effect_api_desc *d, const float *p
 }
 
 /* Sums to the reference's quantities: the mean visibility, albedo / pi times the mean irradiance. */
-static void resolve(const effect_api_desc *d, const float *position, const float *albedo, uint32_t frames,
-                    effect_api_result *out)
+static void resolve(const effect_api_desc *d, const float *albedo, uint32_t frames, effect_api_result *out)
 {
     const size_t n = (size_t)d->width * d->height;
     for (size_t i = 0; i < n; ++i) {
-        const int covered = position[4 * i + 3] > 0.0f;
-        out->coverage.pixels[i] = covered ? 1.0f : 0.0f;
+        const int covered = out->coverage.pixels[i] > 0.0f;
         if (out->ao.pixels)
             out->ao.pixels[i] = covered ? out->ao.pixels[i] / (float)frames : 1.0f;
         for (int c = 0; c < 3; ++c) {
@@ -424,7 +412,10 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
                     roma_effect_plan_runs(plan, ROMA_PASS_SOFT_SHADOWS);
     const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1};
     const roma_light_effect_desc light_desc = {.frames_in_flight = 1};
-    const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1};
+    /* The surface grid at the GI array's RES, as the internal renderer's (at least the map's RES). */
+    const int gi_map = plan->pass_map[ROMA_PASS_GI];
+    const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1,
+                                         .surface_resolution = gi_map >= 0 ? plan->maps[gi_map].resolution : 0};
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO))
         r = roma_ao_effect_create(e->ctx, &ao_desc, &e->ao);
     if (r == ROMA_SUCCESS && lit)
@@ -455,10 +446,11 @@ static roma_result create_images(engine *e, const effect_api_desc *d)
     if (r == ROMA_SUCCESS && e->gi)
         r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_GI]);
     if (r == ROMA_SUCCESS)
-        r = buffer_create(e, (VkDeviceSize)w * h * 16 * INPUTS, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &e->upload);
+        r = buffer_create(e, (VkDeviceSize)w * h * 16 * INPUTS, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 0, &e->upload);
+    /* (16 bytes more: a buffer of no size is invalid when no output is read back) */
     if (r == ROMA_SUCCESS)
-        r = buffer_create(e, readback_offset(e, IMAGE_COUNT, w, h) + 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                          &e->readback);
+        r = buffer_create(e, readback_offset(e, IMAGE_COUNT, w, h) + 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          VK_MEMORY_PROPERTY_HOST_CACHED_BIT, &e->readback);
     VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
                                   .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                   .queueFamilyIndex = roma_context_queue_family(e->ctx)};
@@ -474,8 +466,7 @@ static roma_result create_images(engine *e, const effect_api_desc *d)
     return r;
 }
 
-static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_job *job, const float *position,
-                              effect_api_result *out)
+static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_job *job, effect_api_result *out)
 {
     const uint32_t frames = d->frames ? d->frames : 1;
     VkQueue queue = roma_context_queue(e->ctx);
@@ -507,7 +498,7 @@ static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_j
         if (r == ROMA_SUCCESS)
             r = add_timings(e, out);
         if (r == ROMA_SUCCESS)
-            accumulate(e, d, position, out);
+            accumulate(e, d, out);
         if (r == ROMA_SUCCESS && d->progress)
             d->progress((float)(f + 1) / (float)frames, d->progress_user_data);
         if (r == ROMA_SUCCESS)
@@ -532,6 +523,13 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     vkGetPhysicalDeviceMemoryProperties(roma_context_physical_device(ctx), &e.memory);
     if (!e.max_allocation)
         e.max_allocation = UINT64_MAX;
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(roma_context_physical_device(ctx), &props);
+    if (d->width > props.limits.maxImageDimension2D || d->height > props.limits.maxImageDimension2D) {
+        fprintf(stderr, "roma-render: %ux%u is larger than the device's images (maxImageDimension2D %u)\n", d->width,
+                d->height, props.limits.maxImageDimension2D);
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    }
     roma_result r = create_objects(&e, scene, d, out);
     if (r == ROMA_SUCCESS)
         r = create_images(&e, d);
@@ -549,11 +547,14 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
         r = roma_image_alloc(&out->direct, d->width, d->height, 3);
     if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_GI))
         r = roma_image_alloc(&out->gi, d->width, d->height, 3);
-    const float *position = e.upload.mapped;
-    if (r == ROMA_SUCCESS) {
+    if (r == ROMA_SUCCESS) { /* straight into the upload buffer, one plane an image */
+        float *upload = e.upload.mapped;
+        const roma_ref_gbuffer g = {upload, upload + 4 * n, upload + 8 * n, albedo};
         const double t0 = roma_app_now_ms();
-        trace_gbuffer(ref, d, e.upload.mapped, albedo);
+        r = roma_ref_render_gbuffer(ref, &d->camera, d->width, d->height, &g);
         out->gbuffer_ms = roma_app_now_ms() - t0;
+        for (size_t i = 0; i < n && r == ROMA_SUCCESS; ++i)
+            out->coverage.pixels[i] = upload[4 * i + 3] > 0.0f ? 1.0f : 0.0f;
     }
     const float radius = d->ao_radius > 0.0f && isfinite(d->ao_radius) ? d->ao_radius : 0.0f;
     const uint32_t spp = d->spp ? d->spp : 1;
@@ -567,9 +568,9 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
                .shadow_skip_cells = d->skip_cells, .max_steps = d->max_steps, .seed = d->seed},
     };
     if (r == ROMA_SUCCESS)
-        r = run_frames(&e, d, &job, position, out);
+        r = run_frames(&e, d, &job, out);
     if (r == ROMA_SUCCESS)
-        resolve(d, position, albedo, d->frames ? d->frames : 1, out);
+        resolve(d, albedo, d->frames ? d->frames : 1, out);
     out->effect_bytes = e.bytes;
     if (r != ROMA_SUCCESS && e.device)
         vkDeviceWaitIdle(e.device); /* nothing of this call may still run when its objects go */

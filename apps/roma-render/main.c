@@ -155,7 +155,8 @@ enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--gi-punctual", "--route", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset", "--lights-per-frame", "--spp", "--frames", "--ao-radius",
+    "--max-steps", "--gi-punctual", "--route", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset",
+    "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
     "--background",
     "--time", "--clip", "--animation", "--gltf-camera", "--up", "--list-scenes", "--quiet", "--help", "--preset",
@@ -771,10 +772,13 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_number(&j, "fovy_deg", cam->fovy_deg);
     roma_json_end_object(&j);
     roma_json_end_object(&j);
-    if (run->roma)
+    if (run->roma) {
         write_arrays(&j, &run->roma->plan, run->roma->map_info, run->roma->build_ms);
-    else if (run->api)
+    } else if (run->api) {
         write_arrays(&j, &run->api->plan, run->api->map_info, run->api->build_ms);
+        /* roma-render's own G-buffer, output and transfer memory (the passes' own is libroma's) */
+        roma_json_int(&j, "api_images_bytes", (long long)run->api->effect_bytes);
+    }
     roma_json_begin_array(&j, "notes");
     for (int i = 0; i < run->notes.count; ++i)
         roma_json_string(&j, NULL, run->notes.text[i]);
@@ -806,8 +810,10 @@ static int choose_route(const options *o, notes *n)
 {
     if (strcmp(o->tracer, "roma") != 0)
         return 0;
-    const char *why = effect_api_unsupported(o->effects, o->ao_method != ROMA_AO_METHOD_ROMA,
-                                             (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays, o->blind_start);
+    /* Options that only matter for an effect asked for do not decide the route without it. */
+    const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
+    const int rsm = (o->effects & ROMA_EFFECT_GI) && (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays;
+    const char *why = effect_api_unsupported(o->effects, baseline, rsm, o->blind_start);
     if (!why && (o->given & GIVEN_BUDGET))
         why = "--budget-ms calibrates on the internal renderer's frames";
     if (o->route == ROUTE_API && why) {
@@ -815,7 +821,8 @@ static int choose_route(const options *o, notes *n)
         return -1;
     }
     if (o->route == ROUTE_INTERNAL || why) {
-        note(n, o->quiet, "ROMA through the internal renderer: %s", why ? why : "--route internal");
+        note(n, o->quiet, "ROMA through the internal renderer: %s%s", why ? why : "--route internal",
+             (o->effects & ROMA_EFFECT_GI) && !o->gi_rays ? "; gi from point and spot lights through their RSMs" : "");
         return 0;
     }
     note(n, o->quiet, "ROMA through libroma's public effect passes on a G-buffer of primary rays (--route)%s",

@@ -29,11 +29,13 @@ ref() {
   touch "$out/ref_$name/.effects_$effects"
 }
 
-# roma NAME LABEL SCENE EFFECTS [ARGS...]
+# roma NAME LABEL SCENE EFFECTS [ARGS...]: the internal renderer, whose passes docs/accuracy.md
+# measures (roma-render's public-pass route gives the same images within 1e-6: test_cli).
 roma() {
   local name=$1 label=$2 scene=$3 effects=$4
   shift 4
-  "$render" --scene "$scene" --tracer roma --effects "$effects" --size $size --spp 32 --frames 32 --quiet \
+  "$render" --scene "$scene" --tracer roma --route internal --effects "$effects" --size $size --spp 32 --frames 32 \
+    --quiet \
     --out "$out/roma_${name}_$label" "$@" >/dev/null
 }
 

@@ -295,11 +295,6 @@ void roma_ref_offset_origin(const roma_ref *ref, const float p[3], const float g
         out[k] = p[k] + gn[k] * s;
 }
 
-const float *roma_ref_triangle_albedo(const roma_ref *ref, uint32_t triangle)
-{
-    return roma_ref_albedo(ref, triangle);
-}
-
 /* --- Batches: chunks of rays handed out to the worker pool. --- */
 
 typedef struct batch_job {

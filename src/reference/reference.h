@@ -77,10 +77,6 @@ void roma_ref_intersect_batch(const roma_ref *ref, uint32_t n, const float *orgs
 /* Offset origin for secondary rays leaving a surface point along geometric normal gn. */
 void roma_ref_offset_origin(const roma_ref *ref, const float p[3], const float gn[3], float out[3]);
 
-/* The albedo the estimators shade a triangle with: its material's base colour (grey 0.8
- * where it has none). 3 floats owned by the scene. */
-const float *roma_ref_triangle_albedo(const roma_ref *ref, uint32_t triangle);
-
 /* --- Point estimators (the building blocks of the images; tests call them directly) --- */
 
 /* AO visibility at p with normal n: cosine-weighted, spp samples, rays of length
@@ -139,6 +135,19 @@ typedef struct roma_ref_images {
 roma_result roma_ref_render(const roma_ref *ref, const roma_ref_render_desc *desc,
                             roma_ref_images *out_images);
 void roma_ref_images_free(roma_ref_images *images);
+
+/* A G-buffer of the primary rays the images shade (pixel centres), for renderers that shade
+ * the reference's points themselves; caller-allocated, width * height entries each: position
+ * (xyz, w = 1 where the ray hit, 0 elsewhere), shading and geometric normal (xyz facing the
+ * eye, w = 0), albedo (rgb: the triangle's base colour, grey 0.8 without a material; 0 where
+ * nothing was hit). Multithreaded like the images. */
+typedef struct roma_ref_gbuffer {
+    float *position, *normal, *geometric_normal; /* 4 floats a pixel */
+    float *albedo;                               /* 3 floats a pixel */
+} roma_ref_gbuffer;
+
+roma_result roma_ref_render_gbuffer(const roma_ref *ref, const roma_camera *camera, uint32_t width, uint32_t height,
+                                    const roma_ref_gbuffer *out);
 
 #ifdef __cplusplus
 }

@@ -159,6 +159,51 @@ static void render_row(void *ctx, uint32_t y)
     }
 }
 
+/* --- G-buffer --- */
+
+typedef struct gbuffer_job {
+    const roma_ref *ref;
+    roma_camera_frame frame;
+    uint32_t width;
+    const roma_ref_gbuffer *out;
+} gbuffer_job;
+
+static void gbuffer_row(void *ctx, uint32_t y)
+{
+    const gbuffer_job *job = ctx;
+    const roma_ref_gbuffer *g = job->out;
+    for (uint32_t x = 0; x < job->width; ++x) {
+        const size_t i = (size_t)y * job->width + x;
+        float org[3], dir[3];
+        roma_camera_ray(&job->frame, (float)x + 0.5f, (float)y + 0.5f, org, dir);
+        roma_ref_hit hit;
+        const int covered = roma_ref_intersect(job->ref, org, dir, 0.0f, INFINITY, &hit);
+        const float *albedo = covered ? roma_ref_albedo(job->ref, hit.triangle) : NULL;
+        for (int c = 0; c < 3; ++c) {
+            g->position[4 * i + c] = covered ? hit.position[c] : 0.0f;
+            g->normal[4 * i + c] = covered ? hit.shading_normal[c] : 0.0f;
+            g->geometric_normal[4 * i + c] = covered ? hit.geometric_normal[c] : 0.0f;
+            g->albedo[3 * i + c] = covered ? albedo[c] : 0.0f;
+        }
+        g->position[4 * i + 3] = covered ? 1.0f : 0.0f;
+        g->normal[4 * i + 3] = g->geometric_normal[4 * i + 3] = 0.0f;
+    }
+}
+
+roma_result roma_ref_render_gbuffer(const roma_ref *ref, const roma_camera *camera, uint32_t width, uint32_t height,
+                                    const roma_ref_gbuffer *out)
+{
+    const roma_logger *logger = ref ? &ref->logger : NULL;
+    if (!ref || !camera || !out || !out->position || !out->normal || !out->geometric_normal || !out->albedo)
+        return roma_fail(logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_ref_render_gbuffer: NULL argument");
+    gbuffer_job job = {.ref = ref, .width = width, .out = out};
+    if (width < 1 || height < 1 || !roma_camera_make_frame(camera, width, height, &job.frame))
+        return roma_fail(logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_ref_render_gbuffer: empty image or degenerate camera");
+    roma_ref_parallel_for(ref, height, gbuffer_row, &job, NULL, NULL);
+    return ROMA_SUCCESS;
+}
+
 static roma_result alloc_image(const roma_ref *ref, roma_image *image, const roma_ref_render_desc *d,
                                uint32_t channels, const char *name)
 {

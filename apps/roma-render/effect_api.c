@@ -18,7 +18,6 @@ typedef struct gpu_image {
     VkImage image;
     VkDeviceMemory memory;
     VkImageView view;
-    VkFormat format;
     VkDeviceSize bytes_per_pixel;
 } gpu_image;
 
@@ -73,9 +72,9 @@ static roma_result from_vk(VkResult vr, const char *what)
                                                  : ROMA_ERROR_VULKAN;
 }
 
-/* Memory of the first type with `prefer`, else of the first with `want`. */
+/* Memory of the first type with `prefer` and `want`, else of the first with `want`. */
 static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropertyFlags want,
-                            VkMemoryPropertyFlags prefer, VkDeviceMemory *out, VkMemoryPropertyFlags *out_flags)
+                            VkMemoryPropertyFlags prefer, VkDeviceMemory *out)
 {
     if (req.size > e->max_allocation) {
         fprintf(stderr, "roma-render: out of device memory: an image or buffer of %llu bytes is larger than the "
@@ -97,20 +96,16 @@ static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropert
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
                                .memoryTypeIndex = type};
     roma_result r = from_vk(vkAllocateMemory(e->device, &ai, NULL, out), "vkAllocateMemory (out of device memory?)");
-    if (r == ROMA_SUCCESS) {
+    if (r == ROMA_SUCCESS)
         e->bytes += req.size;
-        if (out_flags)
-            *out_flags = e->memory.memoryTypes[type].propertyFlags;
-    } else {
+    else
         *out = VK_NULL_HANDLE;
-    }
     return r;
 }
 
 static roma_result image_create(engine *e, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
                                 gpu_image *out)
 {
-    out->format = format;
     out->bytes_per_pixel = format == VK_FORMAT_R32_SFLOAT ? 4 : 16;
     VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
                             .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
@@ -121,7 +116,7 @@ static roma_result image_create(engine *e, uint32_t width, uint32_t height, VkFo
     VkMemoryRequirements req;
     if (r == ROMA_SUCCESS) {
         vkGetImageMemoryRequirements(e->device, out->image, &req);
-        r = allocate(e, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory, NULL);
+        r = allocate(e, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory);
     }
     if (r == ROMA_SUCCESS)
         r = from_vk(vkBindImageMemory(e->device, out->image, out->memory, 0), "vkBindImageMemory");
@@ -145,7 +140,7 @@ static roma_result buffer_create(engine *e, VkDeviceSize size, VkBufferUsageFlag
     if (r == ROMA_SUCCESS) {
         vkGetBufferMemoryRequirements(e->device, out->buffer, &req);
         r = allocate(e, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, prefer,
-                     &out->memory, NULL);
+                     &out->memory);
     }
     if (r == ROMA_SUCCESS)
         r = from_vk(vkBindBufferMemory(e->device, out->buffer, out->memory, 0), "vkBindBufferMemory");

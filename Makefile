@@ -129,9 +129,9 @@ study: build
 	    > docs/bench/growth.txt
 	cat docs/bench/cornell_accuracy.txt docs/bench/cornell_direct_accuracy.txt docs/bench/cornell_gi_accuracy.txt \
 	    docs/bench/cornell_lights_accuracy.txt docs/bench/blinds_direct_accuracy.txt docs/bench/blinds_gi_accuracy.txt \
-	    docs/bench/blinds_lights_accuracy.txt docs/bench/engine_accuracy.txt docs/bench/bunny_accuracy.txt \
-	    docs/bench/dragon_res3_accuracy.txt docs/bench/tabletop_accuracy.txt docs/bench/spot_accuracy.txt \
-	    docs/bench/CesiumMan_accuracy.txt docs/bench/Fox_accuracy.txt docs/bench/engine_lights_accuracy.txt \
+	    docs/bench/blinds_lights_accuracy.txt docs/bench/engine_accuracy.txt \
+	    $(foreach f,$(STUDY_SCENES),docs/bench/$(basename $(notdir $(f)))_accuracy.txt) \
+	    docs/bench/engine_lights_accuracy.txt \
 	    $(foreach f,$(STUDY_SCENES),docs/bench/$(basename $(notdir $(f)))_lights_accuracy.txt) \
 	    docs/bench/growth.txt
 

@@ -314,7 +314,8 @@ grep -q -- "--ssao-layers is for --ao-method screen-space" "$dir/sdmap2.err" || 
 "$render" --tracer roma --effects ao --ao-method bogus --size 16x12 --out "$dir/aom" >/dev/null 2>"$dir/aom.err"
 expect_status 2 $? "roma-render --ao-method bogus"
 grep -q "valid: roma, voxel-dda, distance-field, naadf, screen-space" "$dir/aom.err" || fail "a bad --ao-method does not list the methods"
-grep -q -- "--threads sets the reference's CPU threads" "$dir/notes2.err" || fail "--threads with ROMA: no note"
+grep -q -- "--threads sets the CPU threads of the G-buffer's primary rays" "$dir/notes2.err" ||
+  fail "--threads with ROMA: no note"
 grep -q "frames 100%" "$dir/notes2.err" || fail "a ROMA render prints no progress"
 grep -q "done in" "$dir/notes2.err" || fail "roma-render does not say how long it took"
 "$render" --tracer roma --effects ao --size 16x12 --spp 1 --quiet --out "$dir/quiet" >/dev/null 2>"$dir/quiet.err"

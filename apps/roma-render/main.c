@@ -823,8 +823,13 @@ static int choose_route(const options *o, notes *n)
     if (o->route == ROUTE_INTERNAL || why) {
         note(n, o->quiet, "ROMA through the internal renderer: %s%s", why ? why : "--route internal",
              (o->effects & ROMA_EFFECT_GI) && !o->gi_rays ? "; gi from point and spot lights through their RSMs" : "");
+        if (o->given & GIVEN_THREADS)
+            note(n, o->quiet, "--threads sets the reference's CPU threads: the internal renderer ignores it");
         return 0;
     }
+    if (o->given & GIVEN_THREADS)
+        note(n, o->quiet,
+             "--threads sets the CPU threads of the G-buffer's primary rays; the passes run on the device");
     note(n, o->quiet, "ROMA through libroma's public effect passes on a G-buffer of primary rays (--route)%s",
          o->effects & ROMA_EFFECT_GI ? "; gi from point and spot lights by shadow rays" : "");
     return 1;
@@ -1026,8 +1031,6 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,
                  roma_only[i].bit == GIVEN_FRAMES ? " (the reference takes all its samples at once: --spp)" : "");
-    if (roma && (o->given & GIVEN_THREADS))
-        note(n, o->quiet, "--threads sets the reference's CPU threads: --tracer roma ignores it");
 }
 
 /* --budget-ms: one preset's time per frame, the difference between renders of 3 frames and

@@ -115,9 +115,11 @@ typedef struct roma_ao_images {
     VkImageLayout input_layout;   /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_ao_images;
 
-/** Records the AO pass into cmd: one compute dispatch of 8 x 8 pixel groups over the images,
- * tracing snapped any-hit rays through the map (see the file comment for the
- * synchronisation the caller records and the slot rules).
+/** Records the AO pass into cmd: a list of the covered pixels (position w > 0; one compute
+ * dispatch of 8 x 8 pixel groups over the images, which writes 1 into the others), then an
+ * indirect dispatch over that list tracing snapped any-hit rays through the map, with
+ * barriers between them (see the file comment for the synchronisation the caller records and
+ * the slot rules). The slot's list is allocated by the first record and when the images grow.
  *
  * @param effect    the effect.
  * @param cmd       a command buffer of the context's queue family, recording.
@@ -131,7 +133,8 @@ typedef struct roma_ao_images {
  *   no position, normal or output view, settings roma_ao_settings_resolve rejects, a slot
  *   not below frames_in_flight, more than 16 records in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
- *   a Vulkan failure code (roma_result) when the descriptor set cannot be allocated.
+ *   a Vulkan failure code (roma_result) when the descriptor set or the slot's list cannot be
+ *   allocated.
  * @par Threads
  * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,

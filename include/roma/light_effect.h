@@ -141,7 +141,8 @@ typedef struct roma_light_images {
     VkImageLayout input_layout; /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_light_images;
 
-/** Records the direct-light pass into cmd: one compute dispatch of 8 x 8 pixel groups.
+/** Records the direct-light pass into cmd: the covered pixels' list and the indirect dispatch
+ * over it, as roma_ao_effect_record (the others get 0).
  * The lights are copied into the slot's storage at record time (up to 65,536; lights
  * with zero intensity or colour are dropped, as the reference does). One record per frame:
  * a second record with the same slot and the same settings frame is refused
@@ -165,7 +166,7 @@ typedef struct roma_light_images {
  *   roma_light_settings_resolve rejects, a slot not below frames_in_flight, a second record
  *   in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
- *   a Vulkan failure code (roma_result) for the slot's light buffer or descriptor set.
+ *   a Vulkan failure code (roma_result) for the slot's light buffer, pixel list or descriptor set.
  * @par Threads
  * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_light_effect_record(roma_light_effect *effect, VkCommandBuffer cmd, uint32_t slot,

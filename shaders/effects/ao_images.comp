@@ -14,6 +14,7 @@
 #include "roma/trace_descriptors.glsl"
 #include "roma/ray_start.glsl"
 #include "roma_sampling.glsl"
+#include "roma_image_list.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -26,19 +27,15 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
-    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
-    if (xy.x >= width || xy.y >= height)
+    // The covered pixels only: the list pass wrote 1 into the others.
+    uint width = pc.config.x, spp = pc.config.z, frame = pc.config.w, pixel;
+    if (!roma_image_listed_pixel(pixel))
         return;
-    ivec2 at = ivec2(xy);
+    ivec2 at = ivec2(pixel % width, pixel / width);
     vec4 position = texelFetch(roma_ao_position, at, 0);
-    if (!(position.w > 0.0)) {
-        imageStore(roma_ao_output, at, vec4(1.0));
-        return;
-    }
     vec3 n = normalize(texelFetch(roma_ao_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
-    uint pixel = xy.y * width + xy.x, seed = pc.config2.x, open = 0u;
+    uint seed = pc.config2.x, open = 0u;
     precise vec3 origin = position.xyz + ng * pc.ray.x;
     roma_use_ray_start(pc.bom);
     for (uint k = 0u; k < spp; ++k) {

@@ -15,6 +15,7 @@
 #include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
+#include "roma_image_list.glsl"
 #include "roma_gi_bounce.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -28,13 +29,13 @@ layout(push_constant) uniform Push { roma_gi_images_push pc; };
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
-    uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w;
-    if (xy.x >= width || xy.y >= height)
+    // The covered pixels only: the list pass wrote 0 into the others.
+    uint width = pc.config.x, samples = pc.config.z, frame = pc.config.w, pixel;
+    if (!roma_image_listed_pixel(pixel))
         return;
-    ivec2 at = ivec2(xy);
+    ivec2 at = ivec2(pixel % width, pixel / width);
     vec4 position = texelFetch(roma_gi_position, at, 0);
-    if (!(position.w > 0.0) || pc.scene == uvec2(0u)) {
+    if (pc.scene == uvec2(0u)) {
         imageStore(roma_gi_output, at, vec4(0.0));
         return;
     }
@@ -44,7 +45,7 @@ void main()
     roma_use_ray_start(pc.bom);
     roma_grid_params grid = roma_fetch_grid();
     roma_gi_scene S = RomaGiScene(pc.scene).s;
-    uint seed = pc.config2.x, pixel = xy.y * width + xy.x;
+    uint seed = pc.config2.x;
     roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights);
     vec3 acc = vec3(0.0);
     for (uint k = 0u; k < samples; ++k) {

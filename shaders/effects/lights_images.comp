@@ -15,6 +15,7 @@
 #include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
+#include "roma_image_list.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -31,16 +32,12 @@ const uint DIM_MANY_LIGHTS = 10u; // as passes/many_lights.comp
 
 void main()
 {
-    uvec2 xy = gl_GlobalInvocationID.xy;
-    uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
-    if (xy.x >= width || xy.y >= height)
+    // The covered pixels only: the list pass wrote 0 into the others.
+    uint width = pc.config.x, light_count = pc.config.z, max_steps = pc.config.w, pixel;
+    if (!roma_image_listed_pixel(pixel))
         return;
-    ivec2 at = ivec2(xy);
+    ivec2 at = ivec2(pixel % width, pixel / width);
     vec4 position = texelFetch(roma_light_position, at, 0);
-    if (!(position.w > 0.0)) {
-        imageStore(roma_light_output, at, vec4(0.0));
-        return;
-    }
     vec3 p = position.xyz;
     vec3 n = normalize(texelFetch(roma_light_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_light_geometric_normal, at, 0).xyz);
@@ -49,7 +46,6 @@ void main()
     roma_use_ray_start(pc.bom);
     vec3 E = vec3(0.0);
     uint seed = pc.config2.x, emitter_count = pc.config2.y, samples = pc.config2.z, frame = pc.config2.w;
-    uint pixel = xy.y * width + xy.x;
     // Many lights: the first `exact` lights every frame; of the `rest`, a run of `sampled`
     // consecutive ones from a random start, scaled by rest / sampled (each light is in the
     // run with probability sampled / rest, so the estimate is unbiased).

@@ -232,6 +232,14 @@ ROMA_STRUCT_BEGIN(roma_pixel_list_push)
     ROMA_UVEC4(config);   /* x: width, y: height */
 ROMA_STRUCT_END(roma_pixel_list_push)
 
+/* ---- The public effects' covered-pixel list (src/effects/image_effect.c,
+ *      shaders/effects/image_list_*.comp): a roma_pixel_list_header, then the pixels ---- */
+
+ROMA_STRUCT_BEGIN(roma_image_list_push)
+    ROMA_UVEC4(config);   /* x: width, y: height, z: 0 list the pixels, 1 the dispatch's arguments */
+    ROMA_VEC4(background); /* written to the output where the position image holds no surface */
+ROMA_STRUCT_END(roma_image_list_push)
+
 /* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)

@@ -53,7 +53,8 @@ roma_result roma_ao_effect_create(roma_context *ctx, const roma_ao_effect_desc *
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_effect_create: out of host memory");
     /* inputs: position, normal, geometric normal; output: the AO image */
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_ao_effect_record", "ao_images.comp", 3, 1,
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_ao_effect_record", "ao_images.comp",
+                                           "image_list_r32f.comp", 1.0f, 3,
                                            sizeof(roma_ao_push), desc.frames_in_flight);
     if (r != ROMA_SUCCESS) {
         free(e);

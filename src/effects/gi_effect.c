@@ -92,7 +92,8 @@ roma_result roma_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_gi_effect_create: out of host memory");
     e->surface_resolution = desc.surface_resolution;
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_gi_effect_record", "gi_images.comp", 3, 1,
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_gi_effect_record", "gi_images.comp",
+                                           "image_list_rgba32f.comp", 0.0f, 3,
                                            sizeof(roma_gi_images_push), desc.frames_in_flight);
     if (r != ROMA_SUCCESS) {
         free(e);

@@ -4,9 +4,8 @@
 #include <string.h>
 
 #include "map/map_internal.h"
+#include "roma_shared.h"
 #include "util/log.h"
-
-#define RECORDS_PER_SLOT 16u
 
 roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out)
 {
@@ -20,9 +19,10 @@ roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out)
 }
 
 roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, const roma_logger *log, const char *name,
-                                   const char *module, uint32_t inputs, uint32_t outputs, uint32_t push_size,
-                                   uint32_t frames_in_flight)
+                                   const char *module, const char *list_module, float background, uint32_t inputs,
+                                   uint32_t push_size, uint32_t frames_in_flight)
 {
+    const uint32_t outputs = 1;
     memset(e, 0, sizeof *e);
     e->ctx = ctx;
     e->logger = *log;
@@ -30,15 +30,18 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     e->inputs = inputs;
     e->outputs = outputs;
     e->push_size = push_size;
-    VkDescriptorType types[ROMA_IMAGE_EFFECT_MAX_IMAGES + 1];
+    for (int i = 0; i < 4; ++i)
+        e->background[i] = background;
+    VkDescriptorType types[ROMA_IMAGE_EFFECT_MAX_IMAGES + 2];
     for (uint32_t i = 0; i < inputs + outputs; ++i)
         types[i] = i < inputs ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     types[inputs + outputs] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER; /* the map's BOM (bom_view) */
+    types[inputs + outputs + 1] = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;   /* the covered-pixel list */
     roma_result r = roma_nearest_sampler_create(ctx, &e->sampler);
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_layout_create(ctx, roma_trace_binding_types, ROMA_TRACE_BINDINGS, &e->trace_layout);
     if (r == ROMA_SUCCESS)
-        r = roma_descriptor_layout_create(ctx, types, inputs + outputs + 1, &e->images_layout);
+        r = roma_descriptor_layout_create(ctx, types, inputs + outputs + 2, &e->images_layout);
     if (r == ROMA_SUCCESS) {
         VkDescriptorSetLayout sets[2] = {e->trace_layout, e->images_layout};
         VkPushConstantRange push = {VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size};
@@ -50,31 +53,16 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
         r = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &li, ctx->allocator, &e->layout),
                           "vkCreatePipelineLayout");
     }
-    VkShaderModule shader = VK_NULL_HANDLE;
     if (r == ROMA_SUCCESS)
-        r = roma_shader_module_create(ctx, module, &shader);
-    roma_specialization spec;
-    roma_specialization_make(ctx, NULL, 0, &spec);
-    if (r == ROMA_SUCCESS) {
-        VkComputePipelineCreateInfo pi = {
-            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                      .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                      .module = shader,
-                      .pName = "main",
-                      .pSpecializationInfo = &spec.info},
-            .layout = e->layout};
-        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &pi, ctx->allocator,
-                                                        &e->pipeline),
-                          "vkCreateComputePipelines");
-    }
-    if (shader)
-        vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
-    const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs},
+        r = roma_compute_pipeline_make(ctx, module, e->layout, NULL, 0, &e->pipeline);
+    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_make(ctx, list_module, e->layout, NULL, 0, &e->list_pipeline);
+    const VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs},
                                            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, outputs},
-                                           {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
+                                           {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1},
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
     if (r == ROMA_SUCCESS)
-        r = roma_slot_sets_init(&e->sets, ctx, frames_in_flight, RECORDS_PER_SLOT, 1, sizes, 3);
+        r = roma_slot_sets_init(&e->sets, ctx, frames_in_flight, ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT, 1, sizes, 4);
     if (r != ROMA_SUCCESS)
         roma_image_effect_free(e);
     return r;
@@ -87,6 +75,13 @@ void roma_image_effect_free(roma_image_effect *e)
     VkDevice dev = e->ctx->device;
     const VkAllocationCallbacks *a = e->ctx->allocator;
     roma_slot_sets_free(&e->sets);
+    for (uint32_t slot = 0; slot < ROMA_MAX_FRAMES_IN_FLIGHT; ++slot) {
+        roma_buffer_destroy(e->ctx, &e->lists[slot]);
+        for (uint32_t i = 0; i < e->retired_count[slot]; ++i)
+            roma_buffer_destroy(e->ctx, &e->retired[slot][i]);
+    }
+    if (e->list_pipeline)
+        vkDestroyPipeline(dev, e->list_pipeline, a);
     if (e->pipeline)
         vkDestroyPipeline(dev, e->pipeline, a);
     if (e->layout)
@@ -120,11 +115,80 @@ int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot)
     return roma_slot_sets_same_frame(&e->sets, slot, e->frame);
 }
 
+/* The slot's list holds width * height pixels (a new frame of the slot first frees the lists
+ * its previous frame outgrew: the slot rules say the GPU is done with them). */
+static roma_result list_reserve(roma_image_effect *e, uint32_t slot, int same_frame, uint32_t width, uint32_t height)
+{
+    if (!same_frame) {
+        for (uint32_t i = 0; i < e->retired_count[slot]; ++i)
+            roma_buffer_destroy(e->ctx, &e->retired[slot][i]);
+        e->retired_count[slot] = 0;
+    }
+    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * width * height;
+    if (e->lists[slot].buffer && e->lists[slot].size >= size)
+        return ROMA_SUCCESS;
+    if (e->retired_count[slot] == ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT)
+        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: more than %u records in one frame of slot %u",
+                         e->name, ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT, slot);
+    roma_buffer grown;
+    roma_result r = roma_buffer_create(e->ctx, size,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       ROMA_MEMORY_DEVICE, &grown);
+    if (r != ROMA_SUCCESS)
+        return roma_fail(&e->logger, r, "%s: the covered-pixel list of %ux%u pixels", e->name, width, height);
+    if (e->lists[slot].buffer)
+        e->retired[slot][e->retired_count[slot]++] = e->lists[slot];
+    e->lists[slot] = grown;
+    return ROMA_SUCCESS;
+}
+
+/* The list of the position image, then the effect's indirect dispatch over it. */
+static void record_listed_dispatch(roma_image_effect *e, VkCommandBuffer cmd, const roma_buffer *list,
+                                   const void *push, uint32_t width, uint32_t height)
+{
+    /* Earlier records of this frame read the list (indirect arguments, pixel indices) and may
+     * have written the same output. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    const roma_pixel_list_header header = {.dispatch = {0, 0, 1, 0}};
+    vkCmdUpdateBuffer(cmd, list->buffer, 0, sizeof header, &header);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_image_list_push lp = {.config = {width, height, 0, 0}};
+    memcpy(lp.background, e->background, sizeof lp.background);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->list_pipeline);
+    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof lp, &lp);
+    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    /* The list for its arguments; the background before the effect writes the same image. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    lp.config[2] = 1;
+    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof lp, &lp);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
+    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
+    vkCmdDispatchIndirect(cmd, list->buffer, 0);
+}
+
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height)
 {
+    if ((width + 7) / 8 > 65535u || (height + 7) / 8 > 65535u)
+        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: images of %ux%u are too large", e->name, width,
+                         height);
+    int same_frame = roma_image_effect_same_frame(e, slot);
     roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
+    if (r == ROMA_SUCCESS)
+        r = list_reserve(e, slot, same_frame, width, height);
     VkImageLayout in_layouts[ROMA_IMAGE_EFFECT_MAX_IMAGES];
     for (uint32_t i = 0; i < e->inputs; ++i)
         in_layouts[i] = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -135,17 +199,23 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     if (r != ROMA_SUCCESS)
         return r;
     roma_slot_sets_commit(&e->sets, slot);
-    VkWriteDescriptorSet bom = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                .dstSet = set,
-                                .dstBinding = e->inputs + e->outputs,
-                                .descriptorCount = 1,
-                                .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
-                                .pTexelBufferView = &info->bom_view};
-    vkUpdateDescriptorSets(e->ctx->device, 1, &bom, 0, NULL);
+    const roma_buffer *list = &e->lists[slot];
+    VkDescriptorBufferInfo list_info = {list->buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet writes[2] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                       .dstSet = set,
+                                       .dstBinding = e->inputs + e->outputs,
+                                       .descriptorCount = 1,
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+                                       .pTexelBufferView = &info->bom_view},
+                                      {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                       .dstSet = set,
+                                       .dstBinding = e->inputs + e->outputs + 1,
+                                       .descriptorCount = 1,
+                                       .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                       .pBufferInfo = &list_info}};
+    vkUpdateDescriptorSets(e->ctx->device, 2, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);
-    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
-    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    record_listed_dispatch(e, cmd, list, push, width, height);
     return ROMA_SUCCESS;
 }

@@ -1,7 +1,9 @@
 /* What every public effect on the engine's G-buffer images shares: a compute pipeline
  * whose set 0 is a map's trace set and set 1 the engine's images (sampled inputs through
  * a nearest sampler, then storage outputs) followed by the map's BOM (a uniform texel buffer, for
- * the exact walk of the rays' start), sets allocated from a pool per frame slot. */
+ * the exact walk of the rays' start) and the covered-pixel list, sets allocated from a pool
+ * per frame slot. Each record lists the pixels whose position image holds a surface (writing
+ * the background into the others) and dispatches the effect over the list only. */
 #ifndef ROMA_EFFECTS_IMAGE_EFFECT_H
 #define ROMA_EFFECTS_IMAGE_EFFECT_H
 
@@ -10,6 +12,7 @@
 #include "vulkan/vk_internal.h"
 
 #define ROMA_IMAGE_EFFECT_MAX_IMAGES 8
+#define ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT 16u
 
 typedef struct roma_image_effect {
     roma_context *ctx;
@@ -20,17 +23,25 @@ typedef struct roma_image_effect {
     VkSampler sampler;
     VkDescriptorSetLayout trace_layout, images_layout;
     VkPipelineLayout layout;
-    VkPipeline pipeline;
+    VkPipeline pipeline, list_pipeline;
+    float background[4]; /* the output where the position image holds no surface */
     roma_slot_sets sets; /* set 1 of each record */
+    /* Each slot's covered-pixel list; one outgrown by a larger record of the same frame waits
+     * in retired until the slot's next frame (the GPU may still read it until then). */
+    roma_buffer lists[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_buffer retired[ROMA_MAX_FRAMES_IN_FLIGHT][ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT];
+    uint32_t retired_count[ROMA_MAX_FRAMES_IN_FLIGHT];
 } roma_image_effect;
 
 /* The nearest, clamp-to-edge sampler through which the effects read the engine's images
  * (texelFetch: any float format works). */
 roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out);
 
+/* inputs: the position image first (its w > 0 where it holds a surface); one output, whose
+ * format list_module writes (image_list_r32f.comp or image_list_rgba32f.comp). */
 roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, const roma_logger *log, const char *name,
-                                   const char *module, uint32_t inputs, uint32_t outputs, uint32_t push_size,
-                                   uint32_t frames_in_flight);
+                                   const char *module, const char *list_module, float background, uint32_t inputs,
+                                   uint32_t push_size, uint32_t frames_in_flight);
 void roma_image_effect_free(roma_image_effect *e);
 
 /* A record starts a new frame of its slot when the slot or the settings' frame changed since
@@ -39,11 +50,13 @@ void roma_image_effect_free(roma_image_effect *e);
  * roma_image_effect_same_frame says whether this record continues one. */
 int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 
-/* Checks slot and map, allocates and writes set 1 (views: inputs then outputs; a NULL
- * input view is replaced by fallback[i] when given), binds, pushes and dispatches
- * ceil(width / 8) x ceil(height / 8). The map's info is returned for the push. */
+/* Checks slot and map; the map's info is returned for the push. */
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
                                     roma_map_info *info);
+/* Allocates and writes set 1 (views: inputs then the output), then records the covered-pixel
+ * list of the position image (a list pass over ceil(width / 8) x ceil(height / 8) workgroups,
+ * which writes the background elsewhere, and its dispatch's arguments) and the effect's
+ * indirect dispatch over it, with push. The slot's list grows here when the images do. */
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height);

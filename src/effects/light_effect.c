@@ -63,7 +63,8 @@ roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_
     roma_light_effect *e = calloc(1, sizeof *e);
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_light_effect_create: out of host memory");
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", "lights_images.comp", 3, 1,
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", "lights_images.comp",
+                                           "image_list_rgba32f.comp", 0.0f, 3,
                                            sizeof(roma_light_images_push), desc.frames_in_flight);
     if (r != ROMA_SUCCESS) {
         free(e);

@@ -109,6 +109,32 @@ void roma_specialization_make(const roma_context *ctx, const uint32_t *constants
     out->info = (VkSpecializationInfo){count + 1, out->entries, 4 * (size_t)(count + 1), out->values};
 }
 
+roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
+                                       const uint32_t *constants, uint32_t constant_count, VkPipeline *out)
+{
+    VkShaderModule shader = VK_NULL_HANDLE;
+    roma_result r = roma_shader_module_create(ctx, module_name, &shader);
+    roma_specialization spec;
+    roma_specialization_make(ctx, constants, constant_count, &spec);
+    if (r == ROMA_SUCCESS) {
+        VkComputePipelineCreateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                      .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                      .module = shader,
+                      .pName = "main",
+                      .pSpecializationInfo = &spec.info},
+            .layout = layout,
+        };
+        r = roma_vk_check(ctx,
+                          vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->allocator, out),
+                          "vkCreateComputePipelines");
+    }
+    if (shader)
+        vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
+    return r;
+}
+
 roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *module_name,
                                               const VkDescriptorType *types, uint32_t binding_count,
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
@@ -137,26 +163,8 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
         r = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, ctx->allocator, &out->layout),
                           "vkCreatePipelineLayout");
     }
-    VkShaderModule shader = VK_NULL_HANDLE;
     if (r == ROMA_SUCCESS)
-        r = roma_shader_module_create(ctx, module_name, &shader);
-    roma_specialization spec;
-    roma_specialization_make(ctx, constants, constant_count, &spec);
-    if (r == ROMA_SUCCESS) {
-        VkComputePipelineCreateInfo info = {
-            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                      .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                      .module = shader,
-                      .pName = "main",
-                      .pSpecializationInfo = &spec.info},
-            .layout = out->layout,
-        };
-        r = roma_vk_check(ctx, vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->allocator, &out->pipeline),
-                          "vkCreateComputePipelines");
-    }
-    if (shader)
-        vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
+        r = roma_compute_pipeline_make(ctx, module_name, out->layout, constants, constant_count, &out->pipeline);
     if (r == ROMA_SUCCESS)
         r = share(ctx, module_name, types, binding_count, push_size, constants, constant_count, out);
     if (r != ROMA_SUCCESS)

@@ -143,6 +143,10 @@ typedef struct roma_specialization {
 } roma_specialization;
 void roma_specialization_make(const roma_context *ctx, const uint32_t *constants, uint32_t count,
                               roma_specialization *out);
+/* One pipeline of module_name on layout, specialized as above; not shared (the caller owns
+ * and destroys it). */
+roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
+                                       const uint32_t *constants, uint32_t constant_count, VkPipeline *out);
 /* Pipelines are shared by the whole context (made once per module, bindings, push size
  * and constants): destroy only forgets the caller's copy. */
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);

@@ -433,6 +433,26 @@ int main(void)
     for (uint32_t p = 0; p < W * H; ++p)
         regrown_differ += out[p] != single_record[p];
     CHECK(regrown_differ == 0);
+    /* A dispatch over every pixel (a GPU's default) writes the same bits as the list. */
+    roma_ao_effect *every = NULL;
+    CHECK_RESULT(roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.pixel_dispatch = 7}, &every),
+                 ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(every == NULL);
+    CHECK_RESULT(roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.pixel_dispatch = ROMA_PIXEL_DISPATCH_EVERY_PIXEL},
+                                       &every),
+                 ROMA_SUCCESS);
+    begin_output_frame(ctx, output.image, cmd, pool);
+    CHECK_RESULT(roma_ao_effect_record(every, cmd, 0, map, &images, &settings), ROMA_SUCCESS);
+    roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    vkCmdCopyImageToBuffer(cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
+    roma_test_submit_and_wait(ctx, cmd);
+    uint32_t every_differ = 0;
+    for (uint32_t p = 0; p < W * H; ++p)
+        every_differ += out[p] != single_record[p];
+    CHECK(every_differ == 0);
+    roma_ao_effect_destroy(every);
 
     /* Direct light: ROMA's shadowed irradiance times albedo / pi against the reference's
      * reflected radiance (one spot light: no area-light samples, so no noise). */

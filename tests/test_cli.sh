@@ -204,6 +204,19 @@ expect_status 2 $? "roma-render --route api --effects ao,lights"
 grep -q "the lights effect counts visible lights" "$dir/route_lights.err" ||
   fail "--route api with lights does not say why not"
 [ -e "$dir/route_lights" ] && fail "--route api refused but left an output folder"
+# The public passes over every pixel (a GPU's default) write the same bits as over the list of
+# covered pixels (lavapipe's).
+"$render" "${route_args[@]}" --pixel-dispatch every --out "$dir/route_every" \
+  --stats "$dir/route_every/stats.json" >/dev/null 2>"$dir/route_every.err"
+expect_status 0 $? "roma-render --pixel-dispatch every" || cat "$dir/route_every.err" >&2
+grep -q '"pixel_dispatch": "every"' "$dir/route_every/stats.json" || fail "the stats do not say --pixel-dispatch"
+for e in ao direct gi; do
+  cmp -s "$dir/route_every/$e.pfm" "$dir/route_api/$e.pfm" || fail "$e over every pixel differs from the list's"
+done
+"$render" "${route_args[@]}" --pixel-dispatch some --out "$dir/route_some" >/dev/null 2>"$dir/route_some.err"
+expect_status 2 $? "roma-render --pixel-dispatch some"
+grep -q "unknown pixel dispatch 'some' (valid: auto, list, every)" "$dir/route_some.err" ||
+  fail "a bad --pixel-dispatch does not list the choices"
 "$render" "${route_args[@]}" --route bogus --out "$dir/route_bogus" >/dev/null 2>"$dir/route_bogus.err"
 expect_status 2 $? "roma-render --route bogus"
 grep -q "unknown route 'bogus' (valid: api, internal)" "$dir/route_bogus.err" ||

@@ -405,11 +405,11 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     }
     const int lit = roma_effect_plan_runs(plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
                     roma_effect_plan_runs(plan, ROMA_PASS_SOFT_SHADOWS);
-    const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1};
-    const roma_light_effect_desc light_desc = {.frames_in_flight = 1};
+    const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch};
+    const roma_light_effect_desc light_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch};
     /* The surface grid at the GI array's RES, as the internal renderer's (at least the map's RES). */
     const int gi_map = plan->pass_map[ROMA_PASS_GI];
-    const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1,
+    const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch,
                                          .surface_resolution = gi_map >= 0 ? plan->maps[gi_map].resolution : 0};
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO))
         r = roma_ao_effect_create(e->ctx, &ao_desc, &e->ao);

@@ -29,6 +29,7 @@ typedef struct effect_api_desc {
     /* As the public settings take them: 0 = the library's default, a negative skip = none. */
     float offset_cells, skip_cells, ao_skip_cells;
     uint32_t max_steps;
+    roma_pixel_dispatch pixel_dispatch; /* the three effects' */
     void (*progress)(float fraction, void *user_data); /* after each frame */
     void *progress_user_data;
 } effect_api_desc;

@@ -61,6 +61,8 @@ static const char *usage =
     "                              or through the internal renderer, which also has the study's\n"
     "                              baselines, the lights effect and reflective shadow maps (taken by\n"
     "                              itself when those are asked for; the choice is printed)\n"
+    "  --pixel-dispatch auto|list|every  the public passes over a list of the covered pixels or over\n"
+    "                              every pixel (roma_pixel_dispatch; auto: the list on CPU devices)\n"
     "  --gi-punctual rsm|rays      ROMA gi from point and spot lights: their reflective shadow maps\n"
     "                              (the internal renderer) or one shadow ray per light at each bounce\n"
     "                              hit (the public GI effect's way; the default on the api route, rsm on\n"
@@ -126,6 +128,7 @@ typedef struct options {
     int reinhard;        /* --tonemap reinhard */
     int gi_rays;         /* --gi-punctual rays */
     int route;           /* --route: ROUTE_AUTO, ROUTE_API, ROUTE_INTERNAL */
+    roma_pixel_dispatch pixel_dispatch; /* --pixel-dispatch (the api route's) */
     int blind_start;     /* --ray-start blind */
     roma_ao_method ao_method; /* --ao-method */
     uint32_t ssao_layers;     /* --ssao-layers */
@@ -155,7 +158,8 @@ enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--gi-punctual", "--route", "--ray-start", "--ao-method", "--skip", "--ao-skip", "--offset",
+    "--max-steps", "--gi-punctual", "--route", "--pixel-dispatch", "--ray-start", "--ao-method", "--skip",
+    "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
     "--background",
@@ -361,6 +365,15 @@ static int parse_args(int argc, char **argv, options *o)
                 fprintf(stderr, "roma-render: unknown route '%s' (valid: api, internal)\n", v);
                 return 0;
             }
+        }
+        else if (strcmp(a, "--pixel-dispatch") == 0) {
+            int k = strcmp(v, "auto") == 0 ? 0 : strcmp(v, "list") == 0 ? 1 : strcmp(v, "every") == 0 ? 2 : -1;
+            if (k < 0) {
+                fprintf(stderr, "roma-render: unknown pixel dispatch '%s' (valid: auto, list, every)\n", v);
+                return 0;
+            }
+            o->pixel_dispatch = k == 1 ? ROMA_PIXEL_DISPATCH_LIST
+                                : k == 2 ? ROMA_PIXEL_DISPATCH_EVERY_PIXEL : ROMA_PIXEL_DISPATCH_AUTO;
         }
         else if (strcmp(a, "--gi-punctual") == 0) {
             o->gi_rays = strcmp(v, "rays") == 0;
@@ -753,6 +766,10 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
             roma_json_end_object(&j);
         }
         roma_json_string(&j, "route", run->api ? "api" : "internal");
+        if (run->api)
+            roma_json_string(&j, "pixel_dispatch", o->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list"
+                                                   : o->pixel_dispatch == ROMA_PIXEL_DISPATCH_EVERY_PIXEL ? "every"
+                                                                                                          : "auto");
         roma_json_int(&j, "resolution", o->res);
         roma_json_int(&j, "angular", o->angular);
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
@@ -849,7 +866,8 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         /* The library takes 0 as its default and a negative value as none. */
         .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
         .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
-        .max_steps = o->max_steps, .progress = on_progress, .progress_user_data = &frames_progress};
+        .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .progress = on_progress,
+        .progress_user_data = &frames_progress};
     double start = roma_app_now_ms();
     roma_result r = effect_api_render(ctx, scene, ref, &d, res);
     add_pass(run, "roma_total", "cpu_wall", roma_app_now_ms() - start);

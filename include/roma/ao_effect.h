@@ -80,6 +80,7 @@ typedef struct roma_ao_effect roma_ao_effect;
 /** Settings of roma_ao_effect_create; the zero value is the default. */
 typedef struct roma_ao_effect_desc {
     uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
+    roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     roma_logger logger;        /**< 0 = the context's */
 } roma_ao_effect_desc;
 

@@ -97,6 +97,7 @@ typedef struct roma_gi_effect roma_gi_effect;
 /** Settings of roma_gi_effect_create; the zero value is the default. */
 typedef struct roma_gi_effect_desc {
     uint32_t frames_in_flight;   /**< [1, 8]; 0 = 2 */
+    roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     /** Surface grid resolution, 32 to 256; 0 = ROMA_DEFAULT_GI_SURFACE_RESOLUTION. At least
      * the map's RES: a hit looks one grid cell around itself. */
     uint32_t surface_resolution;

@@ -107,6 +107,7 @@ ROMA_API roma_result roma_light_effect_set_area_lights(roma_light_effect *effect
 /** Settings of roma_light_effect_create; the zero value is the default. */
 typedef struct roma_light_effect_desc {
     uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
+    roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     roma_logger logger;        /**< 0 = the context's */
 } roma_light_effect_desc;
 

@@ -80,6 +80,20 @@ typedef enum roma_bom_mode {
 /** Most frame slots any libroma object takes. */
 #define ROMA_MAX_FRAMES_IN_FLIGHT 8
 
+/** How an effect on the engine's G-buffer images (roma_ao_effect, roma_light_effect,
+ * roma_gi_effect) covers them. */
+typedef enum roma_pixel_dispatch {
+    /** The list on CPU devices, every pixel on GPUs: on lavapipe the list saves 30% of the AO
+     * pass on a view that covers 23% of the screen, on an H100 it costs 35% (its pass and
+     * barriers outweigh the idle lanes); docs/benchmark.md. */
+    ROMA_PIXEL_DISPATCH_AUTO = 0,
+    /** Each record lists the covered pixels (position w > 0) and traces them by an indirect
+     * dispatch. */
+    ROMA_PIXEL_DISPATCH_LIST = 1,
+    /** One dispatch over every pixel; the lanes of uncovered pixels return at once. */
+    ROMA_PIXEL_DISPATCH_EVERY_PIXEL = 2,
+} roma_pixel_dispatch;
+
 /** Settings of roma_map_create; the zero value is the default (RES 128, A 4, exact BOM). */
 typedef struct roma_map_desc {
     uint32_t resolution;       /**< RES in {32, 64, 128, 256}; 0 = the preset's (128) */

@@ -27,12 +27,16 @@ layout(push_constant) uniform Push { roma_ao_push pc; };
 
 void main()
 {
-    // The covered pixels only: the list pass wrote 1 into the others.
-    uint width = pc.config.x, spp = pc.config.z, frame = pc.config.w, pixel;
-    if (!roma_image_listed_pixel(pixel))
+    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w, pixel;
+    if (!roma_image_pixel(width, height, pixel))
         return;
     ivec2 at = ivec2(pixel % width, pixel / width);
     vec4 position = texelFetch(roma_ao_position, at, 0);
+    // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
+    if (!(position.w > 0.0)) {
+        imageStore(roma_ao_output, at, vec4(1.0));
+        return;
+    }
     vec3 n = normalize(texelFetch(roma_ao_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
     uint seed = pc.config2.x, open = 0u;

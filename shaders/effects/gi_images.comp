@@ -29,13 +29,13 @@ layout(push_constant) uniform Push { roma_gi_images_push pc; };
 
 void main()
 {
-    // The covered pixels only: the list pass wrote 0 into the others.
-    uint width = pc.config.x, samples = pc.config.z, frame = pc.config.w, pixel;
-    if (!roma_image_listed_pixel(pixel))
+    uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w, pixel;
+    if (!roma_image_pixel(width, height, pixel))
         return;
     ivec2 at = ivec2(pixel % width, pixel / width);
     vec4 position = texelFetch(roma_gi_position, at, 0);
-    if (pc.scene == uvec2(0u)) {
+    // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
+    if (!(position.w > 0.0) || pc.scene == uvec2(0u)) {
         imageStore(roma_gi_output, at, vec4(0.0));
         return;
     }

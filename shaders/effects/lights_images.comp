@@ -32,12 +32,16 @@ const uint DIM_MANY_LIGHTS = 10u; // as passes/many_lights.comp
 
 void main()
 {
-    // The covered pixels only: the list pass wrote 0 into the others.
-    uint width = pc.config.x, light_count = pc.config.z, max_steps = pc.config.w, pixel;
-    if (!roma_image_listed_pixel(pixel))
+    uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w, pixel;
+    if (!roma_image_pixel(width, height, pixel))
         return;
     ivec2 at = ivec2(pixel % width, pixel / width);
     vec4 position = texelFetch(roma_light_position, at, 0);
+    // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
+    if (!(position.w > 0.0)) {
+        imageStore(roma_light_output, at, vec4(0.0));
+        return;
+    }
     vec3 p = position.xyz;
     vec3 n = normalize(texelFetch(roma_light_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_light_geometric_normal, at, 0).xyz);

@@ -1,6 +1,7 @@
 // The covered-pixel list of a public effect's images (image_effect.c), bound in set 1
 // after the map's BOM: a roma_pixel_list_header (dispatch.w: the pixels listed), then the
-// pixel indices. ROMA_IMAGE_LIST_WRITER: the pass that builds it (else read-only).
+// pixel indices. ROMA_IMAGE_LIST_WRITER: the pass that builds it (else read-only, and the
+// effect's pixel from the list or the grid).
 #ifndef ROMA_IMAGE_LIST_GLSL
 #define ROMA_IMAGE_LIST_GLSL
 
@@ -16,16 +17,26 @@ layout(set = 1, binding = ROMA_IMAGE_LIST_BINDING, std430) buffer RomaImageList 
     uint pixels[];
 } roma_image_list;
 
-// The listed pixel of this invocation of the effect's indirect dispatch (8 x 8 workgroups
-// over a 2D grid), or false past the end of the list.
-bool roma_image_listed_pixel(out uint pixel)
+#ifndef ROMA_IMAGE_LIST_WRITER
+// Whether the effect traces the list (an indirect dispatch over it, 8 x 8 workgroups over a
+// 2D grid) or every pixel (a dispatch over the images): image_effect.c's choice.
+layout(constant_id = 0) const uint ROMA_IMAGE_LISTED = 1u;
+
+// The pixel (y * width + x) of this invocation, or false past the end of the list or the images.
+bool roma_image_pixel(uint width, uint height, out uint pixel)
 {
-    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationIndex;
     pixel = 0u;
+    if (ROMA_IMAGE_LISTED == 0u) {
+        uvec2 xy = gl_GlobalInvocationID.xy;
+        pixel = xy.y * width + xy.x;
+        return xy.x < width && xy.y < height;
+    }
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationIndex;
     if (i >= roma_image_list.header.dispatch.w)
         return false;
     pixel = roma_image_list.pixels[i];
     return true;
 }
+#endif
 
 #endif // ROMA_IMAGE_LIST_GLSL

@@ -55,7 +55,8 @@ roma_result roma_ao_effect_create(roma_context *ctx, const roma_ao_effect_desc *
     /* inputs: position, normal, geometric normal; output: the AO image */
     roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_ao_effect_record", "ao_images.comp",
                                            "image_list_r32f.comp", 1.0f, 3,
-                                           sizeof(roma_ao_push), desc.frames_in_flight);
+                                           sizeof(roma_ao_push), desc.frames_in_flight,
+                                           desc.pixel_dispatch);
     if (r != ROMA_SUCCESS) {
         free(e);
         return r;

@@ -94,7 +94,8 @@ roma_result roma_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *
     e->surface_resolution = desc.surface_resolution;
     roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_gi_effect_record", "gi_images.comp",
                                            "image_list_rgba32f.comp", 0.0f, 3,
-                                           sizeof(roma_gi_images_push), desc.frames_in_flight);
+                                           sizeof(roma_gi_images_push), desc.frames_in_flight,
+                                           desc.pixel_dispatch);
     if (r != ROMA_SUCCESS) {
         free(e);
         return r;

@@ -20,16 +20,21 @@ roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out)
 
 roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, const roma_logger *log, const char *name,
                                    const char *module, const char *list_module, float background, uint32_t inputs,
-                                   uint32_t push_size, uint32_t frames_in_flight)
+                                   uint32_t push_size, uint32_t frames_in_flight, roma_pixel_dispatch dispatch)
 {
     const uint32_t outputs = 1;
     memset(e, 0, sizeof *e);
+    if ((unsigned)dispatch > ROMA_PIXEL_DISPATCH_EVERY_PIXEL)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "effect desc: pixel_dispatch %d is not a roma_pixel_dispatch", (int)dispatch);
     e->ctx = ctx;
     e->logger = *log;
     e->name = name;
     e->inputs = inputs;
     e->outputs = outputs;
     e->push_size = push_size;
+    e->listed = dispatch == ROMA_PIXEL_DISPATCH_LIST ||
+                (dispatch == ROMA_PIXEL_DISPATCH_AUTO && ctx->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     for (int i = 0; i < 4; ++i)
         e->background[i] = background;
     VkDescriptorType types[ROMA_IMAGE_EFFECT_MAX_IMAGES + 2];
@@ -54,8 +59,8 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
                           "vkCreatePipelineLayout");
     }
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_make(ctx, module, e->layout, NULL, 0, &e->pipeline);
-    if (r == ROMA_SUCCESS)
+        r = roma_compute_pipeline_make(ctx, module, e->layout, &(uint32_t){(uint32_t)e->listed}, 1, &e->pipeline);
+    if (r == ROMA_SUCCESS && e->listed)
         r = roma_compute_pipeline_make(ctx, list_module, e->layout, NULL, 0, &e->list_pipeline);
     const VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs},
                                            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, outputs},
@@ -124,7 +129,8 @@ static roma_result list_reserve(roma_image_effect *e, uint32_t slot, int same_fr
             roma_buffer_destroy(e->ctx, &e->retired[slot][i]);
         e->retired_count[slot] = 0;
     }
-    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * width * height;
+    /* Not listed: the shader's binding still needs a buffer, never read. */
+    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * (e->listed ? (uint64_t)width * height : 1u);
     if (e->lists[slot].buffer && e->lists[slot].size >= size)
         return ROMA_SUCCESS;
     if (e->retired_count[slot] == ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT)
@@ -216,6 +222,12 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     vkUpdateDescriptorSets(e->ctx->device, 2, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);
-    record_listed_dispatch(e, cmd, list, push, width, height);
+    if (e->listed) {
+        record_listed_dispatch(e, cmd, list, push, width, height);
+        return ROMA_SUCCESS;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
+    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
+    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
     return ROMA_SUCCESS;
 }

@@ -2,8 +2,9 @@
  * whose set 0 is a map's trace set and set 1 the engine's images (sampled inputs through
  * a nearest sampler, then storage outputs) followed by the map's BOM (a uniform texel buffer, for
  * the exact walk of the rays' start) and the covered-pixel list, sets allocated from a pool
- * per frame slot. Each record lists the pixels whose position image holds a surface (writing
- * the background into the others) and dispatches the effect over the list only. */
+ * per frame slot. Each record either lists the pixels whose position image holds a surface
+ * (writing the background into the others) and dispatches the effect over the list only, or
+ * dispatches it over every pixel (roma_pixel_dispatch). */
 #ifndef ROMA_EFFECTS_IMAGE_EFFECT_H
 #define ROMA_EFFECTS_IMAGE_EFFECT_H
 
@@ -23,7 +24,8 @@ typedef struct roma_image_effect {
     VkSampler sampler;
     VkDescriptorSetLayout trace_layout, images_layout;
     VkPipelineLayout layout;
-    VkPipeline pipeline, list_pipeline;
+    int listed;                    /* the resolved roma_pixel_dispatch */
+    VkPipeline pipeline, list_pipeline; /* the list's only when listed */
     float background[4]; /* the output where the position image holds no surface */
     roma_slot_sets sets; /* set 1 of each record */
     /* Each slot's covered-pixel list; one outgrown by a larger record of the same frame waits
@@ -38,10 +40,11 @@ typedef struct roma_image_effect {
 roma_result roma_nearest_sampler_create(roma_context *ctx, VkSampler *out);
 
 /* inputs: the position image first (its w > 0 where it holds a surface); one output, whose
- * format list_module writes (image_list_r32f.comp or image_list_rgba32f.comp). */
+ * format list_module writes (image_list_r32f.comp or image_list_rgba32f.comp). The module's
+ * specialization constant 0 says whether it traces the list (roma_image_list.glsl). */
 roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, const roma_logger *log, const char *name,
                                    const char *module, const char *list_module, float background, uint32_t inputs,
-                                   uint32_t push_size, uint32_t frames_in_flight);
+                                   uint32_t push_size, uint32_t frames_in_flight, roma_pixel_dispatch dispatch);
 void roma_image_effect_free(roma_image_effect *e);
 
 /* A record starts a new frame of its slot when the slot or the settings' frame changed since
@@ -53,10 +56,11 @@ int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 /* Checks slot and map; the map's info is returned for the push. */
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
                                     roma_map_info *info);
-/* Allocates and writes set 1 (views: inputs then the output), then records the covered-pixel
- * list of the position image (a list pass over ceil(width / 8) x ceil(height / 8) workgroups,
- * which writes the background elsewhere, and its dispatch's arguments) and the effect's
- * indirect dispatch over it, with push. The slot's list grows here when the images do. */
+/* Allocates and writes set 1 (views: inputs then the output), then records, with push, the
+ * effect's dispatch over ceil(width / 8) x ceil(height / 8) workgroups or, listed, the
+ * covered-pixel list of the position image (a list pass over those workgroups, which writes
+ * the background elsewhere, and its dispatch's arguments) and the effect's indirect dispatch
+ * over it. The slot's list grows here when the images do. */
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height);

@@ -65,7 +65,8 @@ roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_light_effect_create: out of host memory");
     roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", "lights_images.comp",
                                            "image_list_rgba32f.comp", 0.0f, 3,
-                                           sizeof(roma_light_images_push), desc.frames_in_flight);
+                                           sizeof(roma_light_images_push), desc.frames_in_flight,
+                                           desc.pixel_dispatch);
     if (r != ROMA_SUCCESS) {
         free(e);
         return r;

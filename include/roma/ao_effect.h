@@ -12,7 +12,8 @@
  *
  * Synchronisation the caller records: its G-buffer writes made visible to compute-shader
  * sampled reads, with the input images in SHADER_READ_ONLY_OPTIMAL or GENERAL, the output
- * image in GENERAL; after the pass, compute-shader storage writes to its own readers. The
+ * image in GENERAL; after the pass, compute-shader storage writes to its own readers (a
+ * second record that writes the same image is such a reader). The
  * map must have been built earlier in the queue (its build ends with a barrier that covers
  * every later command). Descriptor sets come from a pool per frame slot (16 records per
  * slot and frame). A record starts a new frame of its slot when its slot or its
@@ -116,11 +117,13 @@ typedef struct roma_ao_images {
     VkImageLayout input_layout;   /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_ao_images;
 
-/** Records the AO pass into cmd: a list of the covered pixels (position w > 0; one compute
- * dispatch of 8 x 8 pixel groups over the images, which writes 1 into the others), then an
- * indirect dispatch over that list tracing snapped any-hit rays through the map, with
- * barriers between them (see the file comment for the synchronisation the caller records and
- * the slot rules). The slot's list is allocated by the first record and when the images grow.
+/** Records the AO pass into cmd, tracing snapped any-hit rays through the map: one compute
+ * dispatch of 8 x 8 pixel groups over the images (1 where position w <= 0) or, with the
+ * desc's pixel_dispatch resolved to ROMA_PIXEL_DISPATCH_LIST, a list of the covered pixels
+ * (that dispatch, which writes the 1s), then an indirect dispatch over the list, with
+ * barriers between them; the slot's list is allocated by its first record and when the
+ * images grow. See the file comment for the synchronisation the caller records and the slot
+ * rules.
  *
  * @param effect    the effect.
  * @param cmd       a command buffer of the context's queue family, recording.

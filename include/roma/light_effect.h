@@ -142,8 +142,8 @@ typedef struct roma_light_images {
     VkImageLayout input_layout; /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
 } roma_light_images;
 
-/** Records the direct-light pass into cmd: the covered pixels' list and the indirect dispatch
- * over it, as roma_ao_effect_record (the others get 0).
+/** Records the direct-light pass into cmd: over the images or the list of their covered
+ * pixels, as roma_ao_effect_record (uncovered pixels get 0).
  * The lights are copied into the slot's storage at record time (up to 65,536; lights
  * with zero intensity or colour are dropped, as the reference does). One record per frame:
  * a second record with the same slot and the same settings frame is refused

@@ -289,7 +289,9 @@ int main(void)
     roma_map *map = NULL;
     CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 128, .angular = 4}, scene, &map), ROMA_SUCCESS);
     roma_ao_effect *ao = NULL;
-    CHECK_RESULT(roma_ao_effect_create(ctx, NULL, &ao), ROMA_SUCCESS);
+    /* The list of covered pixels, on every device (a GPU's default is every pixel, below). */
+    CHECK_RESULT(roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.pixel_dispatch = ROMA_PIXEL_DISPATCH_LIST}, &ao),
+                 ROMA_SUCCESS);
     roma_light_effect *light = NULL;
     CHECK_RESULT(roma_light_effect_create(ctx, NULL, &light), ROMA_SUCCESS);
     if (!ref || !map || !ao || !light)
@@ -438,6 +440,10 @@ int main(void)
     for (uint32_t p = 0; p < W * H; ++p)
         regrown_differ += out[p] != single_record[p];
     CHECK(regrown_differ == 0);
+    /* Images wider than 65,535 groups of 8 are refused before anything is recorded. */
+    roma_ao_images huge = images;
+    huge.width = 65535u * 8u + 1u;
+    CHECK_RESULT(roma_ao_effect_record(ao, cmd, 0, map, &huge, &settings), ROMA_ERROR_INVALID_ARGUMENT);
     /* A dispatch over every pixel (a GPU's default) writes the same bits as the list. */
     roma_ao_effect *every = NULL;
     CHECK_RESULT(roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.pixel_dispatch = 7}, &every),

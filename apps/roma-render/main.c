@@ -150,7 +150,7 @@ enum {
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
-    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17
+    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18
 };
 
 /* How ROMA's images are made (effect_api.h). */
@@ -374,6 +374,7 @@ static int parse_args(int argc, char **argv, options *o)
             }
             o->pixel_dispatch = k == 1 ? ROMA_PIXEL_DISPATCH_LIST
                                 : k == 2 ? ROMA_PIXEL_DISPATCH_EVERY_PIXEL : ROMA_PIXEL_DISPATCH_AUTO;
+            o->given |= GIVEN_PIXEL_DISPATCH;
         }
         else if (strcmp(a, "--gi-punctual") == 0) {
             o->gi_rays = strcmp(v, "rays") == 0;
@@ -586,6 +587,7 @@ typedef struct run_record {
     int pass_count;
     const roma_effect_stats *roma; /* ROMA tracer, internal route */
     const effect_api_result *api;  /* ROMA tracer, public effect passes */
+    roma_pixel_dispatch pixel_dispatch; /* the public passes': resolved, never AUTO */
     const budget_choice *budget;   /* --budget-ms only */
 } run_record;
 
@@ -767,9 +769,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         }
         roma_json_string(&j, "route", run->api ? "api" : "internal");
         if (run->api)
-            roma_json_string(&j, "pixel_dispatch", o->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list"
-                                                   : o->pixel_dispatch == ROMA_PIXEL_DISPATCH_EVERY_PIXEL ? "every"
-                                                                                                          : "auto");
+            roma_json_string(&j, "pixel_dispatch", run->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list" : "every");
         roma_json_int(&j, "resolution", o->res);
         roma_json_int(&j, "angular", o->angular);
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
@@ -842,6 +842,9 @@ static int choose_route(const options *o, notes *n)
              (o->effects & ROMA_EFFECT_GI) && !o->gi_rays ? "; gi from point and spot lights through their RSMs" : "");
         if (o->given & GIVEN_THREADS)
             note(n, o->quiet, "--threads sets the reference's CPU threads: the internal renderer ignores it");
+        if (o->given & GIVEN_PIXEL_DISPATCH)
+            note(n, o->quiet, "--pixel-dispatch chooses for the public passes: the internal renderer always traces "
+                 "its list of covered pixels");
         return 0;
     }
     if (o->given & GIVEN_THREADS)
@@ -858,6 +861,12 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
 {
     progress_state frames_progress = {"frames", o->quiet, -1, 0.0};
     on_progress(0.0f, &frames_progress);
+    /* AUTO as the library resolves it, for the stats: the list on CPU devices. */
+    roma_context_info info;
+    run->pixel_dispatch = o->pixel_dispatch;
+    if (run->pixel_dispatch == ROMA_PIXEL_DISPATCH_AUTO && roma_context_get_info(ctx, &info) == ROMA_SUCCESS)
+        run->pixel_dispatch = info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? ROMA_PIXEL_DISPATCH_LIST
+                                                                              : ROMA_PIXEL_DISPATCH_EVERY_PIXEL;
     effect_api_desc d = {
         .camera = *cam, .width = o->width, .height = o->height,
         .options = {.effects = o->effects, .resolution = o->res, .ao_angular = o->angular, .gi_angular = o->angular,

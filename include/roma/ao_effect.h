@@ -91,9 +91,10 @@ typedef struct roma_ao_effect_desc {
  * @param context   the context; must outlive the effect.
  * @param desc      settings; NULL = the zero value (2 slots, the context's logger). Copied.
  * @param[out] out  the new effect; NULL on failure.
- * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, or
- *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a
- *         Vulkan failure code (roma_result).
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out,
+ *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT or a pixel_dispatch that is not a
+ *         roma_pixel_dispatch; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
+ *         (roma_result).
  * @par Threads
  * The context's thread. */
 ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
@@ -134,8 +135,10 @@ typedef struct roma_ao_images {
  * @param settings  NULL = the zero value (defaults, roma_ao_settings_resolve).
  * @return ROMA_SUCCESS;
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, a zero width or height,
- *   no position, normal or output view, settings roma_ao_settings_resolve rejects, a slot
- *   not below frames_in_flight, more than 16 records in one slot and frame;
+ *   a width or height above 524,280 (65,535 groups of 8), a listed record whose list of
+ *   width x height pixels exceeds the device's maxStorageBufferRange, no position, normal or
+ *   output view, settings roma_ao_settings_resolve rejects, a slot not below
+ *   frames_in_flight, more than 16 records in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
  *   a Vulkan failure code (roma_result) when the descriptor set or the slot's list cannot be
  *   allocated.

@@ -110,7 +110,8 @@ typedef struct roma_gi_effect_desc {
  * @param desc      settings; NULL = the zero value. Copied.
  * @param[out] out  the new effect; NULL on failure.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, frames_in_flight
- *         above ROMA_MAX_FRAMES_IN_FLIGHT or a surface resolution outside [32, 256];
+ *         above ROMA_MAX_FRAMES_IN_FLIGHT, a surface resolution outside [32, 256] or a
+ *         pixel_dispatch that is not a roma_pixel_dispatch;
  *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
  * The context's thread. */
@@ -161,9 +162,9 @@ ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma
  * @param settings     NULL = the zero value (defaults, roma_gi_settings_resolve).
  * @return ROMA_SUCCESS;
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, NULL lights with
- *   light_count > 0, a zero width or height, no position, normal or output view, more than
- *   65,536 lights, a light of unknown type or with a NaN or infinite value, settings
- *   roma_gi_settings_resolve rejects, a slot not below frames_in_flight, a second record
+ *   light_count > 0, a zero width or height, images too large (as roma_ao_effect_record),
+ *   no position, normal or output view, more than 65,536 lights, a light of unknown type or
+ *   with a NaN or infinite value, settings roma_gi_settings_resolve rejects, a slot not below frames_in_flight, a second record
  *   in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
  *   a Vulkan failure code (roma_result) for the slot's buffers or descriptor sets, or the

@@ -116,9 +116,10 @@ typedef struct roma_light_effect_desc {
  * @param context   the context; must outlive the effect.
  * @param desc      settings; NULL = the zero value (2 slots, the context's logger). Copied.
  * @param[out] out  the new effect; NULL on failure.
- * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out, or
- *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a
- *         Vulkan failure code (roma_result).
+ * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out,
+ *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT or a pixel_dispatch that is not a
+ *         roma_pixel_dispatch; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
+ *         (roma_result).
  * @par Threads
  * The context's thread. */
 ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_light_effect_desc *desc,
@@ -162,9 +163,9 @@ typedef struct roma_light_images {
  * @param settings     NULL = the zero value (defaults, roma_light_settings_resolve).
  * @return ROMA_SUCCESS;
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, NULL lights with
- *   light_count > 0, a zero width or height, no position, normal or output view, more than
- *   65,536 lights, a light of unknown type or with a NaN or infinite value, settings
- *   roma_light_settings_resolve rejects, a slot not below frames_in_flight, a second record
+ *   light_count > 0, a zero width or height, images too large (as roma_ao_effect_record),
+ *   no position, normal or output view, more than 65,536 lights, a light of unknown type or
+ *   with a NaN or infinite value, settings roma_light_settings_resolve rejects, a slot not below frames_in_flight, a second record
  *   in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
  *   a Vulkan failure code (roma_result) for the slot's light buffer, pixel list or descriptor set.

@@ -1,7 +1,7 @@
 // The body of shaders/effects/image_list_*.comp, which differ in the output's format only.
 // config.z = 0: one invocation per pixel lists those whose position image holds a surface
 // (w > 0; one atomic per subgroup, the order does not matter) and writes the background into
-// the others. config.z = 1: one invocation turns the count into the effect's indirect
+// the others. config.z = 1: the first invocation turns the count into the effect's indirect
 // dispatch (8 x 8 workgroups, each dimension at most 65535).
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -19,6 +19,8 @@ void main()
 {
     uint width = pc.config.x, height = pc.config.y;
     if (pc.config.z == 1u) {
+        if (gl_LocalInvocationIndex != 0u)
+            return;
         uint groups = (roma_image_list.header.dispatch.w + 63u) / 64u, x = min(groups, 65535u);
         roma_image_list.header.dispatch.xyz = uvec3(x, x == 0u ? 0u : (groups + x - 1u) / x, 1u);
         return;
@@ -27,13 +29,14 @@ void main()
     if (xy.x >= width || xy.y >= height)
         return;
     bool covered = texelFetch(roma_list_position, ivec2(xy), 0).w > 0.0;
-    if (!covered)
-        imageStore(roma_list_output, ivec2(xy), pc.background);
     uint n = covered ? 1u : 0u;
     uint total = subgroupAdd(n), before = subgroupExclusiveAdd(n), base = 0u;
     if (subgroupElect() && total != 0u)
         base = atomicAdd(roma_image_list.header.dispatch.w, total);
     base = subgroupBroadcastFirst(base);
+    // After the subgroup operations, so that they see the lanes the branch would have split.
     if (covered)
         roma_image_list.pixels[base + before] = xy.y * width + xy.x;
+    else
+        imageStore(roma_list_output, ivec2(xy), pc.background);
 }

@@ -82,6 +82,9 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
     if (!im->width || !im->height || !im->position || !im->normal || !im->output)
         return roma_fail(&e->base.logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_effect_record: width, height, position, normal and output are required");
+    roma_result size = roma_image_effect_check_size(&e->base, "roma_ao_effect_record", im->width, im->height);
+    if (size != ROMA_SUCCESS)
+        return size;
     roma_ao_settings s;
     roma_result r = roma_ao_settings_resolve(settings_in, &s);
     if (r != ROMA_SUCCESS)

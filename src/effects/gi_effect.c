@@ -228,6 +228,9 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
     };
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
-    return roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
-                                      im->height);
+    r = roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
+                                   im->height);
+    if (r != ROMA_SUCCESS)
+        e->grid_version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
+    return r;
 }

@@ -24,9 +24,10 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
 {
     const uint32_t outputs = 1;
     memset(e, 0, sizeof *e);
-    if ((unsigned)dispatch > ROMA_PIXEL_DISPATCH_EVERY_PIXEL)
+    if ((unsigned)dispatch > ROMA_PIXEL_DISPATCH_EVERY_PIXEL) /* name: "roma_<effect>_record" */
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
-                         "effect desc: pixel_dispatch %d is not a roma_pixel_dispatch", (int)dispatch);
+                         "%.*s_create: pixel_dispatch %d is not a roma_pixel_dispatch",
+                         (int)(strlen(name) - strlen("_record")), name, (int)dispatch);
     e->ctx = ctx;
     e->logger = *log;
     e->name = name;
@@ -115,6 +116,22 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
     return ROMA_SUCCESS;
 }
 
+roma_result roma_image_effect_check_size(const roma_image_effect *e, const char *name, uint32_t width,
+                                         uint32_t height)
+{
+    const uint32_t most = 65535u * 8u; /* 8 x 8 workgroups, at most 65535 along each axis */
+    if (width > most || height > most)
+        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: images of %ux%u, at most %u along each axis",
+                         name, width, height, most);
+    const uint64_t list_bytes = sizeof(roma_pixel_list_header) + 4ull * width * height;
+    if (e->listed && list_bytes > e->ctx->properties.limits.maxStorageBufferRange)
+        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: the covered-pixel list of %ux%u pixels (%llu bytes) exceeds maxStorageBufferRange (%u)",
+                         name, width, height, (unsigned long long)list_bytes,
+                         e->ctx->properties.limits.maxStorageBufferRange);
+    return ROMA_SUCCESS;
+}
+
 int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot)
 {
     return roma_slot_sets_same_frame(&e->sets, slot, e->frame);
@@ -188,9 +205,6 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height)
 {
-    if ((width + 7) / 8 > 65535u || (height + 7) / 8 > 65535u)
-        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: images of %ux%u are too large", e->name, width,
-                         height);
     int same_frame = roma_image_effect_same_frame(e, slot);
     roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
     if (r == ROMA_SUCCESS)

@@ -53,6 +53,12 @@ void roma_image_effect_free(roma_image_effect *e);
  * roma_image_effect_same_frame says whether this record continues one. */
 int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 
+/* Whether the images fit the dispatch (at most 65535 workgroups of 8 x 8 along each axis) and,
+ * listed, their list fits one storage buffer; the record's argument check, before anything is
+ * recorded (name: the record's, for the message). */
+roma_result roma_image_effect_check_size(const roma_image_effect *e, const char *name, uint32_t width,
+                                         uint32_t height);
+
 /* Checks slot and map; the map's info is returned for the push. */
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
                                     roma_map_info *info);

@@ -16,6 +16,9 @@ roma_result roma_lit_record_check(const roma_image_effect *e, const char *name, 
     if (!im->width || !im->height || !im->position || !im->normal || !im->output)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "%s: width, height, position, normal and output are required", name);
+    roma_result r = roma_image_effect_check_size(e, name, im->width, im->height);
+    if (r != ROMA_SUCCESS)
+        return r;
     if (light_count > ROMA_LIT_MAX_LIGHTS)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "%s: %u lights, at most %u", name, light_count,
                          ROMA_LIT_MAX_LIGHTS);

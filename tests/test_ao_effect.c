@@ -65,6 +65,22 @@ static void read_back_irradiance(roma_context *ctx, VkImage out, VkCommandBuffer
     roma_test_submit_and_wait(ctx, cmd);
 }
 
+/* Ends the frame: copies the R32F AO image `out` to the staging at back, submits, waits, and
+ * counts the values (host, the staging's mapping) that differ from want. */
+static uint32_t ao_values_differing(roma_context *ctx, VkImage out, VkCommandBuffer cmd, VkBuffer staging,
+                                    const VkBufferImageCopy *back, const float *host, const float *want)
+{
+    roma_test_layout_barrier(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    vkCmdCopyImageToBuffer(cmd, out, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, back);
+    roma_test_submit_and_wait(ctx, cmd);
+    uint32_t differ = 0;
+    for (uint32_t p = 0; p < W * H; ++p)
+        differ += host[p] != want[p];
+    return differ;
+}
+
 /* Records one frame of the light effect into its output and reads it back into irradiance. */
 static void light_frame(roma_context *ctx, roma_light_effect *light, const roma_map *map,
                         const roma_light_images *images, VkImage out, VkCommandBuffer cmd, VkCommandPool pool,
@@ -431,15 +447,7 @@ int main(void)
                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     CHECK_RESULT(roma_ao_effect_record(ao, cmd, 1, map, &images, &settings), ROMA_SUCCESS);
-    roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    vkCmdCopyImageToBuffer(cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
-    roma_test_submit_and_wait(ctx, cmd);
-    uint32_t regrown_differ = 0;
-    for (uint32_t p = 0; p < W * H; ++p)
-        regrown_differ += out[p] != single_record[p];
-    CHECK(regrown_differ == 0);
+    CHECK(ao_values_differing(ctx, output.image, cmd, staging, &back, out, single_record) == 0);
     /* Images wider than 65,535 groups of 8 are refused before anything is recorded. */
     roma_ao_images huge = images;
     huge.width = 65535u * 8u + 1u;
@@ -454,15 +462,7 @@ int main(void)
                  ROMA_SUCCESS);
     begin_output_frame(ctx, output.image, cmd, pool);
     CHECK_RESULT(roma_ao_effect_record(every, cmd, 0, map, &images, &settings), ROMA_SUCCESS);
-    roma_test_layout_barrier(cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    vkCmdCopyImageToBuffer(cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging, 1, &back);
-    roma_test_submit_and_wait(ctx, cmd);
-    uint32_t every_differ = 0;
-    for (uint32_t p = 0; p < W * H; ++p)
-        every_differ += out[p] != single_record[p];
-    CHECK(every_differ == 0);
+    CHECK(ao_values_differing(ctx, output.image, cmd, staging, &back, out, single_record) == 0);
     roma_ao_effect_destroy(every);
 
     /* Direct light: ROMA's shadowed irradiance times albedo / pi against the reference's

@@ -33,6 +33,18 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ro
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaEmitters { roma_gpu_emitter e[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
 
+// Distance along the unit direction d at which the ray from origin (inside the grid or not)
+// leaves the grid's box, one cell further (rounding), +INF when it runs along a face.
+float roma_grid_exit(vec3 origin, vec3 d)
+{
+    roma_grid_params grid = roma_fetch_grid();
+    vec3 lo = grid.origin.xyz - origin, hi = lo + vec3(float(grid.dims.x) * grid.origin.w);
+    vec3 far = vec3(d.x > 0.0 ? hi.x / d.x : d.x < 0.0 ? lo.x / d.x : 1.0 / 0.0,
+                    d.y > 0.0 ? hi.y / d.y : d.y < 0.0 ? lo.y / d.y : 1.0 / 0.0,
+                    d.z > 0.0 ? hi.z / d.z : d.z < 0.0 ? lo.z / d.z : 1.0 / 0.0);
+    return min(far.x, min(far.y, far.z)) + grid.origin.w;
+}
+
 // 1 when origin + normalize(v) * [0, tmax] is free (tmax may be +INF). The ROMA query
 // skips its first tmin; the start is walked exactly instead (roma/ray_start.glsl), over
 // roma_start_walk * tmin, and a ray shorter than the skip is walked whole (the query would
@@ -64,9 +76,14 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     // to the map's edge instead (tried) `blinds` came out about as dark.
     if (!roma_unsnapped_gave_up)
         return true;
+    // The walk back starts where the segment leaves the grid: nothing lies beyond it, and a
+    // light outside the scene's box (behind a room's wall) would spend the walk's steps on
+    // empty texels before the wall.
+    float t_back = min(tmax, roma_grid_exit(origin, d));
     return isinf(tmax) ? (roma_trace_snapped(origin, d, tmin, tmax, false).info & ROMA_HIT_FLAG) == 0u
-                       : (roma_trace_unsnapped(origin + d * tmax, -d, 0.0, tmax - tmin, false, max_steps).info &
-                          ROMA_HIT_FLAG) == 0u;
+                       : t_back <= tmin ||
+                             (roma_trace_unsnapped(origin + d * t_back, -d, 0.0, t_back - tmin, false, max_steps).info &
+                              ROMA_HIT_FLAG) == 0u;
 }
 
 // 1 when the segment origin -> target is free between 0 and `shorten` (world

@@ -220,15 +220,47 @@ void roma_vox_columns_range(roma_vox_triangle t, int u0, int u1, int v0, int v1,
             roma_vox_column(t, iu, iv, res, words);
 }
 
-// The columns of tile `tile` (row-major over ceil(columns / ROMA_VOXELIZE_TILE)).
-void roma_vox_tile(roma_vox_triangle t, uint tile, int res, uint words)
+// The columns [lo.x, hi.x] x [lo.y, hi.y] of tile `tile` (row-major over
+// ceil(columns / ROMA_VOXELIZE_TILE)).
+void roma_vox_tile_columns(roma_vox_triangle t, uint tile, out ivec2 lo, out ivec2 hi)
 {
     uvec2 cols = roma_vox_columns(t);
     uint tiles_u = (cols.x + ROMA_VOXELIZE_TILE - 1u) / ROMA_VOXELIZE_TILE;
-    int u0 = t.clo.x + int((tile % tiles_u) * ROMA_VOXELIZE_TILE);
-    int v0 = t.clo.y + int((tile / tiles_u) * ROMA_VOXELIZE_TILE);
-    roma_vox_columns_range(t, u0, min(u0 + int(ROMA_VOXELIZE_TILE) - 1, t.chi.x),
-                           v0, min(v0 + int(ROMA_VOXELIZE_TILE) - 1, t.chi.y), res, words);
+    lo = t.clo.xy + ivec2((tile % tiles_u) * ROMA_VOXELIZE_TILE, (tile / tiles_u) * ROMA_VOXELIZE_TILE);
+    hi = min(lo + ivec2(int(ROMA_VOXELIZE_TILE) - 1), t.chi.xy);
+}
+
+// The cells of tile `tile`.
+void roma_vox_tile(roma_vox_triangle t, uint tile, int res, uint words)
+{
+    ivec2 lo, hi;
+    roma_vox_tile_columns(t, tile, lo, hi);
+    roma_vox_columns_range(t, lo.x, hi.x, lo.y, hi.y, res, words);
+}
+
+// A triangle whose footprint spans more than ROMA_VOXELIZE_INLINE_COLUMNS columns is
+// queued as tiles for the tiles pass (indirect dispatch): true when it was. False for
+// smaller ones and when the queue is full; the caller then does it inline (correct, only
+// slower). pc.config.y: the queue's capacity.
+bool roma_vox_queue_tiles(uint tri, roma_vox_triangle t)
+{
+    uvec2 cols = roma_vox_columns(t);
+    if (cols.x * cols.y <= ROMA_VOXELIZE_INLINE_COLUMNS)
+        return false;
+    uint tiles = ((cols.x + ROMA_VOXELIZE_TILE - 1u) / ROMA_VOXELIZE_TILE) *
+                 ((cols.y + ROMA_VOXELIZE_TILE - 1u) / ROMA_VOXELIZE_TILE);
+    uint capacity = pc.config.y;
+    // Read first so that a full queue does not keep growing the counter.
+    if (queue_header.dispatch.w + tiles > capacity)
+        return false;
+    uint first = atomicAdd(queue_header.dispatch.w, tiles);
+    if (first + tiles > capacity)
+        return false;
+    for (uint i = 0u; i < tiles; ++i)
+        queue_items[first + i] = uvec2(tri, i);
+    uint groups = (first + tiles + ROMA_VOXELIZE_WORKGROUP_SIZE - 1u) / ROMA_VOXELIZE_WORKGROUP_SIZE;
+    atomicMax(queue_header.dispatch.x, groups);
+    return true;
 }
 
 #endif // ROMA_VOXELIZE_GLSL

@@ -1,11 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The surface grid of the GI pass (roma_gi_scene): one invocation per triangle
-// writes its index into every cell it overlaps (the exact voxelizer's test) with
-// atomicMin, so a cell shared by several triangles holds the lowest index
-// whatever the order the invocations ran in. The voxelizer's BOM binding holds
-// the cells here, one uint each, (z * RES + y) * RES + x.
-#include "roma_voxelize.glsl"
+// The surface grid of the GI pass, one invocation per triangle: small triangles write
+// their cells here; large ones are queued as tiles for surface_cells_tiles.comp, as the
+// BOM voxelizer does. (One invocation per triangle for all of them left part of a large
+// triangle's cells unwritten at RES 256 on lavapipe, and serialises the pass anywhere.)
+#include "roma_surface_cells.glsl"
 
 layout(local_size_x = ROMA_VOXELIZE_WORKGROUP_SIZE) in;
 
@@ -17,17 +16,7 @@ void main()
         return;
     int res = int(pc.grid.dims.x);
     roma_vox_triangle t = roma_vox_load(tri, res);
-    if (!t.keep)
+    if (!t.keep || roma_vox_queue_tiles(tri, t))
         return;
-    for (int iv = t.clo.y; iv <= t.chi.y; ++iv)
-        for (int iu = t.clo.x; iu <= t.chi.x; ++iu) {
-            ivec2 span = roma_vox_column_span(t, iu, iv);
-            for (int k = span.x; k <= span.y; ++k) {
-                ivec3 c = ivec3(iu, iv, k);
-                if (!roma_vox_overlaps(t, c))
-                    continue;
-                ivec3 w = roma_vox_from_columns(c, t.a);
-                atomicMin(bom[(uint(w.z) * uint(res) + uint(w.y)) * uint(res) + uint(w.x)], tri);
-            }
-        }
+    roma_surface_columns(t, tri, t.clo.xy, t.chi.xy, res);
 }

@@ -22,23 +22,7 @@ void main()
         roma_vox_box(t, res, words);
         return;
     }
-    uvec2 cols = roma_vox_columns(t);
-    if (cols.x * cols.y > ROMA_VOXELIZE_INLINE_COLUMNS) {
-        uint tiles = ((cols.x + ROMA_VOXELIZE_TILE - 1u) / ROMA_VOXELIZE_TILE) *
-                     ((cols.y + ROMA_VOXELIZE_TILE - 1u) / ROMA_VOXELIZE_TILE);
-        uint capacity = pc.config.y;
-        // Read first so that a full queue does not keep growing the counter.
-        if (queue_header.dispatch.w + tiles <= capacity) {
-            uint first = atomicAdd(queue_header.dispatch.w, tiles);
-            if (first + tiles <= capacity) {
-                for (uint i = 0u; i < tiles; ++i)
-                    queue_items[first + i] = uvec2(tri, i);
-                uint groups = (first + tiles + ROMA_VOXELIZE_WORKGROUP_SIZE - 1u) / ROMA_VOXELIZE_WORKGROUP_SIZE;
-                atomicMax(queue_header.dispatch.x, groups);
-                return;
-            }
-        }
-        // Queue full: correct, only slower.
-    }
+    if (roma_vox_queue_tiles(tri, t))
+        return;
     roma_vox_columns_range(t, t.clo.x, t.chi.x, t.clo.y, t.chi.y, res, words);
 }

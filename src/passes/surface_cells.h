@@ -11,7 +11,11 @@
 
 typedef struct roma_surface_cells {
     roma_context *ctx;
-    roma_compute_pipeline pipeline;
+    /* Small triangles write their cells in the first; large ones are queued as tiles of
+     * columns for the second (an indirect dispatch), as the BOM voxelizer does. */
+    roma_compute_pipeline triangles, tiles;
+    roma_buffer queue;          /* roma_voxelize_queue header + capacity uvec2 items */
+    uint32_t capacity;
     /* One set per frame slot: a build in a slot rewrites that slot's set (the geometry's
      * buffers may have been replaced), which the slot rules make safe. */
     roma_descriptor_set sets[ROMA_MAX_FRAMES_IN_FLIGHT];
@@ -37,7 +41,8 @@ void roma_surface_cells_destroy(roma_surface_cells *cells);
 roma_result roma_surface_cells_place(roma_surface_cells *cells, const float bounds_min[3], const float bounds_max[3]);
 
 /* Records the build into cmd where the grid is placed: orders it after earlier reads of
- * the grid on the queue, clears it, writes every triangle into the cells it overlaps and
+ * the grid and its queue on the queue, clears it, writes every triangle into the cells it
+ * overlaps and
  * makes the writes visible to later compute shaders. The geometry's buffers are read when
  * cmd executes and must be written before (the map's build makes its positions visible
  * to compute shaders). A failed set allocation records nothing. */

@@ -168,7 +168,8 @@ ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma
  *   in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
  *   a Vulkan failure code (roma_result) for the slot's buffers or descriptor sets, or the
- *   surface grid's first allocation (RES^3 x 4 bytes).
+ *   surface grid's first allocation (RES^3 x 4 bytes, and RES^2 x 32 bytes for its build's queue of
+ *   tiles).
  * @par Threads
  * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_gi_effect_record(roma_gi_effect *effect, VkCommandBuffer cmd, uint32_t slot,

@@ -34,7 +34,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ro
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaFloats { float f[]; };
 
 // Distance along the unit direction d at which the ray from origin (inside the grid or not)
-// leaves the grid's box, one cell further (rounding), +INF when it runs along a face.
+// leaves the grid's box, one cell further (rounding); an axis d does not move along sets no
+// bound.
 float roma_grid_exit(vec3 origin, vec3 d)
 {
     roma_grid_params grid = roma_fetch_grid();

@@ -399,12 +399,12 @@ ROMA_STRUCT_BEGIN(roma_rsm_view)
 ROMA_STRUCT_END(roma_rsm_view)
 
 /* The surfaces a bounce ray can hit (src/passes/surface_cells.c,
- * shaders/passes/surface_cells.comp): a grid over the scene whose cells hold
- * the lowest index of a triangle overlapping them (ROMA_GBUFFER_NO_TRIANGLE
- * when none), so that the GI pass finds the albedo and normal of the surface a
- * ROMA hit lies on. Written once per scene (RES^3 uints) by the exact voxelizer's
- * overlap test, with roma_voxelize_push and the voxelizer's bindings (the
- * cells at ROMA_VOXELIZE_BINDING_BOM, no queue). */
+ * shaders/passes/surface_cells.comp and surface_cells_tiles.comp): a grid over the
+ * scene whose cells hold the lowest index of a triangle overlapping them
+ * (ROMA_GBUFFER_NO_TRIANGLE when none), so that the GI pass finds the albedo and
+ * normal of the surface a ROMA hit lies on. Written when the geometry moves (RES^3
+ * uints) by the exact voxelizer's overlap test, with roma_voxelize_push and the
+ * voxelizer's bindings (the cells at ROMA_VOXELIZE_BINDING_BOM) and tile queue. */
 
 /* What the GI pass needs at a bounce hit (one buffer per frame slot). */
 ROMA_STRUCT_BEGIN(roma_gi_scene)

@@ -28,7 +28,7 @@ roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, ro
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue) + 8ull * out->capacity,
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                ROMA_MEMORY_DEVICE, &out->queue);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "surface_cells.comp", cell_types, ROMA_VOXELIZE_BINDINGS,

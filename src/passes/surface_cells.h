@@ -42,8 +42,7 @@ roma_result roma_surface_cells_place(roma_surface_cells *cells, const float boun
 
 /* Records the build into cmd where the grid is placed: orders it after earlier reads of
  * the grid and its queue on the queue, clears it, writes every triangle into the cells it
- * overlaps and
- * makes the writes visible to later compute shaders. The geometry's buffers are read when
+ * overlaps and makes the writes visible to later compute shaders. The geometry's buffers are read when
  * cmd executes and must be written before (the map's build makes its positions visible
  * to compute shaders). A failed set allocation records nothing. */
 roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd, uint32_t slot,

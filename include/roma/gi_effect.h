@@ -21,9 +21,9 @@
  *
  * Geometry: the bounce hits find their triangles where the map's last build put them. The
  * record rebuilds the surface grid (RES^3 cells over the map's volume, one invocation per
- * triangle) whenever that build moved the geometry or the box: new positions (host or
- * GPU, so skinning and animation are followed), instances added, removed or moved, another
- * volume; a map whose geometry stands still costs the grid once. The scene given to
+ * small triangle, one per 8 x 8 columns of a large one) whenever that build moved the
+ * geometry or the box: new positions (host or GPU, so skinning and animation are followed),
+ * instances added, removed or moved, another volume; a map whose geometry stands still costs the grid once. The scene given to
  * set_scene is the one the map was made from: its triangles give the albedo (by index: the
  * map's triangles start with the scene's; an instance's triangles reflect nothing) and
  * its emissive triangles the area lights at the hit (where set_scene put them: call it

@@ -23,8 +23,8 @@
  * record rebuilds the surface grid (RES^3 cells over the map's volume, one invocation per
  * small triangle, one per 8 x 8 columns of a large one) whenever that build moved the
  * geometry or the box: new positions (host or GPU, so skinning and animation are followed),
- * instances added, removed or moved, another volume; a map whose geometry stands still costs the grid once. The scene given to
- * set_scene is the one the map was made from: its triangles give the albedo (by index: the
+ * instances added, removed or moved, another volume; a map whose geometry stands still
+ * costs the grid once. The scene given to set_scene is the one the map was made from: its triangles give the albedo (by index: the
  * map's triangles start with the scene's; an instance's triangles reflect nothing) and
  * its emissive triangles the area lights at the hit (where set_scene put them: call it
  * again when they move). Its vertex normals shade the hits while no build has given the

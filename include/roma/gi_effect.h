@@ -23,18 +23,18 @@
  * record rebuilds the surface grid (RES^3 cells over the map's volume, one invocation per
  * small triangle, one per 8 x 8 columns of a large one) whenever that build moved the
  * geometry or the box: new positions (host or GPU, so skinning and animation are followed),
- * instances added, removed or moved, another volume; a map whose geometry stands still
- * costs the grid once. The scene given to set_scene is the one the map was made from: its triangles give the albedo (by index: the
- * map's triangles start with the scene's; an instance's triangles reflect nothing) and
- * its emissive triangles the area lights at the hit (where set_scene put them: call it
- * again when they move). Its vertex normals shade the hits while no build has given the
- * map new positions; after that the hit triangle's face normal does. Point and spot lights
- * are lit by shadow rays; the reflective shadow maps of the ROMA paper (libroma's offline
- * renderer) need a rasterization of the light's view, which is the engine's to make. Those
- * shadow rays walk the map's rotated arrays with bounded steps from each end, and what lies
- * beyond both walks counts as open: a point or spot light outside a closed room lights its
- * inside a little (measured in docs/accuracy.md); keep such lights out of the record where
- * that matters.
+ * instances added, removed or moved, another volume; a map whose geometry stands still costs
+ * the grid once. The scene given to set_scene is the one the map was made from: its
+ * triangles give the albedo (by index: the map's triangles start with the scene's; an
+ * instance's triangles reflect nothing) and its emissive triangles the area lights at the
+ * hit (where set_scene put them: call it again when they move). Its vertex normals shade the
+ * hits while no build has given the map new positions; after that the hit triangle's face
+ * normal does. Point and spot lights are lit by shadow rays; the reflective shadow maps of
+ * the ROMA paper (libroma's offline renderer) need a rasterization of the light's view,
+ * which is the engine's to make. Those shadow rays walk the map's rotated arrays with
+ * bounded steps from each end, and what lies beyond both walks counts as open: a point or
+ * spot light outside a closed room lights its inside a little (measured in
+ * docs/accuracy.md); keep such lights out of the record where that matters.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. Frame slots: as

@@ -71,7 +71,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
                                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy copy = {0, 0, bytes}, queue_copy = {0, 0, sizeof(roma_voxelize_queue)};
         vkCmdCopyBuffer(cmd, cells.cells.buffer, readback.buffer, 1, &copy);
-        vkCmdCopyBuffer(cmd, cells.queue.buffer, header.buffer, 1, &queue_copy);
+        vkCmdCopyBuffer(cmd, cells.queue.buffer.buffer, header.buffer, 1, &queue_copy);
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         roma_result s = roma_submit_one_shot(ctx, cmd);
@@ -90,7 +90,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
         memcpy(out->origin, cells.origin, sizeof out->origin);
         out->cell = cells.cell;
         out->queued = ((const roma_voxelize_queue *)header.mapped)->dispatch[3];
-        out->capacity = cells.capacity;
+        out->capacity = cells.queue.capacity;
     }
     roma_surface_cells_destroy(&cells);
     roma_buffer_destroy(ctx, &header);

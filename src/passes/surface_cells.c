@@ -22,14 +22,8 @@ roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, ro
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                        ROMA_MEMORY_DEVICE, &out->cells); /* (a source for the tests' read-back) */
-    /* As the BOM voxelizer's queue: four tiles per column of one face of the grid (a
-     * grid-wide wall is (RES/8)^2 tiles); when it is full the rest go inline. */
-    out->capacity = 4 * resolution * resolution;
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue) + 8ull * out->capacity,
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               ROMA_MEMORY_DEVICE, &out->queue);
+        r = roma_tile_queue_create(ctx, resolution, &out->queue);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "surface_cells.comp", cell_types, ROMA_VOXELIZE_BINDINGS,
                                                sizeof(roma_voxelize_push), &out->triangles);
@@ -48,7 +42,7 @@ void roma_surface_cells_destroy(roma_surface_cells *cells)
             roma_descriptor_set_destroy(cells->ctx, &cells->sets[s]);
         roma_compute_pipeline_destroy(cells->ctx, &cells->tiles);
         roma_compute_pipeline_destroy(cells->ctx, &cells->triangles);
-        roma_buffer_destroy(cells->ctx, &cells->queue);
+        roma_tile_queue_destroy(cells->ctx, &cells->queue);
         roma_buffer_destroy(cells->ctx, &cells->cells);
     }
     memset(cells, 0, sizeof *cells);
@@ -84,15 +78,14 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_POSITIONS, cell_types[0], geometry->positions);
     roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_INDICES, cell_types[1], geometry->indices);
     roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_BOM, cell_types[2], cells->cells.buffer);
-    roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_QUEUE, cell_types[3], cells->queue.buffer);
+    roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_QUEUE, cell_types[3], cells->queue.buffer.buffer);
 
     /* Earlier reads of the grid (the GI passes of frames before) and of the queue (the
      * last build's indirect dispatch) finish before they are cleared. */
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, 0,
                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0);
     vkCmdFillBuffer(cmd, cells->cells.buffer, 0, VK_WHOLE_SIZE, ROMA_GBUFFER_NO_TRIANGLE);
-    const uint32_t header[4] = {0, 1, 1, 0}; /* no workgroups yet, y = z = 1, no items */
-    vkCmdUpdateBuffer(cmd, cells->queue.buffer, 0, sizeof header, header);
+    roma_tile_queue_record_reset(&cells->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -105,18 +98,11 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     push.grid.inv_cell[0] = 1.0f / cells->cell;
     push.grid.dims[0] = cells->resolution;
     push.config[0] = geometry->triangle_count;
-    push.config[1] = cells->capacity;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->triangles.pipeline);
+    push.config[1] = cells->queue.capacity;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->triangles.layout, 0, 1, &set->set, 0, NULL);
     vkCmdPushConstants(cmd, cells->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    roma_cmd_dispatch_linear(cmd, geometry->triangle_count, ROMA_VOXELIZE_WORKGROUP_SIZE);
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    /* Same set layout and push range: the set and constants stay bound. */
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->tiles.pipeline);
-    vkCmdDispatchIndirect(cmd, cells->queue.buffer, 0);
+    roma_tile_queue_record_passes(&cells->queue, cmd, cells->triangles.pipeline, cells->tiles.pipeline,
+                                  geometry->triangle_count);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     return ROMA_SUCCESS;

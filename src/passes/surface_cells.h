@@ -7,6 +7,7 @@
 #define ROMA_PASSES_SURFACE_CELLS_H
 
 #include "roma/map.h" /* ROMA_MAX_FRAMES_IN_FLIGHT */
+#include "voxelize/tile_queue.h"
 #include "vulkan/vk_internal.h"
 
 typedef struct roma_surface_cells {
@@ -14,8 +15,7 @@ typedef struct roma_surface_cells {
     /* Small triangles write their cells in the first; large ones are queued as tiles of
      * columns for the second (an indirect dispatch), as the BOM voxelizer does. */
     roma_compute_pipeline triangles, tiles;
-    roma_buffer queue;          /* roma_voxelize_queue header + capacity uvec2 items */
-    uint32_t capacity;
+    roma_tile_queue queue;
     /* One set per frame slot: a build in a slot rewrites that slot's set (the geometry's
      * buffers may have been replaced), which the slot rules make safe. */
     roma_descriptor_set sets[ROMA_MAX_FRAMES_IN_FLIGHT];

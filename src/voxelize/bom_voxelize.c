@@ -3,11 +3,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "voxelize/tile_queue.h"
+
 struct roma_bom_voxelizer {
     roma_context *ctx;
     uint32_t resolution;
-    uint32_t capacity; /* tile items the queue holds */
-    roma_buffer queue; /* roma_voxelize_queue header + capacity uvec2 items */
+    roma_tile_queue queue;
     VkBuffer bom;
     VkDeviceSize bom_bytes;
     roma_compute_pipeline triangles, tiles; /* one set layout, the same bindings */
@@ -46,13 +47,7 @@ roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, Vk
     v->resolution = resolution;
     v->bom = bom;
     v->bom_bytes = bom_bytes;
-    /* Four tiles per column of one face of the grid: room for every large triangle of
-     * typical scenes (a grid-wide wall is (RES/8)^2 tiles); the rest go inline. */
-    v->capacity = 4 * resolution * resolution;
-    roma_result r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue) + 8ull * v->capacity,
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       ROMA_MEMORY_DEVICE, &v->queue);
+    roma_result r = roma_tile_queue_create(ctx, resolution, &v->queue);
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create_typed(ctx, "voxelize.comp", binding_types, ROMA_VOXELIZE_BINDINGS,
                                                sizeof(roma_voxelize_push), &v->triangles);
@@ -62,7 +57,7 @@ roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, Vk
     if (r == ROMA_SUCCESS)
         r = roma_descriptor_set_create(ctx, &v->triangles, binding_types, ROMA_VOXELIZE_BINDINGS, &v->set);
     if (r == ROMA_SUCCESS) {
-        const VkBuffer buffers[ROMA_VOXELIZE_BINDINGS] = {positions, indices, bom, v->queue.buffer};
+        const VkBuffer buffers[ROMA_VOXELIZE_BINDINGS] = {positions, indices, bom, v->queue.buffer.buffer};
         for (uint32_t b = 0; b < ROMA_VOXELIZE_BINDINGS; ++b)
             roma_descriptor_write_buffer(ctx, &v->set, b, binding_types[b], buffers[b]);
     }
@@ -81,7 +76,7 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *v)
     roma_descriptor_set_destroy(v->ctx, &v->set);
     roma_compute_pipeline_destroy(v->ctx, &v->tiles);
     roma_compute_pipeline_destroy(v->ctx, &v->triangles);
-    roma_buffer_destroy(v->ctx, &v->queue);
+    roma_tile_queue_destroy(v->ctx, &v->queue);
     free(v);
 }
 
@@ -97,7 +92,7 @@ roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd,
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_bom_voxelize_record: grid of RES %u (%u words), the voxelizer was made for %u",
                          grid->dims[0], grid->dims[1], v->resolution);
-    roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->capacity, 0, 0}};
+    roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->queue.capacity, 0, 0}};
 
     /* WAR/WAW against the previous build (voxelization, rotation, downloads, the
      * indirect read of the queue) and geometry written by transfers or compute. */
@@ -108,23 +103,14 @@ roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     vkCmdFillBuffer(cmd, v->bom, 0, v->bom_bytes, 0);
-    const uint32_t header[4] = {0, 1, 1, 0}; /* no workgroups yet, y = z = 1, no items */
-    vkCmdUpdateBuffer(cmd, v->queue.buffer, 0, sizeof header, header);
+    roma_tile_queue_record_reset(&v->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     if (triangles) {
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.layout, 0, 1, &v->set.set, 0, NULL);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.pipeline);
         vkCmdPushConstants(cmd, v->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        roma_cmd_dispatch_linear(cmd, triangles, ROMA_VOXELIZE_WORKGROUP_SIZE);
-        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                    VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-        /* Same set layout and push range: the set and constants stay bound. */
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->tiles.pipeline);
-        vkCmdDispatchIndirect(cmd, v->queue.buffer, 0);
+        roma_tile_queue_record_passes(&v->queue, cmd, v->triangles.pipeline, v->tiles.pipeline, triangles);
     }
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,

@@ -21,6 +21,9 @@
 // may walk less (roma_start_walk). ROMA_START_WALK: roma_shared.h, shared with the tests.
 float roma_start_walk = ROMA_START_WALK;
 
+// BOM cells of empty space a shadow segment's walk back may skip from the light (below).
+#define ROMA_BACK_SKIP_CELLS 32
+
 // The accuracy study's baseline for shadows: every segment walked exactly through the BOM
 // to its end (3D DDA, no ROMA maps, no step bound): the voxelization's error apart from
 // ROMA's. Set by the direct-light passes from their push constants.
@@ -79,8 +82,17 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
         return true;
     // The walk back starts where the segment leaves the grid: nothing lies beyond it, and a
     // light outside the scene's box (behind a room's wall) would spend the walk's steps on
-    // empty texels before the wall.
+    // empty texels before the wall. A light inside the box but outside a room (the grid
+    // holds a turned room's corners) would too: the BOM's exact walk skips up to
+    // ROMA_BACK_SKIP_CELLS empty cells from the light, and the walk back starts two skip
+    // lengths short of the first occupied one (the rotated maps smear a wall over about a
+    // trace cell).
     float t_back = min(tmax, roma_grid_exit(origin, d));
+    float t_wall = isinf(tmax) || !(t_back > tmin)
+                       ? -1.0
+                       : roma_bom_walk(origin + d * t_back, -d, t_back - tmin, ROMA_BACK_SKIP_CELLS);
+    if (t_wall >= 0.0)
+        t_back -= max(t_wall - 2.0 * tmin, 0.0);
     return isinf(tmax) ? (roma_trace_snapped(origin, d, tmin, tmax, false).info & ROMA_HIT_FLAG) == 0u
                        : t_back <= tmin ||
                              (roma_trace_unsnapped(origin + d * t_back, -d, 0.0, t_back - tmin, false, max_steps).info &

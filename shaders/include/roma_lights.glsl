@@ -21,8 +21,12 @@
 // may walk less (roma_start_walk). ROMA_START_WALK: roma_shared.h, shared with the tests.
 float roma_start_walk = ROMA_START_WALK;
 
-// BOM cells of empty space a shadow segment's walk back may skip from the light (below).
-#define ROMA_BACK_SKIP_CELLS 32
+// BOM cells of empty space a shadow segment's walk back may skip from the light
+// (roma_ray_visible): from a point or spot light, and from an area-light sample, whose
+// segments in an open room reach the voxels' over-occlusion at the room's middle when
+// skipped farther (docs/accuracy.md, "Skipping the empty space in front of the light").
+#define ROMA_BACK_SKIP_POINT 48
+#define ROMA_BACK_SKIP_AREA 32
 
 // The accuracy study's baseline for shadows: every segment walked exactly through the BOM
 // to its end (3D DDA, no ROMA maps, no step bound): the voxelization's error apart from
@@ -54,7 +58,7 @@ float roma_grid_exit(vec3 origin, vec3 d)
 // roma_start_walk * tmin, and a ray shorter than the skip is walked whole (the query would
 // skip all of it). One call of each walk: SIMD devices that predicate run both sides of a
 // branch.
-bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_steps)
+bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_steps, int back_skip)
 {
     if (roma_shadow_exact) // the offset origin lies above the cells of its own surface
         return !(roma_bom_walk(origin, v, tmax, 1 << 30) >= 0.0);
@@ -83,14 +87,14 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     // The walk back starts where the segment leaves the grid: nothing lies beyond it, and a
     // light outside the scene's box (behind a room's wall) would spend the walk's steps on
     // empty texels before the wall. A light inside the box but outside a room (the grid
-    // holds a turned room's corners) would too: the BOM's exact walk skips up to
-    // ROMA_BACK_SKIP_CELLS empty cells from the light, and the walk back starts two skip
+    // holds a turned room's corners) would too: the BOM's exact walk skips up to back_skip
+    // empty cells from the light, and the walk back starts two skip
     // lengths short of the first occupied one (the rotated maps smear a wall over about a
     // trace cell).
     float t_back = min(tmax, roma_grid_exit(origin, d));
     float t_wall = isinf(tmax) || !(t_back > tmin)
                        ? -1.0
-                       : roma_bom_walk(origin + d * t_back, -d, t_back - tmin, ROMA_BACK_SKIP_CELLS);
+                       : roma_bom_walk(origin + d * t_back, -d, t_back - tmin, back_skip);
     if (t_wall >= 0.0)
         t_back -= max(t_wall - 2.0 * tmin, 0.0);
     return isinf(tmax) ? (roma_trace_snapped(origin, d, tmin, tmax, false).info & ROMA_HIT_FLAG) == 0u
@@ -103,10 +107,10 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
 // units) before the target: a point light next to a surface must not be hidden by
 // that surface's cells.
 bool roma_segment_visible(vec3 origin, vec3 target, float shorten,
-                          float tmin, uint max_steps)
+                          float tmin, uint max_steps, int back_skip)
 {
     vec3 v = target - origin;
-    return roma_ray_visible(origin, v, tmin, length(v) - shorten, max_steps);
+    return roma_ray_visible(origin, v, tmin, length(v) - shorten, max_steps, back_skip);
 }
 
 // Unshadowed irradiance factor of a punctual light at p (scale * cos, 0 when
@@ -166,7 +170,8 @@ vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec
     // A directional light's ray is unbounded; one visibility call for both kinds.
     bool directional = uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL;
     vec3 v = directional ? l : light.position_type.xyz - origin;
-    bool visible = roma_ray_visible(origin, v, tmin, directional ? 1.0 / 0.0 : length(v) - offset, max_steps);
+    bool visible = roma_ray_visible(origin, v, tmin, directional ? 1.0 / 0.0 : length(v) - offset, max_steps,
+                                    ROMA_BACK_SKIP_POINT);
     return visible ? roma_bounded_irradiance(f, light.color_intensity.rgb) : vec3(0.0);
 }
 
@@ -214,7 +219,7 @@ vec3 roma_area_sample_irradiance(RomaEmitters emitters, RomaFloats cdf, uint cou
     // as free; a longer one is walked, so light from farther away does not get through.
     bool crossed = dot(end - p, ng) <= 0.0 || dot(origin - y, toward_p) <= 0.0;
     bool unresolved = crossed && d2 < 4.0 * offset * offset;
-    if (!unresolved && !roma_segment_visible(origin, end, 0.0, tmin, max_steps))
+    if (!unresolved && !roma_segment_visible(origin, end, 0.0, tmin, max_steps, ROMA_BACK_SKIP_AREA))
         return vec3(0.0);
     float g = min(cos_x * cos_y / (d2 * e.v0_pdf.w), ROMA_MAX_IRRADIANCE);
     return roma_bounded_irradiance(g, e.emission.rgb);

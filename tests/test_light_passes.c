@@ -40,24 +40,25 @@
 
 /* Measured on lavapipe with the defaults (RES 128, A = 8, offset 1.5 and skip 1
  * trace cells, 8 steps for direct light, 16 for many lights), plus 0.005. */
-#define MAX_DIRECT_REL_MAE 0.030  /* measured 0.0265 (0.0259 with the walk's first staircase test) */
-#define MAX_DIRECT_REL_BIAS 0.030 /* measured -0.0263 (-0.0256) */
+#define MAX_DIRECT_REL_MAE 0.030  /* measured 0.0257 (0.0265 before the band's rule reached farther) */
+#define MAX_DIRECT_REL_BIAS 0.030 /* measured -0.0255 (-0.0263) */
 #define MAX_EPS_V 0.038           /* measured 0.0320 (the target: 0.10) */
 #define MAX_EPS_S 0.033           /* measured 0.0291 (target 0.03) */
 /* GI, 1,024 samples (64 x 16 frames), A = 4: relative MAE and |relative bias| against the
  * reference on the same samples, measured + 0.005. */
-#define MAX_GI_CORNELL_MAE 0.335        /* measured 0.3304: the lamp's ceiling band, below */
-#define MAX_GI_CORNELL_BIAS 0.026       /* measured -0.0238 */
+#define MAX_GI_CORNELL_MAE 0.332        /* measured 0.3270: the lamp's ceiling band, below */
+#define MAX_GI_CORNELL_BIAS 0.013       /* measured -0.0080 (-0.0238 while the band's rule reached two offsets) */
 #define MIN_GI_CEILING_SHARE 0.164      /* measured 0.169 */
 /* The composed image (direct + GI) of the room, the two cases above on the same pixels:
  * the issue's target is 3%. */
-#define MAX_COMPOSED_CORNELL_BIAS 0.028 /* measured -0.0256 */
+#define MAX_COMPOSED_CORNELL_BIAS 0.025 /* measured -0.0204 (-0.0256) */
 #define MAX_GI_SPOT_MAE 0.252           /* measured 0.2463 (RSM) */
 #define MAX_GI_SPOT_BIAS 0.030          /* measured +0.0248 (RSM) */
 #define MAX_GI_SPOT_RAYS_MAE 0.257      /* measured 0.2517 (shadow rays) */
 #define MAX_GI_SPOT_RAYS_BIAS 0.024     /* measured +0.0186 (shadow rays) */
 #define MAX_GI_BLINDS_MAE 0.255         /* measured 0.2501 */
-#define MAX_GI_BLINDS_BIAS 0.064        /* measured -0.0585; -0.0396 while snapped hits found from
+#define MAX_GI_BLINDS_BIAS 0.065        /* measured -0.0597 (-0.0585 before the walk back skipped the
+                                         * empty cells in front of the sky); -0.0396 while snapped hits found from
                                          * behind a surface were shaded on its far side (the window
                                          * wall's is in the sun; docs/accuracy.md) */
 #define MAX_STOCHASTIC_ERR 0.026   /* measured 0.0203 (sampling noise of 512 tests per pixel) */
@@ -258,7 +259,7 @@ static void test_planned_passes_only(roma_context *ctx)
  * on the ceiling band where the lamp hangs (y > 1.97: the ceiling at 2 and the lamp at
  * 1.98). The lamp emits from both faces, so its top face lights the ceiling 2 cm above
  * it: a gap under one cell at RES 128 (2.4 cm) and under ROMA's origin offset. ROMA's
- * area-light samples take such short segments as free (roma_area_sample_irradiance);
+ * area-light samples take segments across such a gap as free (roma_area_sample_irradiance);
  * walked, they were blocked and the room's GI bias was -0.171, this share. Estimated with
  * the reference alone (its own bounce directions, one light sample per hit): it shows
  * that the bias bound above holds the band's light. */

@@ -92,9 +92,9 @@ fi
   || { cat "$dir/direct.out" >&2; fail "roma-viewer --view direct --compare-reference failed"; }
 direct=$(sed -n 's/.*direct light against the Embree reference.*MAE \([0-9.]*\) over.*/\1/p' "$dir/direct.out")
 echo "direct light MAE (viewer vs Embree): ${direct:-none}"
-# Measured: 0.0034 (the mean reflected radiance is about 0.09).
-[ -n "$direct" ] && below "$direct" 0.0040 ||
-  fail "the viewer's direct light is further from the reference than 0.0040 ($direct)"
+# Measured: 0.0027 (the mean reflected radiance is about 0.09).
+[ -n "$direct" ] && below "$direct" 0.0032 ||
+  fail "the viewer's direct light is further from the reference than 0.0032 ($direct)"
 
 # 1b''. One-bounce GI through the public effect (roma_gi_effect, 1 bounce ray a frame) against
 #      roma-render's offline GI pass with the same route for the spot (shadow rays) and the
@@ -114,12 +114,13 @@ if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/ref
   echo "GI MAE over 19,200 pixels: viewer vs roma-render $go, viewer vs Embree $gr"
   gb=$(metric "$dir/gi_vs_reference.txt" bias)
   echo "GI bias against Embree: $gb"
-  # Measured: 0.00056 (1.4% of the mean 0.040), 0.0190 and +0.00062 (+1.6%). Most of the
-  # MAE is the rare bright samples of bounce rays that reach the ceiling the lamp lights
-  # from 2 cm, on both sides, on different pixels.
+  # Measured: 0.00057 (1.4% of the mean 0.040), 0.0189 and +0.00107 (+2.7%; +0.00062 while
+  # area-light segments across the lamp's 2 cm gap were taken as free only up to two origin
+  # offsets, docs/accuracy.md). Most of the MAE is the rare bright samples of bounce rays that
+  # reach the ceiling the lamp lights from 2 cm, on both sides, on different pixels.
   below "$go" 0.0007 || fail "the viewer's GI differs from roma-render's by more than 0.0007 (MAE $go)"
   below "$gr" 0.020 || fail "the viewer's GI is further from the reference than 0.020 (MAE $gr)"
-  [ -n "$gb" ] && below "${gb#-}" 0.001 || fail "the viewer's GI is biased by more than 0.001 against Embree ($gb)"
+  [ -n "$gb" ] && below "${gb#-}" 0.0012 || fail "the viewer's GI is biased by more than 0.0012 against Embree ($gb)"
 fi
 
 # 1b''''. GI while a surface moves: tests/viewer/moving_wall.gltf slides a red wall over a

@@ -66,7 +66,7 @@ typedef struct roma_effect_render_desc {
      * spot, directional and area lights) and of many lights to their end, GI's bounce rays
      * to their first occupied cell and the shadow rays at their hits (point and spot lights
      * through RSMs stay RSMs). Both take an area-light segment whose offset ends cross the
-     * other surface's plane (two surfaces facing each other closer than an offset) as free
+     * other surface's plane (two surfaces closer than an offset) as free
      * (roma_area_sample_irradiance). */
     roma_shadow_method shadow_method;
     uint32_t ssao_steps;               /* ROMA_AO_METHOD_SCREEN_SPACE: march steps; 0 = ROMA_AO_SSAO_STEPS */

@@ -88,9 +88,8 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     // light outside the scene's box (behind a room's wall) would spend the walk's steps on
     // empty texels before the wall. A light inside the box but outside a room (the grid
     // holds a turned room's corners) would too: the BOM's exact walk skips up to back_skip
-    // empty cells from the light, and the walk back starts two skip
-    // lengths short of the first occupied one (the rotated maps smear a wall over about a
-    // trace cell).
+    // empty cells from the light, and the walk back starts two skip lengths short of the
+    // first occupied one (the rotated maps smear a wall over about a trace cell).
     float t_back = min(tmax, roma_grid_exit(origin, d));
     float t_wall = isinf(tmax) || !(t_back > tmin)
                        ? -1.0

@@ -3,7 +3,8 @@
 #               reference and with ROMA (the effects it calls for: AO, direct light, GI) into
 #               out/, compare them in out/compare/
 #   make test   install missing packages, build, run the test suite (ctest, lavapipe, validation on)
-#   make test-sanitize   the same suite, Debug build with ASan + UBSan in build-asan (CI runs it too)
+#   make test-sanitize   the same suite, Debug build with ASan + UBSan and the shaders' loop guard
+#                        (src/vulkan/loop_guard.h) in build-asan (CI runs it too)
 #   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
 #   make test-consumers  build the core library alone (Vulkan and glslang only); install into a temporary prefix and build two out-of-tree consumers
 #                        against it (CMake package, pkg-config); then the same with the Debian
@@ -60,7 +61,7 @@ test: build
 # The suite in a Debug build with AddressSanitizer (leak checks included) and
 # UndefinedBehaviorSanitizer; sanitizer options for the tests: tests/CMakeLists.txt.
 test-sanitize: deps
-	cmake -S . -B $(ASAN_BUILD) -DROMA_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug
+	cmake -S . -B $(ASAN_BUILD) -DROMA_SANITIZE=ON -DROMA_LOOP_GUARD=ON -DCMAKE_BUILD_TYPE=Debug
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS)
 

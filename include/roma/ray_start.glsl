@@ -30,6 +30,12 @@
 
 #include "roma/trace_types.h"
 
+// Each loop's body starts with ROMA_LOOP_TICK(), a hook for libroma's own iteration
+// counting (its loop-guard build); nothing unless defined before including.
+#ifndef ROMA_LOOP_TICK
+#define ROMA_LOOP_TICK()
+#endif
+
 #ifndef ROMA_RAY_START_FETCH
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
@@ -82,6 +88,7 @@ float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
     float t = 0.0;
     bool entered = false;
     for (int i = 0; i < cells && t <= tg; ++i) {
+        ROMA_LOOP_TICK();
         bool inside = all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(cell, ivec3(res)));
         if (!inside && entered)
             break; // out of the grid for good: it is convex

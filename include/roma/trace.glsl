@@ -30,6 +30,12 @@
 #include "roma/trace_float.glsl"
 #include "roma/trace_types.h"
 
+// Each loop's body starts with ROMA_LOOP_TICK(), a hook for libroma's own iteration
+// counting (its loop-guard build); nothing unless defined before including.
+#ifndef ROMA_LOOP_TICK
+#define ROMA_LOOP_TICK()
+#endif
+
 #ifndef ROMA_TRACE_FETCH
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : enable
@@ -272,6 +278,7 @@ int roma_first_cell_word(uint base, int c_lo, int c_hi, bool upward, out uint wo
     word = 0u;
     uint w_lo = uint(c_lo) >> 5, w_hi = uint(c_hi) >> 5;
     for (uint i = 0u; i <= w_hi - w_lo; ++i) {
+        ROMA_LOOP_TICK();
         uint w = upward ? w_lo + i : w_hi - i;
         uint fetched = roma_fetch_word(base + w);
         uint bits = fetched & roma_range_mask(c_lo, c_hi, w);
@@ -403,6 +410,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     // Clip to the map's xy slab.
     float t_in = tmin * grid.inv_cell.y, t_out = tmax * grid.inv_cell.y;
     for (int a = 0; a < 2; ++a) {
+        ROMA_LOOP_TICK();
         if (dm[a] == 0.0) {
             if (!(m0[a] >= 0.0 && m0[a] < fres))
                 return hit;
@@ -436,6 +444,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     float back = 0.0; // how far before its entry a column is searched (ray parameter)
     float t_cur = t_in;
     for (uint step = 0u; step < max_steps; ++step) {
+        ROMA_LOOP_TICK();
         roma_unsnapped_steps = step + 1u;
         precise float tx = dm.x > 0.0 ? (float(ix + 1) - m0.x) * inv.x
                          : dm.x < 0.0 ? (float(ix) - m0.x) * inv.x : 1.0 / 0.0;

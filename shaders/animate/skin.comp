@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Skins every vertex of an animated scene (roma_animator): the weighted joint matrices of
 // a skinned vertex, or its node's world matrix, applied to its mesh-space position.
 #include "roma_shared.h"

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Distance field, step 3 of 3: one invocation per pair of cells along z writes their
 // distances to their seeds, in cells, as two float16 (the storage of ROMA's maps at A 4,
 // as in the ROMA paper's baseline). A grid with no occupied cell is far everywhere.

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Distance field, step 2 of 3: one jump-flooding pass (Rong and Tan 2006) at step k. Each
 // cell keeps the nearest of its own seed and the seeds of the 26 cells k away.
 #include "roma_distance_field.glsl"
@@ -23,9 +24,12 @@ void main()
         ivec3 e = roma_df_unpack(best) - p;
         best_d2 = e.x * e.x + e.y * e.y + e.z * e.z;
     }
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy) {
+        ROMA_LOOP_TICK();
+        for (int dx = -1; dx <= 1; ++dx) {
+            ROMA_LOOP_TICK();
             for (int dz = -1; dz <= 1; ++dz) {
+                ROMA_LOOP_TICK();
                 ivec3 q = p + k * ivec3(dx, dy, dz);
                 if ((dx | dy | dz) == 0 || any(lessThan(q, ivec3(0))) || any(greaterThanEqual(q, ivec3(res))))
                     continue;
@@ -40,5 +44,7 @@ void main()
                     best = s;
                 }
             }
+        }
+    }
     seeds_out[i] = best;
 }

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Distance field, step 1 of 3: one invocation per cell; an occupied BOM cell is its own
 // seed, an empty one has none yet.
 #include "roma_distance_field.glsl"

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // NAADF, step 1 of 4: one invocation per block of 4^3 voxels. Writes the block's state (an
 // empty block's box: step 2) and lists each mixed block with its voxels for step 4.
 #include "roma_naadf.glsl"
@@ -21,6 +22,7 @@ void main()
     // The block's voxels, (x, y, z) at bit (y * 4 + x) * 4 + z: row (x, y) is a nibble.
     uvec2 mask = uvec2(0u);
     for (int r = 0; r < 16; ++r) {
+        ROMA_LOOP_TICK();
         ivec3 v = v0 + ivec3(r & 3, r >> 2, 0);
         uint word = bom[(uint(v.y) * res + uint(v.x)) * per_texel + uint(v.z >> 5)];
         mask[r >> 3] |= ((word >> uint(v.z & 31)) & 15u) << (uint(r & 7) * 4u);

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // NAADF, step 2 of 4: one workgroup per chunk, one invocation per block of it (as the
 // paper's build). Each empty block gets the empty box around it within the chunk; the
 // chunk gets its state (its box: step 3), and a chunk that is not empty its bit in the

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // NAADF, step 3 of 4: one invocation per chunk. Each empty chunk gets the empty box around
 // it within the grid, at most ROMA_NAADF_CHUNK_MAX_DISTANCE chunks a direction. Each
 // workgroup first loads the chunks' occupancy rows (step 2's, at most 32 x 32 words): no
@@ -20,8 +21,10 @@ void main()
     uint n = pc.config.y, count = pc.config.w, l = gl_LocalInvocationID.x;
     uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_NAADF_WORKGROUP_SIZE + l;
     uint rows_base = roma_naadf_rows_base(pc.config.x);
-    for (uint r = l; r < n * n; r += ROMA_NAADF_WORKGROUP_SIZE)
+    for (uint r = l; r < n * n; r += ROMA_NAADF_WORKGROUP_SIZE) {
+        ROMA_LOOP_TICK();
         rows[r] = cells[rows_base + r];
+    }
     barrier();
     if (i >= count || cells[i] != ROMA_NAADF_EMPTY)
         return;

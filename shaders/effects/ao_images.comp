@@ -1,9 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Ambient occlusion from an engine's G-buffer images (roma_ao_effect): per pixel, spp
 // cosine-weighted snapped any-hit rays through the map bound at set 0 (the trace set),
 // the unoccluded fraction into an R32F storage image. Samples as in passes/ao.comp and
-// the reference tracer.
+// the reference tracer; a device's loop budget splits them across dispatches
+// (roma_ao_push.sample_first).
 #define ROMA_TRACE_SET 0
 // The map's BOM, bound after the images (image_effect.c), for the exact walk of the
 // rays' start: bound loads are several times faster than loads by address on CPU devices.
@@ -21,7 +23,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 0) uniform sampler2D roma_ao_position;
 layout(set = 1, binding = 1) uniform sampler2D roma_ao_normal;
 layout(set = 1, binding = 2) uniform sampler2D roma_ao_geometric_normal;
-layout(set = 1, binding = 3, r32f) uniform writeonly image2D roma_ao_output;
+layout(set = 1, binding = 3, r32f) uniform image2D roma_ao_output; // read back by later parts
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
 
@@ -42,7 +44,9 @@ void main()
     uint seed = pc.config2.x, open = 0u;
     precise vec3 origin = position.xyz + ng * pc.ray.x;
     roma_use_ray_start(pc.bom);
-    for (uint k = 0u; k < spp; ++k) {
+    // This dispatch's part of the samples; a later part adds to what the earlier ones wrote.
+    for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) {
+        ROMA_LOOP_TICK();
         uint s = frame * spp + k;
         vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, 0u),
                                                                  roma_random(seed, pixel, s, 1u)));
@@ -56,6 +60,9 @@ void main()
         roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
         open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;
     }
+    float value = float(open) / float(max(spp, 1u));
+    if (pc.sample_first > 0u)
+        value += imageLoad(roma_ao_output, at).x;
     // Held at 1: a GPU's approximate division may give 1.0000001 for open == spp.
-    imageStore(roma_ao_output, at, vec4(min(float(open) / float(max(spp, 1u)), 1.0)));
+    imageStore(roma_ao_output, at, vec4(min(value, 1.0)));
 }

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // roma_temporal_effect, step 2: one iteration of an edge-aware a-trous wavelet filter (5 x 5
 // taps of the B3 spline, `step` pixels apart) where the history is shorter than
 // filter_below frames; taps are weighted down where their surface leaves this pixel's
@@ -42,8 +43,10 @@ void main()
     const float kernel[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
     vec3 sum = vec3(0.0), lo = centre.rgb, hi = centre.rgb;
     float weights = 0.0;
-    for (int dy = -2; dy <= 2; ++dy)
+    for (int dy = -2; dy <= 2; ++dy) {
+        ROMA_LOOP_TICK();
         for (int dx = -2; dx <= 2; ++dx) {
+            ROMA_LOOP_TICK();
             ivec2 q = p + ivec2(dx, dy) * step;
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
                 continue;
@@ -69,6 +72,7 @@ void main()
             lo = min(lo, value);
             hi = max(hi, value);
         }
+    }
     // A weighted mean lies between its taps; a GPU's approximate division may not.
     imageStore(t_dst, p, vec4(weights > 0.0 ? clamp(sum / weights, lo, hi) : centre.rgb, centre.a));
 }

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // One-bounce diffuse GI on an engine's G-buffer images (roma_gi_effect): per pixel,
 // samples cosine-weighted bounce rays (dimensions 5 and 6, pixel y * width + x, sample
 // frame * samples + k) through the map bound at set 0, each hit lit as in
@@ -23,7 +24,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 0) uniform sampler2D roma_gi_position;
 layout(set = 1, binding = 1) uniform sampler2D roma_gi_normal;
 layout(set = 1, binding = 2) uniform sampler2D roma_gi_geometric_normal;
-layout(set = 1, binding = 3, rgba32f) uniform writeonly image2D roma_gi_output;
+layout(set = 1, binding = 3, rgba32f) uniform image2D roma_gi_output; // read back by later parts
 
 layout(push_constant) uniform Push { roma_gi_images_push pc; };
 
@@ -46,9 +47,10 @@ void main()
     roma_grid_params grid = roma_fetch_grid();
     roma_gi_scene S = RomaGiScene(pc.scene).s;
     uint seed = pc.config2.x;
-    roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights);
+    roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights, pc.part.zw);
     vec3 acc = vec3(0.0);
-    for (uint k = 0u; k < samples; ++k) {
+    for (uint k = pc.part.x; k < min(pc.part.y, samples); ++k) { // this dispatch's part
+        ROMA_LOOP_TICK();
         uint s = frame * samples + k;
         vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE),
                                                                  roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE + 1u)));
@@ -58,5 +60,8 @@ void main()
         vec3 hit_point;
         acc += roma_gi_bounce(S, P, grid, origin, dir, pc.ray.y, true, pixel, s, hit, hit_point);
     }
-    imageStore(roma_gi_output, at, vec4(acc * (3.14159265358979 / float(samples)), 0.0));
+    vec3 E = acc * (3.14159265358979 / float(samples));
+    if (pc.part.x > 0u || pc.part.z > 0u) // a later part adds to the earlier ones
+        E += imageLoad(roma_gi_output, at).rgb;
+    imageStore(roma_gi_output, at, vec4(E, 0.0));
 }

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Shadowed irradiance from punctual lights and area lights on an engine's G-buffer images
 // (roma_light_effect): per pixel and punctual light one un-snapped shadow ray through the
 // map bound at set 0; per area-light sample one more, the samples drawn as the reference
@@ -22,7 +23,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 0) uniform sampler2D roma_light_position;
 layout(set = 1, binding = 1) uniform sampler2D roma_light_normal;
 layout(set = 1, binding = 2) uniform sampler2D roma_light_geometric_normal;
-layout(set = 1, binding = 3, rgba32f) uniform writeonly image2D roma_light_output;
+layout(set = 1, binding = 3, rgba32f) uniform image2D roma_light_output; // read back by later parts
 
 
 layout(push_constant) uniform Push { roma_light_images_push pc; };
@@ -55,13 +56,20 @@ void main()
     // run with probability sampled / rest, so the estimate is unbiased).
     uint exact = pc.config3.x == 0u ? light_count : min(pc.config3.y, light_count);
     uint rest = light_count - exact, sampled = min(pc.config3.x == 0u ? rest : pc.config3.x, rest);
-    for (uint i = 0u; i < exact; ++i)
+    // This dispatch's part of the items (roma_light_images_push.part): lights [0, exact),
+    // then the sampled ones, then the area-light samples; each loop runs its share of them.
+    uint part_first = pc.part.x, part_end = pc.part.y;
+    for (uint i = part_first; i < min(part_end, exact); ++i) {
+        ROMA_LOOP_TICK();
         E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
+    }
     if (sampled > 0u) {
         uint first =
             sampled == rest ? 0u : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(rest)), rest - 1u);
         vec3 sum = vec3(0.0);
-        for (uint j = 0u; j < sampled; ++j) {
+        uint j_end = min(part_end, exact + sampled) - min(part_end, exact);
+        for (uint j = max(part_first, exact) - exact; j < j_end; ++j) {
+            ROMA_LOOP_TICK();
             uint i = first + j;
             i = exact + (i >= rest ? i - rest : i);
             sum += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
@@ -70,7 +78,9 @@ void main()
     }
     if (emitter_count > 0u && samples > 0u) {
         vec3 area = vec3(0.0);
-        for (uint k = 0u; k < samples; ++k) {
+        uint k_end = min(part_end, exact + sampled + samples) - min(part_end, exact + sampled);
+        for (uint k = max(part_first, exact + sampled) - (exact + sampled); k < k_end; ++k) {
+            ROMA_LOOP_TICK();
             uint s = frame * samples + k;
             vec3 u = vec3(roma_random(seed, pixel, s, DIM_DIRECT_AREA), roma_random(seed, pixel, s, DIM_DIRECT_AREA + 1u),
                           roma_random(seed, pixel, s, DIM_DIRECT_AREA + 2u));
@@ -79,5 +89,7 @@ void main()
         }
         E += area / float(samples);
     }
+    if (part_first > 0u)
+        E += imageLoad(roma_light_output, at).rgb;
     imageStore(roma_light_output, at, vec4(E, 0.0));
 }

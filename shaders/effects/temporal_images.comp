@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // roma_temporal_effect, step 1: this frame's value averaged with the history of the same
 // surface point, fetched where the point was on the previous frame's picture (the previous
 // world -> clip matrix) and kept only when the previous frame saw the same surface there

@@ -38,6 +38,7 @@ bool roma_df_occluded(roma_grid_params grid, vec3 origin, vec3 dir, float tmax, 
     vec3 d = normalize(dir);
     float tg = tmax * grid.inv_cell.x, t = 0.0;
     for (uint i = 0u; i < max_steps; ++i) {
+        ROMA_LOOP_TICK();
         ivec3 c = ivec3(floor(g + d * t));
         if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(res))))
             return false; // out of the grid (origins lie inside; it is convex)

@@ -13,6 +13,7 @@ float roma_pixel_footprint(sampler2D positions, ivec2 p, ivec2 size, vec3 at)
     const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
     float nearest = ROMA_FOOTPRINT_ALONE;
     for (int i = 0; i < 4; ++i) {
+        ROMA_LOOP_TICK();
         ivec2 q = p + offsets[i];
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
             continue;

@@ -22,11 +22,14 @@ const uint ROMA_DIM_GI_AREA = 7u;
 const float ROMA_GI_INV_PI = 0.31830988618379067;
 
 // How a bounce hit is lit: the shadow rays' origin offset and skip (world units), their
-// most steps, the sample seed and the punctual lights (roma_gpu_light).
+// most steps, the sample seed, the punctual lights (roma_gpu_light) and the part of them this
+// dispatch lights the hit with, [x, y) (a device's loop budget splits them,
+// src/vulkan/loop_budget.h); the area-light sample goes with the part that starts at 0.
 struct roma_gi_shading {
     float offset, shadow_tmin;
     uint max_steps, seed;
     uvec2 lights;
+    uvec2 light_part;
 };
 
 // The triangle the surface grid holds at p, or ROMA_GBUFFER_NO_TRIANGLE.
@@ -57,6 +60,7 @@ uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
     const vec3 around[6] = vec3[](vec3(-1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0),
                                   vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
     for (int i = 0; i < 6; ++i) {
+        ROMA_LOOP_TICK();
         uint tri = roma_gi_surface_at(S, centre + around[i] * S.grid.w);
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
@@ -74,6 +78,7 @@ uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map
     centre = roma_gi_map_to_world(grid, f, cell + vec3(0.5));
     const float along[5] = float[](0.5, 0.25, 0.75, 0.0, 1.0);
     for (int i = 0; i < 5; ++i) {
+        ROMA_LOOP_TICK();
         uint tri = roma_gi_surface_at(S, roma_gi_map_to_world(grid, f, cell + vec3(0.5, 0.5, along[i])));
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
@@ -145,14 +150,15 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     uint max_steps = P.max_steps, seed = P.seed;
     vec3 o = y + ng * offset;
     vec3 E = vec3(0.0);
-    if (S.config.y > 0u) {
+    if (S.config.y > 0u && P.light_part.x == 0u) {
         vec3 u = vec3(roma_random(seed, pixel, s, ROMA_DIM_GI_AREA), roma_random(seed, pixel, s, ROMA_DIM_GI_AREA + 1u),
                       roma_random(seed, pixel, s, ROMA_DIM_GI_AREA + 2u));
         E += roma_area_sample_irradiance(RomaEmitters(S.emitters), RomaFloats(S.cdf), S.config.y, u, y, ng, n, o,
                                          offset, tmin, max_steps);
     }
     bool rsm = S.config.w == ROMA_GI_PUNCTUAL_RSM;
-    for (uint i = 0u; i < S.config.z; ++i) {
+    for (uint i = P.light_part.x; i < min(P.light_part.y, S.config.z); ++i) {
+        ROMA_LOOP_TICK();
         roma_gpu_light light = RomaLights(P.lights).l[i];
         if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {
             // The sun's occluders are anywhere between the hit and the scene's edge, out

@@ -22,11 +22,7 @@
 float roma_start_walk = ROMA_START_WALK;
 
 // BOM cells of empty space a shadow segment's walk back may skip from the light
-// (roma_ray_visible): from a point or spot light, and from an area-light sample, whose
-// segments in an open room reach the voxels' over-occlusion at the room's middle when
-// skipped farther (docs/accuracy.md, "Skipping the empty space in front of the light").
-#define ROMA_BACK_SKIP_POINT 48
-#define ROMA_BACK_SKIP_AREA 32
+// (roma_ray_visible): ROMA_BACK_SKIP_POINT and ROMA_BACK_SKIP_AREA, roma_shared.h.
 
 // The accuracy study's baseline for shadows: every segment walked exactly through the BOM
 // to its end (3D DDA, no ROMA maps, no step bound): the voxelization's error apart from
@@ -179,6 +175,7 @@ uint roma_pick_emitter(RomaFloats cdf, uint count, float u)
 {
     uint lo = 0u, hi = count - 1u;
     while (lo < hi) {
+        ROMA_LOOP_TICK();
         uint mid = lo + (hi - lo) / 2u;
         if (cdf.f[mid] > u)
             hi = mid;

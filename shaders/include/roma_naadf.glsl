@@ -25,14 +25,17 @@ uint roma_naadf_rows_base(uint res) { return roma_naadf_voxel_base(res) + res * 
 uint roma_naadf_pack(ivec3 pos, ivec3 neg, uint bits, uint shift)
 {
     uint w = 0u;
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
+        ROMA_LOOP_TICK();
         w |= (uint(pos[a]) << (shift + uint(2 * a) * bits)) | (uint(neg[a]) << (shift + uint(2 * a + 1) * bits));
+    }
     return w;
 }
 void roma_naadf_unpack(uint w, uint bits, uint shift, out ivec3 pos, out ivec3 neg)
 {
     uint mask = (1u << bits) - 1u;
     for (int a = 0; a < 3; ++a) {
+        ROMA_LOOP_TICK();
         pos[a] = int((w >> (shift + uint(2 * a) * bits)) & mask);
         neg[a] = int((w >> (shift + uint(2 * a + 1) * bits)) & mask);
     }
@@ -59,9 +62,12 @@ void roma_naadf_grow_block(uvec2 occupied, ivec3 c, out ivec3 pos, out ivec3 neg
     ivec3 lo = c, hi = c;
     uvec2 range[3] = uvec2[3](roma_naadf_axis_mask(0, c.x), roma_naadf_axis_mask(1, c.y), roma_naadf_axis_mask(2, c.z));
     for (bool grew = true; grew;) {
+        ROMA_LOOP_TICK();
         grew = false;
-        for (int a = 0; a < 3; ++a)
+        for (int a = 0; a < 3; ++a) {
+            ROMA_LOOP_TICK();
             for (int s = 0; s < 2; ++s) {
+                ROMA_LOOP_TICK();
                 int k = s == 0 ? hi[a] + 1 : lo[a] - 1;
                 uvec2 slice = k >= 0 && k <= 3 ? roma_naadf_axis_mask(a, k) : uvec2(0u);
                 if (slice != uvec2(0u) && (occupied & slice & range[(a + 1) % 3] & range[(a + 2) % 3]) == uvec2(0u)) {
@@ -71,6 +77,7 @@ void roma_naadf_grow_block(uvec2 occupied, ivec3 c, out ivec3 pos, out ivec3 neg
                     grew = true;
                 }
             }
+        }
     }
     pos = hi - c;
     neg = c - lo;
@@ -87,10 +94,14 @@ bool roma_naadf_slice_empty(int axis, int k, ivec3 lo, ivec3 hi)
     lo[axis] = k;
     hi[axis] = k;
     uint zmask = ((2u << uint(hi.z)) - 1u) & ~((1u << uint(lo.z)) - 1u); // 2u << 31 wraps to 0: all bits
-    for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x)
+    for (int y = lo.y; y <= hi.y; ++y) {
+        ROMA_LOOP_TICK();
+        for (int x = lo.x; x <= hi.x; ++x) {
+            ROMA_LOOP_TICK();
             if ((roma_naadf_row(x, y) & zmask) != 0u)
                 return false;
+        }
+    }
     return true;
 }
 
@@ -100,8 +111,10 @@ void roma_naadf_grow(ivec3 c, ivec3 bmin, ivec3 bmax, int maxd, out ivec3 pos, o
 {
     ivec3 lo = c, hi = c;
     for (bool grew = true; grew;) {
+        ROMA_LOOP_TICK();
         grew = false;
         for (int a = 0; a < 3; ++a) {
+            ROMA_LOOP_TICK();
             if (hi[a] < bmax[a] && hi[a] - c[a] < maxd && roma_naadf_slice_empty(a, hi[a] + 1, lo, hi)) {
                 hi[a] += 1;
                 grew = true;
@@ -146,6 +159,7 @@ bool roma_naadf_occluded(roma_grid_params grid, vec3 origin, vec3 dir, float tma
     // The part of the ray inside the grid [0, RES]^3 and within tmax.
     float t = 0.0, tend = tmax * grid.inv_cell.x;
     for (int a = 0; a < 3; ++a) {
+        ROMA_LOOP_TICK();
         if (!moving[a]) {
             if (g[a] < 0.0 || g[a] >= float(res))
                 return false;
@@ -162,6 +176,7 @@ bool roma_naadf_occluded(roma_grid_params grid, vec3 origin, vec3 dir, float tma
     // Each step leaves a box for the cell beyond one of its faces: at most the cells an
     // exact walk visits.
     for (int i = 0; i < 3 * res + 2; ++i) {
+        ROMA_LOOP_TICK();
         ivec3 lo, hi;
         uint w = ROMA_NAADF_WORD(roma_naadf_index(cell >> 4, ures >> 4));
         if ((w & 3u) == ROMA_NAADF_FULL)

@@ -15,6 +15,20 @@
 
 /* Skip lengths of a shadow ray's start walked exactly through the BOM (roma_lights.glsl). */
 #define ROMA_START_WALK 4.0f
+/* BOM cells of empty space a shadow segment's walk back may skip from the light
+ * (roma_ray_visible): from a point or spot light, and from an area-light sample, whose
+ * segments in an open room reach the voxels' over-occlusion at the room's middle when
+ * skipped farther (docs/accuracy.md, "Skipping the empty space in front of the light"). */
+#define ROMA_BACK_SKIP_POINT 48
+#define ROMA_BACK_SKIP_AREA 32
+
+/* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
+ * and the pipeline's slot in it as specialization constants, set on every pipeline of a
+ * ROMA_LOOP_GUARD build; a tick in 64 raises the slot's peak. */
+#define ROMA_LOOP_GUARD_ADDRESS_LO_ID 201
+#define ROMA_LOOP_GUARD_ADDRESS_HI_ID 202
+#define ROMA_LOOP_GUARD_SLOT_ID 203
+#define ROMA_LOOP_GUARD_STRIDE 64u
 
 /* util/fill_u32.comp: writes value + index * stride into a storage buffer. */
 #define ROMA_FILL_WORKGROUP_SIZE 64
@@ -244,7 +258,11 @@ ROMA_STRUCT_END(roma_image_list_push)
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(bom);        /* this frame's BOM (roma/ray_start.glsl), 0: rays skip their start blind */
-    ROMA_U64(pad_);
+    /* The samples [sample_first, sample_end) of spp this dispatch traces (a device's loop
+     * budget splits them, src/vulkan/loop_budget.h); the public effect adds to the image
+     * what the dispatches before it wrote when sample_first > 0. */
+    ROMA_UINT sample_first;
+    ROMA_UINT sample_end;
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps, z: screen-space
                              baseline: stochastic depth layers beside the G-buffer's */
@@ -343,6 +361,7 @@ ROMA_STRUCT_BEGIN(roma_punctual_push)
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units), z: 1 = walk
                              them exactly through the BOM instead (the study's baseline) */
+    ROMA_UVEC4(part);     /* the lights [x, y) this dispatch traces (src/vulkan/loop_budget.h) */
 ROMA_STRUCT_END(roma_punctual_push)
 
 /* roma_light_effect (shaders/effects/lights_images.comp): punctual lights and area lights. */
@@ -355,6 +374,10 @@ ROMA_STRUCT_BEGIN(roma_light_images_push)
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: area samples, w: frame */
     ROMA_UVEC4(config3);  /* x: lights sampled per frame (0: all), y: lights traced every frame before them */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
+    /* The items [x, y) this dispatch traces (src/vulkan/loop_budget.h), in the order: the
+     * lights traced every frame, the sampled lights, the area-light samples; x > 0 adds to
+     * what the dispatches before it wrote. */
+    ROMA_UVEC4(part);
 ROMA_STRUCT_END(roma_light_images_push)
 
 /* The public GI effect (roma/gi_effect.h, shaders/effects/gi_images.comp). */
@@ -366,6 +389,10 @@ ROMA_STRUCT_BEGIN(roma_gi_images_push)
     ROMA_UVEC4(config);   /* x: width, y: height, z: samples, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: max steps of the shadow rays at a hit */
     ROMA_VEC4(ray);       /* x: origin offset, y: the bounce rays' tmin, z: the shadow rays' tmin (world) */
+    /* The samples [x, y) and, at their hits, the lights [z, w) this dispatch traces (the
+     * area-light sample with the first lights; src/vulkan/loop_budget.h); a dispatch after the
+     * first (x > 0 or z > 0) adds to what those before it wrote. */
+    ROMA_UVEC4(part);
 ROMA_STRUCT_END(roma_gi_images_push)
 
 ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
@@ -376,6 +403,7 @@ ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
     ROMA_VEC4(ray);       /* as roma_punctual_push */
+    ROMA_UVEC4(part);     /* the samples [x, y) this dispatch traces (src/vulkan/loop_budget.h) */
 ROMA_STRUCT_END(roma_soft_shadows_push)
 
 ROMA_STRUCT_BEGIN(roma_many_lights_push)
@@ -386,6 +414,7 @@ ROMA_STRUCT_BEGIN(roma_many_lights_push)
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units), z: as roma_punctual_push */
+    ROMA_UVEC4(part);     /* the tested lights [x, y) this dispatch traces (src/vulkan/loop_budget.h) */
 ROMA_STRUCT_END(roma_many_lights_push)
 
 /* ---- One-bounce GI (shaders/passes/gi.comp) ---- */
@@ -436,6 +465,9 @@ ROMA_STRUCT_BEGIN(roma_gi_push)
                              shadow rays walked exactly through the BOM (the accuracy study's baseline) */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units),
                              w: tmin of the shadow rays at the hit (world units) */
+    /* The samples [x, y) and, at their hits, the lights [z, w) (the area-light sample and the
+     * RSMs with the first lights) this dispatch traces (src/vulkan/loop_budget.h). */
+    ROMA_UVEC4(part);
 ROMA_STRUCT_END(roma_gi_push)
 
 /* ---- Interactive frames: resolve, temporal accumulation, a-trous filter

@@ -33,6 +33,7 @@ bool roma_ssao_blocked(vec3 origin, vec3 dir, float tmin, float tmax)
     uint steps = uint(pc.forward.w), width = pc.config.x, height = pc.config.y, layers = pc.config2.z;
     vec3 eye = pc.eye.xyz, forward = pc.forward.xyz;
     for (uint i = 0u; i < steps; ++i) {
+        ROMA_LOOP_TICK();
         float t = tmin + (tmax - tmin) * (float(i) + 0.5) / float(steps);
         vec3 v = origin + dir * t - eye;
         float z = dot(v, forward);
@@ -44,6 +45,7 @@ bool roma_ssao_blocked(vec3 origin, vec3 dir, float tmin, float tmax)
         if (roma_ssao_surface_blocks(v, z, g.position_t, g.geometric_normal.xyz))
             return true;
         for (uint l = 0u; l < layers; ++l) {
+            ROMA_LOOP_TICK();
             uint texel = (l * width * height + pixel) * 4u;
             vec4 position_t = uintBitsToFloat(roma_fetch_bom_texel(texel));
             vec3 n = uintBitsToFloat(roma_fetch_bom_texel(texel + 2u)).xyz;

@@ -13,10 +13,13 @@
 // The cells of columns [lo.x, hi.x] x [lo.y, hi.y] of the triangle's footprint.
 void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int res)
 {
-    for (int iv = lo.y; iv <= hi.y; ++iv)
+    for (int iv = lo.y; iv <= hi.y; ++iv) {
+        ROMA_LOOP_TICK();
         for (int iu = lo.x; iu <= hi.x; ++iu) {
+            ROMA_LOOP_TICK();
             ivec2 span = roma_vox_column_span(t, iu, iv);
             for (int k = span.x; k <= span.y; ++k) {
+                ROMA_LOOP_TICK();
                 ivec3 c = ivec3(iu, iv, k);
                 if (!roma_vox_overlaps(t, c))
                     continue;
@@ -24,6 +27,7 @@ void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int
                 atomicMin(bom[(uint(w.z) * uint(res) + uint(w.y)) * uint(res) + uint(w.x)], tri);
             }
         }
+    }
 }
 
 #endif // ROMA_SURFACE_CELLS_GLSL

@@ -165,6 +165,7 @@ void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
         uint mask = 0u;
         int word = k0 >> 5;
         for (int k = k0; k <= k1; ++k) {
+            ROMA_LOOP_TICK();
             if ((k >> 5) != word) {
                 if (mask != 0u)
                     atomicOr(bom[base + uint(word)], mask);
@@ -179,6 +180,7 @@ void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
     } else {
         // World cell of column-frame cell (iu, iv, k): a = 0 -> (k, iu, iv); a = 1 -> (iv, k, iu).
         for (int k = k0; k <= k1; ++k) {
+            ROMA_LOOP_TICK();
             if (!roma_vox_overlaps(t, ivec3(iu, iv, k)))
                 continue;
             ivec3 c = t.a == 0u ? ivec3(k, iu, iv) : ivec3(iv, k, iu);
@@ -192,12 +194,15 @@ void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
 void roma_vox_box(roma_vox_triangle t, int res, uint words)
 {
     ivec3 lo = roma_vox_from_columns(t.clo, t.a), hi = roma_vox_from_columns(t.chi, t.a);
-    for (int y = lo.y; y <= hi.y; ++y)
+    for (int y = lo.y; y <= hi.y; ++y) {
+        ROMA_LOOP_TICK();
         for (int x = lo.x; x <= hi.x; ++x) {
+            ROMA_LOOP_TICK();
             uint base = (uint(y) * uint(res) + uint(x)) * words;
             uint mask = 0u;
             int word = lo.z >> 5;
             for (int z = lo.z; z <= hi.z; ++z) {
+                ROMA_LOOP_TICK();
                 if ((z >> 5) != word) {
                     if (mask != 0u)
                         atomicOr(bom[base + uint(word)], mask);
@@ -210,14 +215,19 @@ void roma_vox_box(roma_vox_triangle t, int res, uint words)
             if (mask != 0u)
                 atomicOr(bom[base + uint(word)], mask);
         }
+    }
 }
 
 // Columns [u0, u1] x [v0, v1] of the footprint.
 void roma_vox_columns_range(roma_vox_triangle t, int u0, int u1, int v0, int v1, int res, uint words)
 {
-    for (int iv = v0; iv <= v1; ++iv)
-        for (int iu = u0; iu <= u1; ++iu)
+    for (int iv = v0; iv <= v1; ++iv) {
+        ROMA_LOOP_TICK();
+        for (int iu = u0; iu <= u1; ++iu) {
+            ROMA_LOOP_TICK();
             roma_vox_column(t, iu, iv, res, words);
+        }
+    }
 }
 
 // The columns [lo.x, hi.x] x [lo.y, hi.y] of tile `tile` (row-major over
@@ -256,8 +266,10 @@ bool roma_vox_queue_tiles(uint tri, roma_vox_triangle t)
     uint first = atomicAdd(queue_header.dispatch.w, tiles);
     if (first + tiles > capacity)
         return false;
-    for (uint i = 0u; i < tiles; ++i)
+    for (uint i = 0u; i < tiles; ++i) {
+        ROMA_LOOP_TICK();
         queue_items[first + i] = uvec2(tri, i);
+    }
     uint groups = (first + tiles + ROMA_VOXELIZE_WORKGROUP_SIZE - 1u) / ROMA_VOXELIZE_WORKGROUP_SIZE;
     atomicMax(queue_header.dispatch.x, groups);
     return true;

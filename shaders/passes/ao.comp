@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Ambient occlusion from the G-buffer: one invocation per covered pixel (indirect
 // dispatch over the pixel list), spp snapped any-hit rays through the ROMA maps; adds the
 // unoccluded count to accum so that frames accumulate (the caller clears it before
@@ -42,7 +43,8 @@ void main()
     roma_use_ray_start(pc.bom);
     roma_grid_params grid = roma_fetch_grid();
     uint seed = pc.config2.x, open = 0u;
-    for (uint k = 0u; k < spp; ++k) {
+    for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) { // this dispatch's part
+        ROMA_LOOP_TICK();
         uint s = frame * spp + k; // new directions every frame, as in the reference
         vec3 local_dir = roma_cosine_hemisphere(roma_random(seed, pixel, s, 0u), roma_random(seed, pixel, s, 1u));
         vec3 dir = roma_local_to_world(n, local_dir);

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // One iteration of an edge-aware a-trous wavelet filter: 5 x 5 taps of the B3
 // spline, `step` pixels apart, each weighted down when its surface is far from
 // this pixel's (relative to the pixel footprint at this distance), faces another
@@ -36,7 +37,9 @@ void main()
     vec3 sum = vec3(0.0), lo = centre.rgb, hi = centre.rgb;
     float weights = 0.0;
     for (int dy = -2; dy <= 2; ++dy) {
+        ROMA_LOOP_TICK();
         for (int dx = -2; dx <= 2; ++dx) {
+            ROMA_LOOP_TICK();
             ivec2 p = ivec2(xy) + ivec2(dx, dy) * step;
             if (p.x < 0 || p.y < 0 || p.x >= width || p.y >= height)
                 continue;

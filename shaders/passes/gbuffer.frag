@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // G-buffer, shading pass: the depth pre-pass left the nearest depth per pixel;
 // with the EQUAL test done before the shader (early_fragment_tests) only the
 // nearest surface's fragment (or the background triangle) runs, and writes

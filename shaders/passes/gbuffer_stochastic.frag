@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // G-buffer of a stochastic depth layer, depth pass: drops fragments at random
 // (roma_gbuffer_dropped), so the depth left is that of the nearest kept surface.
 #include "roma_gbuffer.glsl"

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // One-bounce diffuse GI: per pixel, spp cosine-weighted bounce rays (the
 // reference's dimensions 5 and 6, sample frame * spp + k) traced as snapped
 // closest-hit ROMA queries. A hit is a cell, not a surface: the surface grid
@@ -45,6 +46,7 @@ vec3 rsm_radiance(vec3 h, vec3 from)
     uint view_count = gi.config2.y;
     float tolerance = gi.ray.z;
     for (uint v = 0u; v < view_count; ++v) {
+        ROMA_LOOP_TICK();
         roma_rsm_view view = RomaViews(gi.views).v[v];
         float size = float(view.info.y);
         vec3 q = roma_gbuffer_pixel_of(view.camera, h, vec2(size));
@@ -90,8 +92,9 @@ void main()
     roma_use_ray_start(gi.bom);
     roma_shadow_exact = gi.config2.w != 0u;
     vec3 acc = vec3(0.0);
-    roma_gi_shading P = roma_gi_shading(gi.ray.x, gi.ray.w, gi.config2.z, seed, gi.lights);
-    for (uint k = 0u; k < spp; ++k) {
+    roma_gi_shading P = roma_gi_shading(gi.ray.x, gi.ray.w, gi.config2.z, seed, gi.lights, gi.part.zw);
+    for (uint k = gi.part.x; k < min(gi.part.y, spp); ++k) { // this dispatch's part
+        ROMA_LOOP_TICK();
         uint s = frame * spp + k;
         vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE),
                                                                  roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE + 1u)));
@@ -100,7 +103,7 @@ void main()
         bool hit;
         vec3 hit_point;
         acc += roma_gi_bounce(S, P, grid, origin, dir, gi.ray.y, ROMA_GI_SURFACES, pixel, s, hit, hit_point);
-        if (ROMA_GI_RSM && hit)
+        if (ROMA_GI_RSM && hit && gi.part.z == 0u) // the RSMs with the first lights' part
             acc += rsm_radiance(hit_point, origin);
     }
     accum[pixel] += vec4(acc, 0.0);

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Visibility of many point lights (the constant-time intersection paper's use):
 // per pixel, lights tested per frame are all of them (exact count) or k of
 // them starting at a random light (stochastic, accumulated over frames). A
@@ -45,8 +46,12 @@ void main()
     uint first = tested == light_count ? 0u
                                        : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(light_count)),
                                              light_count - 1u);
+    // This dispatch's part of the tested lights (src/vulkan/loop_budget.h: whole words of the
+    // mask, so that no two parts write one).
+    uint part_end = min(pc.part.y, tested);
     uint visible = 0u, bits = 0u;
-    for (uint j = 0u; j < tested; ++j) {
+    for (uint j = pc.part.x; j < part_end; ++j) {
+        ROMA_LOOP_TICK();
         uint i = first + j;
         i = i >= light_count ? i - light_count : i;
         vec3 lp = RomaPositions(pc.positions).p[i].xyz;
@@ -55,11 +60,11 @@ void main()
         visible += lit ? 1u : 0u;
         if (write_mask) {
             bits |= lit ? 1u << (i & 31u) : 0u;
-            if ((i & 31u) == 31u || j + 1u == tested) {
+            if ((i & 31u) == 31u || j + 1u == part_end) {
                 RomaMask(pc.mask).w[pixel * mask_words + (i >> 5)] = bits;
                 bits = 0u;
             }
         }
     }
-    accum[pixel] += uvec2(visible, tested);
+    accum[pixel] += uvec2(visible, part_end - min(pc.part.x, part_end));
 }

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#include "roma_loop_guard.glsl"
 // Lists the pixels whose G-buffer sees geometry (t finite), one invocation per pixel;
 // one atomic per subgroup. The order of the list does not matter: every pass writes
 // only its own pixel.

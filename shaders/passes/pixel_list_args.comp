@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // The tracing passes' indirect dispatch from the number of listed pixels: workgroups of
 // 8 x 8 over a 2D grid (each dimension is limited to 65535).
 #include "roma_pixel_list.glsl"

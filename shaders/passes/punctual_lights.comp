@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Direct light from point, spot and directional lights: per pixel and light,
 // one un-snapped shadow ray through the ROMA maps; the irradiance is added to
 // accum so that frames (new jitter each) average out the voxelization.
@@ -30,7 +31,9 @@ void main()
     roma_use_ray_start(pc.bom);
     roma_shadow_exact = pc.ray.z > 0.0;
     vec3 E = vec3(0.0);
-    for (uint i = 0u; i < light_count; ++i)
+    for (uint i = pc.part.x; i < min(pc.part.y, light_count); ++i) { // this dispatch's part
+        ROMA_LOOP_TICK();
         E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
+    }
     accum[pixel] += vec4(E, 0.0);
 }

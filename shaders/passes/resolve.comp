@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // One frame's accumulated sums of a pass -> the effect's value per pixel, as
 // the offline resolve computes it (src/passes/effect_render.c).
 #include "roma_lights.glsl"

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Direct light from area lights (emissive triangles): spp light samples per
 // pixel, drawn exactly as the reference draws them (dimensions 2-4, sample
 // frame * spp + k), each with an un-snapped shadow ray of bounded steps.
@@ -35,7 +36,8 @@ void main()
     roma_use_ray_start(pc.bom);
     roma_shadow_exact = pc.ray.z > 0.0;
     vec3 acc = vec3(0.0);
-    for (uint k = 0u; k < spp; ++k) {
+    for (uint k = pc.part.x; k < min(pc.part.y, spp); ++k) { // this dispatch's part
+        ROMA_LOOP_TICK();
         uint s = frame * spp + k;
         vec3 u = vec3(roma_random(seed, pixel, s, DIM_DIRECT_AREA), roma_random(seed, pixel, s, DIM_DIRECT_AREA + 1u),
                       roma_random(seed, pixel, s, DIM_DIRECT_AREA + 2u));

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // The surface grid of the GI pass, one invocation per triangle: small triangles write
 // their cells here; large ones are queued as tiles for surface_cells_tiles.comp, as the
 // BOM voxelizer does. One invocation per triangle for all of them left part of a large

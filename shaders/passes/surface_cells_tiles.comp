@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // The surface grid's large triangles: one invocation per queued tile of columns
 // (dispatched indirectly with the count surface_cells.comp grew).
 #include "roma_surface_cells.glsl"

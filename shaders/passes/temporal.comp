@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Temporal accumulation (ROMA paper 4.3: new jitter and directions every frame,
 // accumulated over frames): the history is fetched where this pixel's surface
 // was in the previous frame (motion vectors of the G-buffer) and kept only when

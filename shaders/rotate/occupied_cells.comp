@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#include "roma_loop_guard.glsl"
 // Lists the occupied BOM cells for the scatter rotation: one invocation per BOM word.
 // Grows the scatter's indirect dispatch; when the list is full, enables the gather.
 #include "roma_rotate.glsl"
@@ -34,6 +35,7 @@ void main()
     uint texel = id / words, w = id - texel * words;
     uint xy = (texel % res) | ((texel / res) << 8u);
     for (uint i = 0u; i < n; ++i) {
+        ROMA_LOOP_TICK();
         int b = findLSB(word);
         word &= word - 1u;
         cells[first + i] = xy | ((w * 32u + uint(b)) << 16u);

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Rotation by gathering (paper Algorithm 1): one invocation writes one 32-bit word of
 // one ray-aligned map by sampling the BOM at its cells' sample points. The fallback
 // when the occupied-cell list overflows (dispatched indirectly), and the definition
@@ -24,10 +25,12 @@ void main()
     float fres = float(res);
     uint out_word = 0u;
     for (uint i = 0u; i < 32u; ++i) {
+        ROMA_LOOP_TICK();
         // Two samples per cell along the map's z, a quarter cell either side of the centre:
         // rotated cells are up to sqrt(3) BOM cells long, and one sample per cell would step
         // over one-cell-thick walls.
         for (uint h = 0u; h < ROMA_ROTATE_SAMPLES; ++h) {
+            ROMA_LOOP_TICK();
             vec3 b = roma_rotate_sample(f, x, y, w * 32u + i, h);
             if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0 && b.x < fres && b.y < fres && b.z < fres) {
                 uvec3 c = uvec3(floor(b));

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Rotation by scattering: one invocation per (occupied BOM cell, map). It finds the
 // sample points of the map whose BOM coordinates can fall in its cell (the cell's
 // bounding box in map coordinates, padded against float error), evaluates each with the
@@ -44,13 +45,16 @@ void main()
     int y0 = int(clamp(ceil(lo.y - 0.5), 0.0, fres)), y1 = int(clamp(floor(hi.y - 0.5), -1.0, fres - 1.0));
     vec3 fc = vec3(c);
     vec3 m0 = f.map_to_bom_0.xyz, m1 = f.map_to_bom_1.xyz, m2 = f.map_to_bom_2.xyz, m3 = f.map_to_bom_3.xyz;
-    for (int y = y0; y <= y1; ++y)
+    for (int y = y0; y <= y1; ++y) {
+        ROMA_LOOP_TICK();
         for (int x = x0; x <= x1; ++x) {
+            ROMA_LOOP_TICK();
             // The column's line b(z) = p + m2 * z through the BOM: the z interval inside the
             // cell (slab test, padded); only its samples are evaluated exactly.
             vec3 p = (m0 * (float(x) + 0.5) + m1 * (float(y) + 0.5)) + m3;
             float zlo = 0.0, zhi = fres;
             for (int i = 0; i < 3; ++i) {
+                ROMA_LOOP_TICK();
                 if (abs(m2[i]) > 1e-6) {
                     float ta = (fc[i] - p[i]) / m2[i], tb = (fc[i] + 1.0 - p[i]) / m2[i];
                     zlo = max(zlo, min(ta, tb));
@@ -68,6 +72,7 @@ void main()
             uint mask = 0u;
             int word = ja >> 5;
             for (int j = ja; j <= jb; ++j) {
+                ROMA_LOOP_TICK();
                 if ((j >> 5) != word) {
                     if (mask != 0u)
                         atomicOr(maps[base + uint(word)], mask);
@@ -76,6 +81,7 @@ void main()
                 }
                 bool hit = false;
                 for (uint h = 0u; h < ROMA_ROTATE_SAMPLES; ++h) {
+                    ROMA_LOOP_TICK();
                     float z = float(j) + (float(h) + 0.5) / float(ROMA_ROTATE_SAMPLES);
                     if (z >= zlo && z <= zhi)
                         hit = hit || all(equal(floor(roma_rotate_sample(f, uint(x), uint(y), uint(j), h)), fc));
@@ -86,4 +92,5 @@ void main()
             if (mask != 0u)
                 atomicOr(maps[base + uint(word)], mask);
         }
+    }
 }

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Batch trace of rays and hits in the caller's buffers (roma_map_record_trace), everything
 // reached by address, the maps too: the path an engine that traces by address takes.
 #include "roma_batch_trace.glsl"

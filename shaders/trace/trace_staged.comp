@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Batch trace of the map's own staging buffers (roma_map_trace), bound as texel
 // buffers: on CPU devices texel fetches and image stores cost a fraction of
 // storage-buffer or address-based loads and stores.

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // Fills a buffer with an arithmetic sequence; used by the device self-test and
 // to clear or initialise buffers without a host round trip.
 #include "roma_shared.h"

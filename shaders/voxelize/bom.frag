@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // BOM rasterization, fragment stage: marks with atomicOr every cell of the
 // fragment's column (along the projection axis) that the triangle overlaps
 // inside the pixel square.
@@ -28,6 +29,7 @@ void clip_edge(vec3 a, vec3 b, vec2 lo, vec2 hi, inout vec2 range)
     vec2 dir = b.xy - a.xy;
     float t0 = 0.0, t1 = 1.0;
     for (int k = 0; k < 2; ++k) {
+        ROMA_LOOP_TICK();
         if (abs(dir[k]) < 1e-20) {
             if (a[k] < lo[k] || a[k] > hi[k])
                 return;
@@ -70,6 +72,7 @@ void main()
     if (abs(area) > 1e-30) {
         float s = area > 0.0 ? 1.0 : -1.0;
         for (int k = 0; k < 4; ++k) {
+            ROMA_LOOP_TICK();
             vec2 q = vec2((k & 1) != 0 ? hi.x : lo.x, (k & 2) != 0 ? hi.y : lo.y);
             float wc = s * cross2(b.xy - a.xy, q - a.xy);  // weight of c
             float wa = s * cross2(c.xy - b.xy, q - b.xy);
@@ -99,6 +102,7 @@ void main()
         // Cells (u, v, c0..c1): consecutive bits of texel (u, v), one atomic per word.
         uint base = (uint(pix.y) * uint(res) + uint(pix.x)) * words;
         for (int w = c0 >> 5; w <= (c1 >> 5); ++w) {
+            ROMA_LOOP_TICK();
             uint first = uint(max(c0 - 32 * w, 0));
             uint last = uint(min(c1 - 32 * w, 31));
             // Shifts stay in 0..31 (a shift by 32 is undefined).
@@ -108,12 +112,16 @@ void main()
     } else if (axis == 0u) {
         // (u, v) = (y, z), depth = x: cell (c, u, v).
         uint bit = 1u << (uint(pix.y) & 31u);
-        for (int x = c0; x <= c1; ++x)
+        for (int x = c0; x <= c1; ++x) {
+            ROMA_LOOP_TICK();
             atomicOr(bom.w[(uint(pix.x) * uint(res) + uint(x)) * words + (uint(pix.y) >> 5)], bit);
+        }
     } else {
         // (u, v) = (z, x), depth = y: cell (v, c, u).
         uint bit = 1u << (uint(pix.x) & 31u);
-        for (int y = c0; y <= c1; ++y)
+        for (int y = c0; y <= c1; ++y) {
+            ROMA_LOOP_TICK();
             atomicOr(bom.w[(uint(y) * uint(res) + uint(pix.y)) * words + (uint(pix.x) >> 5)], bit);
+        }
     }
 }

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Copies the vertex positions an engine keeps in its own GPU memory (after its
 // skinning or animation pass) into the float4 positions the voxelizer reads.
 #include "roma_shared.h"

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
+#include "roma_loop_guard.glsl"
 // Places one instance of a mesh (roma_map_add_instance): its local vertices through its
 // 3x4 transform into the positions the voxelizer reads.
 #include "roma_shared.h"

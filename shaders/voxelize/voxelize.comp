@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#include "roma_loop_guard.glsl"
 // BOM voxelization, one invocation per triangle: small triangles mark their cells
 // here; large ones are split into tiles and queued for voxelize_tiles.comp.
 #include "roma_voxelize.glsl"

@@ -8,7 +8,9 @@
 
 #include "effects/image_effect.h"
 #include "roma_shared.h"
+#include "trace/loop_costs.h"
 #include "util/log.h"
+#include "vulkan/loop_budget.h"
 #include "vulkan/vk_internal.h"
 
 struct roma_ao_effect {
@@ -100,6 +102,19 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
                                  s.skip_cells * info.trace_cell, 0.0f}};
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
-    return roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
-                                      im->height);
+    /* The samples in parts within the device's loop budget (one part where it has none). */
+    const roma_loop_grid grid = {info.resolution, info.grid_cell};
+    const roma_loop_parts parts = roma_loop_parts_plan(e->base.ctx, 0, s.samples,
+                                                       roma_loop_cost_ao_ray(grid, push.ray[2], push.ray[1]), 0, 0);
+    uint32_t range[4];
+    for (uint32_t part = 0; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, range); ++part) {
+        push.sample_first = range[0];
+        push.sample_end = range[1];
+        if (part == 0)
+            r = roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
+                                           im->height);
+        else
+            roma_image_effect_dispatch_more(&e->base, cmd, &push);
+    }
+    return r;
 }

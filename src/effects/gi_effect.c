@@ -19,7 +19,9 @@
 #include "passes/surface_cells.h"
 #include "roma/ao_effect.h"
 #include "roma_shared.h"
+#include "trace/loop_costs.h"
 #include "util/log.h"
+#include "vulkan/loop_budget.h"
 
 /* What set_scene uploads: replaced as a whole. */
 typedef struct gi_surfaces {
@@ -228,8 +230,19 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
     };
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
+    /* Samples and the lights at their hits in parts within the device's loop budget. */
+    const roma_loop_grid grid = {info.resolution, info.grid_cell};
+    const roma_shadow_cost shadow = {grid, push.ray[2], ROMA_START_WALK, s.max_steps, ROMA_BACK_SKIP_POINT, 0};
+    uint32_t bounce = roma_loop_cost_gi_bounce(grid, push.ray[1], 0);
+    if (have_scene && sf->emitters.emitter_count)
+        bounce += roma_loop_cost_area_sample(&shadow, sf->emitters.emitter_count);
+    const roma_loop_parts parts =
+        roma_loop_parts_plan(ctx, 0, s.samples, bounce, packed, roma_loop_cost_punctual_light(&shadow));
+    roma_loop_parts_get(&parts, 0, push.part);
     r = roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
                                    im->height);
+    for (uint32_t part = 1; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, push.part); ++part)
+        roma_image_effect_dispatch_more(&e->base, cmd, &push);
     if (r != ROMA_SUCCESS)
         e->grid_version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
     return r;

@@ -236,12 +236,28 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     vkUpdateDescriptorSets(e->ctx->device, 2, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);
+    e->last_list = e->listed ? list->buffer : VK_NULL_HANDLE;
+    e->last_groups[0] = (width + 7) / 8;
+    e->last_groups[1] = (height + 7) / 8;
     if (e->listed) {
         record_listed_dispatch(e, cmd, list, push, width, height);
         return ROMA_SUCCESS;
     }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
     vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
-    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    vkCmdDispatch(cmd, e->last_groups[0], e->last_groups[1], 1);
     return ROMA_SUCCESS;
+}
+
+void roma_image_effect_dispatch_more(roma_image_effect *e, VkCommandBuffer cmd, const void *push)
+{
+    /* The output the last part wrote, read and written by this one. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
+    if (e->last_list)
+        vkCmdDispatchIndirect(cmd, e->last_list, 0);
+    else
+        vkCmdDispatch(cmd, e->last_groups[0], e->last_groups[1], 1);
 }

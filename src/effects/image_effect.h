@@ -33,6 +33,9 @@ typedef struct roma_image_effect {
     roma_buffer lists[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_buffer retired[ROMA_MAX_FRAMES_IN_FLIGHT][ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT];
     uint32_t retired_count[ROMA_MAX_FRAMES_IN_FLIGHT];
+    /* The last dispatch recorded, which roma_image_effect_dispatch_more repeats. */
+    VkBuffer last_list; /* listed: its indirect arguments */
+    uint32_t last_groups[2];
 } roma_image_effect;
 
 /* The nearest, clamp-to-edge sampler through which the effects read the engine's images
@@ -70,5 +73,11 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height);
+
+/* One more dispatch of the effect right after roma_image_effect_dispatch (or this), in the
+ * same command buffer with nothing recorded between: the same pixels and bindings, another
+ * push (the next part of work a device's loop budget splits, src/vulkan/loop_budget.h),
+ * after a barrier so that it reads what the dispatch before it wrote to the output. */
+void roma_image_effect_dispatch_more(roma_image_effect *e, VkCommandBuffer cmd, const void *push);
 
 #endif /* ROMA_EFFECTS_IMAGE_EFFECT_H */

@@ -13,7 +13,9 @@
 #include "passes/light_data.h"
 #include "roma_shared.h"
 #include "scene/emitters.h"
+#include "trace/loop_costs.h"
 #include "util/log.h"
+#include "vulkan/loop_budget.h"
 
 
 struct roma_light_effect {
@@ -175,6 +177,24 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
                                    .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
-    return roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
-                                      im->height);
+    /* The items (lights traced every frame, sampled lights, area-light samples; as
+     * lights_images.comp counts them) in parts within the device's loop budget. */
+    const uint32_t exact = s.lights_per_frame == 0 ? packed : (exact_packed < packed ? exact_packed : packed);
+    const uint32_t rest = packed - exact;
+    const uint32_t sampled = s.lights_per_frame == 0 || s.lights_per_frame > rest ? rest : s.lights_per_frame;
+    const uint32_t items = exact + sampled + (e->emitter_count ? s.area_samples : 0);
+    const roma_shadow_cost shadow = {{info.resolution, info.grid_cell}, push.ray[1], ROMA_START_WALK, s.max_steps,
+                                     ROMA_BACK_SKIP_POINT, 0};
+    uint32_t per_item = roma_loop_cost_punctual_light(&shadow);
+    if (e->emitter_count) {
+        const uint32_t area = roma_loop_cost_area_sample(&shadow, e->emitter_count);
+        per_item = area > per_item ? area : per_item;
+    }
+    const roma_loop_parts parts = roma_loop_parts_plan(e->base.ctx, 0, items, per_item, 0, 0);
+    roma_loop_parts_get(&parts, 0, push.part);
+    r = roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
+                                   im->height);
+    for (uint32_t part = 1; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, push.part); ++part)
+        roma_image_effect_dispatch_more(&e->base, cmd, &push);
+    return r;
 }

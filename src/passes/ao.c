@@ -5,6 +5,8 @@
 
 #include "roma_shared.h"
 #include "passes/pixel_pass.h"
+#include "trace/loop_costs.h"
+#include "vulkan/loop_budget.h"
 
 struct roma_ao_pass {
     roma_context *ctx;
@@ -47,6 +49,23 @@ void roma_ao_pass_destroy(roma_ao_pass *pass)
     free(pass);
 }
 
+/* Loop iterations of one AO sample of ao.comp by method (loop_costs.h). */
+static uint32_t sample_cost(roma_ao_method method, roma_loop_grid g, const roma_ao_push *push)
+{
+    switch (method) {
+    case ROMA_AO_METHOD_VOXEL_DDA:
+        return 1u + roma_loop_cost_walk(g, push->ray[1], UINT32_MAX);
+    case ROMA_AO_METHOD_DISTANCE_FIELD:
+        return 1u + push->config2[1];
+    case ROMA_AO_METHOD_SCREEN_SPACE:
+        return 1u + (uint32_t)push->forward[3] * (1u + push->config2[2]);
+    case ROMA_AO_METHOD_NAADF: /* the clip (3 axes), then at most 3 RES + 2 boxes of 3 axes each */
+        return 1u + 3u + (3u * g.res + 2u) * 4u;
+    default:
+        return roma_loop_cost_ao_ray(g, push->ray[2], push->ray[1]);
+    }
+}
+
 roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const roma_ao_pass_inputs *in)
 {
     if (!pass || !cmd || !in)
@@ -84,6 +103,17 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         push.forward[3] = (float)(in->ssao_steps ? in->ssao_steps : ROMA_AO_SSAO_STEPS);
         push.config2[2] = in->ssao_layers;
     }
-    return roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->bom, in->gbuffer_pixels, in->accum,
-                                       &push);
+    /* The samples in parts within the device's loop budget (loop_budget.h). */
+    const roma_loop_grid grid = {in->map->resolution, in->map->grid_cell};
+    const roma_loop_parts parts =
+        roma_loop_parts_plan(pass->ctx, 0, in->spp, sample_cost(pass->method, grid, &push), 0, 0);
+    uint32_t range[4];
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t part = 0; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, range); ++part) {
+        push.sample_first = range[0];
+        push.sample_end = range[1];
+        r = roma_pixel_pass_record_list(&pass->pass, cmd, in->list, in->map, in->bom, in->gbuffer_pixels, in->accum,
+                                        &push);
+    }
+    return r;
 }

@@ -15,6 +15,8 @@
 #include "passes/scene_buffers.h"
 #include "passes/surface_cells.h"
 #include "roma/sampling.h"
+#include "trace/loop_costs.h"
+#include "vulkan/loop_budget.h"
 
 #define PI_F 3.14159265358979323846f
 
@@ -274,6 +276,18 @@ static double scope_ms(roma_gpu_timer *timer, const char *name)
     return ms;
 }
 
+/* A tracing pass once per part of its work (loop_budget.h), each part's range written into
+ * the push's `part` before it is recorded. */
+static roma_result record_parts(renderer *R, roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_map_info *m,
+                                VkBuffer pixels_buffer, VkBuffer accum, const void *push, uint32_t part[4],
+                                const roma_loop_parts *parts)
+{
+    roma_result r = ROMA_SUCCESS;
+    for (uint32_t i = 0; r == ROMA_SUCCESS && roma_loop_parts_get(parts, i, part); ++i)
+        r = roma_pixel_pass_record_list(pass, cmd, &R->list, m, m->bom_view, pixels_buffer, accum, push);
+    return r;
+}
+
 /* Records the planned tracing passes of frame f. */
 static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, const roma_map_info *info,
                                  VkBuffer pixels_buffer, uint32_t scopes[ROMA_PASS_COUNT])
@@ -294,6 +308,10 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         const roma_map_info *m = &info[plan->pass_map[p]];
         const float offset = offset_cells * m->trace_cell;
         const VkBufferView bom_view = m->bom_view;
+        /* What one shadow ray of this pass costs in loop iterations (loop_costs.h). */
+        const roma_loop_grid grid = {m->resolution, m->grid_cell};
+        const roma_shadow_cost shadow = {grid, skip_cells * m->trace_cell, ROMA_START_WALK, steps,
+                                         ROMA_BACK_SKIP_POINT, exact_shadows > 0.0f};
         const uint64_t bom = d->blind_ray_start ? 0u : 1u; /* the walk reads the bound BOM */
         scopes[p] = roma_gpu_timer_begin(R->timer, cmd, roma_pass_name((roma_pass_kind)p));
         switch ((roma_pass_kind)p) {
@@ -330,7 +348,9 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config = {d->width, d->height, R->lights.light_count, steps},
                 .ray = {offset, skip_cells * m->trace_cell, exact_shadows, 0},
             };
-            r = roma_pixel_pass_record_list(&R->punctual, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
+            const roma_loop_parts parts = roma_loop_parts_plan(R->ctx, 0, R->lights.light_count,
+                                                               roma_loop_cost_punctual_light(&shadow), 0, 0);
+            r = record_parts(R, &R->punctual, cmd, m, pixels_buffer, R->accum[p].buffer, &push, push.part, &parts);
             break;
         }
         case ROMA_PASS_SOFT_SHADOWS: {
@@ -340,7 +360,9 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config2 = {d->seed, R->lights.emitter_count, steps, 0},
                 .ray = {offset, skip_cells * m->trace_cell, exact_shadows, 0},
             };
-            r = roma_pixel_pass_record_list(&R->soft, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
+            const roma_loop_parts parts = roma_loop_parts_plan(
+                R->ctx, 0, spp, roma_loop_cost_area_sample(&shadow, R->lights.emitter_count), 0, 0);
+            r = record_parts(R, &R->soft, cmd, m, pixels_buffer, R->accum[p].buffer, &push, push.part, &parts);
             break;
         }
         case ROMA_PASS_MANY_LIGHTS: {
@@ -353,7 +375,14 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config2 = {d->seed, f, tested, R->mask_words},
                 .ray = {offset, skip_cells * m->trace_cell, exact_shadows, 0},
             };
-            r = roma_pixel_pass_record_list(&R->many, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
+            roma_shadow_cost segment = shadow; /* many_lights.comp walks one skip length of each start */
+            segment.start_walk = 1.0f;
+            segment.max_steps = lights_steps;
+            roma_loop_parts parts =
+                roma_loop_parts_plan(R->ctx, 0, tested, roma_loop_cost_punctual_light(&segment), 0, 0);
+            if (parts.per_part < tested && parts.per_part >= 32) /* whole words of the visibility mask */
+                parts.per_part &= ~31u;
+            r = record_parts(R, &R->many, cmd, m, pixels_buffer, R->accum[p].buffer, &push, push.part, &parts);
             break;
         }
         case ROMA_PASS_GI: {
@@ -371,7 +400,14 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
                 .config2 = {d->seed, R->rsm_views.count, steps, exact_shadows > 0.0f},
                 .ray = {offset, ao_skip * m->trace_cell, d->rsm_tolerance_cells * m->trace_cell, skip_cells * m->trace_cell},
             };
-            r = roma_pixel_pass_record_list(&R->gi, cmd, &R->list, m, bom_view, pixels_buffer, R->accum[p].buffer, &push);
+            /* A sample's bounce, its area-light sample and RSMs, then each light at its hit. */
+            uint32_t bounce = roma_loop_cost_gi_bounce(grid, ao_skip * m->trace_cell, exact_shadows > 0.0f) +
+                              R->rsm_views.count;
+            if (R->lights.emitter_count)
+                bounce += roma_loop_cost_area_sample(&shadow, R->lights.emitter_count);
+            const roma_loop_parts parts = roma_loop_parts_plan(R->ctx, 0, spp, bounce, R->lights.light_count,
+                                                               roma_loop_cost_punctual_light(&shadow));
+            r = record_parts(R, &R->gi, cmd, m, pixels_buffer, R->accum[p].buffer, &push, push.part, &parts);
             break;
         }
         default:

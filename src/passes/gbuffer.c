@@ -44,12 +44,14 @@ static roma_result create_pipelines(roma_gbuffer *g)
      * needs no fragment shader but in a stochastic layer, where it drops fragments; the
      * G-buffer goes to a storage buffer. */
     roma_graphics_pipeline_desc depth_pass = {
-        .vert = vert, .frag = drop, .layout = g->layout, .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
+        .vert = vert, .frag = drop, .frag_name = "gbuffer_stochastic.frag", .layout = g->layout,
+        .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
         .depth_write = 1, .depth_compare = VK_COMPARE_OP_GREATER,
         .label = "vkCreateGraphicsPipelines (G-buffer depth)",
     };
     roma_graphics_pipeline_desc shade_pass = {
-        .vert = vert, .frag = frag, .layout = g->layout, .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
+        .vert = vert, .frag = frag, .frag_name = "gbuffer.frag", .layout = g->layout,
+        .depth_format = ROMA_GBUFFER_DEPTH_FORMAT,
         .depth_write = 0, .depth_compare = VK_COMPARE_OP_EQUAL,
         .label = "vkCreateGraphicsPipelines (G-buffer shading)",
     };

@@ -25,7 +25,7 @@ static roma_result create_pipeline(roma_bom_raster *r)
     /* No attachments at all: the only output is the atomics into the BOM; the vertex
      * shader writes z = 0.5, so nothing is depth-clipped. */
     roma_graphics_pipeline_desc desc = {
-        .vert = vert, .frag = frag, .layout = r->layout, .depth_format = VK_FORMAT_UNDEFINED,
+        .vert = vert, .frag = frag, .frag_name = "bom.frag", .layout = r->layout, .depth_format = VK_FORMAT_UNDEFINED,
         .label = "vkCreateGraphicsPipelines (BOM)",
     };
     if (res == ROMA_SUCCESS)

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "roma/trace_types.h"
+#include "vulkan/loop_guard.h"
 #include "vulkan/shader_table.h"
 #include "vulkan/vk_internal.h"
 
@@ -95,8 +96,8 @@ roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *mo
     return roma_compute_pipeline_create_spec(ctx, module_name, types, binding_count, push_size, NULL, 0, out);
 }
 
-void roma_specialization_make(const roma_context *ctx, const uint32_t *constants, uint32_t count,
-                              roma_specialization *out)
+void roma_specialization_make(const roma_context *ctx, const char *module, const uint32_t *constants,
+                              uint32_t count, roma_specialization *out)
 {
     if (count > ROMA_MAX_SPEC_CONSTANTS)
         count = ROMA_MAX_SPEC_CONSTANTS;
@@ -106,7 +107,9 @@ void roma_specialization_make(const roma_context *ctx, const uint32_t *constants
     }
     out->entries[count] = (VkSpecializationMapEntry){ROMA_CORRECTED_DIVISION_CONSTANT_ID, count * 4, 4};
     out->values[count] = ctx->corrected_division ? VK_TRUE : VK_FALSE;
-    out->info = (VkSpecializationInfo){count + 1, out->entries, 4 * (size_t)(count + 1), out->values};
+    uint32_t n = count + 1;
+    n += roma_loop_guard_specialize(ctx, module, out->entries, out->values, n);
+    out->info = (VkSpecializationInfo){n, out->entries, 4 * (size_t)n, out->values};
 }
 
 roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
@@ -115,7 +118,7 @@ roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_nam
     VkShaderModule shader = VK_NULL_HANDLE;
     roma_result r = roma_shader_module_create(ctx, module_name, &shader);
     roma_specialization spec;
-    roma_specialization_make(ctx, constants, constant_count, &spec);
+    roma_specialization_make(ctx, module_name, constants, constant_count, &spec);
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo info = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,

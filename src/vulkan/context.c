@@ -1,6 +1,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vulkan/loop_budget.h"
+#include "vulkan/loop_guard.h"
 #include "vulkan/vk_internal.h"
 
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
@@ -30,6 +32,23 @@ static int env_flag(const char *name)
 {
     const char *v = getenv(name);
     return v && *v && strcmp(v, "0") != 0;
+}
+
+/* The plan of split dispatches (loop_budget.h): CPU devices run llvmpipe's budget; the
+ * environment's ROMA_LOOP_PLAN (a positive count) tests the split anywhere. */
+static uint32_t loop_plan(const roma_context *ctx)
+{
+    const char *v = getenv("ROMA_LOOP_PLAN");
+    if (v && *v) {
+        char *end = NULL;
+        unsigned long n = strtoul(v, &end, 10);
+        if (end && !*end && n > 0 && n < UINT32_MAX) {
+            roma_logf(&ctx->logger, ROMA_LOG_INFO, "libroma: ROMA_LOOP_PLAN: dispatches plan for %lu loop iterations", n);
+            return (uint32_t)n;
+        }
+        roma_logf(&ctx->logger, ROMA_LOG_WARNING, "libroma: ROMA_LOOP_PLAN '%s' is not a positive count: ignored", v);
+    }
+    return ctx->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? ROMA_LOOP_PLAN : UINT32_MAX;
 }
 
 static int has_instance_layer(const char *name)
@@ -358,6 +377,10 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
         r = create_submit_objects(ctx);
     }
+    if (r == ROMA_SUCCESS) {
+        ctx->loop_plan = loop_plan(ctx);
+        r = roma_loop_guard_create(ctx);
+    }
     if (r != ROMA_SUCCESS) {
         roma_context_destroy(ctx);
         return r;
@@ -380,6 +403,7 @@ void roma_context_destroy(roma_context *ctx)
          * engine's to synchronise (a failed create must not wait on it either). */
         if (ctx->owns_device)
             vkDeviceWaitIdle(ctx->device);
+        roma_loop_guard_destroy(ctx); /* reports what the last work ran past the guard */
         roma_shared_pipelines_destroy(ctx);
         if (ctx->pipeline_cache)
             vkDestroyPipelineCache(ctx->device, ctx->pipeline_cache, ctx->allocator);
@@ -430,6 +454,7 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
 
 uint32_t roma_context_validation_error_count(const roma_context *ctx)
 {
+    roma_loop_guard_check(ctx);
     return ctx ? atomic_load(&((roma_context *)ctx)->validation_errors) : 0u;
 }
 

@@ -39,6 +39,10 @@ struct roma_context {
     struct roma_shared_pipeline *pipelines;
     uint32_t pipeline_count, pipeline_capacity;
     VkPipelineCache pipeline_cache;
+    /* Loop iterations one invocation of a split dispatch plans for (loop_budget.h): UINT32_MAX
+     * where the device has no budget. */
+    uint32_t loop_plan;
+    struct roma_loop_guard *loop_guard; /* ROMA_LOOP_GUARD builds (loop_guard.h) */
     /* For the context's own blocking submissions (uploads, readbacks, self-test). */
     VkCommandPool command_pool;
     VkFence fence;
@@ -131,18 +135,18 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               const VkDescriptorType *types, uint32_t binding_count,
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
                                               roma_compute_pipeline *out);
-/* Specialization of a compute shader: constants 0..count-1 (uint32 each, at most
+/* Specialization of a shader of module `module`: constants 0..count-1 (uint32 each, at most
  * ROMA_MAX_SPEC_CONSTANTS), then roma/trace.glsl's ROMA_CORRECTED_DIVISION_CONSTANT_ID with
- * the context's choice (ignored by shaders that do not include it). Every compute pipeline
- * libroma creates goes through it. */
+ * the context's choice (ignored by shaders that do not include it) and, in a loop-guard
+ * build, the guard's constants (loop_guard.h). Every pipeline libroma creates goes through it. */
 #define ROMA_MAX_SPEC_CONSTANTS 16u
 typedef struct roma_specialization {
-    VkSpecializationMapEntry entries[ROMA_MAX_SPEC_CONSTANTS + 1];
-    uint32_t values[ROMA_MAX_SPEC_CONSTANTS + 1];
+    VkSpecializationMapEntry entries[ROMA_MAX_SPEC_CONSTANTS + 4];
+    uint32_t values[ROMA_MAX_SPEC_CONSTANTS + 4];
     VkSpecializationInfo info;
 } roma_specialization;
-void roma_specialization_make(const roma_context *ctx, const uint32_t *constants, uint32_t count,
-                              roma_specialization *out);
+void roma_specialization_make(const roma_context *ctx, const char *module, const uint32_t *constants,
+                              uint32_t count, roma_specialization *out);
 /* One pipeline of module_name on layout, specialized as above; not shared (the caller owns
  * and destroys it). */
 roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
@@ -193,6 +197,7 @@ roma_result roma_push_layout_create(roma_context *ctx, VkShaderStageFlags stages
 typedef struct roma_graphics_pipeline_desc {
     VkShaderModule vert;
     VkShaderModule frag;        /* VK_NULL_HANDLE: depth-only pipeline */
+    const char *frag_name;      /* the embedded module frag was made from (its specialization) */
     VkPipelineLayout layout;
     VkFormat depth_format;      /* VK_FORMAT_UNDEFINED: no depth attachment, no depth test */
     int depth_write;

@@ -30,8 +30,9 @@ timed() {
   echo "$end - $start" | bc > "$tmp/$name.s"
 }
 
-echo "# device: $("$render" --tracer roma --effects ao --size 8x8 --spp 1 --out "$tmp/probe" 2>&1 |
-  sed -n 's/.*using \(.*\) (Vulkan.*/\1/p' | head -1)"
+"$render" --tracer roma --effects ao --size 8x8 --spp 1 --quiet --out "$tmp/probe" --stats "$tmp/probe.json" >/dev/null
+echo "# device: $(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["device"]["name"])' "$tmp/probe.json"),"\
+  "ROMA_LOOP_PLAN=${ROMA_LOOP_PLAN:-default}; ROMA_s: roma-render's wall time (start-up included)"
 echo
 echo "## Many lights: builtin:cornell, 160x120, every light tested in one frame"
 echo "lights  ROMA_visible  Embree_visible  ratio  ROMA_s"

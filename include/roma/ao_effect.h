@@ -124,7 +124,9 @@ typedef struct roma_ao_images {
  * (that dispatch, which writes the 1s), then an indirect dispatch over the list, with
  * barriers between them; the slot's list is allocated by its first record and when the
  * images grow. See the file comment for the synchronisation the caller records and the slot
- * rules.
+ * rules. Any number of samples: on a device that limits the loop iterations of one shader
+ * invocation (lavapipe: 65,535) the samples are traced in as many dispatches as that takes,
+ * each adding to the output after a barrier (docs/robustness.md); elsewhere in one.
  *
  * @param effect    the effect.
  * @param cmd       a command buffer of the context's queue family, recording.

@@ -146,7 +146,9 @@ ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma
 /** Records the GI pass into cmd: when the map's geometry changed since the grid was built
  * (see above), the surface grid's build (a barrier after earlier compute reads, a fill,
  * one compute dispatch, a barrier), then the pass over the images or the list of their
- * covered pixels, as roma_ao_effect_record (uncovered pixels get 0).
+ * covered pixels, as roma_ao_effect_record (uncovered pixels get 0; samples, and the lights
+ * lit at each bounce hit, split across dispatches where a device limits the loop iterations
+ * of one shader invocation).
  * Submit the command buffers of an effect in the order they were recorded. The lights
  * are copied into the slot's storage at record time (up to 65,536; as
  * roma_light_effect_record). One record per frame slot and settings frame. Synchronisation

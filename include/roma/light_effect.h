@@ -149,7 +149,9 @@ typedef struct roma_light_images {
  * with zero intensity or colour are dropped, as the reference does). One record per frame:
  * a second record with the same slot and the same settings frame is refused
  * (ROMA_ERROR_INVALID_ARGUMENT). Frames and slots: as roma_ao_effect (count frames in
- * settings.frame).
+ * settings.frame). Any max_steps (a walk leaves the map within 2 RES texels) and area-light
+ * samples; where a device limits the loop iterations of one shader invocation the lights and
+ * samples are split across dispatches, as roma_ao_effect_record's samples.
  *
  * @param effect       the effect.
  * @param cmd          a command buffer of the context's queue family, recording.

@@ -46,10 +46,12 @@ void main()
     uint first = tested == light_count ? 0u
                                        : min(uint(roma_random(seed, pixel, frame, DIM_MANY_LIGHTS) * float(light_count)),
                                              light_count - 1u);
-    // This dispatch's part of the tested lights (src/vulkan/loop_budget.h: whole words of the
-    // mask, so that no two parts write one).
+    // This dispatch's part of the tested lights (src/vulkan/loop_budget.h); a part that starts
+    // inside a word of the mask adds its bits to those the part before it wrote there.
     uint part_end = min(pc.part.y, tested);
     uint visible = 0u, bits = 0u;
+    if (write_mask && (pc.part.x & 31u) != 0u && pc.part.x < part_end)
+        bits = RomaMask(pc.mask).w[pixel * mask_words + (pc.part.x >> 5)];
     for (uint j = pc.part.x; j < part_end; ++j) {
         ROMA_LOOP_TICK();
         uint i = first + j;

@@ -378,10 +378,8 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
             roma_shadow_cost segment = shadow; /* many_lights.comp walks one skip length of each start */
             segment.start_walk = 1.0f;
             segment.max_steps = lights_steps;
-            roma_loop_parts parts =
+            const roma_loop_parts parts =
                 roma_loop_parts_plan(R->ctx, 0, tested, roma_loop_cost_punctual_light(&segment), 0, 0);
-            if (parts.per_part < tested && parts.per_part >= 32) /* whole words of the visibility mask */
-                parts.per_part &= ~31u;
             r = record_parts(R, &R->many, cmd, m, pixels_buffer, R->accum[p].buffer, &push, push.part, &parts);
             break;
         }

@@ -35,8 +35,8 @@ struct roma_gi_effect {
     gi_surfaces surfaces; /* materials.triangle_count == 0: no scene */
     roma_surface_cells grid;        /* made on the first record with a scene */
     uint64_t grid_version;          /* the grid holds the map geometry of this version (0: none) */
-    roma_buffer lights[ROMA_MAX_FRAMES_IN_FLIGHT];
-    roma_buffer scene[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_gi_scene per slot */
+    roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_upload scene[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_gi_scene per slot */
 };
 
 roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_settings *out)
@@ -112,8 +112,8 @@ void roma_gi_effect_destroy(roma_gi_effect *e)
         return;
     roma_context *ctx = e->base.ctx;
     for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s) {
-        roma_buffer_destroy(ctx, &e->lights[s]);
-        roma_buffer_destroy(ctx, &e->scene[s]);
+        roma_upload_destroy(ctx, &e->lights[s]);
+        roma_upload_destroy(ctx, &e->scene[s]);
     }
     surfaces_free(ctx, &e->surfaces);
     roma_surface_cells_destroy(&e->grid);
@@ -218,10 +218,15 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
             .config = {c->resolution, sf->emitters.emitter_count, packed, ROMA_GI_PUNCTUAL_RAYS},
             .config2 = {sf->materials.triangle_count, normals, 0, 0},
         };
-        memcpy(e->scene[slot].mapped, &gs, sizeof gs);
+        memcpy(roma_upload_write(&e->scene[slot], sizeof gs), &gs, sizeof gs);
     }
+    /* The slot's lights and scene record into device memory (vulkan/upload.h). */
+    roma_upload_record(&e->lights[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_upload_record(&e->scene[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_gi_images_push push = {
-        .scene = have_scene ? e->scene[slot].address : 0, .lights = e->lights[slot].address,
+        .scene = have_scene ? e->scene[slot].device.address : 0, .lights = e->lights[slot].device.address,
         .bom = info.bom_address,
         .config = {im->width, im->height, s.samples, s.frame},
         .config2 = {s.seed, s.max_steps, 0, 0},
@@ -243,6 +248,10 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
                                    im->height);
     for (uint32_t part = 1; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, push.part); ++part)
         roma_image_effect_dispatch_more(&e->base, cmd, &push);
+    if (r == ROMA_SUCCESS) {
+        roma_upload_done(&e->lights[slot]);
+        roma_upload_done(&e->scene[slot]);
+    }
     if (r != ROMA_SUCCESS)
         e->grid_version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
     return r;

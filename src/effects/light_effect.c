@@ -20,8 +20,8 @@
 
 struct roma_light_effect {
     roma_image_effect base;
-    roma_buffer lights[ROMA_MAX_FRAMES_IN_FLIGHT];
-    roma_buffer emitters, cdf; /* area lights; absent when emitter_count is 0 */
+    roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_upload emitters, cdf; /* area lights; absent when emitter_count is 0 */
     uint32_t emitter_count;
 };
 
@@ -83,9 +83,9 @@ void roma_light_effect_destroy(roma_light_effect *e)
         return;
     roma_context *ctx = e->base.ctx;
     for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
-        roma_buffer_destroy(ctx, &e->lights[s]);
-    roma_buffer_destroy(ctx, &e->emitters);
-    roma_buffer_destroy(ctx, &e->cdf);
+        roma_upload_destroy(ctx, &e->lights[s]);
+    roma_upload_destroy(ctx, &e->emitters);
+    roma_upload_destroy(ctx, &e->cdf);
     roma_image_effect_free(&e->base);
     free(e);
 }
@@ -107,15 +107,17 @@ roma_result roma_light_effect_set_area_lights(roma_light_effect *e, const roma_s
             return roma_fail(log, r, "roma_light_effect_set_area_lights: cannot read the scene's emitters");
     }
     /* Built aside, swapped in only when complete: a failure keeps the previous set. */
-    roma_buffer emitters = {0}, cdf = {0};
+    /* Device memory the next record uploads to (vulkan/upload.h). */
+    roma_upload emitters = {0}, cdf = {0};
     if (table.count) {
         const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-        r = roma_buffer_create(ctx, sizeof(roma_gpu_emitter) * (VkDeviceSize)table.count, usage, ROMA_MEMORY_UPLOAD,
-                               &emitters);
+        const VkDeviceSize emitter_bytes = sizeof(roma_gpu_emitter) * (VkDeviceSize)table.count;
+        const VkDeviceSize cdf_bytes = sizeof(float) * (VkDeviceSize)table.count;
+        r = roma_upload_create(ctx, emitter_bytes, usage, &emitters);
         if (r == ROMA_SUCCESS)
-            r = roma_buffer_create(ctx, sizeof(float) * (VkDeviceSize)table.count, usage, ROMA_MEMORY_UPLOAD, &cdf);
+            r = roma_upload_create(ctx, cdf_bytes, usage, &cdf);
         if (r == ROMA_SUCCESS) {
-            roma_gpu_emitter *g = emitters.mapped;
+            roma_gpu_emitter *g = roma_upload_write(&emitters, emitter_bytes);
             for (uint32_t i = 0; i < table.count; ++i) {
                 const roma_emitter *em = &table.emitters[i];
                 memset(&g[i], 0, sizeof g[i]);
@@ -128,18 +130,18 @@ roma_result roma_light_effect_set_area_lights(roma_light_effect *e, const roma_s
                 }
                 g[i].v0_pdf[3] = em->pdf_area;
             }
-            memcpy(cdf.mapped, table.cdf, sizeof(float) * table.count);
+            memcpy(roma_upload_write(&cdf, cdf_bytes), table.cdf, cdf_bytes);
         }
     }
     uint32_t count = table.count;
     roma_emitter_table_free(&table);
     if (r != ROMA_SUCCESS) {
-        roma_buffer_destroy(ctx, &emitters);
-        roma_buffer_destroy(ctx, &cdf);
+        roma_upload_destroy(ctx, &emitters);
+        roma_upload_destroy(ctx, &cdf);
         return roma_fail(log, r, "roma_light_effect_set_area_lights: out of memory for %u emitters", count);
     }
-    roma_buffer_destroy(ctx, &e->emitters);
-    roma_buffer_destroy(ctx, &e->cdf);
+    roma_upload_destroy(ctx, &e->emitters);
+    roma_upload_destroy(ctx, &e->cdf);
     e->emitters = emitters;
     e->cdf = cdf;
     e->emitter_count = count;
@@ -163,14 +165,19 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
     if (r != ROMA_SUCCESS)
         return r;
-    roma_buffer *buf = &e->lights[slot];
+    roma_upload *buf = &e->lights[slot];
     uint32_t packed = 0, exact_packed = 0;
     r = roma_lit_record_pack(e->base.ctx, buf, lights, light_count, s.exact_light_count, &packed, &exact_packed);
     if (r != ROMA_SUCCESS)
         return r;
-    roma_light_images_push push = {.lights = buf->address, .bom = info.bom_address,
-                                   .emitters = e->emitter_count ? e->emitters.address : 0,
-                                   .cdf = e->emitter_count ? e->cdf.address : 0,
+    /* The slot's lights, and area lights set since the last record, into device memory. */
+    const VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    roma_upload_record(buf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_upload_record(&e->emitters, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_upload_record(&e->cdf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_light_images_push push = {.lights = buf->device.address, .bom = info.bom_address,
+                                   .emitters = e->emitter_count ? e->emitters.device.address : 0,
+                                   .cdf = e->emitter_count ? e->cdf.device.address : 0,
                                    .config = {im->width, im->height, packed, s.max_steps},
                                    .config2 = {s.seed, e->emitter_count, s.area_samples, s.frame},
                                    .config3 = {s.lights_per_frame, exact_packed, 0, 0},
@@ -196,5 +203,10 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
                                    im->height);
     for (uint32_t part = 1; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, push.part); ++part)
         roma_image_effect_dispatch_more(&e->base, cmd, &push);
+    if (r == ROMA_SUCCESS) {
+        roma_upload_done(buf);
+        roma_upload_done(&e->emitters);
+        roma_upload_done(&e->cdf);
+    }
     return r;
 }

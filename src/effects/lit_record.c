@@ -43,17 +43,16 @@ roma_result roma_lit_record_begin(roma_image_effect *e, const char *name, uint32
     return ROMA_SUCCESS;
 }
 
-roma_result roma_lit_slot_buffer(roma_context *ctx, roma_buffer *buf, VkDeviceSize bytes)
+roma_result roma_lit_slot_buffer(roma_context *ctx, roma_upload *buf, VkDeviceSize bytes)
 {
-    if (buf->size >= bytes)
+    if (buf->device.size >= bytes)
         return ROMA_SUCCESS;
-    roma_buffer_destroy(ctx, buf);
-    return roma_buffer_create(ctx, bytes,
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                              ROMA_MEMORY_UPLOAD, buf);
+    roma_upload_destroy(ctx, buf);
+    return roma_upload_create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                              buf);
 }
 
-roma_result roma_lit_record_pack(roma_context *ctx, roma_buffer *buf, const roma_light *lights, uint32_t light_count,
+roma_result roma_lit_record_pack(roma_context *ctx, roma_upload *buf, const roma_light *lights, uint32_t light_count,
                                  uint32_t exact_count, uint32_t *out_packed, uint32_t *out_exact)
 {
     VkDeviceSize bytes = sizeof(roma_gpu_light) * (VkDeviceSize)(light_count ? light_count : 1);
@@ -61,8 +60,9 @@ roma_result roma_lit_record_pack(roma_context *ctx, roma_buffer *buf, const roma
     if (r != ROMA_SUCCESS)
         return r;
     uint32_t packed = 0, exact = 0;
+    roma_gpu_light *dst = roma_upload_write(buf, bytes);
     for (uint32_t i = 0; i < light_count; ++i) {
-        packed += (uint32_t)roma_light_pack(&lights[i], (roma_gpu_light *)buf->mapped + packed);
+        packed += (uint32_t)roma_light_pack(&lights[i], dst + packed);
         if (i + 1 == exact_count)
             exact = packed;
     }

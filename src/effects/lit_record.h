@@ -7,6 +7,7 @@
 
 #include "effects/image_effect.h"
 #include "roma/light_effect.h"
+#include "vulkan/upload.h"
 
 /* Lights one record takes at most. */
 #define ROMA_LIT_MAX_LIGHTS 65536u
@@ -21,15 +22,17 @@ roma_result roma_lit_record_check(const roma_image_effect *e, const char *name, 
 roma_result roma_lit_record_begin(roma_image_effect *e, const char *name, uint32_t slot, uint32_t frame,
                                   const roma_map *map, roma_map_info *info);
 
-/* Makes buf, a host-visible storage buffer reached by address, hold at least `bytes`: grown
- * (made anew) when smaller; the slot's previous use has completed (the slot rules). */
-roma_result roma_lit_slot_buffer(roma_context *ctx, roma_buffer *buf, VkDeviceSize bytes);
+/* Makes buf, a slot's storage buffer the shaders reach by address and the host writes
+ * (vulkan/upload.h: record its copy before the dispatch), hold at least `bytes`: grown (made
+ * anew) when smaller; the slot's previous use has completed (the slot rules). */
+roma_result roma_lit_slot_buffer(roma_context *ctx, roma_upload *buf, VkDeviceSize bytes);
 
 /* Packs the lights (dropped ones, without intensity or colour, shift the rest) into buf,
- * grown when too small (the slot's previous use has completed: the slot rules).
+ * grown when too small (the slot's previous use has completed: the slot rules); the caller
+ * records buf's upload.
  * exact_count: how many of the first lights are exact (roma_light_settings); out_exact: how
  * many of the packed ones they became (all when exact_count exceeds the list). */
-roma_result roma_lit_record_pack(roma_context *ctx, roma_buffer *buf, const roma_light *lights, uint32_t light_count,
+roma_result roma_lit_record_pack(roma_context *ctx, roma_upload *buf, const roma_light *lights, uint32_t light_count,
                                  uint32_t exact_count, uint32_t *out_packed, uint32_t *out_exact);
 
 #endif /* ROMA_EFFECTS_LIT_RECORD_H */

@@ -240,18 +240,23 @@ roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out)
     roma_result r = roma_buffer_create(map->ctx, 16ull * vertices, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_DEVICE, &out->positions);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(map->ctx, 12ull * triangles, storage, ROMA_MEMORY_UPLOAD, &out->indices);
+        r = roma_buffer_create(map->ctx, 12ull * triangles, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               ROMA_MEMORY_DEVICE_MAPPED, &out->indices);
+    if (r == ROMA_SUCCESS && !out->indices.mapped) /* copied by the build that takes the layout */
+        r = roma_buffer_create(map->ctx, 12ull * triangles, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_UPLOAD,
+                               &out->indices_staging);
     if (r == ROMA_SUCCESS && map->voxelizer)
         r = roma_bom_voxelizer_create(map->ctx, map->res, out->positions.buffer, out->indices.buffer, map->bom.buffer,
                                       map->bom.size, &out->voxelizer);
     if (r != ROMA_SUCCESS) {
         roma_buffer_destroy(map->ctx, &out->positions);
         roma_buffer_destroy(map->ctx, &out->indices);
+        roma_buffer_destroy(map->ctx, &out->indices_staging);
         memset(out, 0, sizeof *out);
         return r;
     }
     /* Scene first, then each live instance: its vertices and its triangles renumbered. */
-    uint32_t *idx = out->indices.mapped;
+    uint32_t *idx = out->indices.mapped ? out->indices.mapped : out->indices_staging.mapped;
     memcpy(idx, map->indices_host, 12ull * map->triangle_count);
     uint32_t v_at = map->vertex_count;
     size_t t_at = 3ull * map->triangle_count;
@@ -286,6 +291,11 @@ void roma_map_instances_record_copies(roma_map *map, VkCommandBuffer cmd, roma_m
     /* The scene's positions carry over; the instances are placed again by the transforms. */
     VkBufferCopy copy = {0, 0, 16ull * map->vertex_count};
     vkCmdCopyBuffer(cmd, map->positions.buffer, layout->positions.buffer, 1, &copy);
+    if (layout->indices_staging.buffer) {
+        const VkBufferCopy indices = {0, 0, layout->indices_staging.size};
+        vkCmdCopyBuffer(cmd, layout->indices_staging.buffer, layout->indices.buffer, 1, &indices);
+        retire(map, &layout->indices_staging, NULL); /* kept until the builds that read it are done */
+    }
     retire(map, &map->positions, NULL);
     retire(map, &map->indices, NULL);
     if (map->voxelizer)

@@ -231,7 +231,13 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                        storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                        ROMA_MEMORY_DEVICE, &map->positions);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage, ROMA_MEMORY_UPLOAD, &map->indices);
+        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               ROMA_MEMORY_DEVICE_MAPPED, &map->indices);
+    if (r == ROMA_SUCCESS && !map->indices.mapped) { /* copied by the first build */
+        r = roma_buffer_create(ctx, 12ull * sv.triangle_count, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_UPLOAD,
+                               &map->indices_staging);
+        map->indices_pending = 1;
+    }
     /* UNIFORM_TEXEL: the tracing passes read the BOM through bom_view (faster than storage
      * loads on CPU devices); it is no larger than the maps, so within the same limit. */
     if (r == ROMA_SUCCESS)
@@ -304,7 +310,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                                      roma_trace_binding_types[ROMA_TRACE_BINDING_PARAMS], map->params.buffer);
     }
     if (r == ROMA_SUCCESS) {
-        memcpy(map->indices.mapped, indices, 12ull * sv.triangle_count);
+        memcpy(map->indices.mapped ? map->indices.mapped : map->indices_staging.mapped, indices,
+               12ull * sv.triangle_count);
         r = upload_initial_positions(map, sv.positions);
     }
     if (r != ROMA_SUCCESS) {
@@ -349,9 +356,12 @@ void roma_map_destroy(roma_map *map)
     roma_buffer_destroy(ctx, &map->maps);
     roma_buffer_destroy(ctx, &map->bom);
     roma_buffer_destroy(ctx, &map->indices);
+    roma_buffer_destroy(ctx, &map->indices_staging);
     roma_buffer_destroy(ctx, &map->positions);
     roma_buffer_destroy(ctx, &map->ray_staging);
     roma_buffer_destroy(ctx, &map->hit_staging);
+    roma_buffer_destroy(ctx, &map->ray_device);
+    roma_buffer_destroy(ctx, &map->hit_device);
     free(map->indices_host);
     free(map->frames);
     free(map);
@@ -565,6 +575,10 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     record_frame_params(map, cmd);
+    if (map->indices_pending) { /* the scene's indices, until a build that copies them is recorded */
+        const VkBufferCopy copy = {0, 0, map->indices_staging.size};
+        vkCmdCopyBuffer(cmd, map->indices_staging.buffer, map->indices.buffer, 1, &copy);
+    }
     roma_map_instances_record_copies(map, cmd, &layout);
     if (layout.changed) /* the scene's positions copied into the new buffer before this frame's */
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -598,6 +612,7 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
     if (steps & ROMA_MAP_STEP_ROTATE)
         map->built = 1;
+    map->indices_pending = 0;
     return ROMA_SUCCESS;
 }
 
@@ -713,7 +728,8 @@ roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma
     return ROMA_SUCCESS;
 }
 
-/* Host-visible staging that grows to the largest batch seen. */
+/* A buffer of roma_map_trace's (staging, or the device buffers it is copied into) that grows
+ * to the largest batch seen. */
 static roma_result ensure_staging(roma_map *map, roma_buffer *b, VkDeviceSize size, roma_memory_kind kind)
 {
     if (b->buffer && b->size >= size)
@@ -721,30 +737,35 @@ static roma_result ensure_staging(roma_map *map, roma_buffer *b, VkDeviceSize si
     roma_buffer_destroy(map->ctx, b);
     return roma_buffer_create(map->ctx, size,
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                  VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
+                                  VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               kind, b);
 }
 
-/* Texel views of the staging buffers in the staged set (rays: two RGBA32F texels each,
- * hits: one RG32UI texel each). No recorded use is pending: roma_map_trace waits for
- * its submissions. */
-static roma_result bind_staging(roma_map *map)
+/* Texel views of the buffers the staged trace reads and writes in the staged set (rays: two
+ * RGBA32F texels each, hits: one RG32UI texel each). No recorded use is pending:
+ * roma_map_trace waits for its submissions. */
+static roma_result bind_staging(roma_map *map, VkBuffer rays, VkBuffer hits)
 {
     roma_context *ctx = map->ctx;
+    if (map->staged_rays == rays && map->staged_hits == hits)
+        return ROMA_SUCCESS;
+    map->staged_rays = map->staged_hits = VK_NULL_HANDLE;
     for (int i = 0; i < 2; ++i)
         if (map->staging_views[i]) {
             vkDestroyBufferView(ctx->device, map->staging_views[i], ctx->allocator);
             map->staging_views[i] = VK_NULL_HANDLE;
         }
-    roma_result r = roma_buffer_view_create(ctx, map->ray_staging.buffer, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                            &map->staging_views[0]);
+    roma_result r = roma_buffer_view_create(ctx, rays, VK_FORMAT_R32G32B32A32_SFLOAT, &map->staging_views[0]);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_view_create(ctx, map->hit_staging.buffer, VK_FORMAT_R32G32_UINT, &map->staging_views[1]);
+        r = roma_buffer_view_create(ctx, hits, VK_FORMAT_R32G32_UINT, &map->staging_views[1]);
     if (r == ROMA_SUCCESS) {
         roma_descriptor_write_view(ctx, &map->staged_set, ROMA_TRACE_BINDING_RAYS,
                                    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, map->staging_views[0]);
         roma_descriptor_write_view(ctx, &map->staged_set, ROMA_TRACE_BINDING_HITS,
                                    VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, map->staging_views[1]);
+        map->staged_rays = rays;
+        map->staged_hits = hits;
     }
     return r;
 }
@@ -791,18 +812,32 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map_trace: %u rays, at most %u in one call on this device (maxTexelBufferElements / 2)",
                          ray_count, max_texels / 2);
-    const VkBuffer old_rays = map->ray_staging.buffer, old_hits = map->hit_staging.buffer;
-    r = ensure_staging(map, &map->ray_staging, sizeof(roma_ray) * (VkDeviceSize)ray_count, ROMA_MEMORY_UPLOAD);
+    const VkDeviceSize ray_bytes = sizeof(roma_ray) * (VkDeviceSize)ray_count;
+    const VkDeviceSize hit_bytes = sizeof(roma_hit) * (VkDeviceSize)ray_count;
+    r = ensure_staging(map, &map->ray_staging, ray_bytes, ROMA_MEMORY_UPLOAD);
     if (r == ROMA_SUCCESS)
-        r = ensure_staging(map, &map->hit_staging, sizeof(roma_hit) * (VkDeviceSize)ray_count, ROMA_MEMORY_READBACK);
-    /* Grown: the staged set names the new buffers (no recorded use is pending: this
-     * call and the last one both waited for their submissions). */
-    if (r == ROMA_SUCCESS && (map->ray_staging.buffer != old_rays || map->hit_staging.buffer != old_hits))
-        r = bind_staging(map);
+        r = ensure_staging(map, &map->hit_staging, hit_bytes, ROMA_MEMORY_READBACK);
+    /* The trace reads device-local memory: the staging itself where it is (CPU and
+     * integrated devices), else device buffers it is copied into and out of. */
+    const VkMemoryPropertyFlags local = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    const int copied = r == ROMA_SUCCESS && (map->ctx->force_staging || !((map->ray_staging.memory_flags & local) &&
+                                                                          (map->hit_staging.memory_flags & local)));
+    if (copied)
+        r = ensure_staging(map, &map->ray_device, ray_bytes, ROMA_MEMORY_DEVICE);
+    if (copied && r == ROMA_SUCCESS)
+        r = ensure_staging(map, &map->hit_device, hit_bytes, ROMA_MEMORY_DEVICE);
+    /* The staged set names the buffers of this call (no recorded use is pending: this call and
+     * the last one both waited for their submissions). */
+    if (r == ROMA_SUCCESS)
+        r = copied ? bind_staging(map, map->ray_device.buffer, map->hit_device.buffer)
+                   : bind_staging(map, map->ray_staging.buffer, map->hit_staging.buffer);
     if (r != ROMA_SUCCESS) {
-        /* Keep nothing this call grew: the staging buffers are only a cache. */
+        /* Keep nothing this call grew: these buffers are only a cache. */
         roma_buffer_destroy(map->ctx, &map->ray_staging);
         roma_buffer_destroy(map->ctx, &map->hit_staging);
+        roma_buffer_destroy(map->ctx, &map->ray_device);
+        roma_buffer_destroy(map->ctx, &map->hit_device);
+        map->staged_rays = map->staged_hits = VK_NULL_HANDLE;
         return r;
     }
     memcpy(map->ray_staging.mapped, rays, sizeof(roma_ray) * (size_t)ray_count);
@@ -811,8 +846,22 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
     if (r != ROMA_SUCCESS)
         return r;
     roma_gpu_timer_reset(timer, cmd);
+    if (copied) {
+        const VkBufferCopy in = {0, 0, ray_bytes};
+        vkCmdCopyBuffer(cmd, map->ray_staging.buffer, map->ray_device.buffer, 1, &in);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
     r = roma_map_record_trace_staged(map, cmd, mode, max_steps, ray_count, timer);
-    compute_barrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    if (copied) {
+        compute_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        const VkBufferCopy out = {0, 0, hit_bytes};
+        vkCmdCopyBuffer(cmd, map->hit_device.buffer, map->hit_staging.buffer, 1, &out);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    } else {
+        compute_barrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    }
     roma_result s = roma_submit_one_shot(map->ctx, cmd);
     if (r == ROMA_SUCCESS)
         r = s;

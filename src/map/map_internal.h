@@ -45,7 +45,10 @@ struct roma_map {
     uint32_t *indices_host;
     float scene_min[3], scene_max[3]; /* bounds of the last host positions */
     roma_buffer positions;          /* float4 per vertex (device-local; written by copies and gathers) */
-    roma_buffer indices;            /* uint3 per triangle (host-visible, written once) */
+    /* uint3 per triangle, read by every build: device-local, written once by the host where it
+     * is mapped, else copied from indices_staging by the first build (vulkan/upload.h's rule). */
+    roma_buffer indices, indices_staging;
+    int indices_pending; /* no build that copied indices_staging has been recorded whole yet */
     roma_buffer position_staging[ROMA_MAX_FRAMES_IN_FLIGHT]; /* per slot, made on first use */
     roma_buffer bom, maps;          /* device-local words */
     roma_buffer params;             /* roma_grid_params + map_count roma_map_frame (device-local,
@@ -73,6 +76,10 @@ struct roma_map {
     float volume_min[3], volume_max[3];
     int positions_moved, transforms_dirty;
     roma_buffer ray_staging, hit_staging; /* roma_map_trace only */
+    /* Where the staging is not device-local, the rays and hits the trace reads and writes (the
+     * staging is copied in and out around it); staged_set names whichever the trace uses. */
+    roma_buffer ray_device, hit_device;
+    VkBuffer staged_rays, staged_hits;
     roma_buffer cells;              /* occupied-cell list of the scatter rotation (device) */
     uint32_t cell_capacity;
     struct roma_bom_raster *raster;         /* raster modes only */
@@ -113,7 +120,7 @@ roma_result roma_map_record_trace_staged(roma_map *map, VkCommandBuffer cmd, rom
  * compute, after the barrier that follows the copies. */
 typedef struct roma_map_layout {
     int changed;
-    roma_buffer positions, indices;
+    roma_buffer positions, indices, indices_staging; /* staging: where indices is not mapped */
     struct roma_bom_voxelizer *voxelizer;
     uint32_t total_vertices, total_triangles;
 } roma_map_layout;

@@ -378,6 +378,7 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         r = create_submit_objects(ctx);
     }
     if (r == ROMA_SUCCESS) {
+        ctx->force_staging = env_flag("ROMA_FORCE_STAGING");
         ctx->loop_plan = loop_plan(ctx);
         r = roma_loop_guard_create(ctx);
     }

@@ -43,6 +43,9 @@ struct roma_context {
      * where the device has no budget. */
     uint32_t loop_plan;
     struct roma_loop_guard *loop_guard; /* ROMA_LOOP_GUARD builds (loop_guard.h) */
+    /* Host data reaches the shaders through staging copies even where device memory is
+     * host-visible, as on a discrete GPU (ROMA_FORCE_STAGING=1: tests those paths anywhere). */
+    int force_staging;
     /* For the context's own blocking submissions (uploads, readbacks, self-test). */
     VkCommandPool command_pool;
     VkFence fence;
@@ -86,12 +89,16 @@ typedef struct roma_buffer {
     void *mapped; /* non-NULL for host-visible buffers */
     VkDeviceAddress address; /* non-zero when created with SHADER_DEVICE_ADDRESS usage */
     VkDeviceSize allocated;  /* bytes counted against the context's memory use */
+    VkMemoryPropertyFlags memory_flags; /* of the memory type it was given */
 } roma_buffer;
 
 typedef enum roma_memory_kind {
     ROMA_MEMORY_DEVICE = 0, /* device-local, not mapped */
-    ROMA_MEMORY_UPLOAD,     /* host-visible, coherent, mapped */
-    ROMA_MEMORY_READBACK    /* host-visible, cached if possible, mapped */
+    ROMA_MEMORY_UPLOAD,     /* host-visible, coherent, mapped: staging */
+    ROMA_MEMORY_READBACK,   /* host-visible, cached if possible, mapped */
+    /* Device-local; also host-visible, coherent and mapped where the device has such memory
+     * (CPU and integrated devices, GPUs with a resizable BAR), else not mapped. */
+    ROMA_MEMORY_DEVICE_MAPPED
 } roma_memory_kind;
 
 roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,

@@ -97,8 +97,16 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
         want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
         prefer = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
         break;
+    case ROMA_MEMORY_DEVICE_MAPPED:
+        want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+               VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        if (ctx->force_staging)
+            kind = ROMA_MEMORY_DEVICE, want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+        break;
     }
     uint32_t type = find_memory_type(ctx, req.memoryTypeBits, want, prefer);
+    if (type == UINT32_MAX && kind == ROMA_MEMORY_DEVICE_MAPPED)
+        type = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
     if (type == UINT32_MAX && kind == ROMA_MEMORY_DEVICE)
         type = find_memory_type(ctx, req.memoryTypeBits, 0, 0);
     if (type == UINT32_MAX) {
@@ -125,7 +133,9 @@ roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsa
     VkResult vr = vkAllocateMemory(ctx->device, &alloc, ctx->allocator, &out->memory);
     if (vr == VK_SUCCESS)
         vr = vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0);
-    if (vr == VK_SUCCESS && kind != ROMA_MEMORY_DEVICE)
+    out->memory_flags = ctx->memory_properties.memoryTypes[type].propertyFlags;
+    if (vr == VK_SUCCESS && kind != ROMA_MEMORY_DEVICE &&
+        (out->memory_flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT))
         vr = vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped);
     if (vr != VK_SUCCESS) {
         roma_buffer_destroy(ctx, out);

@@ -97,7 +97,7 @@ static roma_result create_gi(renderer *R, const roma_scene *scene)
     /* Hits need their surface (the grid) for every light but point and spot lights
      * through RSMs, which hold the surfaces they light. */
     int directional = 0;
-    const roma_gpu_light *lights = R->lights.lights.mapped;
+    const roma_gpu_light *lights = R->lights.host_lights;
     for (uint32_t i = 0; i < R->lights.light_count; ++i)
         directional |= (uint32_t)lights[i].position_type[3] == ROMA_GPU_LIGHT_DIRECTIONAL;
     const int surfaces = R->lights.emitter_count || directional || R->desc->gi_punctual_rays;
@@ -190,7 +190,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_GI))
         r = create_gi(R, scene);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(&R->plan, ROMA_PASS_RSM)) {
-        r = roma_rsm_views_plan(R->lights.lights.mapped, R->lights.light_count, R->rsm_size, R->near_plane,
+        r = roma_rsm_views_plan(R->lights.host_lights, R->lights.light_count, R->rsm_size, R->near_plane,
                                 &ctx->logger, &R->rsm_views);
         for (uint32_t v = 0; v < R->rsm_views.count && r == ROMA_SUCCESS; ++v) {
             r = roma_gbuffer_create_sharing(R->gbuffer, R->rsm_size, R->rsm_size, &R->rsm[v]);

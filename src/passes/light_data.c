@@ -6,17 +6,16 @@
 
 #include "roma_shared.h"
 #include "scene/emitters.h"
+#include "vulkan/upload.h"
 
 #define PI_F 3.14159265358979323846f
 
+/* Read by the passes at every light sample: device-local memory (vulkan/upload.h). */
 static roma_result upload(roma_context *ctx, const void *data, size_t size, roma_buffer *out)
 {
-    roma_result r = roma_buffer_create(ctx, size,
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                                       ROMA_MEMORY_UPLOAD, out);
-    if (r == ROMA_SUCCESS)
-        memcpy(out->mapped, data, size);
-    return r;
+    return roma_buffer_create_filled(ctx, size,
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                     data, out);
 }
 
 int roma_light_valid(const roma_light *l)
@@ -115,9 +114,9 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, c
         out->position_count = many_count;
     }
 done:
+    out->host_lights = lights;
     if (r != ROMA_SUCCESS)
-        roma_light_data_destroy(ctx, out);
-    free(lights);
+        roma_light_data_destroy(ctx, out); /* frees lights too */
     free(emitters);
     free(positions);
     roma_emitter_table_free(&table);
@@ -130,6 +129,7 @@ void roma_light_data_destroy(roma_context *ctx, roma_light_data *data)
     roma_buffer_destroy(ctx, &data->emitters);
     roma_buffer_destroy(ctx, &data->cdf);
     roma_buffer_destroy(ctx, &data->positions);
+    free(data->host_lights);
     memset(data, 0, sizeof *data);
 }
 

@@ -10,7 +10,8 @@
 #include "vulkan/vk_internal.h"
 
 typedef struct roma_light_data {
-    roma_buffer lights, emitters, cdf, positions; /* absent (zeroed) when their count is 0 */
+    roma_buffer lights, emitters, cdf, positions; /* device-local; absent (zeroed) when their count is 0 */
+    roma_gpu_light *host_lights; /* the packed lights, for the host's planning (RSM views) */
     uint32_t light_count, emitter_count, position_count;
 } roma_light_data;
 

@@ -1,6 +1,7 @@
 /* Scene geometry on the GPU in the layout the raster passes pull from by
  * buffer address: float4 positions and normals per vertex, uint3 indices and
- * float4 albedo per triangle (host-visible, so animation can rewrite them). */
+ * float4 albedo per triangle, in device-local memory, written once (vulkan/upload.h: on a
+ * device whose device memory the host cannot map, by one submission that creation waits for). */
 #ifndef ROMA_PASSES_SCENE_BUFFERS_H
 #define ROMA_PASSES_SCENE_BUFFERS_H
 

@@ -52,3 +52,28 @@ void roma_upload_done(roma_upload *u)
 {
     u->pending = 0;
 }
+
+roma_result roma_buffer_create_filled(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                      const void *data, roma_buffer *out)
+{
+    roma_upload u;
+    roma_result r = roma_upload_create(ctx, size, usage, &u);
+    if (r != ROMA_SUCCESS) {
+        memset(out, 0, sizeof *out);
+        return r;
+    }
+    memcpy(roma_upload_write(&u, size), data, (size_t)size);
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    if (u.pending) {
+        r = roma_begin_one_shot(ctx, &cmd);
+        if (r == ROMA_SUCCESS) {
+            roma_upload_record(&u, cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+            r = roma_submit_one_shot(ctx, cmd);
+        }
+    }
+    roma_buffer_destroy(ctx, &u.staging);
+    *out = u.device;
+    if (r != ROMA_SUCCESS)
+        roma_buffer_destroy(ctx, out);
+    return r;
+}

@@ -31,4 +31,11 @@ void roma_upload_record(const roma_upload *u, VkCommandBuffer cmd, VkPipelineSta
 /* The record that copied it succeeded: nothing waits. */
 void roma_upload_done(roma_upload *u);
 
+/* Set-up data: a device-local buffer holding `size` bytes of data when this returns, written
+ * directly where it is mapped, else copied from a staging buffer by one submission to the
+ * context's queue that this waits for (a set-up call's, not a frame's). usage: the buffer's
+ * (TRANSFER_DST added). On failure *out is zeroed. */
+roma_result roma_buffer_create_filled(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                      const void *data, roma_buffer *out);
+
 #endif /* ROMA_VULKAN_UPLOAD_H */

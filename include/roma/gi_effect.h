@@ -132,7 +132,10 @@ ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
  * triangle's material albedo, the vertex normals) and its emissive triangles as area
  * lights, copied to the GPU. Where the triangles are comes from the map at each record.
  * Replaces the previous scene (NULL removes it); a failure keeps it. Call it between
- * frames, when no submitted work of this effect is still running.
+ * frames, when no submitted work of this effect is still running. The data goes to
+ * device-local memory: written directly where the host can map it (CPU and integrated
+ * devices, GPUs with a resizable BAR), else by a copy submitted to the context's queue and
+ * waited for, as roma_map_create's upload.
  *
  * @param effect  the effect.
  * @param scene   the scene, or NULL; nothing of it is kept.
@@ -140,7 +143,8 @@ ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
  *         for a scene without triangles; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure
  *         code (roma_result).
  * @par Threads
- * The context's thread; the scene may be read by other threads meanwhile. */
+ * The context's thread (no other thread may submit to its queue meanwhile); the scene may be
+ * read by other threads meanwhile. */
 ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma_scene *scene);
 
 /** Records the GI pass into cmd: when the map's geometry changed since the grid was built

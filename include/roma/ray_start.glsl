@@ -16,13 +16,14 @@
 //         h = roma_trace_snapped(origin, dir, tmin, tmax, false);
 //
 // Include after roma/trace.glsl or roma/trace_descriptors.glsl (the grid comes through
-// roma_fetch_grid()). The BOM's words come by address, or through your own
+// roma_fetch_grid(level)). The BOM's words come by address, or through your own
 //     uint roma_fetch_bom_word(uint index);
 // defined before including this file with ROMA_RAY_START_FETCH defined (then any non-zero
 // value given to roma_use_ray_start turns the walk on), for example a texelFetch from a
-// usamplerBuffer bound to roma_map_info.bom_view (on CPU devices the fastest). BOM layout: RES x RES texels of
-// RES / 32 words, texel (x, y) at word (y * RES + x) * (RES / 32); cell z is bit z % 32 of
-// the texel's word z / 32; cell (x, y, z) covers grid.origin + [x, x+1) * cell size, ...
+// usamplerBuffer bound to roma_map_info.bom_view (on CPU devices the fastest). BOM layout: one
+// BOM per cascade level, level after level, each RES x RES texels of RES / 32 words, texel
+// (x, y) at word (y * RES + x) * (RES / 32); cell z is bit z % 32 of the texel's word z / 32;
+// cell (x, y, z) covers grid.origin + [x, x+1) * cell size, ...
 // (roma_grid_params, this frame's placement). Valid after the build that wrote it, like
 // the maps.
 #ifndef ROMA_RAY_START_GLSL
@@ -43,14 +44,14 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 #endif
 
 uvec2 roma_start_bom_ = uvec2(0u);
-roma_grid_params roma_start_grid_;
+roma_grid_params roma_start_grid_; // the finest level's
 
 // bom: the BOM's address (roma_map_info.bom_address; with ROMA_RAY_START_FETCH, any
 // non-zero value); 0 turns the walk off.
 void roma_use_ray_start(uvec2 bom)
 {
     roma_start_bom_ = bom;
-    roma_start_grid_ = roma_fetch_grid();
+    roma_start_grid_ = roma_fetch_grid(0u);
 }
 
 #ifndef ROMA_RAY_START_FETCH
@@ -60,15 +61,19 @@ uint roma_fetch_bom_word(uint index) { return RomaBomWords(roma_start_bom_).w[in
 // Distance along normalize(dir) at which origin + normalize(dir) * [0, tmax] enters its
 // first occupied BOM cell, or -1 when it meets none within max_cells cells (the exact
 // voxel traversal of the BOM, Amanatides-Woo: the same voxels as ROMA without snapping,
-// rotation or bounded steps).
+// rotation or bounded steps), in the BOM of the cascade level that holds the origin, up to
+// that level's edge.
 float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
 {
     if (roma_start_bom_ == uvec2(0u) || !(tmax > 0.0))
         return -1.0;
-    float inv_cell = roma_start_grid_.inv_cell.x;
-    int res = int(roma_start_grid_.dims.x);
-    uint per_texel = roma_start_grid_.dims.y;
-    vec3 g = (origin - roma_start_grid_.origin.xyz) * inv_cell;
+    uint level = roma_level_of(origin);
+    roma_grid_params grid = roma_fetch_grid(level);
+    float inv_cell = grid.inv_cell.x;
+    int res = int(grid.dims.x);
+    uint per_texel = grid.dims.y;
+    uint bom_base = level * uint(res) * uint(res) * per_texel; // the levels' BOMs, one after the other
+    vec3 g = (origin - grid.origin.xyz) * inv_cell;
     vec3 d = normalize(dir);
     float tg = tmax * inv_cell; // grid units
     ivec3 cell = ivec3(floor(g));
@@ -94,7 +99,8 @@ float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
             break; // out of the grid for good: it is convex
         entered = entered || inside;
         if (inside) {
-            uint word = roma_fetch_bom_word((uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
+            uint word =
+                roma_fetch_bom_word(bom_base + (uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
             if ((word & (1u << uint(cell.z & 31))) != 0u)
                 return t / inv_cell;
         }

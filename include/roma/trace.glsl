@@ -11,9 +11,12 @@
 //    include roma/trace_descriptors.glsl instead, which binds the maps as a uniform
 //    texel buffer and the parameters as a uniform buffer (roma_map_info names both);
 //  - your own: #define ROMA_TRACE_FETCH and define, before including this file,
-//        uint roma_fetch_word(uint index);        // word index of the maps buffer
-//        roma_grid_params roma_fetch_grid();
-//        roma_map_frame roma_fetch_frame(uint k);
+//        uint roma_fetch_word(uint index);            // word index of the maps buffer
+//        roma_grid_params roma_fetch_grid(uint level); // a cascade level's grid (0: finest)
+//        roma_map_frame roma_fetch_frame(uint index); // frame index in the parameters
+//    (a level's map k is frame grid.level.z + k; its words start at grid.level.w).
+// A map of several cascade levels is traced across them: a ray starts in the finest level
+// whose grid cube holds its origin and goes on in the next one where it leaves that cube.
 // Conventions are those of include/roma/map.h: t is a world-space distance
 // along normalize(dir); closest-hit t is the entry of the first occupied cell.
 // The C mirror in src/trace/cpu_mirror.c evaluates the same float expressions
@@ -41,7 +44,7 @@
 #extension GL_EXT_buffer_reference_uvec2 : enable
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaWords { uint w[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaParams {
-    roma_grid_params grid;
+    roma_grid_params grids[ROMA_MAX_LEVELS];
     roma_map_frame maps[];
 };
 RomaParams roma_params_ref_;
@@ -54,8 +57,8 @@ void roma_use_addresses(uvec2 params_address, uvec2 maps_address)
     roma_maps_ref_ = RomaWords(maps_address);
 }
 uint roma_fetch_word(uint index) { return roma_maps_ref_.w[index]; }
-roma_grid_params roma_fetch_grid() { return roma_params_ref_.grid; }
-roma_map_frame roma_fetch_frame(uint k) { return roma_params_ref_.maps[k]; }
+roma_grid_params roma_fetch_grid(uint level) { return roma_params_ref_.grids[level]; }
+roma_map_frame roma_fetch_frame(uint index) { return roma_params_ref_.maps[index]; }
 #endif
 
 struct roma_ray {
@@ -335,10 +338,10 @@ bool roma_trace_begin(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, 
     return valid;
 }
 
-// Snapped query: the ray follows the candidate of its stratum (or its opposite).
-roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
+// Snapped query in one cascade level (grid): the ray follows the candidate of its stratum
+// (or its opposite).
+roma_hit roma_trace_snapped_level(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
 {
-    roma_grid_params grid = roma_fetch_grid();
     uint res = grid.dims.x, words = grid.dims.y;
     vec3 dn;
     uint k;
@@ -346,7 +349,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     roma_hit hit;
     if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
-    roma_map_frame f = roma_fetch_frame(k);
+    roma_map_frame f = roma_fetch_frame(grid.level.z + k);
     vec3 m = roma_to_map(grid, f, origin);
     // Finite first (an origin ~1e38 away overflows): the range test must not meet a NaN.
     if (!roma_all_finite(m) || !(m.x >= 0.0 && m.x < float(res) && m.y >= 0.0 && m.y < float(res)))
@@ -357,7 +360,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     int c_lo, c_hi;
     if (!roma_cell_range(lo, hi, res, c_lo, c_hi))
         return hit;
-    uint base = roma_texel_base(k, uint(m.x), uint(m.y), res, words);
+    uint base = grid.level.w + roma_texel_base(k, uint(m.x), uint(m.y), res, words);
     int c = roma_first_cell(base, c_lo, c_hi, !folded);
     if (c < 0)
         return hit;
@@ -375,13 +378,13 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
 uint roma_unsnapped_steps = 0u;
 bool roma_unsnapped_gave_up = false;
 
-// Un-snapped query: the exact direction walked through the selected map's texels
-// (2D DDA in the map's xy plane), at most max_steps texels.
-roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest, uint max_steps)
+// Un-snapped query in one cascade level (grid): the exact direction walked through the
+// selected map's texels (2D DDA in the map's xy plane), at most max_steps texels.
+roma_hit roma_trace_unsnapped_level(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax,
+                                    bool closest, uint max_steps)
 {
     roma_unsnapped_steps = 0u;
     roma_unsnapped_gave_up = false;
-    roma_grid_params grid = roma_fetch_grid();
     uint res = grid.dims.x, words = grid.dims.y;
     vec3 dn;
     uint k;
@@ -389,7 +392,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     roma_hit hit;
     if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
         return hit;
-    roma_map_frame f = roma_fetch_frame(k);
+    roma_map_frame f = roma_fetch_frame(grid.level.z + k);
     precise vec3 dm_raw = vec3(
         (f.to_map_0.x * dn.x + f.to_map_0.y * dn.y) + f.to_map_0.z * dn.z,
         (f.to_map_1.x * dn.x + f.to_map_1.y * dn.y) + f.to_map_1.z * dn.z,
@@ -461,7 +464,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
         // The cell the ray leaves the column in; the cells found past it are ahead.
         int exit_cell = z_exit < 0.0 ? -1 : z_exit >= fres ? int(res) : int(floor(min(z_exit, fres - 0.5)));
         bool unseen = back > 0.0 && (upward ? za < 0.0 : za >= fres);
-        uint base = roma_texel_base(k, uint(ix), uint(iy), res, words);
+        uint base = grid.level.w + roma_texel_base(k, uint(ix), uint(iy), res, words);
         int c = -1, c_lo, c_hi;
         uint word = 0u;
         if (roma_cell_range(min(za, zb), max(za, zb), res, c_lo, c_hi))
@@ -498,11 +501,113 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     return hit;
 }
 
+// The finest cascade level whose grid cube holds p; the coarsest when none does (a ray from
+// outside every level is traced in the coarsest, as a single grid traces it).
+uint roma_level_of(vec3 p)
+{
+    uint count = max(roma_fetch_grid(0u).level.y, 1u);
+    for (uint l = 0u; l + 1u < count; ++l) {
+        ROMA_LOOP_TICK();
+        roma_grid_params g = roma_fetch_grid(l);
+        vec3 lo = g.origin.xyz, hi = lo + vec3(float(g.dims.x) * g.origin.w);
+        if (all(greaterThanEqual(p, lo)) && all(lessThan(p, hi)))
+            return l;
+    }
+    return count - 1u;
+}
+
+// Distance along the unit direction dn at which origin + dn * t leaves level grid's cube
+// (+INF along no axis it moves on). The C mirror evaluates the same expressions.
+float roma_level_exit(roma_grid_params grid, vec3 origin, vec3 dn)
+{
+    precise vec3 lo = grid.origin.xyz - origin;
+    precise vec3 hi = lo + vec3(float(grid.dims.x) * grid.origin.w);
+    float t = 1.0 / 0.0;
+    for (int a = 0; a < 3; ++a) {
+        ROMA_LOOP_TICK();
+        float ta = dn[a] > 0.0 ? roma_div(hi[a], dn[a]) : dn[a] < 0.0 ? roma_div(lo[a], dn[a]) : 1.0 / 0.0;
+        t = min(t, ta);
+    }
+    return t;
+}
+
+// The parts of a ray that cascade levels trace: from the level that holds the origin, each
+// level over [t0, t1], t1 where the ray leaves its cube (tmax in the coarsest), t0 where the
+// last level's part ended (tmin in the first). One level: [tmin, tmax] in it.
+struct roma_level_walk {
+    uint level, count;
+    bool last, unit;
+    float t0, t1;
+    vec3 dn;
+    roma_grid_params grid;
+};
+
+roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float tmax)
+{
+    roma_level_walk w;
+    w.level = roma_level_of(origin);
+    w.grid = roma_fetch_grid(w.level);
+    w.count = max(w.grid.level.y, 1u);
+    w.t0 = tmin;
+    w.last = w.level + 1u >= w.count;
+    w.dn = vec3(0.0);
+    w.unit = !w.last && roma_unit_direction(dir, w.dn); // only the levels' exits need it
+    w.t1 = w.unit ? min(roma_level_exit(w.grid, origin, w.dn), tmax) : tmax;
+    return w;
+}
+
+// The next level's part; false when the ray ended (a hit, the coarsest level, tmax reached).
+bool roma_level_walk_next(inout roma_level_walk w, vec3 origin, float tmax, roma_hit h)
+{
+    if (w.last || (h.info & ROMA_HIT_FLAG) != 0u || !(w.t1 < tmax))
+        return false;
+    w.t0 = max(w.t0, w.t1);
+    w.level += 1u;
+    w.grid = roma_fetch_grid(w.level);
+    w.last = w.level + 1u >= w.count;
+    w.t1 = w.last ? tmax : min(roma_level_exit(w.grid, origin, w.dn), tmax);
+    return true;
+}
+
+// Snapped query across the cascade levels (roma_trace_snapped_level in each).
+roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
+{
+    roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax);
+    roma_hit h;
+    do {
+        ROMA_LOOP_TICK();
+        h = roma_trace_snapped_level(w.grid, origin, dir, w.t0, w.t1, closest);
+        h.info |= w.level << ROMA_HIT_LEVEL_SHIFT;
+    } while (roma_level_walk_next(w, origin, tmax, h));
+    return h;
+}
+
+// Un-snapped query across the cascade levels, at most max_steps texels in each; a level
+// whose walk gave up ends the query (roma_unsnapped_gave_up).
+roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest, uint max_steps)
+{
+    roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax);
+    roma_hit h;
+    do {
+        ROMA_LOOP_TICK();
+        h = roma_trace_unsnapped_level(w.grid, origin, dir, w.t0, w.t1, closest, max_steps);
+        h.info |= w.level << ROMA_HIT_LEVEL_SHIFT;
+    } while (!roma_unsnapped_gave_up && roma_level_walk_next(w, origin, tmax, h));
+    return h;
+}
+
+// The map frame a hit or miss of the trace functions used (its level's map).
+roma_map_frame roma_hit_frame(roma_hit h)
+{
+    return roma_fetch_frame(roma_fetch_grid(ROMA_HIT_LEVEL(h.info)).level.z + ROMA_HIT_MAP(h.info));
+}
+
 // Origin offset along the surface normal by `cells` trace cells (sqrt(3) BOM cells
-// each, the longest edge of a rotated cell); the paper's default is 1.5.
+// each, the longest edge of a rotated cell) of the level that holds p; the paper's default
+// is 1.5.
 vec3 roma_offset_origin(vec3 p, vec3 n, float cells)
 {
-    return p + n * (cells * 1.7320508 * roma_fetch_grid().origin.w);
+    return p + n * (cells * 1.7320508 * roma_fetch_grid(roma_level_of(p)).origin.w);
 }
 
 #endif // ROMA_TRACE_GLSL

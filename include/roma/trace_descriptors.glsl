@@ -19,14 +19,14 @@
 
 layout(set = ROMA_TRACE_SET, binding = ROMA_TRACE_BINDING_MAPS) uniform usamplerBuffer roma_trace_maps;
 layout(std140, set = ROMA_TRACE_SET, binding = ROMA_TRACE_BINDING_PARAMS) uniform RomaTraceParams {
-    roma_grid_params grid;
+    roma_grid_params grids[ROMA_MAX_LEVELS];
     roma_map_frame frames[ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
 } roma_trace_params;
 
 #define ROMA_TRACE_FETCH
 uint roma_fetch_word(uint index) { return texelFetch(roma_trace_maps, int(index)).x; }
-roma_grid_params roma_fetch_grid() { return roma_trace_params.grid; }
-roma_map_frame roma_fetch_frame(uint k) { return roma_trace_params.frames[k]; }
+roma_grid_params roma_fetch_grid(uint level) { return roma_trace_params.grids[level]; }
+roma_map_frame roma_fetch_frame(uint index) { return roma_trace_params.frames[index]; }
 
 #include "roma/trace.glsl"
 

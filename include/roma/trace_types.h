@@ -3,7 +3,8 @@
  *
  * Included from C as "roma/trace_types.h" (roma/map.h does) and from GLSL by
  * roma/trace.glsl. It holds only what an engine's shaders need to trace: the layout of
- * a map's parameter buffer (roma_grid_params, then roma_map_frame per map), the limits,
+ * a map's parameter buffer (a roma_grid_params per cascade level, then roma_map_frame per
+ * map of every level), the limits,
  * the bindings of the descriptor-based trace set and the bits of roma_hit.info.
  * libroma's own push-constant layouts are not here. Declarations only: no object, no
  * thread rule. */
@@ -43,13 +44,21 @@
 #define ROMA_MAX_WORDS (ROMA_MAX_RESOLUTION / 32)
 /** Largest A (roma_map_desc.angular): at most 16 x 16 maps. */
 #define ROMA_MAX_ANGULAR 16
+/** Most cascade levels of a map (roma_map_desc.cascades); levels x A x A maps are at most
+ * ROMA_MAX_ANGULAR^2. */
+#define ROMA_MAX_LEVELS 8
 
-/** Placement of the BOM grid this frame (world space). */
+/** Placement of one level's BOM grid this frame (world space). Level 0 is the finest; each
+ * level's grid cube holds the one before it. */
 ROMA_STRUCT_BEGIN(roma_grid_params)
     ROMA_VEC4(origin);    /**< xyz: corner of cell (0,0,0); w: cell size */
     ROMA_VEC4(inv_cell);  /**< x: 1 / cell size; y: the grid unit u, the smallest power of
                                two at or above 1 / cell size; z: 1 / u */
-    ROMA_UVEC4(dims);     /**< x: RES, y: words per texel, z: A, w: map count */
+    ROMA_UVEC4(dims);     /**< x: RES, y: words per texel, z: A, w: map count (per level) */
+    /** x: this level's index; y: the map's level count; z: its first map frame in the
+     * parameters (x * A * A); w: its first word in the maps buffer (x * A * A * RES * RES *
+     * RES / 32; its BOM's: x * RES * RES * RES / 32) */
+    ROMA_UVEC4(level);
 ROMA_STRUCT_END(roma_grid_params)
 
 /** One ray-aligned map. world -> map cell coordinates, from the position relative to the
@@ -71,9 +80,10 @@ ROMA_STRUCT_BEGIN(roma_map_frame)
     ROMA_VEC4(cell);      /**< world cell size along map x, y, z */
 ROMA_STRUCT_END(roma_map_frame)
 
-/** The parameters buffer of a map: grid + up to ROMA_MAX_ANGULAR^2 frames, read by the
- * rotation as one uniform block of this size (48 + 256 * 144 bytes). */
-#define ROMA_PARAMS_BLOCK_BYTES (48u + 144u * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR)
+/** The parameters buffer of a map: ROMA_MAX_LEVELS grids (the map's levels first), then up to
+ * ROMA_MAX_ANGULAR^2 frames (level after level), read as one uniform block of this size
+ * (8 * 64 + 256 * 144 bytes). */
+#define ROMA_PARAMS_BLOCK_BYTES (64u * ROMA_MAX_LEVELS + 144u * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR)
 
 /** Tracing through descriptors (roma/trace_descriptors.glsl): in set ROMA_TRACE_SET, the
  * maps as a uniform texel buffer (R32_UINT) and the parameters as a uniform block of
@@ -99,12 +109,18 @@ ROMA_STRUCT_END(roma_map_frame)
  * wall ahead (roma_trace_unsnapped in roma/trace.glsl; the C mirror uses the same value). */
 #define ROMA_RUN_WINDOW 16.0
 
-/** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used; bit 16 the
- * ray was folded (its direction had z < 0 and was traced backwards in the map of -d). */
+/** roma_hit.info, the same in C and GLSL: bit 0 hit; bits 8..15 the map used (within its
+ * level); bit 16 the ray was folded (its direction had z < 0 and was traced backwards in the
+ * map of -d); bits 20..22 the cascade level. */
 #define ROMA_HIT_FLAG 1u
 /** The map index a hit or miss used, from roma_hit.info. @param info roma_hit.info */
 #define ROMA_HIT_MAP(info) (((info) >> 8) & 0xffu)
 /** Bit of roma_hit.info: the ray was folded (traced backwards in the map of -d). */
 #define ROMA_HIT_FOLDED 0x10000u
+/** The cascade level a hit or miss ended in (its map is that level's), from roma_hit.info
+ * (bits 20..22). @param info roma_hit.info */
+#define ROMA_HIT_LEVEL(info) (((info) >> 20) & 0x7u)
+/** Shift of the level in roma_hit.info. */
+#define ROMA_HIT_LEVEL_SHIFT 20u
 
 #endif /* ROMA_TRACE_TYPES_H */

@@ -44,7 +44,6 @@ void main()
     vec3 ng = normalize(texelFetch(roma_gi_geometric_normal, at, 0).xyz);
     vec3 origin = position.xyz + ng * pc.ray.x;
     roma_use_ray_start(pc.bom);
-    roma_grid_params grid = roma_fetch_grid();
     roma_gi_scene S = RomaGiScene(pc.scene).s;
     uint seed = pc.config2.x;
     roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights, pc.part.zw);
@@ -58,7 +57,7 @@ void main()
             continue;
         bool hit;
         vec3 hit_point;
-        acc += roma_gi_bounce(S, P, grid, origin, dir, pc.ray.y, true, pixel, s, hit, hit_point);
+        acc += roma_gi_bounce(S, P, origin, dir, pc.ray.y, true, pixel, s, hit, hit_point);
     }
     vec3 E = acc * (3.14159265358979 / float(samples));
     if (pc.part.x > 0u || pc.part.z > 0u) // a later part adds to the earlier ones

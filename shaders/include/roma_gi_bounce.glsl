@@ -183,8 +183,8 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
 // hit_point: where the ray hit (for the caller's RSMs), valid when hit. With
 // roma_shadow_exact (the accuracy study's baseline) the whole ray is walked through the
 // BOM and its shadow rays too: the voxels' error apart from ROMA's.
-vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, roma_grid_params grid, vec3 origin, vec3 dir, float tmin,
-                    bool surfaces, uint pixel, uint s, out bool hit, out vec3 hit_point)
+vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, vec3 origin, vec3 dir, float tmin, bool surfaces, uint pixel,
+                    uint s, out bool hit, out vec3 hit_point)
 {
     // Both routes to a hit end in one surface lookup and one shading call: SIMD devices
     // that predicate run the code of both sides of a branch.
@@ -203,10 +203,12 @@ vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, roma_grid_params grid, v
     if (walked) {
         // A surface on the skipped start is the hit, half a BOM cell past where the ray enters it.
         hit_point = origin + normalize(dir) * tw;
-        centre = origin + normalize(dir) * (tw + 0.5 * grid.origin.w);
+        centre = origin + normalize(dir) * (tw + 0.5 * roma_fetch_grid(roma_level_of(origin)).origin.w);
         t = tw;
     } else {
-        roma_map_frame f = roma_fetch_frame(ROMA_HIT_MAP(h.info));
+        // The hit's cascade level and map.
+        roma_grid_params grid = roma_fetch_grid(ROMA_HIT_LEVEL(h.info));
+        roma_map_frame f = roma_hit_frame(h);
         bool folded = (h.info & ROMA_HIT_FOLDED) != 0u;
         // A snapped ray travels along its candidate direction (reversed when folded).
         hit_point = origin + f.dir.xyz * (folded ? -1.0 : 1.0) * h.t;

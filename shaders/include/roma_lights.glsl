@@ -41,7 +41,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 // bound.
 float roma_grid_exit(vec3 origin, vec3 d)
 {
-    roma_grid_params grid = roma_fetch_grid();
+    roma_grid_params grid = roma_fetch_grid(max(roma_fetch_grid(0u).level.y, 1u) - 1u); // the coarsest level's
     vec3 lo = grid.origin.xyz - origin, hi = lo + vec3(float(grid.dims.x) * grid.origin.w);
     vec3 far = vec3(d.x > 0.0 ? hi.x / d.x : d.x < 0.0 ? lo.x / d.x : 1.0 / 0.0,
                     d.y > 0.0 ? hi.y / d.y : d.y < 0.0 ? lo.y / d.y : 1.0 / 0.0,

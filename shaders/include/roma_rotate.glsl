@@ -15,9 +15,14 @@ layout(std430, set = 0, binding = ROMA_ROTATE_BINDING_CELLS) buffer RomaRotateCe
     uint cells[];        // x | y << 8 | z << 16
 };
 layout(std140, set = 0, binding = ROMA_ROTATE_BINDING_PARAMS) uniform RomaRotateParams {
-    roma_grid_params grid;
+    roma_grid_params grids[ROMA_MAX_LEVELS];
     roma_map_frame frames[ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
 };
+
+// The cascade level this dispatch rotates: its grid; its BOM's first word (its maps' is
+// grid.level.w, its first frame grid.level.z).
+roma_grid_params roma_rotate_grid() { return grids[pc.config.w]; }
+uint roma_rotate_bom_base(roma_grid_params g) { return g.level.x * g.dims.x * g.dims.x * g.dims.y; }
 
 // The BOM coordinates of sample h of map cell (x, y, j): the one float expression
 // both rotation paths evaluate (so that they agree bit for bit).

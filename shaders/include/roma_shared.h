@@ -117,7 +117,8 @@ ROMA_STRUCT_END(roma_voxelize_queue)
 #define ROMA_ROTATE_BINDING_PARAMS 3
 #define ROMA_ROTATE_BINDINGS 4
 ROMA_STRUCT_BEGIN(roma_rotate_push)
-    ROMA_UVEC4(config);   /* x: cell list capacity, y/z: the gather's workgroups (x, y) */
+    ROMA_UVEC4(config);   /* x: cell list capacity, y/z: the gather's workgroups (x, y), w: the cascade
+                             level rotated (its grid, frames, BOM and maps) */
 ROMA_STRUCT_END(roma_rotate_push)
 /* Header of the occupied-cell list: two VkDispatchIndirectCommands. */
 ROMA_STRUCT_BEGIN(roma_rotate_cells)

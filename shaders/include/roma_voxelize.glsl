@@ -153,6 +153,12 @@ ivec2 roma_vox_column_span(roma_vox_triangle t, int iu, int iv)
     return ivec2(k0, k1);
 }
 
+// The first BOM word of the cascade level being voxelized (the levels' BOMs follow each other).
+uint roma_vox_bom_base(int res, uint words)
+{
+    return pc.grid.level.x * uint(res) * uint(res) * words;
+}
+
 // Tests the cells of column (iu, iv) that the triangle's plane can reach and marks
 // the overlapped ones.
 void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
@@ -161,7 +167,7 @@ void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
     int k0 = span.x, k1 = span.y;
     if (t.a == 2u) {
         // Column frame = world: one texel, the bits gathered per word, one atomic per word.
-        uint base = (uint(iv) * uint(res) + uint(iu)) * words;
+        uint base = roma_vox_bom_base(res, words) + (uint(iv) * uint(res) + uint(iu)) * words;
         uint mask = 0u;
         int word = k0 >> 5;
         for (int k = k0; k <= k1; ++k) {
@@ -184,7 +190,8 @@ void roma_vox_column(roma_vox_triangle t, int iu, int iv, int res, uint words)
             if (!roma_vox_overlaps(t, ivec3(iu, iv, k)))
                 continue;
             ivec3 c = t.a == 0u ? ivec3(k, iu, iv) : ivec3(iv, k, iu);
-            atomicOr(bom[(uint(c.y) * uint(res) + uint(c.x)) * words + uint(c.z >> 5)], 1u << uint(c.z & 31));
+            atomicOr(bom[roma_vox_bom_base(res, words) + (uint(c.y) * uint(res) + uint(c.x)) * words + uint(c.z >> 5)],
+                     1u << uint(c.z & 31));
         }
     }
 }
@@ -198,7 +205,7 @@ void roma_vox_box(roma_vox_triangle t, int res, uint words)
         ROMA_LOOP_TICK();
         for (int x = lo.x; x <= hi.x; ++x) {
             ROMA_LOOP_TICK();
-            uint base = (uint(y) * uint(res) + uint(x)) * words;
+            uint base = roma_vox_bom_base(res, words) + (uint(y) * uint(res) + uint(x)) * words;
             uint mask = 0u;
             int word = lo.z >> 5;
             for (int z = lo.z; z <= hi.z; ++z) {

@@ -41,7 +41,7 @@ void main()
     vec3 n = g.shading_normal.xyz, ng = g.geometric_normal.xyz;
     precise vec3 origin = g.position_t.xyz + ng * pc.ray.x;
     roma_use_ray_start(pc.bom);
-    roma_grid_params grid = roma_fetch_grid();
+    roma_grid_params grid = roma_fetch_grid(0u); // the baselines' grid (one level)
     uint seed = pc.config2.x, open = 0u;
     for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) { // this dispatch's part
         ROMA_LOOP_TICK();

@@ -88,7 +88,6 @@ void main()
     roma_gi_scene S;
     if (ROMA_GI_SURFACES)
         S = RomaGiScene(gi.scene).s;
-    roma_grid_params grid = roma_fetch_grid();
     roma_use_ray_start(gi.bom);
     roma_shadow_exact = gi.config2.w != 0u;
     vec3 acc = vec3(0.0);
@@ -102,7 +101,7 @@ void main()
             continue;
         bool hit;
         vec3 hit_point;
-        acc += roma_gi_bounce(S, P, grid, origin, dir, gi.ray.y, ROMA_GI_SURFACES, pixel, s, hit, hit_point);
+        acc += roma_gi_bounce(S, P, origin, dir, gi.ray.y, ROMA_GI_SURFACES, pixel, s, hit, hit_point);
         if (ROMA_GI_RSM && hit && gi.part.z == 0u) // the RSMs with the first lights' part
             acc += rsm_radiance(hit_point, origin);
     }

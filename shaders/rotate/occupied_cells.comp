@@ -11,12 +11,13 @@ layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
 
 void main()
 {
+    roma_grid_params grid = roma_rotate_grid();
     uint res = grid.dims.x, words = grid.dims.y;
     uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
               + gl_LocalInvocationID.x;
     if (id >= res * res * words)
         return;
-    uint word = bom[id];
+    uint word = bom[roma_rotate_bom_base(grid) + id];
     if (word == 0u)
         return;
     uint n = uint(bitCount(word));

@@ -11,7 +11,8 @@ layout(local_size_x = ROMA_ROTATE_WORKGROUP_SIZE) in;
 
 void main()
 {
-    uint res = grid.dims.x, words = grid.dims.y, map_count = grid.dims.w;
+    roma_grid_params grid = roma_rotate_grid();
+    uint res = grid.dims.x, words = grid.dims.y, map_count = grid.dims.w, bom_base = roma_rotate_bom_base(grid);
     // 2D dispatch: more than 65535 groups are needed at RES 256 or A >= 8.
     uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
               + gl_LocalInvocationID.x;
@@ -21,7 +22,7 @@ void main()
     uint k = id / per_map, r = id - k * per_map;
     uint texel = r / words, w = r - texel * words;
     uint x = texel % res, y = texel / res;
-    roma_map_frame f = frames[k];
+    roma_map_frame f = frames[grid.level.z + k];
     float fres = float(res);
     uint out_word = 0u;
     for (uint i = 0u; i < 32u; ++i) {
@@ -34,10 +35,10 @@ void main()
             vec3 b = roma_rotate_sample(f, x, y, w * 32u + i, h);
             if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0 && b.x < fres && b.y < fres && b.z < fres) {
                 uvec3 c = uvec3(floor(b));
-                uint word = bom[(c.y * res + c.x) * words + (c.z >> 5)];
+                uint word = bom[bom_base + (c.y * res + c.x) * words + (c.z >> 5)];
                 out_word |= ((word >> (c.z & 31u)) & 1u) << i;
             }
         }
     }
-    maps[id] = out_word;
+    maps[grid.level.w + id] = out_word;
 }

@@ -29,8 +29,9 @@ void main()
         return;  // an overflowed list: the gather runs instead
     uint packed = cells[item];
     ivec3 c = ivec3(packed & 0xffu, (packed >> 8u) & 0xffu, packed >> 16u);
+    roma_grid_params grid = roma_rotate_grid();
     uint res = grid.dims.x, words = grid.dims.y;
-    roma_map_frame f = frames[k];
+    roma_map_frame f = frames[grid.level.z + k];
     // BOM cell -> map coordinates: m = to_map . (b * cell) + to_map.w, in grid units.
     float cell = grid.origin.w * grid.inv_cell.y;
     vec3 centre = (vec3(c) + 0.5) * cell;
@@ -68,7 +69,7 @@ void main()
             if (!(zlo <= zhi))
                 continue;
             int ja = int(clamp(floor(zlo), 0.0, fres - 1.0)), jb = int(clamp(floor(zhi), 0.0, fres - 1.0));
-            uint base = ((k * res + uint(y)) * res + uint(x)) * words;
+            uint base = grid.level.w + ((k * res + uint(y)) * res + uint(x)) * words;
             uint mask = 0u;
             int word = ja >> 5;
             for (int j = ja; j <= jb; ++j) {

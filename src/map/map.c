@@ -389,9 +389,11 @@ static void compute_frame_params(roma_map *map, const roma_map_frame_desc *frame
 static void record_frame_params(roma_map *map, VkCommandBuffer cmd)
 {
     unsigned char block[ROMA_PARAMS_BLOCK_BYTES];
-    size_t bytes = sizeof map->grid + sizeof(roma_map_frame) * map->map_count;
+    const size_t frames_at = sizeof(roma_grid_params) * ROMA_MAX_LEVELS; /* roma/trace_types.h */
+    size_t bytes = frames_at + sizeof(roma_map_frame) * map->map_count;
+    memset(block, 0, frames_at);
     memcpy(block, &map->grid, sizeof map->grid);
-    memcpy(block + sizeof map->grid, map->frames, sizeof(roma_map_frame) * map->map_count);
+    memcpy(block + frames_at, map->frames, sizeof(roma_map_frame) * map->map_count);
     vkCmdUpdateBuffer(cmd, map->params.buffer, 0, bytes, block);
 }
 
@@ -924,4 +926,4 @@ roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *gri
     *frames = map->frames;
     return ROMA_SUCCESS;
 }
-_Static_assert(ROMA_PARAMS_BLOCK_BYTES == sizeof(roma_grid_params) + ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR * sizeof(roma_map_frame), "the uniform block of roma_rotate.glsl");
+_Static_assert(ROMA_PARAMS_BLOCK_BYTES == sizeof(roma_grid_params) * ROMA_MAX_LEVELS + ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR * sizeof(roma_map_frame), "the uniform block of roma_rotate.glsl");

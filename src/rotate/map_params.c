@@ -62,6 +62,7 @@ int roma_compute_grid(const float bmin[3], const float bmax[3], uint32_t res, ui
     out->dims[1] = res / 32u;
     out->dims[2] = angular;
     out->dims[3] = angular * angular;
+    out->level[1] = 1; /* one level, the first: map.c places a cascade's */
     return 1;
 }
 

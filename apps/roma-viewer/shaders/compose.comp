@@ -50,7 +50,7 @@ vec3 hash_colour(uint k)
 // red at the far end; dark blue: an empty column). Not accumulated: a new array every frame.
 void show_rotated_map(ivec2 p)
 {
-    roma_grid_params grid = roma_fetch_grid();
+    roma_grid_params grid = roma_fetch_grid(0u); // the finest cascade level's maps
     uint res = grid.dims.x, words = grid.dims.y;
     int side = int(min(pc.size.x, pc.size.y));
     ivec2 q = p - (ivec2(pc.size) - ivec2(side)) / 2;
@@ -58,7 +58,7 @@ void show_rotated_map(ivec2 p)
     if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(side)))) {
         uint x = uint(q.x) * res / uint(side), y = uint(side - 1 - q.y) * res / uint(side);
         uint k = min(frame.mode_cap.w, grid.dims.w - 1u);
-        int first = roma_first_cell(roma_texel_base(k, x, y, res, words), 0, int(res) - 1, true);
+        int first = roma_first_cell(grid.level.w + roma_texel_base(k, x, y, res, words), 0, int(res) - 1, true);
         value = first < 0 ? vec3(0.02, 0.04, 0.2) : heat(1.0 - 0.8 * float(first) / float(res));
     }
     imageStore(current_image, p, vec4(value, 1.0));

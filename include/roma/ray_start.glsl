@@ -68,7 +68,7 @@ float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
     if (roma_start_bom_ == uvec2(0u) || !(tmax > 0.0))
         return -1.0;
     uint level = roma_level_of(origin);
-    roma_grid_params grid = roma_fetch_grid(level);
+    roma_grid_params grid = ROMA_CASCADES ? roma_fetch_grid(level) : roma_start_grid_; // the one kept for one level
     float inv_cell = grid.inv_cell.x;
     int res = int(grid.dims.x);
     uint per_texel = grid.dims.y;

@@ -79,6 +79,10 @@ const float ROMA_PI = 3.14159265358979323846;
 #ifndef ROMA_CORRECTED_DIVISION
 layout(constant_id = ROMA_CORRECTED_DIVISION_CONSTANT_ID) const bool ROMA_CORRECTED_DIVISION = true;
 #endif
+// See ROMA_CASCADES_CONSTANT_ID in roma/trace_types.h.
+#ifndef ROMA_CASCADES
+layout(constant_id = ROMA_CASCADES_CONSTANT_ID) const bool ROMA_CASCADES = true;
+#endif
 
 // The floats after and before a positive finite x; the unbiased exponent of a normal x.
 float roma_next_up(float x) { return uintBitsToFloat(floatBitsToUint(x) + 1u); }
@@ -505,6 +509,8 @@ roma_hit roma_trace_unsnapped_level(roma_grid_params grid, vec3 origin, vec3 dir
 // outside every level is traced in the coarsest, as a single grid traces it).
 uint roma_level_of(vec3 p)
 {
+    if (!ROMA_CASCADES)
+        return 0u;
     uint count = max(roma_fetch_grid(0u).level.y, 1u);
     for (uint l = 0u; l + 1u < count; ++l) {
         ROMA_LOOP_TICK();
@@ -572,6 +578,8 @@ bool roma_level_walk_next(inout roma_level_walk w, vec3 origin, float tmax, roma
 // Snapped query across the cascade levels (roma_trace_snapped_level in each).
 roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
 {
+    if (!ROMA_CASCADES)
+        return roma_trace_snapped_level(roma_fetch_grid(0u), origin, dir, tmin, tmax, closest);
     roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax);
     roma_hit h;
     do {
@@ -586,6 +594,8 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
 // whose walk gave up ends the query (roma_unsnapped_gave_up).
 roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, bool closest, uint max_steps)
 {
+    if (!ROMA_CASCADES)
+        return roma_trace_unsnapped_level(roma_fetch_grid(0u), origin, dir, tmin, tmax, closest, max_steps);
     roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax);
     roma_hit h;
     do {

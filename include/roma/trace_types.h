@@ -105,6 +105,13 @@ ROMA_STRUCT_END(roma_map_frame)
  * value, or defines ROMA_CORRECTED_DIVISION before including. */
 #define ROMA_CORRECTED_DIVISION_CONSTANT_ID 200
 
+/** Specialization constant of roma/trace.glsl (a bool, default true): whether the trace
+ * functions carry rays across a map's cascade levels. False compiles that code out, for
+ * pipelines that trace maps of one level only (on devices that run both sides of a branch,
+ * CPU implementations among them, it costs a single-level AO pass about 45%); a map of
+ * several levels then traces as its finest alone. */
+#define ROMA_CASCADES_CONSTANT_ID 199
+
 /** Cells an un-snapped walk searches each column past the ray's exit for a step of a thin
  * wall ahead (roma_trace_unsnapped in roma/trace.glsl; the C mirror uses the same value). */
 #define ROMA_RUN_WINDOW 16.0

@@ -12,19 +12,19 @@
 typedef struct roma_shared_pipeline {
     const char *module_name; /* a name of the embedded SPIR-V table (static storage) */
     VkDescriptorType types[MAX_STORAGE_BUFFERS];
-    uint32_t binding_count, push_size, constant_count;
+    uint32_t binding_count, push_size, constant_count, flags;
     uint32_t constants[MAX_STORAGE_BUFFERS];
     roma_compute_pipeline pipeline;
 } roma_shared_pipeline;
 
 static roma_shared_pipeline *find_shared(roma_context *ctx, const char *module_name, const VkDescriptorType *types,
                                          uint32_t binding_count, uint32_t push_size, const uint32_t *constants,
-                                         uint32_t constant_count)
+                                         uint32_t constant_count, uint32_t flags)
 {
     for (uint32_t i = 0; i < ctx->pipeline_count; ++i) {
         roma_shared_pipeline *p = &ctx->pipelines[i];
         if (strcmp(p->module_name, module_name) == 0 && p->binding_count == binding_count &&
-            p->push_size == push_size && p->constant_count == constant_count &&
+            p->push_size == push_size && p->constant_count == constant_count && p->flags == flags &&
             (!binding_count || memcmp(p->types, types, sizeof *types * binding_count) == 0) &&
             (!constant_count || memcmp(p->constants, constants, 4 * (size_t)constant_count) == 0))
             return p;
@@ -46,7 +46,7 @@ static void destroy_handles(roma_context *ctx, roma_compute_pipeline *p)
 /* Keeps a new pipeline in the context; on failure the caller still owns it. */
 static roma_result share(roma_context *ctx, const char *module_name, const VkDescriptorType *types,
                          uint32_t binding_count, uint32_t push_size, const uint32_t *constants,
-                         uint32_t constant_count, const roma_compute_pipeline *pipeline)
+                         uint32_t constant_count, uint32_t flags, const roma_compute_pipeline *pipeline)
 {
     if (ctx->pipeline_count == ctx->pipeline_capacity) {
         uint32_t capacity = ctx->pipeline_capacity ? 2 * ctx->pipeline_capacity : 32;
@@ -64,6 +64,7 @@ static roma_result share(roma_context *ctx, const char *module_name, const VkDes
     p->binding_count = binding_count;
     p->push_size = push_size;
     p->constant_count = constant_count;
+    p->flags = flags;
     if (constant_count)
         memcpy(p->constants, constants, 4 * (size_t)constant_count);
     p->pipeline = *pipeline;
@@ -97,7 +98,7 @@ roma_result roma_compute_pipeline_create_typed(roma_context *ctx, const char *mo
 }
 
 void roma_specialization_make(const roma_context *ctx, const char *module, const uint32_t *constants,
-                              uint32_t count, roma_specialization *out)
+                              uint32_t count, uint32_t flags, roma_specialization *out)
 {
     if (count > ROMA_MAX_SPEC_CONSTANTS)
         count = ROMA_MAX_SPEC_CONSTANTS;
@@ -107,7 +108,9 @@ void roma_specialization_make(const roma_context *ctx, const char *module, const
     }
     out->entries[count] = (VkSpecializationMapEntry){ROMA_CORRECTED_DIVISION_CONSTANT_ID, count * 4, 4};
     out->values[count] = ctx->corrected_division ? VK_TRUE : VK_FALSE;
-    uint32_t n = count + 1;
+    out->entries[count + 1] = (VkSpecializationMapEntry){ROMA_CASCADES_CONSTANT_ID, (count + 1) * 4, 4};
+    out->values[count + 1] = (flags & ROMA_PIPELINE_CASCADES) ? VK_TRUE : VK_FALSE;
+    uint32_t n = count + 2;
     n += roma_loop_guard_specialize(ctx, module, out->entries, out->values, n);
     out->info = (VkSpecializationInfo){n, out->entries, 4 * (size_t)n, out->values};
 }
@@ -115,10 +118,17 @@ void roma_specialization_make(const roma_context *ctx, const char *module, const
 roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
                                        const uint32_t *constants, uint32_t constant_count, VkPipeline *out)
 {
+    return roma_compute_pipeline_make_flags(ctx, module_name, layout, constants, constant_count, 0, out);
+}
+
+roma_result roma_compute_pipeline_make_flags(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
+                                             const uint32_t *constants, uint32_t constant_count, uint32_t flags,
+                                             VkPipeline *out)
+{
     VkShaderModule shader = VK_NULL_HANDLE;
     roma_result r = roma_shader_module_create(ctx, module_name, &shader);
     roma_specialization spec;
-    roma_specialization_make(ctx, module_name, constants, constant_count, &spec);
+    roma_specialization_make(ctx, module_name, constants, constant_count, flags, &spec);
     if (r == ROMA_SUCCESS) {
         VkComputePipelineCreateInfo info = {
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
@@ -143,12 +153,21 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
                                               roma_compute_pipeline *out)
 {
+    return roma_compute_pipeline_create_flags(ctx, module_name, types, binding_count, push_size, constants,
+                                              constant_count, 0, out);
+}
+
+roma_result roma_compute_pipeline_create_flags(roma_context *ctx, const char *module_name,
+                                               const VkDescriptorType *types, uint32_t binding_count,
+                                               uint32_t push_size, const uint32_t *constants,
+                                               uint32_t constant_count, uint32_t flags, roma_compute_pipeline *out)
+{
     memset(out, 0, sizeof *out);
     if (binding_count > MAX_STORAGE_BUFFERS || constant_count > ROMA_MAX_SPEC_CONSTANTS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors or constants for %s",
                          module_name);
     const roma_shared_pipeline *known =
-        find_shared(ctx, module_name, types, binding_count, push_size, constants, constant_count);
+        find_shared(ctx, module_name, types, binding_count, push_size, constants, constant_count, flags);
     if (known) {
         *out = known->pipeline;
         return ROMA_SUCCESS;
@@ -167,9 +186,10 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                           "vkCreatePipelineLayout");
     }
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_make(ctx, module_name, out->layout, constants, constant_count, &out->pipeline);
+        r = roma_compute_pipeline_make_flags(ctx, module_name, out->layout, constants, constant_count, flags,
+                                             &out->pipeline);
     if (r == ROMA_SUCCESS)
-        r = share(ctx, module_name, types, binding_count, push_size, constants, constant_count, out);
+        r = share(ctx, module_name, types, binding_count, push_size, constants, constant_count, flags, out);
     if (r != ROMA_SUCCESS)
         destroy_handles(ctx, out);
     return r;

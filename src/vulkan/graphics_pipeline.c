@@ -34,7 +34,7 @@ roma_result roma_push_layout_create(roma_context *ctx, VkShaderStageFlags stages
 roma_result roma_graphics_pipeline_create(roma_context *ctx, const roma_graphics_pipeline_desc *d, VkPipeline *out)
 {
     roma_specialization spec;
-    roma_specialization_make(ctx, d->frag_name, NULL, 0, &spec);
+    roma_specialization_make(ctx, d->frag_name, NULL, 0, 0, &spec);
     VkPipelineShaderStageCreateInfo stages[2] = {
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_VERTEX_BIT, .module = d->vert, .pName = "main"},

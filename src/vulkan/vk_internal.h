@@ -142,22 +142,34 @@ roma_result roma_compute_pipeline_create_spec(roma_context *ctx, const char *mod
                                               const VkDescriptorType *types, uint32_t binding_count,
                                               uint32_t push_size, const uint32_t *constants, uint32_t constant_count,
                                               roma_compute_pipeline *out);
+/* The same with roma_specialization_make's flags (part of what the context shares by). */
+roma_result roma_compute_pipeline_create_flags(roma_context *ctx, const char *module_name,
+                                               const VkDescriptorType *types, uint32_t binding_count,
+                                               uint32_t push_size, const uint32_t *constants,
+                                               uint32_t constant_count, uint32_t flags, roma_compute_pipeline *out);
 /* Specialization of a shader of module `module`: constants 0..count-1 (uint32 each, at most
  * ROMA_MAX_SPEC_CONSTANTS), then roma/trace.glsl's ROMA_CORRECTED_DIVISION_CONSTANT_ID with
  * the context's choice (ignored by shaders that do not include it) and, in a loop-guard
  * build, the guard's constants (loop_guard.h). Every pipeline libroma creates goes through it. */
 #define ROMA_MAX_SPEC_CONSTANTS 16u
 typedef struct roma_specialization {
-    VkSpecializationMapEntry entries[ROMA_MAX_SPEC_CONSTANTS + 4];
-    uint32_t values[ROMA_MAX_SPEC_CONSTANTS + 4];
+    VkSpecializationMapEntry entries[ROMA_MAX_SPEC_CONSTANTS + 5];
+    uint32_t values[ROMA_MAX_SPEC_CONSTANTS + 5];
     VkSpecializationInfo info;
 } roma_specialization;
 void roma_specialization_make(const roma_context *ctx, const char *module, const uint32_t *constants,
-                              uint32_t count, roma_specialization *out);
+                              uint32_t count, uint32_t flags, roma_specialization *out);
+/* roma_specialization_make's flags: the pipeline traces maps of several cascade levels
+ * (ROMA_CASCADES_CONSTANT_ID true; without it the cascade code is compiled out). */
+#define ROMA_PIPELINE_CASCADES 1u
 /* One pipeline of module_name on layout, specialized as above; not shared (the caller owns
  * and destroys it). */
 roma_result roma_compute_pipeline_make(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
                                        const uint32_t *constants, uint32_t constant_count, VkPipeline *out);
+/* The same with roma_specialization_make's flags. */
+roma_result roma_compute_pipeline_make_flags(roma_context *ctx, const char *module_name, VkPipelineLayout layout,
+                                             const uint32_t *constants, uint32_t constant_count, uint32_t flags,
+                                             VkPipeline *out);
 /* Pipelines are shared by the whole context (made once per module, bindings, push size
  * and constants): destroy only forgets the caller's copy. */
 void roma_compute_pipeline_destroy(roma_context *ctx, roma_compute_pipeline *pipeline);

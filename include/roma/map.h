@@ -103,6 +103,12 @@ typedef struct roma_map_desc {
     float margin_cells;        /**< grid cube padding around the traced volume, cells, [0.5, RES/8]; 0 = 1 */
     uint32_t frames_in_flight; /**< frame slots for host-written positions, [1, 8]; 0 = 2 */
     roma_logger logger;        /**< 0 = the context's */
+    /** Cascade levels K in [1, ROMA_MAX_LEVELS], with K x A x A at most 256; 0 = 1. Level 0
+     * is a cube around roma_map_frame_desc.focus, each next level a cube of twice the edge
+     * around it, each RES^3 cells with its own A x A maps: cells grow with the distance from
+     * the focus (the camera). A ray is traced from the finest level that holds its origin
+     * out through the coarser ones (roma/trace.glsl). The exact BOM mode only. */
+    uint32_t cascades;
 } roma_map_desc;
 
 /** Creates a map for a scene: its buffers and pipelines (shared through the context).
@@ -174,6 +180,14 @@ typedef struct roma_map_frame_desc {
     VkDeviceAddress gpu_positions; /**< the caller's positions by address (0: none) */
     uint32_t gpu_position_stride; /**< bytes between vertices, a multiple of 4; 0 = 12 */
     uint32_t vertex_count; /**< with positions or gpu_positions: the map's vertex count */
+    /** A map of several cascade levels: the point they centre on this frame (3 floats: the
+     * camera's position); each level's centre snaps to its own cells, so that static
+     * geometry does not shimmer as the point moves. NULL: the traced volume's centre. */
+    const float *focus;
+    /** A map of several cascade levels: the edge of the finest level's cube (world units,
+     * before margin_cells); 0: the traced volume's longest edge / 2^(K-1), so that the
+     * coarsest level covers the volume. Geometry outside the coarsest level is not traced. */
+    float finest_extent;
 } roma_map_frame_desc;
 
 /** Records the build of this frame into cmd (a command buffer of the context's queue
@@ -316,9 +330,11 @@ ROMA_API roma_result roma_map_set_instance_transform(roma_map *map, uint32_t ins
 typedef struct roma_map_info {
     uint32_t resolution; /**< RES */
     uint32_t angular; /**< A */
-    uint32_t map_count; /**< A x A */
+    uint32_t map_count; /**< A x A (per cascade level) */
     uint32_t words_per_texel; /**< RES / 32 */
-    float grid_origin[3];      /**< world position of BOM cell (0,0,0)'s corner, this frame */
+    /** The finest cascade level's grid: the world position of its BOM cell (0,0,0)'s corner
+     * this frame (the other levels' are in the parameters, roma_grid_params). */
+    float grid_origin[3];
     float grid_cell;           /**< world size of a BOM cell */
     float trace_cell;          /**< grid_cell * sqrt(3): the longest edge a rotated cell can have;
                                   the unit of ray-origin offsets (see roma_offset_origin) */
@@ -349,6 +365,7 @@ typedef struct roma_map_info {
     VkDeviceAddress bom_address;
     VkBuffer bom_buffer; /**< the same BOM as a buffer */
     VkBufferView bom_view; /**< the same BOM as an R32_UINT uniform texel buffer */
+    uint32_t levels; /**< cascade levels (roma_map_desc.cascades); the buffers hold level after level */
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.

@@ -131,10 +131,11 @@ static roma_result make_trace_pipeline(roma_map *map, int staged, roma_trace_mod
     if (p->pipeline)
         return ROMA_SUCCESS;
     const uint32_t constant = (uint32_t)mode;
-    /* trace.comp reaches everything by address: no set. */
-    return roma_compute_pipeline_create_spec(map->ctx, staged ? "trace_staged.comp" : "trace.comp", staged_types,
-                                             staged ? ROMA_TRACE_STAGED_BINDINGS : 0, sizeof(roma_trace_push),
-                                             &constant, 1, p);
+    /* trace.comp reaches everything by address: no set. The cascade code only for a map of
+     * several levels. */
+    return roma_compute_pipeline_create_flags(map->ctx, staged ? "trace_staged.comp" : "trace.comp", staged_types,
+                                              staged ? ROMA_TRACE_STAGED_BINDINGS : 0, sizeof(roma_trace_push),
+                                              &constant, 1, map->levels > 1 ? ROMA_PIPELINE_CASCADES : 0, p);
 }
 
 /* Rotation bindings: the parameters as a uniform buffer (every invocation of a workgroup
@@ -180,6 +181,15 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map_create: margin_cells %g must be in [0.5, RES/8] (jitter needs half a cell)",
                          (double)desc.margin_cells);
+    if (desc.cascades == 0)
+        desc.cascades = 1;
+    if (desc.cascades > ROMA_MAX_LEVELS || desc.cascades * desc.angular * desc.angular > 256u)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_create: %u cascade levels of %u x %u maps: at most %u levels and 256 maps in all",
+                         desc.cascades, desc.angular, desc.angular, ROMA_MAX_LEVELS);
+    if (desc.cascades > 1 && desc.bom_mode != ROMA_BOM_EXACT)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_map_create: cascade levels need the exact BOM mode (bom_mode 0)");
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);
     roma_result bounds = check_bounds(log, sv.bounds_min, sv.bounds_max, desc.resolution, desc.margin_cells,
@@ -189,15 +199,15 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
 
     /* Passes read the maps as a texel buffer (roma/trace_descriptors.glsl). */
     const uint64_t map_words = (uint64_t)desc.resolution * desc.resolution * (desc.resolution / 32) *
-                               desc.angular * desc.angular;
+                               desc.angular * desc.angular * desc.cascades;
     if (map_words > ctx->properties.limits.maxTexelBufferElements)
         return roma_fail(log, ROMA_ERROR_UNSUPPORTED,
-                         "roma_map_create: RES %u with %u x %u maps needs %llu words, more than this device's "
-                         "maxTexelBufferElements (%u)", desc.resolution, desc.angular, desc.angular,
-                         (unsigned long long)map_words, ctx->properties.limits.maxTexelBufferElements);
+                         "roma_map_create: RES %u with %u x %u maps in %u levels needs %llu words, more than this "
+                         "device's maxTexelBufferElements (%u)", desc.resolution, desc.angular, desc.angular,
+                         desc.cascades, (unsigned long long)map_words, ctx->properties.limits.maxTexelBufferElements);
     roma_map *map = calloc(1, sizeof *map);
     uint32_t *indices = malloc(sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
-    roma_map_frame *frames = calloc((size_t)desc.angular * desc.angular, sizeof *frames);
+    roma_map_frame *frames = calloc((size_t)desc.angular * desc.angular * desc.cascades, sizeof *frames);
     if (!map || !indices || !frames) {
         free(map);
         free(indices);
@@ -211,6 +221,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     map->words = desc.resolution / 32;
     map->angular = desc.angular;
     map->map_count = desc.angular * desc.angular;
+    map->levels = desc.cascades;
     map->bom_mode = desc.bom_mode;
     map->margin_cells = desc.margin_cells;
     map->frames_in_flight = desc.frames_in_flight;
@@ -241,11 +252,11 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     /* UNIFORM_TEXEL: the tracing passes read the BOM through bom_view (faster than storage
      * loads on CPU devices); it is no larger than the maps, so within the same limit. */
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 4 * texel_words, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+        r = roma_buffer_create(ctx, 4 * texel_words * map->levels, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                ROMA_MEMORY_DEVICE, &map->bom);
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 4 * texel_words * map->map_count,
+        r = roma_buffer_create(ctx, 4 * texel_words * map->map_count * map->levels,
                                storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                ROMA_MEMORY_DEVICE, &map->maps);
@@ -369,6 +380,26 @@ void roma_map_destroy(roma_map *map)
 
 /* Grid placement and candidate frames of this frame (host copies; the build records
  * them into the params buffer). The bounds were checked by the caller. */
+/* The cube of cascade level l (edge `edge` before the margin) around `centre`, snapped to
+ * the level's own cells: its grid origin is a whole number of cells, so that static
+ * geometry falls into the same cells as the centre moves. */
+static void place_level(const roma_map *map, uint32_t l, const double centre[3], double edge, const float jitter[3],
+                        roma_grid_params *out)
+{
+    /* The cell size from the edge alone (a cube around the world origin), so that it is the
+     * same whatever the centre; then the cube's centre on a cell corner (RES is even). */
+    const float lo[3] = {(float)(-0.5 * edge), (float)(-0.5 * edge), (float)(-0.5 * edge)};
+    const float hi[3] = {-lo[0], -lo[1], -lo[2]};
+    roma_compute_grid(lo, hi, map->res, map->angular, map->margin_cells, NULL, out);
+    const double cell = out->origin[3];
+    for (int a = 0; a < 3; ++a)
+        out->origin[a] = (float)((floor(centre[a] / cell + 0.5) - 0.5 * map->res + jitter[a]) * cell);
+    out->level[0] = l;
+    out->level[1] = map->levels;
+    out->level[2] = l * map->map_count;
+    out->level[3] = l * map->map_count * map->res * map->res * map->words;
+}
+
 static void compute_frame_params(roma_map *map, const roma_map_frame_desc *frame, const float bmin[3],
                                  const float bmax[3])
 {
@@ -376,11 +407,25 @@ static void compute_frame_params(roma_map *map, const roma_map_frame_desc *frame
     if (frame->jitter_grid)
         for (int i = 0; i < 3; ++i)
             jitter[i] = roma_random(frame->seed, 0x67726964u /* 'grid' */, frame->frame, (uint32_t)i) - 0.5f;
-    roma_compute_grid(bmin, bmax, map->res, map->angular, map->margin_cells, jitter, &map->grid);
+    if (map->levels == 1) {
+        roma_compute_grid(bmin, bmax, map->res, map->angular, map->margin_cells, jitter, &map->grids[0]);
+    } else {
+        /* Nested cubes around the focus, each twice the last's edge. */
+        double centre[3], longest = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            centre[a] = frame->focus ? (double)frame->focus[a] : 0.5 * ((double)bmin[a] + (double)bmax[a]);
+            longest = fmax(longest, (double)bmax[a] - (double)bmin[a]);
+        }
+        double edge = frame->finest_extent > 0.0f ? (double)frame->finest_extent
+                                                  : longest / (double)(1u << (map->levels - 1));
+        for (uint32_t l = 0; l < map->levels; ++l, edge *= 2.0)
+            place_level(map, l, centre, edge, jitter, &map->grids[l]);
+    }
     float dirs[3 * ROMA_MAX_ANGULAR * ROMA_MAX_ANGULAR];
     roma_candidate_directions(map->angular, frame->seed, frame->frame, frame->jitter_directions, dirs);
-    for (uint32_t k = 0; k < map->map_count; ++k)
-        roma_compute_map_frame(&map->grid, dirs + 3 * k, &map->frames[k]);
+    for (uint32_t l = 0; l < map->levels; ++l)
+        for (uint32_t k = 0; k < map->map_count; ++k)
+            roma_compute_map_frame(&map->grids[l], dirs + 3 * k, &map->frames[l * map->map_count + k]);
 }
 
 /* The parameters travel in the command buffer (at most 36,912 bytes, under
@@ -390,10 +435,11 @@ static void record_frame_params(roma_map *map, VkCommandBuffer cmd)
 {
     unsigned char block[ROMA_PARAMS_BLOCK_BYTES];
     const size_t frames_at = sizeof(roma_grid_params) * ROMA_MAX_LEVELS; /* roma/trace_types.h */
-    size_t bytes = frames_at + sizeof(roma_map_frame) * map->map_count;
+    const size_t frames = (size_t)map->map_count * map->levels;
+    size_t bytes = frames_at + sizeof(roma_map_frame) * frames;
     memset(block, 0, frames_at);
-    memcpy(block, &map->grid, sizeof map->grid);
-    memcpy(block + frames_at, map->frames, sizeof(roma_map_frame) * map->map_count);
+    memcpy(block, map->grids, sizeof(roma_grid_params) * map->levels);
+    memcpy(block + frames_at, map->frames, sizeof(roma_map_frame) * frames);
     vkCmdUpdateBuffer(cmd, map->params.buffer, 0, bytes, block);
 }
 
@@ -469,24 +515,26 @@ static roma_result check_timer(const roma_map *map, const roma_gpu_timer *timer,
     return ROMA_SUCCESS;
 }
 
-/* Rotation (roma_shared.h): clear the maps, list the occupied BOM cells, scatter
- * them into every map; the gather runs instead when the list overflowed. */
-static void record_rotation(roma_map *map, VkCommandBuffer cmd)
+/* Rotation (roma_shared.h) of cascade level `level`: clear the maps (every level's, with
+ * the first), list the level's occupied BOM cells, scatter them into its maps; the gather
+ * runs instead when the list overflowed. */
+static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level)
 {
     const uint64_t words = (uint64_t)map->res * map->res * map->words;
     const uint64_t gather_groups = (words * map->map_count + ROMA_ROTATE_WORKGROUP_SIZE - 1) /
                                    ROMA_ROTATE_WORKGROUP_SIZE;
     const uint32_t gather_x = gather_groups < 65535u ? (uint32_t)gather_groups : 65535u;
     const uint32_t gather_y = (uint32_t)((gather_groups + gather_x - 1) / gather_x);
-    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, 0}};
+    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, level}};
     /* WAR against earlier readers of the maps and the list (traces, downloads, the
-     * previous build's indirect dispatches). */
+     * previous build's or level's indirect dispatches). */
     roma_cmd_memory_barrier(cmd,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT |
                                 VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    vkCmdFillBuffer(cmd, map->maps.buffer, 0, map->maps.size, 0);
+    if (level == 0)
+        vkCmdFillBuffer(cmd, map->maps.buffer, 0, map->maps.size, 0);
     const roma_rotate_cells header = {.scatter = {0, map->map_count, 1, 0}, .gather = {0, 0, 1, 0}};
     vkCmdUpdateBuffer(cmd, map->cells.buffer, 0, sizeof header, &header);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -512,11 +560,16 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd)
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, gather));
 }
 
-/* The BOM: exact compute voxelization or one of the raster modes. */
+/* The BOM: exact compute voxelization (each cascade level's, the buffer cleared with the
+ * first) or one of the raster modes (one level). */
 static roma_result record_bom(roma_map *map, VkCommandBuffer cmd)
 {
-    if (map->voxelizer)
-        return roma_bom_voxelize_record(map->voxelizer, cmd, &map->grid, map->total_triangles);
+    roma_result r = ROMA_SUCCESS;
+    if (map->voxelizer) {
+        for (uint32_t l = 0; l < map->levels && r == ROMA_SUCCESS; ++l)
+            r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], map->total_triangles, l == 0);
+        return r;
+    }
     roma_bom_push bom_push = {
         .positions = map->positions.address,
         .indices = map->indices.address,
@@ -604,7 +657,8 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     }
     if (steps & ROMA_MAP_STEP_ROTATE) {
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rotate");
-        record_rotation(map, cmd);
+        for (uint32_t l = 0; l < map->levels; ++l)
+            record_rotation(map, cmd, l);
         roma_gpu_timer_end(timer, cmd, scope);
     }
     /* Maps and parameters readable by any later command: traces from any stage,
@@ -652,9 +706,9 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->angular = map->angular;
     out->map_count = map->map_count;
     out->words_per_texel = map->words;
-    memcpy(out->grid_origin, map->grid.origin, sizeof out->grid_origin);
-    out->grid_cell = map->grid.origin[3];
-    out->trace_cell = map->grid.origin[3] * 1.7320508f;
+    memcpy(out->grid_origin, map->grids[0].origin, sizeof out->grid_origin);
+    out->grid_cell = map->grids[0].origin[3];
+    out->trace_cell = map->grids[0].origin[3] * 1.7320508f;
     out->bom_bytes = map->bom.size;
     out->bom_address = map->bom.address;
     out->bom_buffer = map->bom.buffer;
@@ -669,6 +723,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->maps_view = map->maps_view;
     out->trace_set = map->trace_set.set;
     out->trace_set_layout = map->trace_set.layout;
+    out->levels = map->levels;
     return ROMA_SUCCESS;
 }
 
@@ -922,7 +977,18 @@ roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *gri
 {
     if (!map || !grid || !frames)
         return ROMA_ERROR_INVALID_ARGUMENT;
-    *grid = map->grid;
+    *grid = map->grids[0];
+    *frames = map->frames;
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_map_get_level_params(const roma_map *map, uint32_t *levels, const roma_grid_params **grids,
+                                      const roma_map_frame **frames)
+{
+    if (!map || !levels || !grids || !frames)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    *levels = map->levels;
+    *grids = map->grids;
     *frames = map->frames;
     return ROMA_SUCCESS;
 }

@@ -37,7 +37,8 @@ typedef struct roma_map_retired {
 struct roma_map {
     roma_context *ctx;
     roma_logger logger;
-    uint32_t res, words, angular, map_count;
+    uint32_t res, words, angular, map_count; /* map_count: A x A, per cascade level */
+    uint32_t levels;                /* cascade levels K: the BOM and maps hold level after level */
     roma_bom_mode bom_mode;
     float margin_cells;
     uint32_t frames_in_flight;
@@ -95,7 +96,9 @@ struct roma_map {
     roma_descriptor_set trace_set;  /* roma/trace_descriptors.glsl: maps_view, params */
     roma_descriptor_set staged_set; /* trace set + ray and hit staging (rewritten when they grow) */
     VkBufferView staging_views[2];  /* rays (RGBA32F), hits (RG32UI) */
-    roma_grid_params grid;          /* host copies of this frame's parameters */
+    /* Host copies of this frame's parameters: each level's grid (grid = level 0's), and
+     * levels x map_count frames, level after level. */
+    roma_grid_params grids[ROMA_MAX_LEVELS];
     roma_map_frame *frames;
     int built;
 };
@@ -132,8 +135,11 @@ void roma_map_instances_bounds(const roma_map *map, float bmin[3], float bmax[3]
 /* Releases what the builds recorded so far no longer use; at map destruction, everything. */
 void roma_map_instances_release(roma_map *map, int all);
 
-/* This frame's parameters, for the C mirror in tests. */
+/* This frame's parameters, for the C mirror in tests: the finest level's grid and its frames. */
 roma_result roma_map_get_frame_params(const roma_map *map, roma_grid_params *grid,
+                                      const roma_map_frame **frames);
+/* Every level's: *levels grids and levels x map_count frames (roma_cpu_trace_levels). */
+roma_result roma_map_get_level_params(const roma_map *map, uint32_t *levels, const roma_grid_params **grids,
                                       const roma_map_frame **frames);
 
 #endif /* ROMA_MAP_INTERNAL_H */

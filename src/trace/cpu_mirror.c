@@ -141,7 +141,7 @@ static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame
 
 static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
                                 const uint32_t *maps, const roma_ray *ray, const float dn[3], int closest,
-                                uint32_t max_steps, roma_cpu_walk_counts *counts, roma_hit hit)
+                                uint32_t max_steps, roma_cpu_walk_counts *counts, roma_hit hit, int *gave_up)
 {
     const uint32_t res = grid->dims[0], words = grid->dims[1];
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};
@@ -231,6 +231,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
             return hit;
         t_cur = t_next;
     }
+    *gave_up = 1; /* walked max_steps texels: the rest counts as open */
     return hit;
 }
 
@@ -241,10 +242,11 @@ roma_hit roma_cpu_trace(const roma_grid_params *grid, const roma_map_frame *fram
     return roma_cpu_trace_counted(grid, frames, maps, ray, mode, max_steps, map_override, folded_override, NULL);
 }
 
-roma_hit roma_cpu_trace_counted(const roma_grid_params *grid, const roma_map_frame *frames,
-                                const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
-                                uint32_t max_steps, int map_override, int folded_override,
-                                roma_cpu_walk_counts *counts)
+/* One level's trace (frames and maps: that level's), as roma_trace_snapped_level and
+ * roma_trace_unsnapped_level in GLSL; *gave_up set when an un-snapped walk ran out of steps. */
+static roma_hit trace_level(const roma_grid_params *grid, const roma_map_frame *frames, const uint32_t *maps,
+                            const roma_ray *ray, roma_trace_mode mode, uint32_t max_steps, int map_override,
+                            int folded_override, roma_cpu_walk_counts *counts, int *gave_up)
 {
     float unit[3];
     const float *o = ray->origin;
@@ -262,5 +264,71 @@ roma_hit roma_cpu_trace_counted(const roma_grid_params *grid, const roma_map_fra
     int closest = (mode & 1) != 0;
     if (mode == ROMA_TRACE_SNAPPED_ANY || mode == ROMA_TRACE_SNAPPED_CLOSEST)
         return trace_snapped(grid, &frames[k], k, folded, maps, ray, closest, hit);
-    return trace_unsnapped(grid, &frames[k], k, maps, ray, unit, closest, max_steps ? max_steps : 8, counts, hit);
+    return trace_unsnapped(grid, &frames[k], k, maps, ray, unit, closest, max_steps ? max_steps : 8, counts, hit,
+                           gave_up);
+}
+
+roma_hit roma_cpu_trace_counted(const roma_grid_params *grid, const roma_map_frame *frames,
+                                const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode,
+                                uint32_t max_steps, int map_override, int folded_override,
+                                roma_cpu_walk_counts *counts)
+{
+    int gave_up = 0;
+    return trace_level(grid, frames, maps, ray, mode, max_steps, map_override, folded_override, counts, &gave_up);
+}
+
+/* roma_level_of in GLSL: the finest level whose cube holds p, else the coarsest. */
+static uint32_t level_of(uint32_t levels, const roma_grid_params *grids, const float p[3])
+{
+    for (uint32_t l = 0; l + 1 < levels; ++l) {
+        const roma_grid_params *g = &grids[l];
+        const float side = (float)g->dims[0] * g->origin[3];
+        int inside = 1;
+        for (int a = 0; a < 3; ++a)
+            inside &= p[a] >= g->origin[a] && p[a] < g->origin[a] + side;
+        if (inside)
+            return l;
+    }
+    return levels ? levels - 1 : 0;
+}
+
+/* roma_level_exit in GLSL. */
+static float level_exit(const roma_grid_params *g, const float origin[3], const float dn[3])
+{
+    const float side = (float)g->dims[0] * g->origin[3];
+    float t = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+        const float lo = g->origin[a] - origin[a], hi = lo + side;
+        const float ta = dn[a] > 0.0f ? hi / dn[a] : dn[a] < 0.0f ? lo / dn[a] : INFINITY;
+        t = fminf(t, ta);
+    }
+    return t;
+}
+
+roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, const roma_map_frame *frames,
+                               const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode, uint32_t max_steps)
+{
+    /* roma_level_walk in GLSL: each level over its part of [tmin, tmax]. */
+    uint32_t l = level_of(levels, grids, ray->origin);
+    const roma_grid_params *g = &grids[l];
+    int last = l + 1 >= levels;
+    float dn[3] = {0.0f, 0.0f, 0.0f};
+    const int unit = !last && roma_unit_direction(ray->dir, dn);
+    float t0 = ray->tmin, t1 = unit ? fminf(level_exit(g, ray->origin, dn), ray->tmax) : ray->tmax;
+    const int unsnapped = mode == ROMA_TRACE_UNSNAPPED_ANY || mode == ROMA_TRACE_UNSNAPPED_CLOSEST;
+    for (;;) {
+        roma_ray part = *ray;
+        part.tmin = t0;
+        part.tmax = t1;
+        int gave_up = 0;
+        roma_hit h = trace_level(g, frames + g->level[2], maps + g->level[3], &part, mode, max_steps, -1, 0, NULL,
+                                 &gave_up);
+        h.info |= l << ROMA_HIT_LEVEL_SHIFT;
+        if ((unsnapped && gave_up) || last || (h.info & ROMA_HIT_FLAG) || !(t1 < ray->tmax))
+            return h;
+        t0 = fmaxf(t0, t1);
+        g = &grids[++l];
+        last = l + 1 >= levels;
+        t1 = last ? ray->tmax : fminf(level_exit(g, ray->origin, dn), ray->tmax);
+    }
 }

@@ -83,6 +83,12 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *v)
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
                                      uint32_t triangles)
 {
+    return roma_bom_voxelize_record_level(v, cmd, grid, triangles, 1);
+}
+
+roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
+                                           uint32_t triangles, int clear)
+{
     if (!v)
         return ROMA_ERROR_INVALID_ARGUMENT;
     roma_context *ctx = v->ctx;
@@ -102,7 +108,8 @@ roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    vkCmdFillBuffer(cmd, v->bom, 0, v->bom_bytes, 0);
+    if (clear)
+        vkCmdFillBuffer(cmd, v->bom, 0, v->bom_bytes, 0);
     roma_tile_queue_record_reset(&v->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -284,9 +284,14 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
     const roma_effect_plan *plan = &job->out->plan;
     VkCommandBuffer cmd = e->cmd;
     roma_gpu_timer_reset(e->timer, cmd);
-    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1};
+    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1,
+                                 .focus = d->camera.eye};
     roma_result r = ROMA_SUCCESS;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
+        /* Cascades: the finest grid 25 of its cells to the AO radius unless given. */
+        const int bounded = d->ao_radius > 0.0f && isfinite(d->ao_radius);
+        frame.finest_extent = d->finest_extent > 0.0f ? d->finest_extent
+                              : bounded ? (float)plan->maps[i].resolution * d->ao_radius / 25.0f : 0.0f;
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "build");
         r = roma_map_record_build(e->maps[i], cmd, &frame, NULL);
         roma_gpu_timer_end(e->timer, cmd, scope);
@@ -397,8 +402,9 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     roma_result r = roma_effect_plan_derive(scene, &options, NULL, &out->plan);
     const roma_effect_plan *plan = &out->plan;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
-        roma_map_desc md = {.resolution = plan->maps[i].resolution, .angular = plan->maps[i].angular,
-                            .frames_in_flight = 1};
+        const uint32_t angular = plan->maps[i].angular, most = 256u / (angular * angular);
+        roma_map_desc md = {.resolution = plan->maps[i].resolution, .angular = angular, .frames_in_flight = 1,
+                            .cascades = d->cascades < most ? d->cascades : most};
         r = roma_map_create(e->ctx, &md, scene, &e->maps[i]);
         if (r == ROMA_SUCCESS)
             r = roma_map_get_info(e->maps[i], &out->map_info[i]);

@@ -30,6 +30,10 @@ typedef struct effect_api_desc {
     float offset_cells, skip_cells, ao_skip_cells;
     uint32_t max_steps;
     roma_pixel_dispatch pixel_dispatch; /* the three effects' */
+    /* Cascade levels of every array (at most what its A allows: K x A x A <= 256; 0 = 1),
+     * centred on the camera's eye, the finest cube's edge finest_extent (0: the library's). */
+    uint32_t cascades;
+    float finest_extent;
     void (*progress)(float fraction, void *user_data); /* after each frame */
     void *progress_user_data;
 } effect_api_desc;

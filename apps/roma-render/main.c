@@ -43,6 +43,12 @@ static const char *usage =
     "                              $XDG_CACHE_HOME/libroma/budget.tsv or ~/.cache/libroma/budget.tsv)\n"
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
+    "  --cascades K                ROMA: K nested grids around the camera, each twice the last's size\n"
+    "                              (1..8, default 1: one grid over the scene; at most 4 for the shadow\n"
+    "                              rays' A 8 arrays); the public effect passes only\n"
+    "  --finest-extent E           ROMA with --cascades: the finest grid's edge in scene units\n"
+    "                              (default: RES x the AO radius / 25, 25 cells to the radius; with an\n"
+    "                              unbounded radius, the scene's size / 2^(K-1))\n"
     "  --ao-method roma|voxel-dda|distance-field|naadf|screen-space\n"
     "                              ROMA ao through the ROMA maps (default), or a baseline: every ray\n"
     "                              walked exactly through the voxel grid (the voxelization's own error),\n"
@@ -116,6 +122,9 @@ typedef struct options {
     int has_camera;
     uint32_t width, height, effects, spp, frames, lights, seed, threads, res, angular;
     uint32_t shadow_angular, max_steps, lights_per_frame;
+    uint32_t cascades;    /* --cascades; 0: unset (one grid) */
+    int cascades_auto;    /* 1: cascades chosen for a scene much larger than the AO radius */
+    float finest_extent;  /* --finest-extent; 0: derived */
     float skip, ao_skip; /* < 0: unset (library default) */
     float offset;        /* 0: unset (library default) */
     float ao_radius;
@@ -150,7 +159,8 @@ enum {
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
-    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18
+    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18,
+    GIVEN_CASCADES = 1u << 19
 };
 
 /* How ROMA's images are made (effect_api.h). */
@@ -158,7 +168,7 @@ enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--gi-punctual", "--route", "--pixel-dispatch", "--ray-start", "--ao-method", "--skip",
+    "--max-steps", "--cascades", "--finest-extent", "--gi-punctual", "--route", "--pixel-dispatch", "--ray-start", "--ao-method", "--skip",
     "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
@@ -444,6 +454,14 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--shadow-angular") == 0)
             ok = parse_u32(v, 1, 16, &o->shadow_angular), o->given |= GIVEN_SHADOW_ANGULAR;
         else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps), o->given |= GIVEN_MAX_STEPS;
+        else if (strcmp(a, "--cascades") == 0)
+            ok = parse_u32(v, 1, ROMA_MAX_LEVELS, &o->cascades), o->given |= GIVEN_CASCADES;
+        else if (strcmp(a, "--finest-extent") == 0) {
+            char *end = NULL;
+            o->finest_extent = strtof(v, &end);
+            ok = end && *end == '\0' && o->finest_extent > 0.0f && isfinite(o->finest_extent);
+            o->given |= GIVEN_CASCADES;
+        }
         else if (strcmp(a, "--lights-per-frame") == 0)
             ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame), o->given |= GIVEN_LIGHTS_PER_FRAME;
         else if (strcmp(a, "--offset") == 0) {
@@ -823,7 +841,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
 
 /* ROMA through the public effect passes (1), the internal renderer (0), or refused (-1: --route
  * api with a request they cannot render). Printed and noted in the stats. */
-static int choose_route(const options *o, notes *n)
+static int choose_route(options *o, notes *n)
 {
     if (strcmp(o->tracer, "roma") != 0)
         return 0;
@@ -833,6 +851,15 @@ static int choose_route(const options *o, notes *n)
     const char *why = effect_api_unsupported(o->effects, baseline, rsm, o->blind_start);
     if (!why && (o->given & GIVEN_BUDGET))
         why = "--budget-ms calibrates on the internal renderer's frames";
+    if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL) && o->cascades_auto) {
+        note(n, o->quiet, "cascades: none after all: only the public effect passes trace them, and %s",
+             why ? why : "--route internal was asked for");
+        o->cascades = 1;
+    } else if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL)) {
+        fprintf(stderr, "roma-render: --cascades: the public effect passes trace cascades, and %s\n",
+                why ? why : "--route internal was asked for");
+        return -1;
+    }
     if (o->route == ROUTE_API && why) {
         fprintf(stderr, "roma-render: --route api: %s\n", why);
         return -1;
@@ -876,7 +903,7 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
         .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
         .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .progress = on_progress,
-        .progress_user_data = &frames_progress};
+        .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent};
     double start = roma_app_now_ms();
     roma_result r = effect_api_render(ctx, scene, ref, &d, res);
     add_pass(run, "roma_total", "cpu_wall", roma_app_now_ms() - start);
@@ -1043,6 +1070,21 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         note(n, o->quiet, "AO radius %.4g: 10%% of the scene's diagonal (--ao-radius R to choose, --ao-radius inf "
              "for unbounded rays)", (double)o->ao_radius);
     }
+    /* A scene much larger than the AO radius (a game level): one grid over it has cells too
+     * large for the radius; cascade levels around the camera, the finest 25 cells to the
+     * radius, enough of them to cover the scene. */
+    const float longest = fmaxf(dx, fmaxf(dy, dz));
+    const float res = (float)(o->res ? o->res : o->preset == ROMA_PRESET_HIGH || o->preset == ROMA_PRESET_ULTRA ? 256 : 128);
+    const float finest = o->finest_extent > 0.0f ? o->finest_extent : res * o->ao_radius / 25.0f;
+    if (roma && !(o->given & GIVEN_CASCADES) && (o->effects & ROMA_EFFECT_AO) && o->ao_radius > 0.0f &&
+        isfinite(o->ao_radius) && longest > 4.0f * finest) {
+        o->cascades = (uint32_t)ceilf(log2f(longest / finest)) + 1u;
+        o->cascades = o->cascades > ROMA_MAX_LEVELS ? ROMA_MAX_LEVELS : o->cascades;
+        o->cascades_auto = 1;
+        note(n, o->quiet, "cascades: %u grids around the camera, the finest %.3g wide (25 cells to the AO radius "
+             "%.3g), the coarsest %.3g, for a scene %.3g wide (--cascades 1 for one grid over it)", o->cascades,
+             (double)finest, (double)o->ao_radius, (double)finest * (float)(1u << (o->cascades - 1)), (double)longest);
+    }
     if ((o->effects & ROMA_EFFECT_DIRECT) && !lights && !emitters)
         note(n, o->quiet, "direct: the scene has no light (no punctual light, no emissive triangle): direct.pfm is "
              "black; add one with --light");
@@ -1053,7 +1095,8 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
-        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"}};
+        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"},
+        {GIVEN_CASCADES, "--cascades"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,

@@ -606,6 +606,15 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     return h;
 }
 
+// How many of the finest level's cells one cell of the level that holds p spans (1, 2, 4,
+// ...; 1 for a map of one level): offsets and skips set in the finest level's trace cells
+// (roma_map_info.trace_cell) scale by it, so that a surface in a coarser level is left by as
+// many of its own cells.
+float roma_level_scale(vec3 p)
+{
+    return ROMA_CASCADES ? roma_fetch_grid(roma_level_of(p)).origin.w / roma_fetch_grid(0u).origin.w : 1.0;
+}
+
 // The map frame a hit or miss of the trace functions used (its level's map).
 roma_map_frame roma_hit_frame(roma_hit h)
 {

@@ -42,7 +42,9 @@ void main()
     vec3 n = normalize(texelFetch(roma_ao_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
     uint seed = pc.config2.x, open = 0u;
-    precise vec3 origin = position.xyz + ng * pc.ray.x;
+    // Offset and skip in the trace cells of the cascade level that holds the point.
+    float scale = roma_level_scale(position.xyz), skip = pc.ray.z * scale;
+    precise vec3 origin = position.xyz + ng * (pc.ray.x * scale);
     roma_use_ray_start(pc.bom);
     // This dispatch's part of the samples; a later part adds to what the earlier ones wrote.
     for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) {
@@ -55,9 +57,9 @@ void main()
         if (below <= 0.0)
             continue;
         // The skipped start, walked exactly (roma/ray_start.glsl).
-        if (roma_ray_start_blocked(origin, dir, min(pc.ray.z, pc.ray.y)))
+        if (roma_ray_start_blocked(origin, dir, min(skip, pc.ray.y)))
             continue;
-        roma_hit h = roma_trace_snapped(origin, dir, pc.ray.z, pc.ray.y, false);
+        roma_hit h = roma_trace_snapped(origin, dir, skip, pc.ray.y, false);
         open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;
     }
     float value = float(open) / float(max(spp, 1u));

@@ -42,7 +42,10 @@ void main()
     }
     vec3 n = normalize(texelFetch(roma_gi_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_gi_geometric_normal, at, 0).xyz);
-    vec3 origin = position.xyz + ng * pc.ray.x;
+    // Offset and skip in the trace cells of the cascade level that holds the point (the
+    // shadow rays at a bounce hit: in the hit's, roma_gi_hit_radiance).
+    float scale = roma_level_scale(position.xyz);
+    vec3 origin = position.xyz + ng * (pc.ray.x * scale);
     roma_use_ray_start(pc.bom);
     roma_gi_scene S = RomaGiScene(pc.scene).s;
     uint seed = pc.config2.x;
@@ -57,7 +60,7 @@ void main()
             continue;
         bool hit;
         vec3 hit_point;
-        acc += roma_gi_bounce(S, P, origin, dir, pc.ray.y, true, pixel, s, hit, hit_point);
+        acc += roma_gi_bounce(S, P, origin, dir, pc.ray.y * scale, true, pixel, s, hit, hit_point);
     }
     vec3 E = acc * (3.14159265358979 / float(samples));
     if (pc.part.x > 0u || pc.part.z > 0u) // a later part adds to the earlier ones

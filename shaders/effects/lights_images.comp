@@ -46,7 +46,8 @@ void main()
     vec3 p = position.xyz;
     vec3 n = normalize(texelFetch(roma_light_normal, at, 0).xyz);
     vec3 ng = normalize(texelFetch(roma_light_geometric_normal, at, 0).xyz);
-    float offset = pc.ray.x;
+    // Offset and skip in the trace cells of the cascade level that holds the point.
+    float scale = roma_level_scale(p), offset = pc.ray.x * scale, tmin = pc.ray.y * scale;
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
     vec3 E = vec3(0.0);
@@ -61,7 +62,7 @@ void main()
     uint part_first = pc.part.x, part_end = pc.part.y;
     for (uint i = part_first; i < min(part_end, exact); ++i) {
         ROMA_LOOP_TICK();
-        E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
+        E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, tmin, max_steps);
     }
     if (sampled > 0u) {
         uint first =
@@ -72,7 +73,7 @@ void main()
             ROMA_LOOP_TICK();
             uint i = first + j;
             i = exact + (i >= rest ? i - rest : i);
-            sum += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, pc.ray.y, max_steps);
+            sum += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, tmin, max_steps);
         }
         E += sum * (float(rest) / float(sampled));
     }
@@ -85,7 +86,7 @@ void main()
             vec3 u = vec3(roma_random(seed, pixel, s, DIM_DIRECT_AREA), roma_random(seed, pixel, s, DIM_DIRECT_AREA + 1u),
                           roma_random(seed, pixel, s, DIM_DIRECT_AREA + 2u));
             area += roma_area_sample_irradiance(RomaEmitters(pc.emitters), RomaFloats(pc.cdf), emitter_count, u, p, ng,
-                                                n, origin, offset, pc.ray.y, max_steps);
+                                                n, origin, offset, tmin, max_steps);
         }
         E += area / float(samples);
     }

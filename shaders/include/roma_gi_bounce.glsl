@@ -21,7 +21,8 @@ const uint ROMA_DIM_GI_BOUNCE = 5u;
 const uint ROMA_DIM_GI_AREA = 7u;
 const float ROMA_GI_INV_PI = 0.31830988618379067;
 
-// How a bounce hit is lit: the shadow rays' origin offset and skip (world units), their
+// How a bounce hit is lit: the shadow rays' origin offset and skip (world units, in the finest
+// cascade level's cells: scaled by the level of the hit, roma_level_scale), their
 // most steps, the sample seed, the punctual lights (roma_gpu_light) and the part of them this
 // dispatch lights the hit with, [x, y) (a device's loop budget splits them,
 // src/vulkan/loop_budget.h); the area-light sample goes with the part that starts at 0.
@@ -124,9 +125,12 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     float tp = dot(ng, a - origin) / dn;
     vec3 y_hit = h - ng * dot(ng, h - a);
     vec3 y = y_hit;
+    // The hit's offset and skip in the cells of the cascade level that holds it.
+    float scale = roma_level_scale(y_hit);
     if (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) {
-        vec3 from = y_hit + ng * P.offset, to = origin + dir * tp + ng * P.offset;
-        bool near = roma_start_bom_ == uvec2(0u) || length(to - from) <= 64.0 * roma_start_grid_.origin.w;
+        vec3 from = y_hit + ng * (P.offset * scale), to = origin + dir * tp + ng * (P.offset * scale);
+        bool near = roma_start_bom_ == uvec2(0u) ||
+                    length(to - from) <= 64.0 * roma_start_grid_.origin.w * scale;
         if (near && !(roma_bom_walk(from, to - from, length(to - from), 128) >= 0.0))
             y = origin + dir * tp;
     }
@@ -146,7 +150,7 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
             n = dot(ns, ng) < 0.0 ? -ns : ns;
         }
     }
-    float offset = P.offset, tmin = P.shadow_tmin;
+    float offset = P.offset * scale, tmin = P.shadow_tmin * scale;
     uint max_steps = P.max_steps, seed = P.seed;
     vec3 o = y + ng * offset;
     vec3 E = vec3(0.0);

@@ -103,7 +103,7 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* The samples in parts within the device's loop budget (one part where it has none). */
-    const roma_loop_grid grid = {info.resolution, info.grid_cell};
+    const roma_loop_grid grid = {info.resolution, info.grid_cell, info.levels};
     const roma_loop_parts parts = roma_loop_parts_plan(e->base.ctx, 0, s.samples,
                                                        roma_loop_cost_ao_ray(grid, push.ray[2], push.ray[1]), 0, 0);
     uint32_t range[4];

@@ -236,7 +236,7 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* Samples and the lights at their hits in parts within the device's loop budget. */
-    const roma_loop_grid grid = {info.resolution, info.grid_cell};
+    const roma_loop_grid grid = {info.resolution, info.grid_cell, info.levels};
     const roma_shadow_cost shadow = {grid, push.ray[2], ROMA_START_WALK, s.max_steps, ROMA_BACK_SKIP_POINT, 0};
     uint32_t bounce = roma_loop_cost_gi_bounce(grid, push.ray[1], 0);
     if (have_scene && sf->emitters.emitter_count)

@@ -31,6 +31,7 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     e->ctx = ctx;
     e->logger = *log;
     e->name = name;
+    e->module = module;
     e->inputs = inputs;
     e->outputs = outputs;
     e->push_size = push_size;
@@ -90,6 +91,8 @@ void roma_image_effect_free(roma_image_effect *e)
         vkDestroyPipeline(dev, e->list_pipeline, a);
     if (e->pipeline)
         vkDestroyPipeline(dev, e->pipeline, a);
+    if (e->cascaded_pipeline)
+        vkDestroyPipeline(dev, e->cascaded_pipeline, a);
     if (e->layout)
         vkDestroyPipelineLayout(dev, e->layout, a);
     if (e->images_layout)
@@ -112,6 +115,15 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
         return r;
     if (!map->built)
         return roma_fail(&e->logger, ROMA_ERROR_NOT_READY, "%s: record a build of the map first", e->name);
+    /* A map of several cascade levels needs the cascade code (made once, before anything of
+     * the record is recorded). */
+    if (info->levels > 1 && !e->cascaded_pipeline) {
+        r = roma_compute_pipeline_make_flags(e->ctx, e->module, e->layout, &(uint32_t){(uint32_t)e->listed}, 1,
+                                             ROMA_PIPELINE_CASCADES, &e->cascaded_pipeline);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
+    e->traced = info->levels > 1 ? e->cascaded_pipeline : e->pipeline;
     e->frame = frame;
     return ROMA_SUCCESS;
 }
@@ -196,7 +208,7 @@ static void record_listed_dispatch(roma_image_effect *e, VkCommandBuffer cmd, co
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->traced);
     vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
     vkCmdDispatchIndirect(cmd, list->buffer, 0);
 }
@@ -243,7 +255,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
         record_listed_dispatch(e, cmd, list, push, width, height);
         return ROMA_SUCCESS;
     }
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->traced);
     vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
     vkCmdDispatch(cmd, e->last_groups[0], e->last_groups[1], 1);
     return ROMA_SUCCESS;

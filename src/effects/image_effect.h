@@ -26,6 +26,10 @@ typedef struct roma_image_effect {
     VkPipelineLayout layout;
     int listed;                    /* the resolved roma_pixel_dispatch */
     VkPipeline pipeline, list_pipeline; /* the list's only when listed */
+    /* The effect with the cascade code compiled in (ROMA_PIPELINE_CASCADES), made by the first
+     * record of a map of several levels; traced: the one this record's map needs. */
+    VkPipeline cascaded_pipeline, traced;
+    const char *module;
     float background[4]; /* the output where the position image holds no surface */
     roma_slot_sets sets; /* set 1 of each record */
     /* Each slot's covered-pixel list; one outgrown by a larger record of the same frame waits

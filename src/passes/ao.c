@@ -104,7 +104,7 @@ roma_result roma_ao_pass_record(roma_ao_pass *pass, VkCommandBuffer cmd, const r
         push.config2[2] = in->ssao_layers;
     }
     /* The samples in parts within the device's loop budget (loop_budget.h). */
-    const roma_loop_grid grid = {in->map->resolution, in->map->grid_cell};
+    const roma_loop_grid grid = {in->map->resolution, in->map->grid_cell, in->map->levels};
     const roma_loop_parts parts =
         roma_loop_parts_plan(pass->ctx, 0, in->spp, sample_cost(pass->method, grid, &push), 0, 0);
     uint32_t range[4];

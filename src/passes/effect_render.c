@@ -309,7 +309,7 @@ static roma_result record_passes(renderer *R, VkCommandBuffer cmd, uint32_t f, c
         const float offset = offset_cells * m->trace_cell;
         const VkBufferView bom_view = m->bom_view;
         /* What one shadow ray of this pass costs in loop iterations (loop_costs.h). */
-        const roma_loop_grid grid = {m->resolution, m->grid_cell};
+        const roma_loop_grid grid = {m->resolution, m->grid_cell, m->levels};
         const roma_shadow_cost shadow = {grid, skip_cells * m->trace_cell, ROMA_START_WALK, steps,
                                          ROMA_BACK_SKIP_POINT, exact_shadows > 0.0f};
         const uint64_t bom = d->blind_ray_start ? 0u : 1u; /* the walk reads the bound BOM */

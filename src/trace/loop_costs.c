@@ -20,12 +20,20 @@ uint32_t roma_loop_cost_walk(roma_loop_grid g, float length, uint32_t max_cells)
     return min_u32(min_u32(cells, leave), max_cells);
 }
 
-uint32_t roma_loop_cost_snapped(roma_loop_grid g) { return g.res / 32u; }
+/* A query's cost in each cascade level, plus the levels' own loops (roma_level_of, the
+ * exits' three axes and the walk over the levels). */
+static uint32_t across_levels(roma_loop_grid g, uint64_t per_level)
+{
+    const uint64_t levels = g.levels > 1 ? g.levels : 1;
+    return min_u32(levels * per_level + (levels > 1 ? 5 * levels : 0), UINT32_MAX);
+}
+
+uint32_t roma_loop_cost_snapped(roma_loop_grid g) { return across_levels(g, g.res / 32u); }
 
 uint32_t roma_loop_cost_unsnapped(roma_loop_grid g, uint32_t max_steps)
 {
     const uint64_t steps = min_u32(max_steps, 2ull * g.res);
-    return min_u32(steps * (g.res / 32u + 1u), UINT32_MAX);
+    return across_levels(g, steps * (g.res / 32u + 1u));
 }
 
 uint32_t roma_loop_cost_shadow_ray(const roma_shadow_cost *s)

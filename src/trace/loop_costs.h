@@ -9,20 +9,22 @@
 
 #include <stdint.h>
 
-/* The grid the trace functions walk: RES and a BOM cell's world size. */
+/* The grid the trace functions walk: RES, a BOM cell's world size (the finest level's) and
+ * the map's cascade levels (0 or 1: one), each of which a query may walk in turn. */
 typedef struct roma_loop_grid {
     uint32_t res;
     float cell;
+    uint32_t levels;
 } roma_loop_grid;
 
 /* roma_bom_walk over `length` world units (infinite: to the grid's edge), at most max_cells
  * cells: one iteration per cell it crosses, which is at most sqrt(3) per cell of length plus
  * 4, and 3 RES + 1 before it leaves the grid. */
 uint32_t roma_loop_cost_walk(roma_loop_grid g, float length, uint32_t max_cells);
-/* roma_trace_snapped: one column's words, RES / 32. */
+/* roma_trace_snapped: one column's words, RES / 32, in each level (and the levels' own loops). */
 uint32_t roma_loop_cost_snapped(roma_loop_grid g);
 /* roma_trace_unsnapped: max_steps texels, at most 2 RES before the ray leaves the map, each
- * reading up to RES / 32 words. */
+ * reading up to RES / 32 words, in each level. */
 uint32_t roma_loop_cost_unsnapped(roma_loop_grid g, uint32_t max_steps);
 
 /* A shadow ray of roma_ray_visible (roma_lights.glsl): its start walked over start_walk x

@@ -7,7 +7,9 @@
  * - The room with 65,536 point lights (roma_light_effect's most) against Embree's direct light
  *   from the same lights; un-snapped shadow rays of UINT32_MAX steps give the image of 2 RES
  *   steps (a walk leaves the map within them), bit for bit.
- * - AO of 16,384 samples in one record against Embree's on the same rays. */
+ * - AO of 16,384 samples in one record against Embree's on the same rays.
+ * - The level with cascade levels around the camera: its AO and direct light closer to
+ *   Embree's than one grid's. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -156,6 +158,92 @@ done:
     roma_scene_destroy(scene);
 }
 
+/* The level with cascade levels around the camera (roma_map_desc.cascades): AO of radius
+ * 1.5 m and the direct light of its 84 lights, one grid over the level against 4 levels
+ * from a finest cube of 7.68 m (25 cells to the radius at RES 128), against Embree on the
+ * same samples. Returns nothing; checks the cascade's errors and that they beat one grid's. */
+#define CASCADE_W 48u
+#define CASCADE_H 36u
+/* Measured: AO MAE 0.0607 with 4 levels, 0.1114 with one grid (64 samples: per-pixel noise of
+ * both sides included); direct light relative MAE 0.0190 and bias -1.19% with 4 levels, 0.0566
+ * and -4.94% with one grid (the issue's target: 3% and 2%). */
+#define MAX_CASCADE_AO_MAE 0.062
+#define MAX_CASCADE_DIRECT_MAE 0.020
+#define MAX_CASCADE_DIRECT_BIAS 0.013
+static void level_cascades(roma_context *ctx)
+{
+    const char *dir = getenv("ROMA_LEVELS_DIR");
+    char glb[1024], cameras[1024];
+    snprintf(glb, sizeof glb, "%s/aggressor.glb", dir ? dir : ".");
+    snprintf(cameras, sizeof cameras, "%s/aggressor.cameras", dir ? dir : ".");
+    roma_scene *scene = NULL;
+    roma_camera cam;
+    CHECK_RESULT(roma_scene_load_gltf(glb, NULL, &scene), ROMA_SUCCESS);
+    CHECK(level_camera(cameras, &cam));
+    roma_ref *ref = NULL;
+    roma_ao_effect *ao = NULL;
+    roma_light_effect *light = NULL;
+    roma_test_gbuffer g = {0};
+    if (!scene)
+        return;
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    CHECK_RESULT(roma_ao_effect_create(ctx, NULL, &ao), ROMA_SUCCESS);
+    CHECK_RESULT(roma_light_effect_create(ctx, NULL, &light), ROMA_SUCCESS);
+    if (!ref || !ao || !light || !roma_test_gbuffer_create(ctx, ref, &cam, CASCADE_W, CASCADE_H, &g))
+        goto done;
+    double ao_mae[2] = {1.0, 1.0}, direct_mae[2] = {1.0, 1.0}, direct_bias[2] = {1.0, 1.0};
+    for (int c = 0; c < 2; ++c) {
+        const uint32_t levels = c == 0 ? 1u : 4u;
+        roma_map *ao_map = NULL, *shadow_map = NULL;
+        CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.angular = 4, .cascades = levels}, scene, &ao_map),
+                     ROMA_SUCCESS);
+        CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.angular = 8, .cascades = levels}, scene, &shadow_map),
+                     ROMA_SUCCESS);
+        if (!ao_map || !shadow_map) {
+            roma_map_destroy(ao_map);
+            roma_map_destroy(shadow_map);
+            continue;
+        }
+        const roma_map_frame_desc frame = {.seed = SEED, .focus = cam.eye, .finest_extent = 7.68f};
+        const roma_ao_images ao_images = roma_test_gbuffer_ao_images(&g);
+        const roma_light_images light_images = roma_test_gbuffer_light_images(&g);
+        const float *rgba, *r;
+        VkCommandBuffer cmd = roma_test_gbuffer_begin(&g);
+        CHECK_RESULT(roma_map_record_build(ao_map, cmd, &frame, NULL), ROMA_SUCCESS);
+        CHECK_RESULT(roma_map_record_build(shadow_map, cmd, &frame, NULL), ROMA_SUCCESS);
+        /* Frame 0 (the reference's samples) in slot c. */
+        CHECK_RESULT(roma_ao_effect_record(ao, cmd, (uint32_t)c, ao_map, &ao_images,
+                                           &(roma_ao_settings){.samples = 64, .radius = 1.5f, .seed = SEED}),
+                     ROMA_SUCCESS);
+        CHECK_RESULT(roma_light_effect_record(light, cmd, (uint32_t)c, shadow_map, &light_images, v.lights,
+                                              v.light_count, NULL),
+                     ROMA_SUCCESS);
+        roma_test_gbuffer_finish(ctx, &g, &rgba, &r);
+        double err = 0.0;
+        for (uint32_t p = 0; p < g.width * g.height; ++p)
+            if (g.covered[p]) /* the reference at the same samples */
+                err += fabs((double)r[p] - roma_ref_ao_point(ref, g.hits[p].position, g.hits[p].geometric_normal,
+                                                             g.hits[p].shading_normal, 1.5f, 64, SEED, p));
+        ao_mae[c] = err / g.covered_count;
+        direct_bias[c] = relative_bias(ref, roma_ref_direct_point, 1, &v, &g, rgba, &direct_mae[c]);
+        printf("aggressor, %u level(s): AO (radius 1.5) MAE %.4f; direct light relative MAE %.4f, bias %+.2f%%\n",
+               levels, ao_mae[c], direct_mae[c], 100.0 * direct_bias[c]);
+        roma_map_destroy(ao_map);
+        roma_map_destroy(shadow_map);
+    }
+    CHECK(ao_mae[1] <= MAX_CASCADE_AO_MAE && ao_mae[1] < ao_mae[0]);
+    CHECK(direct_mae[1] <= MAX_CASCADE_DIRECT_MAE && direct_mae[1] < direct_mae[0]);
+    CHECK(fabs(direct_bias[1]) <= MAX_CASCADE_DIRECT_BIAS);
+done:
+    roma_test_gbuffer_destroy(ctx, &g);
+    roma_light_effect_destroy(light);
+    roma_ao_effect_destroy(ao);
+    roma_ref_destroy(ref);
+    roma_scene_destroy(scene);
+}
+
 /* The room (cornell_spot) lit by its spot and CROWD point lights on a grid through it. */
 #define CROWD 65535u
 static void crowd(roma_context *ctx)
@@ -285,6 +373,7 @@ int main(void)
     if (!ctx)
         return roma_test_finish("test_effects_at_scale");
     level(ctx);
+    level_cascades(ctx);
     crowd(ctx);
     many_samples(ctx);
     roma_test_context_finish(ctx);

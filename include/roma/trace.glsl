@@ -330,28 +330,45 @@ bool roma_ray_range_valid(vec3 origin, float tmin, float tmax)
     return roma_all_finite(origin) && !roma_is_nan(tmin) && !roma_is_nan(tmax) && tmin <= tmax;
 }
 
-// Start of both queries: the unit direction, its map and fold, and the miss that
-// is returned unless a hit is found. False for rays that are not traced at all.
-bool roma_trace_begin(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax, out vec3 dn,
-                      out uint k, out bool folded, out roma_hit miss)
+// A ray's direction as the queries take it, the same in every cascade level: its unit vector
+// (unit: false for a direction that traces nothing), its map and fold.
+struct roma_ray_dir {
+    vec3 dn;
+    uint k;
+    bool folded, unit;
+};
+
+roma_ray_dir roma_ray_dir_of(vec3 dir, uint angular)
 {
-    folded = false;
-    bool valid = roma_unit_direction(dir, dn) && roma_ray_range_valid(origin, tmin, tmax);
-    k = valid ? roma_select_map_unit(dn, grid.dims.z, folded) : 0u;
+    roma_ray_dir d;
+    d.folded = false;
+    d.unit = roma_unit_direction(dir, d.dn);
+    d.k = d.unit ? roma_select_map_unit(d.dn, angular, d.folded) : 0u;
+    return d;
+}
+
+// Start of both queries: the map and fold of the direction, and the miss that is returned
+// unless a hit is found (map 0 for rays not traced at all). False for those rays.
+bool roma_trace_begin(roma_ray_dir d, vec3 origin, float tmin, float tmax, out uint k, out bool folded,
+                      out roma_hit miss)
+{
+    bool valid = d.unit && roma_ray_range_valid(origin, tmin, tmax);
+    k = valid ? d.k : 0u;
+    folded = valid && d.folded;
     miss = roma_hit(1.0 / 0.0, (k << 8) | (folded ? ROMA_HIT_FOLDED : 0u));
     return valid;
 }
 
-// Snapped query in one cascade level (grid): the ray follows the candidate of its stratum
-// (or its opposite).
-roma_hit roma_trace_snapped_level(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
+// Snapped query in one cascade level (grid), the direction resolved (roma_ray_dir_of): the
+// ray follows the candidate of its stratum (or its opposite).
+roma_hit roma_trace_snapped_dir(roma_grid_params grid, vec3 origin, roma_ray_dir d, float tmin, float tmax,
+                                bool closest)
 {
     uint res = grid.dims.x, words = grid.dims.y;
-    vec3 dn;
     uint k;
     bool folded;
     roma_hit hit;
-    if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
+    if (!roma_trace_begin(d, origin, tmin, tmax, k, folded, hit))
         return hit;
     roma_map_frame f = roma_fetch_frame(grid.level.z + k);
     vec3 m = roma_to_map(grid, f, origin);
@@ -376,25 +393,32 @@ roma_hit roma_trace_snapped_level(roma_grid_params grid, vec3 origin, vec3 dir, 
     return hit;
 }
 
+// Snapped query in one cascade level.
+roma_hit roma_trace_snapped_level(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax, bool closest)
+{
+    return roma_trace_snapped_dir(grid, origin, roma_ray_dir_of(dir, grid.dims.z), tmin, tmax, closest);
+}
+
 // Texels the last roma_trace_unsnapped call of this invocation walked, and whether it gave up:
 // walked max_steps texels without a hit and without leaving the map or reaching tmax, so
 // it counts as unoccluded (debug views).
 uint roma_unsnapped_steps = 0u;
 bool roma_unsnapped_gave_up = false;
 
-// Un-snapped query in one cascade level (grid): the exact direction walked through the
-// selected map's texels (2D DDA in the map's xy plane), at most max_steps texels.
-roma_hit roma_trace_unsnapped_level(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax,
-                                    bool closest, uint max_steps)
+// Un-snapped query in one cascade level (grid), the direction resolved: the exact direction
+// walked through the selected map's texels (2D DDA in the map's xy plane), at most max_steps
+// texels.
+roma_hit roma_trace_unsnapped_dir(roma_grid_params grid, vec3 origin, roma_ray_dir d, float tmin, float tmax,
+                                  bool closest, uint max_steps)
 {
     roma_unsnapped_steps = 0u;
     roma_unsnapped_gave_up = false;
     uint res = grid.dims.x, words = grid.dims.y;
-    vec3 dn;
+    vec3 dn = d.dn;
     uint k;
     bool folded;
     roma_hit hit;
-    if (!roma_trace_begin(grid, origin, dir, tmin, tmax, dn, k, folded, hit))
+    if (!roma_trace_begin(d, origin, tmin, tmax, k, folded, hit))
         return hit;
     roma_map_frame f = roma_fetch_frame(grid.level.z + k);
     precise vec3 dm_raw = vec3(
@@ -505,6 +529,13 @@ roma_hit roma_trace_unsnapped_level(roma_grid_params grid, vec3 origin, vec3 dir
     return hit;
 }
 
+// Un-snapped query in one cascade level.
+roma_hit roma_trace_unsnapped_level(roma_grid_params grid, vec3 origin, vec3 dir, float tmin, float tmax,
+                                    bool closest, uint max_steps)
+{
+    return roma_trace_unsnapped_dir(grid, origin, roma_ray_dir_of(dir, grid.dims.z), tmin, tmax, closest, max_steps);
+}
+
 // The finest cascade level whose grid cube holds p; the coarsest when none does (a ray from
 // outside every level is traced in the coarsest, as a single grid traces it).
 uint roma_level_of(vec3 p)
@@ -522,19 +553,17 @@ uint roma_level_of(vec3 p)
     return count - 1u;
 }
 
-// Distance along the unit direction dn at which origin + dn * t leaves level grid's cube
-// (+INF along no axis it moves on). The C mirror evaluates the same expressions.
-float roma_level_exit(roma_grid_params grid, vec3 origin, vec3 dn)
+// Distance along the unit direction dn (inv: its components' reciprocals, 0 where they are 0)
+// at which origin + dn * t leaves level grid's cube (+INF along no axis it moves on). The C
+// mirror evaluates the same expressions.
+float roma_level_exit(roma_grid_params grid, vec3 origin, vec3 dn, vec3 inv)
 {
     precise vec3 lo = grid.origin.xyz - origin;
     precise vec3 hi = lo + vec3(float(grid.dims.x) * grid.origin.w);
-    float t = 1.0 / 0.0;
-    for (int a = 0; a < 3; ++a) {
-        ROMA_LOOP_TICK();
-        float ta = dn[a] > 0.0 ? roma_div(hi[a], dn[a]) : dn[a] < 0.0 ? roma_div(lo[a], dn[a]) : 1.0 / 0.0;
-        t = min(t, ta);
-    }
-    return t;
+    precise vec3 ta = vec3(dn.x > 0.0 ? hi.x * inv.x : dn.x < 0.0 ? lo.x * inv.x : 1.0 / 0.0,
+                           dn.y > 0.0 ? hi.y * inv.y : dn.y < 0.0 ? lo.y * inv.y : 1.0 / 0.0,
+                           dn.z > 0.0 ? hi.z * inv.z : dn.z < 0.0 ? lo.z * inv.z : 1.0 / 0.0);
+    return min(ta.x, min(ta.y, ta.z));
 }
 
 // The parts of a ray that cascade levels trace: from the level that holds the origin, each
@@ -542,9 +571,10 @@ float roma_level_exit(roma_grid_params grid, vec3 origin, vec3 dn)
 // last level's part ended (tmin in the first). One level: [tmin, tmax] in it.
 struct roma_level_walk {
     uint level, count;
-    bool last, unit;
+    bool last;
     float t0, t1;
-    vec3 dn;
+    roma_ray_dir d; // resolved once: the same in every level
+    vec3 inv;       // the unit direction's reciprocals, for the levels' exits
     roma_grid_params grid;
 };
 
@@ -556,9 +586,11 @@ roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float t
     w.count = max(w.grid.level.y, 1u);
     w.t0 = tmin;
     w.last = w.level + 1u >= w.count;
-    w.dn = vec3(0.0);
-    w.unit = !w.last && roma_unit_direction(dir, w.dn); // only the levels' exits need it
-    w.t1 = w.unit ? min(roma_level_exit(w.grid, origin, w.dn), tmax) : tmax;
+    w.d = roma_ray_dir_of(dir, w.grid.dims.z);
+    vec3 dn = w.d.dn;
+    w.inv = vec3(dn.x != 0.0 ? roma_div(1.0, dn.x) : 0.0, dn.y != 0.0 ? roma_div(1.0, dn.y) : 0.0,
+                 dn.z != 0.0 ? roma_div(1.0, dn.z) : 0.0);
+    w.t1 = !w.last && w.d.unit ? min(roma_level_exit(w.grid, origin, dn, w.inv), tmax) : tmax;
     return w;
 }
 
@@ -571,7 +603,7 @@ bool roma_level_walk_next(inout roma_level_walk w, vec3 origin, float tmax, roma
     w.level += 1u;
     w.grid = roma_fetch_grid(w.level);
     w.last = w.level + 1u >= w.count;
-    w.t1 = w.last ? tmax : min(roma_level_exit(w.grid, origin, w.dn), tmax);
+    w.t1 = w.last ? tmax : min(roma_level_exit(w.grid, origin, w.d.dn, w.inv), tmax);
     return true;
 }
 
@@ -584,7 +616,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     roma_hit h;
     do {
         ROMA_LOOP_TICK();
-        h = roma_trace_snapped_level(w.grid, origin, dir, w.t0, w.t1, closest);
+        h = roma_trace_snapped_dir(w.grid, origin, w.d, w.t0, w.t1, closest);
         h.info |= w.level << ROMA_HIT_LEVEL_SHIFT;
     } while (roma_level_walk_next(w, origin, tmax, h));
     return h;
@@ -600,7 +632,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     roma_hit h;
     do {
         ROMA_LOOP_TICK();
-        h = roma_trace_unsnapped_level(w.grid, origin, dir, w.t0, w.t1, closest, max_steps);
+        h = roma_trace_unsnapped_dir(w.grid, origin, w.d, w.t0, w.t1, closest, max_steps);
         h.info |= w.level << ROMA_HIT_LEVEL_SHIFT;
     } while (!roma_unsnapped_gave_up && roma_level_walk_next(w, origin, tmax, h));
     return h;

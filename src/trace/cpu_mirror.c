@@ -292,17 +292,16 @@ static uint32_t level_of(uint32_t levels, const roma_grid_params *grids, const f
     return levels ? levels - 1 : 0;
 }
 
-/* roma_level_exit in GLSL. */
-static float level_exit(const roma_grid_params *g, const float origin[3], const float dn[3])
+/* roma_level_exit in GLSL (inv: dn's reciprocals, 0 where dn is 0). */
+static float level_exit(const roma_grid_params *g, const float origin[3], const float dn[3], const float inv[3])
 {
     const float side = (float)g->dims[0] * g->origin[3];
-    float t = INFINITY;
+    float ta[3];
     for (int a = 0; a < 3; ++a) {
         const float lo = g->origin[a] - origin[a], hi = lo + side;
-        const float ta = dn[a] > 0.0f ? hi / dn[a] : dn[a] < 0.0f ? lo / dn[a] : INFINITY;
-        t = fminf(t, ta);
+        ta[a] = dn[a] > 0.0f ? hi * inv[a] : dn[a] < 0.0f ? lo * inv[a] : INFINITY;
     }
-    return t;
+    return fminf(ta[0], fminf(ta[1], ta[2]));
 }
 
 roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, const roma_map_frame *frames,
@@ -312,9 +311,11 @@ roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, c
     uint32_t l = level_of(levels, grids, ray->origin);
     const roma_grid_params *g = &grids[l];
     int last = l + 1 >= levels;
-    float dn[3] = {0.0f, 0.0f, 0.0f};
-    const int unit = !last && roma_unit_direction(ray->dir, dn);
-    float t0 = ray->tmin, t1 = unit ? fminf(level_exit(g, ray->origin, dn), ray->tmax) : ray->tmax;
+    float dn[3] = {0.0f, 0.0f, 0.0f}, inv[3];
+    const int unit = roma_unit_direction(ray->dir, dn);
+    for (int a = 0; a < 3; ++a)
+        inv[a] = dn[a] != 0.0f ? 1.0f / dn[a] : 0.0f;
+    float t0 = ray->tmin, t1 = !last && unit ? fminf(level_exit(g, ray->origin, dn, inv), ray->tmax) : ray->tmax;
     const int unsnapped = mode == ROMA_TRACE_UNSNAPPED_ANY || mode == ROMA_TRACE_UNSNAPPED_CLOSEST;
     for (;;) {
         roma_ray part = *ray;
@@ -329,6 +330,6 @@ roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, c
         t0 = fmaxf(t0, t1);
         g = &grids[++l];
         last = l + 1 >= levels;
-        t1 = last ? ray->tmax : fminf(level_exit(g, ray->origin, dn), ray->tmax);
+        t1 = last ? ray->tmax : fminf(level_exit(g, ray->origin, dn, inv), ray->tmax);
     }
 }

@@ -46,6 +46,13 @@ int roma_app_valid_up(const char *up);
 /* The name in names (NULL-terminated) closest to typed, or NULL when none is close. */
 const char *roma_app_suggest(const char *typed, const char *const *names);
 
+/* Cascade levels for AO of radius ao_radius in a scene whose longest edge is longest, maps of
+ * RES res: the finest level finest_extent wide (0: 25 cells to the radius; written to
+ * *finest), enough levels, each twice the last, to cover the scene, at most ROMA_MAX_LEVELS;
+ * 1 (one grid over the scene) where the scene is at most 4 finest levels wide or the radius
+ * is not finite and positive. */
+uint32_t roma_app_auto_cascades(float longest, uint32_t res, float ao_radius, float finest_extent, float *finest);
+
 /* Creates the folder (and parents) if needed; 0 on failure, with errno set. */
 int roma_app_make_dir(const char *path);
 

@@ -1071,15 +1071,13 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
              "for unbounded rays)", (double)o->ao_radius);
     }
     /* A scene much larger than the AO radius (a game level): one grid over it has cells too
-     * large for the radius; cascade levels around the camera, the finest 25 cells to the
-     * radius, enough of them to cover the scene. */
+     * large for the radius; cascade levels around the camera instead (roma_app_auto_cascades). */
     const float longest = fmaxf(dx, fmaxf(dy, dz));
-    const float res = (float)(o->res ? o->res : o->preset == ROMA_PRESET_HIGH || o->preset == ROMA_PRESET_ULTRA ? 256 : 128);
-    const float finest = o->finest_extent > 0.0f ? o->finest_extent : res * o->ao_radius / 25.0f;
-    if (roma && !(o->given & GIVEN_CASCADES) && (o->effects & ROMA_EFFECT_AO) && o->ao_radius > 0.0f &&
-        isfinite(o->ao_radius) && longest > 4.0f * finest) {
-        o->cascades = (uint32_t)ceilf(log2f(longest / finest)) + 1u;
-        o->cascades = o->cascades > ROMA_MAX_LEVELS ? ROMA_MAX_LEVELS : o->cascades;
+    const uint32_t res = o->res ? o->res : o->preset == ROMA_PRESET_HIGH || o->preset == ROMA_PRESET_ULTRA ? 256 : 128;
+    float finest = 0.0f;
+    const uint32_t levels = roma_app_auto_cascades(longest, res, o->ao_radius, o->finest_extent, &finest);
+    if (roma && !(o->given & GIVEN_CASCADES) && (o->effects & ROMA_EFFECT_AO) && levels > 1) {
+        o->cascades = levels;
         o->cascades_auto = 1;
         note(n, o->quiet, "cascades: %u grids around the camera, the finest %.3g wide (25 cells to the AO radius "
              "%.3g), the coarsest %.3g, for a scene %.3g wide (--cascades 1 for one grid over it)", o->cascades,

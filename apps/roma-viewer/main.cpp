@@ -57,7 +57,9 @@ const char *kUsage =
     "                       rotated-map (--map K: which of the A x A maps, default 0), ray-start\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --preset NAME        ROMA array of a quality preset: low (128, 2), medium (128, 4), high\n"
-    "                       (256, 4), ultra (256, 8); a later --res or --angular overrides it\n"
+    "                       (256, 4), ultra (256, 8); a later --res or --angular overrides it\n"    "  --cascades K         K cascade levels around the camera, each twice the last's size (default\n"
+    "                       0: several for a scene much wider than the AO radius, else 1)\n"
+    "  --finest-extent E    the finest level's edge (default: RES x the AO radius / 25)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
@@ -166,6 +168,10 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 32, 256, o.settings.res) && (o.settings.res & (o.settings.res - 1)) == 0;
         } else if (a == "--angular") {
             ok = parse_u32(v, 1, 16, o.settings.angular);
+        } else if (a == "--cascades") {
+            ok = parse_u32(v, 0, ROMA_MAX_LEVELS, o.settings.cascades);
+        } else if (a == "--finest-extent") {
+            ok = parse_float(v, 1e-6f, 1e30f, o.settings.finest_extent);
         } else if (a == "--preset") {
             roma_preset p = ROMA_PRESET_DEFAULT;
             ok = roma_preset_parse(v, &p) == ROMA_SUCCESS &&
@@ -352,6 +358,23 @@ void free_scene(viewer &v)
     v.scene = nullptr;
 }
 
+float effective_ao_radius(const viewer &v)
+{
+    return v.s.ao_radius > 0.0f ? v.s.ao_radius : v.s.auto_ao_radius;
+}
+
+// The cascade levels the settings ask for (0: chosen for the scene and the AO radius, as
+// roma-render chooses), and the finest level's edge; at most 256 maps in all.
+uint32_t wanted_levels(const viewer &v, float &finest)
+{
+    const float longest = std::max({v.view.bounds_max[0] - v.view.bounds_min[0],
+                                    v.view.bounds_max[1] - v.view.bounds_min[1],
+                                    v.view.bounds_max[2] - v.view.bounds_min[2]});
+    uint32_t chosen = roma_app_auto_cascades(longest, v.s.res, effective_ao_radius(v), v.s.finest_extent, &finest);
+    uint32_t levels = v.s.cascades ? v.s.cascades : chosen;
+    return std::max(1u, std::min(levels, 256u / (v.s.angular * v.s.angular)));
+}
+
 bool create_map(viewer &v)
 {
     roma_map_destroy(v.map);
@@ -360,12 +383,15 @@ bool create_map(viewer &v)
     md.resolution = v.s.res;
     md.angular = v.s.angular;
     md.frames_in_flight = kSlots;
+    md.cascades = wanted_levels(v, v.info.finest_extent);
     if (roma_map_create(v.ctx, &md, v.scene, &v.map) != ROMA_SUCCESS) {
-        std::fprintf(stderr, "roma-viewer: cannot create a RES %u, A %u map\n", v.s.res, v.s.angular);
+        std::fprintf(stderr, "roma-viewer: cannot create a RES %u, A %u map of %u cascade levels\n", v.s.res,
+                     v.s.angular, md.cascades);
         return false;
     }
     roma_map_info mi;
     roma_map_get_info(v.map, &mi);
+    v.info.levels = mi.levels;
     v.info.map_bytes = mi.bom_bytes + mi.maps_bytes + mi.params_bytes + mi.geometry_bytes;
     v.info.grid_cell = mi.grid_cell;
     return true;
@@ -465,6 +491,9 @@ bool open_scene(viewer &v, const std::string &name, bool dropped = false)
     v.info.triangles = v.view.triangle_count;
     v.info.lights = v.view.light_count;
     v.info.area_light_triangles = v.view.emissive_triangle_count;
+    float dx = v.view.bounds_max[0] - v.view.bounds_min[0], dy = v.view.bounds_max[1] - v.view.bounds_min[1],
+          dz = v.view.bounds_max[2] - v.view.bounds_min[2];
+    v.s.auto_ao_radius = 0.1f * std::sqrt(dx * dx + dy * dy + dz * dz); // before the map: it sets the cascades
     if (!upload_scene(v) || !create_map(v))
         return false;
     if (roma_light_effect_set_area_lights(v.light, scene) != ROMA_SUCCESS ||
@@ -484,9 +513,6 @@ bool open_scene(viewer &v, const std::string &name, bool dropped = false)
             v.s.playing = v.opt.play;
         }
     }
-    float dx = v.view.bounds_max[0] - v.view.bounds_min[0], dy = v.view.bounds_max[1] - v.view.bounds_min[1],
-          dz = v.view.bounds_max[2] - v.view.bounds_min[2];
-    v.s.auto_ao_radius = 0.1f * std::sqrt(dx * dx + dy * dy + dz * dz);
     describe_plan(v);
     frame_scene(v);
     if (v.view.has_camera)
@@ -619,11 +645,6 @@ bool capture_bom(viewer &v)
     return r == ROMA_SUCCESS;
 }
 
-float effective_ao_radius(const viewer &v)
-{
-    return v.s.ao_radius > 0.0f ? v.s.ao_radius : v.s.auto_ao_radius;
-}
-
 // Starts the Embree reference of the current view (AO, or direct in the direct view).
 void start_reference(viewer &v)
 {
@@ -744,6 +765,12 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     fd.jitter_grid = 1;
     fd.jitter_directions = 1;
     fd.slot = slot;
+    // Cascade levels centre on the camera.
+    const roma_camera cam = camera_control_get(v.cam);
+    if (v.info.levels > 1) {
+        fd.focus = cam.eye;
+        fd.finest_extent = v.info.finest_extent;
+    }
     roma_animator_output out{};
     if (v.animator) {
         roma_animator_pose pose{s.clip, s.time};
@@ -770,7 +797,6 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &mb;
     vkCmdPipelineBarrier2(cmd, &dep);
-    roma_camera cam = camera_control_get(v.cam);
     gbuffer_draw draw{};
     clip_rows(cam, v.gb.width, v.gb.height, v.cam.scene_size, draw.clip_rows);
     for (int i = 0; i < 3; ++i)
@@ -1473,6 +1499,13 @@ int run_window(viewer &v)
                 v.info.reference_status = "no measurement: " + why_not;
             }
         }
+        // The cascade levels the settings now call for (chosen for the AO radius, which may have
+        // changed): a new map for another count, the finest edge for the next build.
+        float finest = 0.0f;
+        if (wanted_levels(v, finest) != v.info.levels)
+            act.rebuild_map = act.reset_accumulation = true;
+        else if (finest != v.info.finest_extent)
+            v.info.finest_extent = finest, act.reset_accumulation = true;
         if (act.rebuild_map) {
             vkDeviceWaitIdle(v.base.device);
             if (!create_map(v))
@@ -1668,6 +1701,7 @@ bool write_stats(const viewer &v, int status)
         roma_map_get_info(v.map, &mi);
     roma_json_int(&j, "resolution", mi.resolution);
     roma_json_int(&j, "angular", mi.angular);
+    roma_json_int(&j, "levels", mi.levels);
     roma_json_begin_array(&j, "passes"); // of the last recorded frame
     for (const std::string &p : v.passes)
         roma_json_string(&j, nullptr, p.c_str());

@@ -12,6 +12,11 @@
 struct viewer_settings {
     // ROMA array (a change makes a new map: pipelines are shared, so it is quick)
     uint32_t res = 128, angular = 4;
+    // Cascade levels around the camera (0: as roma-render chooses: several for a scene much
+    // wider than the AO radius, roma_app_auto_cascades) and the finest one's edge (0: 25 cells
+    // to the AO radius)
+    uint32_t cascades = 0;
+    float finest_extent = 0.0f;
     // effects
     bool ao_on = true, direct_on = true, gi_on = true;
     uint32_t gi_samples = 1;         // bounce rays per pixel and frame
@@ -56,7 +61,9 @@ struct viewer_info {
     uint32_t width = 0, height = 0, accumulated = 0;
     uint64_t map_bytes = 0;
     uint64_t device_memory = 0;       // what libroma's objects hold (roma_context_info)
-    float grid_cell = 0;
+    float grid_cell = 0;              // the finest level's cell
+    uint32_t levels = 1;              // the map's cascade levels
+    float finest_extent = 0;          // with several, the finest one's edge (roma_map_frame_desc)
     uint32_t validation_messages = 0;
     std::string plan; // libroma's effect plan for this scene, and what the viewer runs of it
     bool bom_captured = false;

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 #include <roma/presets.h>
+#include <roma/trace_types.h>
 
 #include <cstdio>
 #include <cstring>
@@ -102,6 +103,11 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
             s.angular = static_cast<uint32_t>(a);
             out.rebuild_map = out.reset_accumulation = true;
         }
+        int levels = static_cast<int>(s.cascades);
+        if (ImGui::SliderInt("cascade levels (0 = chosen)", &levels, 0, ROMA_MAX_LEVELS)) {
+            s.cascades = static_cast<uint32_t>(levels);
+            out.rebuild_map = out.reset_accumulation = true;
+        }
         // The quality presets (roma/presets.h): the points of ROMA's measured accuracy-time front.
         ImGui::TextUnformatted("preset:");
         for (unsigned p = ROMA_PRESET_LOW; p <= ROMA_PRESET_COUNT; ++p) {
@@ -115,8 +121,11 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
                 out.rebuild_map = out.reset_accumulation = true;
             }
         }
-        ImGui::Text("%u maps, %.1f MiB, cell %.4g", s.angular * s.angular, double(info.map_bytes) / (1 << 20),
-                    double(info.grid_cell));
+        ImGui::Text("%u maps, %.1f MiB, cell %.4g", info.levels * s.angular * s.angular,
+                    double(info.map_bytes) / (1 << 20), double(info.grid_cell));
+        if (info.levels > 1)
+            ImGui::Text("%u levels around the camera, the finest %.4g wide", info.levels,
+                        double(info.finest_extent));
         ImGui::Text("libroma holds %.1f MiB of device memory", double(info.device_memory) / (1 << 20));
     }
     if (ImGui::CollapsingHeader("What the rays see")) {

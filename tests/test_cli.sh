@@ -224,6 +224,26 @@ expect_status 2 $? "roma-render --route bogus"
 grep -q "unknown route 'bogus' (valid: api, internal)" "$dir/route_bogus.err" ||
   fail "a bad --route does not list the routes"
 
+# Cascade levels: AO far shorter than the scene (cornell, 3 wide, radius 0.05) makes roma-render
+# pick levels around the camera and say so (the finest 30 cells to the radius, enough to cover
+# the scene: 5); --finest-extent alone picks them for that edge (4); --cascades 1 keeps one grid.
+for c in auto:5: finest:4:--finest-extent=0.5 one:1:--cascades=1; do
+  IFS=: read -r name want arg <<<"$c"
+  # shellcheck disable=SC2086
+  "$render" --tracer roma --scene builtin:cornell --effects ao --ao-radius 0.05 --spp 1 --size 32x24 \
+    ${arg/=/ } --out "$dir/cascades_$name" --stats "$dir/cascades_$name/stats.json" >/dev/null \
+    2>"$dir/cascades_$name.err"
+  expect_status 0 $? "roma-render with cascades ($name)" || cat "$dir/cascades_$name.err" >&2
+  got=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["roma_arrays"][0]["levels"])' \
+    "$dir/cascades_$name/stats.json" 2>/dev/null)
+  [ "$got" = "$want" ] || fail "roma-render ($name): $got cascade levels, expected $want"
+done
+grep -q "note: cascades: 5 grids around the camera, the finest 0.213 wide (30 cells to the AO radius 0.05)" \
+  "$dir/cascades_auto.err" || fail "roma-render does not say which cascade levels it picked"
+grep -q "the finest 0.5 wide (--finest-extent)" "$dir/cascades_finest.err" ||
+  fail "roma-render does not say the finest level's edge came from --finest-extent"
+! grep -q "note: cascades" "$dir/cascades_one.err" || fail "roma-render --cascades 1 still notes cascades"
+
 # --- Usage and bad input ---
 "$render" --help >"$dir/help.out" 2>&1
 expect_status 0 $? "roma-render --help"

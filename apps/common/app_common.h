@@ -46,8 +46,15 @@ int roma_app_valid_up(const char *up);
 /* The name in names (NULL-terminated) closest to typed, or NULL when none is close. */
 const char *roma_app_suggest(const char *typed, const char *const *names);
 
+/* The finest cascade level's edge where none is given: ROMA_APP_FINEST_CELLS cells of RES
+ * to the AO radius (of 25, 30, 32, 35 and 40, the one whose largest AO error on the shared game
+ * levels is lowest: docs/accuracy.md, "Game levels"); 0 (the library's default) for a radius
+ * that is not finite and positive. */
+#define ROMA_APP_FINEST_CELLS 30
+float roma_app_finest_extent(uint32_t res, float ao_radius);
+
 /* Cascade levels for AO of radius ao_radius in a scene whose longest edge is longest, maps of
- * RES res: the finest level finest_extent wide (0: 25 cells to the radius; written to
+ * RES res: the finest level finest_extent wide (0: roma_app_finest_extent; written to
  * *finest), enough levels, each twice the last, to cover the scene, at most ROMA_MAX_LEVELS;
  * 1 (one grid over the scene) where the scene is at most 4 finest levels wide or the radius
  * is not finite and positive. */

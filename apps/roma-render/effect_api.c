@@ -288,10 +288,9 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
                                  .focus = d->camera.eye};
     roma_result r = ROMA_SUCCESS;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
-        /* Cascades: the finest grid 25 of its cells to the AO radius unless given. */
-        const int bounded = d->ao_radius > 0.0f && isfinite(d->ao_radius);
+        /* Cascades: the finest grid's edge from the AO radius unless given. */
         frame.finest_extent = d->finest_extent > 0.0f ? d->finest_extent
-                              : bounded ? (float)plan->maps[i].resolution * d->ao_radius / 25.0f : 0.0f;
+                                                      : roma_app_finest_extent(plan->maps[i].resolution, d->ao_radius);
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "build");
         r = roma_map_record_build(e->maps[i], cmd, &frame, NULL);
         roma_gpu_timer_end(e->timer, cmd, scope);

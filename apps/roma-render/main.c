@@ -44,11 +44,12 @@ static const char *usage =
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
     "  --cascades K                ROMA: K nested grids around the camera, each twice the last's size\n"
-    "                              (1..8, default 1: one grid over the scene; at most 4 for the shadow\n"
-    "                              rays' A 8 arrays); the public effect passes only\n"
-    "  --finest-extent E           ROMA with --cascades: the finest grid's edge in scene units\n"
-    "                              (default: RES x the AO radius / 25, 25 cells to the radius; with an\n"
-    "                              unbounded radius, the scene's size / 2^(K-1))\n"
+    "                              (1..8; default: with AO on a scene more than 4 finest grids wide,\n"
+    "                              enough to cover it, else 1: one grid over the scene; at most 4 for\n"
+    "                              the shadow rays' A 8 arrays); the public effect passes only\n"
+    "  --finest-extent E           ROMA: the finest cascade grid's edge in scene units (default: RES x\n"
+    "                              the AO radius / 30, 30 cells to the radius; with an unbounded\n"
+    "                              radius and --cascades K, the scene's size / 2^(K-1))\n"
     "  --ao-method roma|voxel-dda|distance-field|naadf|screen-space\n"
     "                              ROMA ao through the ROMA maps (default), or a baseline: every ray\n"
     "                              walked exactly through the voxel grid (the voxelization's own error),\n"
@@ -160,7 +161,7 @@ enum {
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
     GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18,
-    GIVEN_CASCADES = 1u << 19
+    GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20
 };
 
 /* How ROMA's images are made (effect_api.h). */
@@ -460,7 +461,7 @@ static int parse_args(int argc, char **argv, options *o)
             char *end = NULL;
             o->finest_extent = strtof(v, &end);
             ok = end && *end == '\0' && o->finest_extent > 0.0f && isfinite(o->finest_extent);
-            o->given |= GIVEN_CASCADES;
+            o->given |= GIVEN_FINEST_EXTENT;
         }
         else if (strcmp(a, "--lights-per-frame") == 0)
             ok = parse_u32(v, 1, 1u << 16, &o->lights_per_frame), o->given |= GIVEN_LIGHTS_PER_FRAME;
@@ -703,6 +704,7 @@ static void write_arrays(roma_json *j, const roma_effect_plan *plan, const roma_
         roma_json_int(j, "resolution", m->resolution);
         roma_json_int(j, "angular", m->angular);
         roma_json_int(j, "maps", m->map_count);
+        roma_json_int(j, "levels", m->levels);
         roma_json_int(j, "bom_bytes", (long long)m->bom_bytes);
         roma_json_int(j, "maps_bytes", (long long)m->maps_bytes);
         roma_json_int(j, "params_bytes", (long long)m->params_bytes);
@@ -1079,9 +1081,14 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
     if (roma && !(o->given & GIVEN_CASCADES) && (o->effects & ROMA_EFFECT_AO) && levels > 1) {
         o->cascades = levels;
         o->cascades_auto = 1;
-        note(n, o->quiet, "cascades: %u grids around the camera, the finest %.3g wide (25 cells to the AO radius "
-             "%.3g), the coarsest %.3g, for a scene %.3g wide (--cascades 1 for one grid over it)", o->cascades,
-             (double)finest, (double)o->ao_radius, (double)finest * (float)(1u << (o->cascades - 1)), (double)longest);
+        char why[64];
+        if (o->finest_extent > 0.0f)
+            snprintf(why, sizeof why, "--finest-extent");
+        else
+            snprintf(why, sizeof why, "%d cells to the AO radius %.3g", ROMA_APP_FINEST_CELLS, (double)o->ao_radius);
+        note(n, o->quiet, "cascades: %u grids around the camera, the finest %.3g wide (%s), the coarsest %.3g, for a "
+             "scene %.3g wide (--cascades 1 for one grid over it)", o->cascades, (double)finest, why,
+             (double)finest * (float)(1u << (o->cascades - 1)), (double)longest);
     }
     if ((o->effects & ROMA_EFFECT_DIRECT) && !lights && !emitters)
         note(n, o->quiet, "direct: the scene has no light (no punctual light, no emissive triangle): direct.pfm is "
@@ -1094,7 +1101,7 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
         {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"},
-        {GIVEN_CASCADES, "--cascades"}};
+        {GIVEN_CASCADES, "--cascades"}, {GIVEN_FINEST_EXTENT, "--finest-extent"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,

@@ -59,7 +59,7 @@ const char *kUsage =
     "  --preset NAME        ROMA array of a quality preset: low (128, 2), medium (128, 4), high\n"
     "                       (256, 4), ultra (256, 8); a later --res or --angular overrides it\n"    "  --cascades K         K cascade levels around the camera, each twice the last's size (default\n"
     "                       0: several for a scene much wider than the AO radius, else 1)\n"
-    "  --finest-extent E    the finest level's edge (default: RES x the AO radius / 25)\n"
+    "  --finest-extent E    the finest level's edge (default: RES x the AO radius / 30)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"

@@ -13,8 +13,8 @@ struct viewer_settings {
     // ROMA array (a change makes a new map: pipelines are shared, so it is quick)
     uint32_t res = 128, angular = 4;
     // Cascade levels around the camera (0: as roma-render chooses: several for a scene much
-    // wider than the AO radius, roma_app_auto_cascades) and the finest one's edge (0: 25 cells
-    // to the AO radius)
+    // wider than the AO radius, roma_app_auto_cascades) and the finest one's edge (0: 30 cells
+    // to the AO radius, roma_app_finest_extent)
     uint32_t cascades = 0;
     float finest_extent = 0.0f;
     // effects

@@ -12,7 +12,7 @@ compare=$build/apps/roma-compare
 levels=${ROMA_LEVELS_DIR:-../shared/scenes/levels}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-configs=("--res 128" "--res 256" "--res 128 --cascades 4" "--res 256 --cascades 3")
+configs=("--res 128 --cascades 1" "--res 256 --cascades 1" "--res 128 --cascades 4" "--res 256 --cascades 3")
 echo "level camera | one grid RES 128 | one grid RES 256 | RES 128, 4 levels | RES 256, 3 levels   (MAE bias seconds)"
 for level in oa_dm4 aggressor ctf_compromise; do
   for c in 1 2 3; do

@@ -307,6 +307,33 @@ else
   fi
 fi
 
+# 1f. A level without lights (oa_dm4) opens readable: the sky that AO scales is 1 there (0.2
+#     where the scene has lights, as aggressor), so the composed picture is not nearly black.
+dm4=${ROMA_LEVELS_DIR:-}/oa_dm4
+if [ -f "$dm4.glb" ] && [ -f "$dm4.cameras" ]; then
+  headless unlit "on a level without lights" --scene "$dm4.glb" --camera "$(sed -n 1p "$dm4.cameras")" \
+    --view composed --frames 2 --ao-radius 1.5 --size 80x60 --linear "$dir/unlit.pfm" --stats "$dir/unlit.json"
+  near() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6) }'; }
+  near "$(json "$dir/unlit.json" sky)" 1 || fail "the sky of a level without lights is not 1"
+  [ ! -f "$dir/level_auto.json" ] || near "$(json "$dir/level_auto.json" sky)" 0.2 ||
+    fail "the sky of a level with lights is not 0.2"
+  # Measured: a mean of 0.523 (0.105 with the lit scenes' sky).
+  unlit=$(python3 - "$dir/unlit.pfm" <<'PY'
+import struct, sys
+f = open(sys.argv[1], "rb")
+kind = f.readline().strip()
+w, h = map(int, f.readline().split())
+scale = float(f.readline())
+n = w * h * (3 if kind == b"PF" else 1)
+print(sum(struct.unpack(("<" if scale < 0 else ">") + "%df" % n, f.read(4 * n))) / n)
+PY
+)
+  awk -v m="${unlit:-0}" 'BEGIN { exit !(m >= 0.50) }' ||
+    fail "the composed view of a level without lights is dark (mean ${unlit:-none}, expected >= 0.50)"
+else
+  fail "no game level at $dm4.glb (set ROMA_LEVELS_DIR)"
+fi
+
 # 2. An animated, skinned glTF played: validation clean, a picture written.
 "$viewer" --headless --validation --scene "$scenes/CesiumMan.glb" --play --frames 6 --size 96x96 \
   --screenshot "$dir/cesium.png" >"$dir/cesium.out" 2>&1 \

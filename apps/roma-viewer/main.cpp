@@ -69,7 +69,8 @@ const char *kUsage =
     "  --max-steps N        texels an un-snapped shadow ray walks (default 8, the paper's)\n"
     "  --ao-skip C --offset C   AO rays' skip and every ray's origin offset, in trace cells\n"
     "                       (default: the library's, 1.6 and 1.5)\n"
-    "  --exposure E         (default 1.2)\n"
+    "  --exposure E         (default 1.2)\n"    "  --sky S              sky radiance the composed view scales by AO (default: 0.2 where the\n"
+    "                       scene has lights, 1 where it has none, so that it opens readable)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
     "  --headless           no window: render --frames frames and exit\n"
     "  --frames N           exit after N frames (default: run until closed; headless 16)\n"
@@ -95,6 +96,7 @@ struct options {
     uint32_t frames = 0;
     std::string screenshot, linear, device, up = "+y", script, stats;
     uint32_t gltf_camera = 0;
+    bool sky_given = false; // --sky: else each scene's default (sky_for_scene)
     viewer_settings settings;
 };
 
@@ -192,6 +194,9 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 65536, o.settings.lights_per_frame);
         } else if (a == "--ao-radius") {
             ok = parse_float(v, 1e-6f, 1e30f, o.settings.ao_radius);
+        } else if (a == "--sky") {
+            ok = parse_float(v, 0.0f, 1e6f, o.settings.ambient);
+            o.sky_given = ok;
         } else if (a == "--exposure") {
             ok = parse_float(v, 1e-6f, 1e6f, o.settings.exposure);
         } else if (a == "--time") {
@@ -513,6 +518,10 @@ bool open_scene(viewer &v, const std::string &name, bool dropped = false)
             v.s.playing = v.opt.play;
         }
     }
+    // A scene without lights is lit by the sky alone: at the lit scenes' 0.2 it would open
+    // nearly black.
+    if (!v.opt.sky_given)
+        v.s.ambient = v.view.light_count || v.view.emissive_triangle_count || v.s.many_lights ? 0.2f : 1.0f;
     describe_plan(v);
     frame_scene(v);
     if (v.view.has_camera)
@@ -1702,6 +1711,7 @@ bool write_stats(const viewer &v, int status)
     roma_json_int(&j, "resolution", mi.resolution);
     roma_json_int(&j, "angular", mi.angular);
     roma_json_int(&j, "levels", mi.levels);
+    roma_json_number(&j, "sky", v.s.ambient);
     roma_json_begin_array(&j, "passes"); // of the last recorded frame
     for (const std::string &p : v.passes)
         roma_json_string(&j, nullptr, p.c_str());

@@ -31,7 +31,8 @@ struct viewer_settings {
     // picture
     view_mode view = VIEW_COMPOSED;
     float exposure = 1.2f;           // the built-in room's lights read well at 1.2
-    float ambient = 0.2f;            // sky radiance in the composed view (scaled by AO)
+    float ambient = 0.2f;            // sky radiance in the composed view (scaled by AO); set per scene
+                                     // (1 without lights) unless --sky gives it
     float background[3] = {0.11f, 0.12f, 0.15f};
     bool accumulate = true;          // still camera: average frames
     bool filter = true;              // a-trous filter while there is little history

@@ -305,6 +305,38 @@ else
       fail "cascade levels do not bring the level's AO error under 0.40 of one grid's ($la against $lo)"
     below "$lr" 0.00001 || fail "the viewer's cascaded AO differs from roma-render's (MAE $lr)"
   fi
+  # The levels view colours each surface point by the level that holds it: from camera 1 the 4
+  # levels' colours are all seen (measured: 3,124, 1,108, 267 and 202 of 4,800 pixels, the rest
+  # their cubes' faces in black); one grid shows the first colour alone.
+  for k in 0 1; do
+    headless "levels_view_$k" "--view levels --cascades $k" "${lcommon[@]}" --size 80x60 --view levels --frames 1 \
+      --cascades "$k" --linear "$dir/levels_view_$k.pfm"
+  done
+  levels_seen() { # PFM: the levels whose colour (compose.comp's level_colour) some pixel has
+    python3 - "$1" <<'PY'
+import struct, sys
+f = open(sys.argv[1], "rb")
+kind = f.readline().strip()
+w, h = map(int, f.readline().split())
+scale = float(f.readline())
+v = struct.unpack(("<" if scale < 0 else ">") + "%df" % (w * h * 3), f.read(12 * w * h))
+palette = [(1, .2, .2), (.2, 1, .2), (.25, .4, 1), (1, .9, .2), (1, .2, 1), (.2, 1, 1), (1, .55, .1), (1, 1, 1)]
+seen = set()
+for i in range(w * h):
+    c = v[3 * i:3 * i + 3]
+    m = max(c)
+    if m > 0:
+        d = [sum((c[k] / m - p[k]) ** 2 for k in range(3)) for p in palette]
+        best = min(range(8), key=lambda j: d[j])
+        if d[best] < 0.01:
+            seen.add(best)
+print(" ".join(str(l) for l in sorted(seen)))
+PY
+  }
+  [ "$(levels_seen "$dir/levels_view_0.pfm")" = "0 1 2 3" ] ||
+    fail "the levels view does not show the 4 levels (it shows: $(levels_seen "$dir/levels_view_0.pfm"))"
+  [ "$(levels_seen "$dir/levels_view_1.pfm")" = "0" ] ||
+    fail "the levels view of one grid shows more than its level (it shows: $(levels_seen "$dir/levels_view_1.pfm"))"
 fi
 
 # 1f. A level without lights (oa_dm4) opens readable: the sky that AO scales is 1 there (0.2

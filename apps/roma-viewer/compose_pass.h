@@ -22,6 +22,7 @@ enum view_mode : uint32_t {
     VIEW_STEPS,        // texels an un-snapped shadow ray to the first light walks (heat map)
     VIEW_ROTATED_MAP,  // one ray-aligned map seen along its direction
     VIEW_RAY_START,    // the share of AO rays whose start (offset + skip) meets another surface
+    VIEW_LEVELS,       // the cascade level that holds each surface point, its cube's faces
     VIEW_COUNT
 };
 

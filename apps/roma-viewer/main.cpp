@@ -54,7 +54,8 @@ const char *kUsage =
     "  --up +y|-y|+z        the scene's up axis (tabletop.gltf: -y; static scenes only)\n"
     "  --gltf-camera N      which of a glTF file's perspective cameras to start from (default 0)\n"
     "  --view NAME          composed, ao, direct, gi, albedo, normal, map, hit-distance, steps,\n"
-    "                       rotated-map (--map K: which of the A x A maps, default 0), ray-start\n"
+    "                       rotated-map (--map K: which of the A x A maps, default 0), ray-start,\n"
+    "                       levels (the cascade level of each point)\n"
     "  --res R --angular A  ROMA array (default 128, 4)\n"
     "  --preset NAME        ROMA array of a quality preset: low (128, 2), medium (128, 4), high\n"
     "                       (256, 4), ultra (256, 8); a later --res or --angular overrides it\n"    "  --cascades K         K cascade levels around the camera, each twice the last's size (default\n"
@@ -122,7 +123,7 @@ bool parse_float(const char *s, float lo, float hi, float &out)
 
 const char *kViewNames[VIEW_COUNT] = {"composed", "ao",        "direct",    "albedo",    "normal",    "map",
                                      "hit-distance", "bom-slice", "reference", "difference", "gi", "steps",
-                                     "rotated-map", "ray-start"};
+                                     "rotated-map", "ray-start", "levels"};
 
 int parse_args(int argc, char **argv, options &o)
 {

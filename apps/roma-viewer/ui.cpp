@@ -14,7 +14,8 @@ const char *kViews[VIEW_COUNT] = {"composed", "ambient occlusion", "direct light
                                   "difference to the reference", "indirect light (one bounce)",
                                   "un-snapped steps to the first light (magenta: gave up)",
                                   "one rotated map along its direction",
-                                  "AO rays whose start meets another surface"};
+                                  "AO rays whose start meets another surface",
+                                  "cascade levels (black: the faces of their cubes)"};
 const uint32_t kResolutions[4] = {32, 64, 128, 256};
 } // namespace
 

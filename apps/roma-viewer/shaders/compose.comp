@@ -38,6 +38,14 @@ layout(set = 0, binding = 13, rgba32f) uniform readonly image2D gi_image; // ind
 
 #include "views.glsl"
 
+// Level l's colour in the levels view (its hue: the largest component is 1).
+vec3 level_colour(uint l)
+{
+    const vec3 colours[8] = vec3[8](vec3(1.0, 0.2, 0.2), vec3(0.2, 1.0, 0.2), vec3(0.25, 0.4, 1.0), vec3(1.0, 0.9, 0.2),
+                                    vec3(1.0, 0.2, 1.0), vec3(0.2, 1.0, 1.0), vec3(1.0, 0.55, 0.1), vec3(1.0, 1.0, 1.0));
+    return colours[min(l, 7u)];
+}
+
 vec3 hash_colour(uint k)
 {
     uint h = k * 2654435761u;
@@ -153,6 +161,16 @@ void main()
             blocked += roma_ray_start_blocked(o, d, frame.steps_tmin.y) ? 1u : 0u;
         }
         value = heat(float(blocked) / 16.0);
+    } else if (view == VIEW_LEVELS) {
+        // The cascade level that holds the surface point, where ROMA starts its rays: a colour
+        // per level, shaded by the normal; black within two of its cells of its cube's faces
+        // (the next level starts there).
+        uint level = roma_level_of(pos.xyz);
+        roma_grid_params g = roma_fetch_grid(level);
+        vec3 lo = g.origin.xyz, hi = lo + vec3(float(g.dims.x) * g.origin.w);
+        vec3 to_face = min(pos.xyz - lo, hi - pos.xyz);
+        bool face = level + 1u < max(g.level.y, 1u) && min(to_face.x, min(to_face.y, to_face.z)) < 2.0 * g.origin.w;
+        value = face ? vec3(0.0) : level_colour(level) * (0.6 + 0.4 * abs(n.y));
     } else if (view == VIEW_MAP || view == VIEW_HIT_DISTANCE) {
         // One ROMA ray along the normal: which map (candidate direction) serves it, and
         // how far it goes before a hit (black: no hit within debug_length).

@@ -18,6 +18,7 @@
 #define VIEW_STEPS 11u
 #define VIEW_ROTATED_MAP 12u
 #define VIEW_RAY_START 13u
+#define VIEW_LEVELS 14u
 
 layout(push_constant) uniform Push {
     vec4 ambient;        // rgb: sky radiance that AO scales in the composed view

@@ -8,8 +8,11 @@
  *   levels' faces), in every query mode: the GPU's hits equal roma_cpu_trace_levels', the
  *   mirror of the walk across levels, bit for bit (the level in info too); many of them end
  *   in a coarser level than the one they start in.
- * - One level traces as roma_cpu_trace does. */
+ * - One level traces as roma_cpu_trace does.
+ * - A build keeps the levels whose placement, directions and geometry are unchanged, and what
+ *   it keeps equals a new map's build of the same frame. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -201,6 +204,103 @@ done:
     roma_map_destroy(map);
 }
 
+/* The maps and BOM of every level, downloaded (words: RES^3/32 per level, then the maps). */
+static int download_all(roma_map *map, uint32_t *bom, uint32_t *maps)
+{
+    const uint64_t texel_words = (uint64_t)RES * RES * (RES / 32), map_words = texel_words * ANGULAR * ANGULAR;
+    return roma_map_download_bom(map, bom, texel_words * LEVELS) == ROMA_SUCCESS &&
+           roma_map_download_maps(map, maps, map_words * LEVELS) == ROMA_SUCCESS;
+}
+
+/* Reuse: a build keeps each level whose placement, directions and geometry are unchanged, and
+ * what it keeps and rebuilds is word for word what a new map's first build of the same frame
+ * holds: the same frame again rebuilds nothing; a focus moved by a few finest cells rebuilds
+ * the levels that moved, not the others; jittered directions rotate every level again; new
+ * positions (the same ones) rebuild every level. */
+static void check_reuse(roma_context *ctx, const roma_scene *scene)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    const roma_map_desc desc = {.resolution = RES, .angular = ANGULAR, .cascades = LEVELS};
+    roma_map *map = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &desc, scene, &map), ROMA_SUCCESS);
+    const uint64_t texel_words = (uint64_t)RES * RES * (RES / 32), map_words = texel_words * ANGULAR * ANGULAR;
+    uint32_t *bom = malloc(4 * texel_words * LEVELS), *maps = malloc(4 * map_words * LEVELS);
+    uint32_t *bom2 = malloc(4 * texel_words * LEVELS), *maps2 = malloc(4 * map_words * LEVELS);
+    if (!map || !bom || !maps || !bom2 || !maps2) {
+        CHECK(map && "out of memory");
+        goto done;
+    }
+    float focus[3], longest = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        focus[a] = v.bounds_min[a] + (v.bounds_max[a] - v.bounds_min[a]) * (a == 0 ? 0.06f : a == 1 ? 0.05f : 0.55f);
+        longest = fmaxf(longest, v.bounds_max[a] - v.bounds_min[a]);
+    }
+    roma_map_frame_desc frame = {.frame = 1, .seed = 9, .focus = focus, .finest_extent = longest / 6.0f};
+    roma_map_info info;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    roma_map_get_info(map, &info);
+    CHECK(info.levels_rebuilt == LEVELS);
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    roma_map_get_info(map, &info);
+    CHECK(info.levels_rebuilt == 0);
+
+    /* The focus moved along x by k finest cells, for the first k that moves some levels and
+     * not all. */
+    uint32_t levels = 0;
+    const roma_grid_params *grids;
+    const roma_map_frame *frames;
+    roma_map_get_level_params(map, &levels, &grids, &frames);
+    const float finest_cell = grids[0].origin[3];
+    uint32_t moved = 0, rebuilt = 0;
+    int k = 0;
+    while (++k <= 8 && (moved == 0 || moved == LEVELS)) {
+        roma_grid_params before[LEVELS];
+        memcpy(before, grids, sizeof before);
+        focus[0] += finest_cell;
+        CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+        roma_map_get_info(map, &info);
+        moved = 0;
+        for (uint32_t l = 0; l < LEVELS; ++l)
+            moved += memcmp(&before[l], &grids[l], sizeof before[l]) != 0;
+        rebuilt = info.levels_rebuilt;
+    }
+    printf("reuse: the focus moved by %d finest cells: %u of %u levels moved, %u rebuilt\n", k - 1, moved, LEVELS,
+           rebuilt);
+    CHECK(moved > 0 && moved < LEVELS);
+    CHECK(rebuilt == moved);
+    roma_map *fresh = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &desc, scene, &fresh), ROMA_SUCCESS);
+    CHECK_RESULT(roma_map_build(fresh, &frame, NULL), ROMA_SUCCESS);
+    CHECK(download_all(map, bom, maps) && download_all(fresh, bom2, maps2));
+    CHECK(memcmp(bom, bom2, 4 * texel_words * LEVELS) == 0);
+    CHECK(memcmp(maps, maps2, 4 * map_words * LEVELS) == 0);
+
+    /* Jittered directions: every level's maps rotated again from the kept BOM. */
+    frame.jitter_directions = 1;
+    frame.frame = 2;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    roma_map_get_info(map, &info);
+    CHECK(info.levels_rebuilt == LEVELS);
+    CHECK_RESULT(roma_map_build(fresh, &frame, NULL), ROMA_SUCCESS);
+    CHECK(download_all(map, bom, maps) && download_all(fresh, bom2, maps2));
+    CHECK(memcmp(maps, maps2, 4 * map_words * LEVELS) == 0);
+
+    /* New positions, the same ones: every level rebuilt. */
+    frame.positions = v.positions;
+    frame.vertex_count = v.vertex_count;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    roma_map_get_info(map, &info);
+    CHECK(info.levels_rebuilt == LEVELS);
+    roma_map_destroy(fresh);
+done:
+    free(bom);
+    free(maps);
+    free(bom2);
+    free(maps2);
+    roma_map_destroy(map);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -208,8 +308,10 @@ int main(void)
         return roma_test_finish("test_cascades");
     roma_scene *scene = NULL;
     CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
-    if (scene)
+    if (scene) {
         check_cascades(ctx, scene);
+        check_reuse(ctx, scene);
+    }
     /* Refused: too many levels, too many maps, a raster BOM mode with levels. */
     roma_map *bad = NULL;
     CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.cascades = ROMA_MAX_LEVELS + 1}, scene, &bad),

@@ -152,8 +152,9 @@ typedef struct roma_box {
     float max[3]; /**< highest corner */
 } roma_box;
 
-/** What one build uses: its slot, jitter, volume and new positions; the zero value rebuilds the
- * last positions in slot 0.
+/** What one build uses: its slot, jitter, volume and new positions; the zero value builds from
+ * the last positions in slot 0 (levels already built from the same are kept:
+ * roma_map_info.levels_rebuilt).
  */
 typedef struct roma_map_frame_desc {
     uint32_t frame;        /**< frame counter: drives the jitter */
@@ -366,6 +367,12 @@ typedef struct roma_map_info {
     VkBuffer bom_buffer; /**< the same BOM as a buffer */
     VkBufferView bom_view; /**< the same BOM as an R32_UINT uniform texel buffer */
     uint32_t levels; /**< cascade levels (roma_map_desc.cascades); the buffers hold level after level */
+    /** Levels the last build voxelized and rotated again. A level whose placement, candidate
+     * directions and geometry are those it was last built from keeps its BOM and maps: with
+     * jitter_grid and jitter_directions off, static geometry (no new positions, instances
+     * unchanged, the same volume) and a focus that leaves the level's snapped cube where it
+     * was, a build rebuilds nothing. */
+    uint32_t levels_rebuilt;
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.

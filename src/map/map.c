@@ -207,7 +207,9 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                          desc.cascades, (unsigned long long)map_words, ctx->properties.limits.maxTexelBufferElements);
     roma_map *map = calloc(1, sizeof *map);
     uint32_t *indices = malloc(sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
-    roma_map_frame *frames = calloc((size_t)desc.angular * desc.angular * desc.cascades, sizeof *frames);
+    /* This frame's frames, then those the maps were last built from. */
+    const size_t frame_count = (size_t)desc.angular * desc.angular * desc.cascades;
+    roma_map_frame *frames = calloc(2 * frame_count, sizeof *frames);
     if (!map || !indices || !frames) {
         free(map);
         free(indices);
@@ -233,6 +235,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     map->live_triangles = sv.triangle_count;
     map->indices_host = indices;
     map->frames = frames;
+    map->built_frames = frames + frame_count;
 
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
@@ -515,9 +518,9 @@ static roma_result check_timer(const roma_map *map, const roma_gpu_timer *timer,
     return ROMA_SUCCESS;
 }
 
-/* Rotation (roma_shared.h) of cascade level `level`: clear the maps (every level's, with
- * the first), list the level's occupied BOM cells, scatter them into its maps; the gather
- * runs instead when the list overflowed. */
+/* Rotation (roma_shared.h) of cascade level `level`: clear its maps (the other levels' are
+ * kept), list its occupied BOM cells, scatter them into its maps; the gather runs instead
+ * when the list overflowed. */
 static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level)
 {
     const uint64_t words = (uint64_t)map->res * map->res * map->words;
@@ -533,8 +536,8 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level)
                                 VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    if (level == 0)
-        vkCmdFillBuffer(cmd, map->maps.buffer, 0, map->maps.size, 0);
+    const VkDeviceSize level_bytes = 4 * words * map->map_count;
+    vkCmdFillBuffer(cmd, map->maps.buffer, level * level_bytes, level_bytes, 0);
     const roma_rotate_cells header = {.scatter = {0, map->map_count, 1, 0}, .gather = {0, 0, 1, 0}};
     vkCmdUpdateBuffer(cmd, map->cells.buffer, 0, sizeof header, &header);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -560,16 +563,19 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level)
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, gather));
 }
 
-/* The BOM: exact compute voxelization (each cascade level's, the buffer cleared with the
- * first) or one of the raster modes (one level). */
-static roma_result record_bom(roma_map *map, VkCommandBuffer cmd)
+/* The BOM of the levels in the mask: exact compute voxelization (each level's part of the
+ * buffer) or one of the raster modes (one level). */
+static roma_result record_bom(roma_map *map, VkCommandBuffer cmd, uint32_t levels)
 {
     roma_result r = ROMA_SUCCESS;
     if (map->voxelizer) {
         for (uint32_t l = 0; l < map->levels && r == ROMA_SUCCESS; ++l)
-            r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], map->total_triangles, l == 0);
+            if (levels & (1u << l))
+                r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], map->total_triangles);
         return r;
     }
+    if (!(levels & 1u))
+        return ROMA_SUCCESS;
     roma_bom_push bom_push = {
         .positions = map->positions.address,
         .indices = map->indices.address,
@@ -648,18 +654,52 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     roma_map_instances_record_transforms(map, cmd, layout.changed);
     ++map->builds;
 
+    /* The levels to voxelize and rotate: those whose placement, geometry or directions
+     * changed since they were built (a still camera over static geometry without jitter
+     * rebuilds nothing); every level where a step is asked alone (the benchmark times each). */
+    const int whole = steps == (ROMA_MAP_STEP_VOXELIZE | ROMA_MAP_STEP_ROTATE);
+    const size_t level_frames = sizeof(roma_map_frame) * map->map_count;
+    uint32_t stale_bom = 0, stale_maps = 0;
+    for (uint32_t l = 0; l < map->levels; ++l) {
+        const int bom_same = whole && map->bom_current[l] && map->built_versions[l] == map->geometry_version &&
+                             memcmp(&map->built_grids[l], &map->grids[l], sizeof map->grids[l]) == 0;
+        const int maps_same = bom_same && map->maps_current[l] &&
+                              memcmp(map->built_frames + l * map->map_count, map->frames + l * map->map_count,
+                                     level_frames) == 0;
+        stale_bom |= bom_same ? 0u : 1u << l;
+        stale_maps |= maps_same ? 0u : 1u << l;
+    }
     if (steps & ROMA_MAP_STEP_VOXELIZE) {
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom");
-        r = record_bom(map, cmd);
+        r = record_bom(map, cmd, stale_bom);
         roma_gpu_timer_end(timer, cmd, scope);
-        if (r != ROMA_SUCCESS)
+        if (r != ROMA_SUCCESS) { /* what was recorded may have cleared any level */
+            memset(map->bom_current, 0, sizeof map->bom_current);
+            memset(map->maps_current, 0, sizeof map->maps_current);
             return r;
+        }
     }
     if (steps & ROMA_MAP_STEP_ROTATE) {
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rotate");
         for (uint32_t l = 0; l < map->levels; ++l)
-            record_rotation(map, cmd, l);
+            if (stale_maps & (1u << l))
+                record_rotation(map, cmd, l);
         roma_gpu_timer_end(timer, cmd, scope);
+    }
+    map->levels_rebuilt = 0;
+    for (uint32_t l = 0; l < map->levels; ++l) {
+        if ((steps & ROMA_MAP_STEP_VOXELIZE) && (stale_bom & (1u << l))) {
+            map->bom_current[l] = 1;
+            map->built_grids[l] = map->grids[l];
+            map->built_versions[l] = map->geometry_version;
+        }
+        /* Maps count as built from this BOM only in a whole build (a rotation alone may
+         * follow another placement's BOM). */
+        if (stale_maps & (1u << l)) {
+            map->maps_current[l] = whole;
+            memcpy(map->built_frames + l * map->map_count, map->frames + l * map->map_count, level_frames);
+        }
+        map->levels_rebuilt += ((stale_bom | stale_maps) >> l) & 1u;
     }
     /* Maps and parameters readable by any later command: traces from any stage,
      * downloads. */
@@ -724,6 +764,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->trace_set = map->trace_set.set;
     out->trace_set_layout = map->trace_set.layout;
     out->levels = map->levels;
+    out->levels_rebuilt = map->levels_rebuilt;
     return ROMA_SUCCESS;
 }
 

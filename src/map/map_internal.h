@@ -101,6 +101,14 @@ struct roma_map {
     roma_grid_params grids[ROMA_MAX_LEVELS];
     roma_map_frame *frames;
     int built;
+    /* What each level's BOM and maps were built from: its placement, the geometry version,
+     * its frames (directions); bom_current / maps_current: 0 where a build left them stale.
+     * A build leaves a level whose three are unchanged as it is. */
+    roma_grid_params built_grids[ROMA_MAX_LEVELS];
+    uint64_t built_versions[ROMA_MAX_LEVELS];
+    roma_map_frame *built_frames; /* levels x map_count, in the frames' allocation */
+    uint8_t bom_current[ROMA_MAX_LEVELS], maps_current[ROMA_MAX_LEVELS];
+    uint32_t levels_rebuilt;      /* by the last build */
 };
 
 /* roma_map_record_build in parts, so that the benchmark can time each step on devices

@@ -83,11 +83,11 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *v)
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
                                      uint32_t triangles)
 {
-    return roma_bom_voxelize_record_level(v, cmd, grid, triangles, 1);
+    return roma_bom_voxelize_record_level(v, cmd, grid, triangles);
 }
 
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
-                                           uint32_t triangles, int clear)
+                                           uint32_t triangles)
 {
     if (!v)
         return ROMA_ERROR_INVALID_ARGUMENT;
@@ -98,6 +98,10 @@ roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffe
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_bom_voxelize_record: grid of RES %u (%u words), the voxelizer was made for %u",
                          grid->dims[0], grid->dims[1], v->resolution);
+    const VkDeviceSize level_bytes = (VkDeviceSize)v->resolution * v->resolution * v->resolution / 8;
+    if ((VkDeviceSize)grid->level[0] * level_bytes + level_bytes > v->bom_bytes)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: level %u is outside the BOM buffer", grid->level[0]);
     roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->queue.capacity, 0, 0}};
 
     /* WAR/WAW against the previous build (voxelization, rotation, downloads, the
@@ -108,8 +112,7 @@ roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffe
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    if (clear)
-        vkCmdFillBuffer(cmd, v->bom, 0, v->bom_bytes, 0);
+    vkCmdFillBuffer(cmd, v->bom, (VkDeviceSize)grid->level[0] * level_bytes, level_bytes, 0);
     roma_tile_queue_record_reset(&v->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -45,10 +45,10 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
  * grid is this frame's placement (dims.x must be the voxelizer's RES, dims.y RES / 32);
  * it travels in push constants. triangle_count 0 clears only. Indices must be in range
  * for positions (not checked on the GPU). */
-/* One cascade level of a map (grid->level.x: its BOM in the buffer), the BOM's buffer
- * cleared first when clear is set (the whole buffer: every level). */
+/* One cascade level of a map (grid->level.x: its BOM in the buffer, cleared first; the other
+ * levels' are kept). */
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
-                                           uint32_t triangles, int clear);
+                                           uint32_t triangles);
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
                                      uint32_t triangle_count);
 

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "accuracy.h"
+#include "cascades.h"
 #include "frame.h"
 #include "plot.h"
 #include "record_cost.h"
@@ -24,6 +25,7 @@ static const char *usage =
     "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R]\n"
     "                  [--accuracy [--effect ao|direct|gi|lights] [--plot FILE.png] [--cache FILE]]\n"
     "                  [--growth LIST [--plot FILE.png]]\n"
+    "                  [--cascades K --ao-radius R [--camera ex,ey,ez,tx,ty,tz[,fovy]] [--frames N]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
     "  (defaults 64,128,256 and 2,4,8). Tracing: an AO batch of N rays (default 2,000,000)\n"
     "  from surface points seen by the scene's camera, cosine-distributed, traced by ROMA\n"
@@ -57,7 +59,13 @@ static const char *usage =
     "  the comma-separated LIST (at most 8) and each RES of --res (A 4), ROMA's voxelize, rotate\n"
     "  and AO pass at 1 spp over the covered pixels against Embree's BVH build and AO at the same\n"
     "  points (--size, default 1920x1080; --ao-radius); --plot FILE.png draws them against the\n"
-    "  triangles (at RES 128) and against RES (the largest scene).\n";
+    "  triangles (at RES 128) and against RES (the largest scene).\n"
+    "  --cascades K: instead, what the build of K cascade levels around a camera costs against one\n"
+    "  grid over the scene (RES: the first of --res, default 128; the finest level 30 cells to the\n"
+    "  AO radius): one grid jittered, the levels jittered and unjittered along a path (the camera\n"
+    "  moving towards its target by one finest cell a frame) and with the camera still, unjittered\n"
+    "  (static geometry: nothing rebuilt); --camera (default: the scene's), --frames a run\n"
+    "  (default 16).\n";
 
 static double timer_ms(roma_gpu_timer *timer, const char *name)
 {
@@ -264,6 +272,9 @@ int main(int argc, char **argv)
 {
     const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL, *cache_path = NULL;
     const char *growth = NULL;
+    uint32_t cascades = 0, cascade_frames = 16;
+    roma_camera camera = {0};
+    int camera_set = 0, res_set = 0;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
     int res_n = 3, ang_n = 3, accuracy = 0, small = 0, effect_set = 0;
     roma_bench_effect effect = ROMA_BENCH_EFFECT_AO;
@@ -304,20 +315,46 @@ int main(int argc, char **argv)
         } else if (v && strcmp(a, "--scene") == 0) scene_arg = v, ++i;
         else if (v && strcmp(a, "--rays") == 0) rays_n = (uint32_t)strtoul(v, NULL, 10), ++i;
         else if (v && strcmp(a, "--runs") == 0) runs = (uint32_t)strtoul(v, NULL, 10), ++i;
-        else if (v && strcmp(a, "--res") == 0) res_n = parse_list(v, res_list, 4), ++i;
+        else if (v && strcmp(a, "--res") == 0) res_n = parse_list(v, res_list, 4), res_set = 1, ++i;
         else if (v && strcmp(a, "--angular") == 0) ang_n = parse_list(v, ang_list, 4), ++i;
         else if (v && strcmp(a, "--csv") == 0) csv_path = v, ++i;
         else if (v && strcmp(a, "--plot") == 0) plot_path = v, ++i;
         else if (v && strcmp(a, "--cache") == 0) cache_path = v, ++i;
         else if (v && strcmp(a, "--growth") == 0) growth = v, ++i;
+        else if (v && strcmp(a, "--cascades") == 0) {
+            char *end = NULL;
+            unsigned long k = strtoul(v, &end, 10);
+            if (!end || *end || k < 2 || k > ROMA_MAX_LEVELS) {
+                fprintf(stderr, "roma-bench: --cascades %s: expected 2..%u\n", v, ROMA_MAX_LEVELS);
+                return 2;
+            }
+            cascades = (uint32_t)k, ++i;
+        } else if (v && strcmp(a, "--frames") == 0) {
+            cascade_frames = (uint32_t)strtoul(v, NULL, 10), ++i;
+        } else if (v && strcmp(a, "--camera") == 0) {
+            float *c = camera.eye, *t = camera.target, fovy;
+            char tail;
+            int n = sscanf(v, "%f,%f,%f,%f,%f,%f,%f%c", &c[0], &c[1], &c[2], &t[0], &t[1], &t[2], &fovy, &tail);
+            if (n != 6 && n != 7) {
+                fprintf(stderr, "roma-bench: --camera %s: expected ex,ey,ez,tx,ty,tz[,fovy]\n", v);
+                return 2;
+            }
+            camera_set = 1, ++i;
+        }
         else {
             fprintf(stderr, "roma-bench: bad argument %s\n%s", a, usage);
             return 2;
         }
     }
-    if ((plot_path && !accuracy && !growth) || ((cache_path || effect_set) && !accuracy) || (growth && accuracy)) {
-        fprintf(stderr, "roma-bench: --plot is for --accuracy or --growth, --cache and --effect for --accuracy; not "
-                        "both runs\n");
+    if ((plot_path && !accuracy && !growth) || ((cache_path || effect_set) && !accuracy) || (growth && accuracy) ||
+        (cascades && (accuracy || growth)) || ((camera_set || cascade_frames != 16) && !cascades)) {
+        fprintf(stderr, "roma-bench: --plot is for --accuracy or --growth, --cache and --effect for --accuracy, "
+                        "--camera and --frames for --cascades; one of --accuracy, --growth and --cascades\n");
+        return 2;
+    }
+    if (cascades && (!(ao_radius > 0.0f) || !isfinite(ao_radius) || cascade_frames == 0 || cascade_frames > 1000)) {
+        fprintf(stderr, "roma-bench: --cascades needs --ao-radius R (positive, finite; the finest level is fitted "
+                        "to it) and --frames in 1..1000\n");
         return 2;
     }
     if (rays_n == 0 || runs == 0 || runs > 100 || res_n == 0 || ang_n == 0) {
@@ -380,6 +417,19 @@ int main(int argc, char **argv)
             .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,
         };
         int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
+        if (csv)
+            fclose(csv);
+        return finish(ctx, scene, ref, timer, status);
+    }
+
+    if (cascades) {
+        roma_bench_cascades_desc cd = {.levels = cascades, .resolution = res_set ? res_list[0] : 128,
+                                       .frames = cascade_frames, .runs = runs, .radius = ao_radius};
+        if (camera_set)
+            cd.camera = camera;
+        else
+            roma_scene_default_camera(scene, 16.0f / 9.0f, &cd.camera);
+        int status = roma_bench_cascades(ctx, scene, &cd, csv);
         if (csv)
             fclose(csv);
         return finish(ctx, scene, ref, timer, status);

@@ -1,0 +1,28 @@
+#ifndef ROMA_BENCH_CASCADES_H
+#define ROMA_BENCH_CASCADES_H
+
+#include <stdio.h>
+
+#include "roma/camera.h"
+#include "roma/context.h"
+#include "roma/scene.h"
+
+typedef struct roma_bench_cascades_desc {
+    uint32_t levels;     /* K cascade levels */
+    uint32_t resolution; /* RES of every level and of the one grid */
+    uint32_t frames;     /* builds per run */
+    uint32_t runs;
+    float radius;        /* the AO radius the finest level is fitted to (roma_app_finest_extent) */
+    roma_camera camera;  /* where the path starts, and the way it goes */
+} roma_bench_cascades_desc;
+
+/* roma-bench --cascades K: what the build of K cascade levels around the camera costs against
+ * one grid over the scene, per frame, host-observed (one submission, submit to fence), medians
+ * of runs of the mean over frames: one grid jittered (a dynamic frame today); K levels jittered
+ * along a path (every level rebuilt every frame); K levels along the path unjittered (the
+ * levels the camera moved rebuilt); K levels with the camera still and unjittered (static
+ * geometry: nothing rebuilt). The path goes towards the camera's target by one finest cell a
+ * frame. Prints the table (and CSV rows); returns 0 on success. */
+int roma_bench_cascades(roma_context *ctx, const roma_scene *scene, const roma_bench_cascades_desc *desc, FILE *csv);
+
+#endif /* ROMA_BENCH_CASCADES_H */

@@ -42,6 +42,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "box_room.h"
 #include "harness.h"
 #include "map/map_internal.h"
 #include "passes/effect_render.h"
@@ -73,73 +74,6 @@ typedef struct room {
     roma_scene *scene;
     float rot[9]; /* room -> world */
 } room;
-
-static void rotate(const float r[9], const float in[3], float out[3])
-{
-    for (int i = 0; i < 3; ++i)
-        out[i] = r[3 * i] * in[0] + r[3 * i + 1] * in[1] + r[3 * i + 2] * in[2];
-}
-
-/* Rodrigues: angle about the unit axis. */
-static void rotation(const float axis_in[3], float angle, float r[9])
-{
-    float len = sqrtf(axis_in[0] * axis_in[0] + axis_in[1] * axis_in[1] + axis_in[2] * axis_in[2]);
-    float x = axis_in[0] / len, y = axis_in[1] / len, z = axis_in[2] / len, c = cosf(angle), s = sinf(angle);
-    const float m[9] = {c + x * x * (1 - c),     x * y * (1 - c) - z * s, x * z * (1 - c) + y * s,
-                        y * x * (1 - c) + z * s, c + y * y * (1 - c),     y * z * (1 - c) - x * s,
-                        z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c)};
-    memcpy(r, m, sizeof m);
-}
-
-/* Axis-aligned box [lo, hi] as 12 triangles into the arrays (8 vertices). */
-static void add_box(const float lo[3], const float hi[3], float *pos, uint32_t *vcount, uint32_t *idx, uint32_t *tcount)
-{
-    uint32_t base = *vcount;
-    for (int i = 0; i < 8; ++i) {
-        pos[3 * (base + i) + 0] = (i & 1) ? hi[0] : lo[0];
-        pos[3 * (base + i) + 1] = (i & 2) ? hi[1] : lo[1];
-        pos[3 * (base + i) + 2] = (i & 4) ? hi[2] : lo[2];
-    }
-    static const uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
-    for (int f = 0; f < 6; ++f) {
-        const uint32_t *q = faces[f];
-        const uint32_t t[6] = {q[0], q[1], q[2], q[0], q[2], q[3]};
-        for (int k = 0; k < 6; ++k)
-            idx[3 * *tcount + k] = base + t[k];
-        *tcount += 2;
-    }
-    *vcount += 8;
-}
-
-/* The box room turned by rot, with a light outside it when with_light. */
-static roma_scene *box_room(const float rot[9], int with_light)
-{
-    float pos[16 * 3];
-    uint32_t idx[24 * 3], vcount = 0, tcount = 0;
-    add_box((const float[3]){-1, 0, -1}, (const float[3]){1, 2, 2}, pos, &vcount, idx, &tcount);
-    add_box((const float[3]){-0.5f, 0, -0.6f}, (const float[3]){0.1f, 0.7f, 0.0f}, pos, &vcount, idx, &tcount);
-    for (uint32_t v = 0; v < vcount; ++v) {
-        float p[3] = {pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]};
-        rotate(rot, p, &pos[3 * v]);
-    }
-    roma_light light = {.type = ROMA_LIGHT_POINT, .color = {1, 1, 1}, .intensity = 20.0f};
-    rotate(rot, (const float[3]){0.0f, 1.0f, -1.3f}, light.position);
-    if (with_light == 2) { /* a sun on the roof and the back wall, from outside */
-        light.type = ROMA_LIGHT_DIRECTIONAL;
-        light.intensity = 3.0f;
-        rotate(rot, (const float[3]){0.2f, -0.6f, 0.775f}, light.direction);
-    }
-    roma_camera cam = {.fovy_deg = 70.0f};
-    rotate(rot, (const float[3]){0.0f, 1.0f, 1.9f}, cam.eye);
-    rotate(rot, (const float[3]){0.0f, 0.6f, -1.0f}, cam.target);
-    rotate(rot, (const float[3]){0.0f, 1.0f, 0.0f}, cam.up);
-    roma_scene_desc d = {.positions = pos, .vertex_count = vcount, .indices = idx, .triangle_count = tcount,
-                         .lights = with_light ? &light : NULL, .light_count = with_light ? 1u : 0u,
-                         .camera = &cam, .name = "box room"};
-    roma_scene *scene = NULL;
-    CHECK_RESULT(roma_scene_create(&d, &scene), ROMA_SUCCESS);
-    return scene;
-}
 
 /* blind: 1 the blind skip, 2 AO by exact traversal of the BOM, 3 AO sphere-traced through
  * the distance field, 4 AO through the NAADF hierarchy (the study's baselines; asked with the
@@ -203,8 +137,8 @@ static void test_ao(roma_context *ctx)
     roma_scene *cornell = NULL;
     CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &cornell), ROMA_SUCCESS);
     float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, turned[9];
-    rotation((const float[3]){1, 2, 3}, 0.5235988f, turned);
-    roma_scene *box = box_room(identity, 0), *turned_box = box_room(turned, 0);
+    roma_test_rotation((const float[3]){1, 2, 3}, 0.5235988f, turned);
+    roma_scene *box = roma_test_box_room(identity, 0), *turned_box = roma_test_box_room(turned, 0);
     const struct { const char *name; roma_scene *scene; } rooms[] = {
         {"cornell", cornell}, {"box", box}, {"turned box", turned_box}};
     for (size_t i = 0; i < sizeof rooms / sizeof rooms[0]; ++i) {
@@ -236,7 +170,7 @@ static void test_ao(roma_context *ctx)
 static uint32_t test_light_outside(roma_context *ctx, const char *name, const float rot[9])
 {
     uint32_t blind_near_lit = 0;
-    roma_scene *scene = box_room(rot, 1);
+    roma_scene *scene = roma_test_box_room(rot, 1);
     if (!scene)
         return 0;
     static const int variants[] = {0, 1, 5}; /* the walk, the blind skip, the exact traversal */
@@ -295,7 +229,7 @@ static uint32_t test_light_outside(roma_context *ctx, const char *name, const fl
 /* GI from the light outside (its RSM lights the bounce hits; the exact traversal's shadow rays). */
 static void test_gi_outside(roma_context *ctx, const char *name, const float rot[9], const double max_rays_route[2])
 {
-    roma_scene *scene = box_room(rot, 1);
+    roma_scene *scene = roma_test_box_room(rot, 1);
     if (!scene)
         return;
     double mean[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
@@ -365,7 +299,7 @@ static void test_gi_outside(roma_context *ctx, const char *name, const float rot
  * wall's far side, in the sun: means 9.4e-4 and 0.0125 (39 and 1,819 pixels). */
 static void test_sun_outside(roma_context *ctx, const char *name, const float rot[9])
 {
-    roma_scene *scene = box_room(rot, 2);
+    roma_scene *scene = roma_test_box_room(rot, 2);
     if (!scene)
         return;
     for (int effect = 0; effect < 2; ++effect) {
@@ -432,7 +366,7 @@ static void test_low_sun(roma_context *ctx)
  * beyond the start that the passes walk exactly through the BOM. Returns how many. */
 static uint32_t unbounded_segments_passing(roma_context *ctx, const char *name, const float rot[9], uint32_t angular)
 {
-    roma_scene *scene = box_room(rot, 1);
+    roma_scene *scene = roma_test_box_room(rot, 1);
     roma_map *map = NULL;
     roma_map_desc desc = {.resolution = 128, .angular = angular};
     CHECK_RESULT(scene ? roma_map_create(ctx, &desc, scene, &map) : ROMA_ERROR_INVALID_ARGUMENT, ROMA_SUCCESS);
@@ -440,7 +374,7 @@ static uint32_t unbounded_segments_passing(roma_context *ctx, const char *name, 
     uint32_t *maps = calloc(texel_words * angular * angular, 4);
     uint32_t walked = 0, passing = 0, rng = 77u;
     float light[3];
-    rotate(rot, (const float[3]){0.0f, 1.0f, -1.3f}, light);
+    roma_test_rotate(rot, (const float[3]){0.0f, 1.0f, -1.3f}, light);
     for (uint32_t frame = 0; map && maps && frame < 8; ++frame) {
         roma_map_frame_desc fd = {.frame = frame, .seed = 5, .jitter_grid = 1, .jitter_directions = 1};
         CHECK_RESULT(roma_map_build(map, &fd, NULL), ROMA_SUCCESS);
@@ -474,7 +408,7 @@ static uint32_t unbounded_segments_passing(roma_context *ctx, const char *name, 
                 o[a] = p[a] + n[a] * ROMA_DEFAULT_OFFSET_CELLS * trace_cell;
             float crossing = (-1.0f - o[2]) / (-1.3f - o[2]); /* where it crosses the wall, 0..1 */
             float world[3];
-            rotate(rot, o, world);
+            roma_test_rotate(rot, o, world);
             for (int a = 0; a < 3; ++a)
                 v[a] = light[a] - world[a];
             float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -503,7 +437,7 @@ int main(void)
         return roma_test_finish("test_closed_rooms");
     test_ao(ctx);
     float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, turned[9];
-    rotation((const float[3]){1, 2, 3}, 0.5235988f, turned);
+    roma_test_rotation((const float[3]){1, 2, 3}, 0.5235988f, turned);
     /* The figure sees the blind skip's leak (the box: 8 of 38 pixels, the turned box none). */
     uint32_t blind_near_lit = test_light_outside(ctx, "box", identity);
     blind_near_lit += test_light_outside(ctx, "turned box", turned);

@@ -567,18 +567,28 @@ float roma_level_exit(roma_grid_params grid, vec3 origin, vec3 dn, vec3 inv)
 }
 
 // The parts of a ray that cascade levels trace: from the level that holds the origin, each
-// level over [t0, t1], t1 where the ray leaves its cube (tmax in the coarsest), t0 where the
-// last level's part ended (tmin in the first). One level: [tmin, tmax] in it.
+// level over [t0, t1], t1 where the traced line leaves its cube (tmax in the coarsest), t0
+// where the last level's part ended (tmin in the first). One level: [tmin, tmax] in it. The
+// traced line is the ray for an un-snapped query, and for a snapped one the candidate of its
+// stratum (or its opposite) through the origin: along the ray, the candidate's line could
+// leave a level's cube first, and what it crossed between would be traced in no level (a wall
+// there let rays out of a closed room).
 struct roma_level_walk {
     uint level, count;
     bool last;
     float t0, t1;
     roma_ray_dir d; // resolved once: the same in every level
-    vec3 inv;       // the unit direction's reciprocals, for the levels' exits
+    vec3 along;     // the traced line's unit direction
+    vec3 inv;       // its reciprocals (0 where it is 0), for the levels' exits
     roma_grid_params grid;
 };
 
-roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float tmax)
+// How far before the finer level's part ends a coarser level's part begins, in the coarser
+// level's BOM cells (one trace cell): a wall just beyond the finer cube has coarse cells that
+// begin before it, up to a cell's diagonal; without the overlap a ray could pass between the
+// parts (test_closed_rooms_cascades).
+const float ROMA_LEVEL_OVERLAP_CELLS = 1.7320508;
+roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float tmax, bool snapped)
 {
     roma_level_walk w;
     w.level = roma_level_of(origin);
@@ -587,10 +597,15 @@ roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float t
     w.t0 = tmin;
     w.last = w.level + 1u >= w.count;
     w.d = roma_ray_dir_of(dir, w.grid.dims.z);
-    vec3 dn = w.d.dn;
-    w.inv = vec3(dn.x != 0.0 ? roma_div(1.0, dn.x) : 0.0, dn.y != 0.0 ? roma_div(1.0, dn.y) : 0.0,
-                 dn.z != 0.0 ? roma_div(1.0, dn.z) : 0.0);
-    w.t1 = !w.last && w.d.unit ? min(roma_level_exit(w.grid, origin, dn, w.inv), tmax) : tmax;
+    w.along = w.d.dn;
+    if (snapped && w.d.unit) { // every level's map k has the same candidate: the finest level's frame k
+        vec3 c = roma_fetch_frame(w.d.k).dir.xyz;
+        w.along = w.d.folded ? -c : c;
+    }
+    vec3 a = w.along;
+    w.inv = vec3(a.x != 0.0 ? roma_div(1.0, a.x) : 0.0, a.y != 0.0 ? roma_div(1.0, a.y) : 0.0,
+                 a.z != 0.0 ? roma_div(1.0, a.z) : 0.0);
+    w.t1 = !w.last && w.d.unit ? min(roma_level_exit(w.grid, origin, a, w.inv), tmax) : tmax;
     return w;
 }
 
@@ -599,11 +614,12 @@ bool roma_level_walk_next(inout roma_level_walk w, vec3 origin, float tmax, roma
 {
     if (w.last || (h.info & ROMA_HIT_FLAG) != 0u || !(w.t1 < tmax))
         return false;
-    w.t0 = max(w.t0, w.t1);
     w.level += 1u;
     w.grid = roma_fetch_grid(w.level);
+    precise float back = ROMA_LEVEL_OVERLAP_CELLS * w.grid.origin.w;
+    w.t0 = max(w.t0, w.t1 - back);
     w.last = w.level + 1u >= w.count;
-    w.t1 = w.last ? tmax : min(roma_level_exit(w.grid, origin, w.d.dn, w.inv), tmax);
+    w.t1 = w.last ? tmax : min(roma_level_exit(w.grid, origin, w.along, w.inv), tmax);
     return true;
 }
 
@@ -612,7 +628,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
 {
     if (!ROMA_CASCADES)
         return roma_trace_snapped_level(roma_fetch_grid(0u), origin, dir, tmin, tmax, closest);
-    roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax);
+    roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax, true);
     roma_hit h;
     do {
         ROMA_LOOP_TICK();
@@ -628,7 +644,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
 {
     if (!ROMA_CASCADES)
         return roma_trace_unsnapped_level(roma_fetch_grid(0u), origin, dir, tmin, tmax, closest, max_steps);
-    roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax);
+    roma_level_walk w = roma_level_walk_begin(origin, dir, tmin, tmax, false);
     roma_hit h;
     do {
         ROMA_LOOP_TICK();

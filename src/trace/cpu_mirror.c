@@ -292,6 +292,9 @@ static uint32_t level_of(uint32_t levels, const roma_grid_params *grids, const f
     return levels ? levels - 1 : 0;
 }
 
+/* ROMA_LEVEL_OVERLAP_CELLS in GLSL: a coarser level's part begins this many of its cells
+ * before the finer level's part ends. */
+#define LEVEL_OVERLAP_CELLS 1.7320508f
 /* roma_level_exit in GLSL (inv: dn's reciprocals, 0 where dn is 0). */
 static float level_exit(const roma_grid_params *g, const float origin[3], const float dn[3], const float inv[3])
 {
@@ -311,12 +314,17 @@ roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, c
     uint32_t l = level_of(levels, grids, ray->origin);
     const roma_grid_params *g = &grids[l];
     int last = l + 1 >= levels;
-    float dn[3] = {0.0f, 0.0f, 0.0f}, inv[3];
+    float dn[3] = {0.0f, 0.0f, 0.0f}, along[3], inv[3];
     const int unit = roma_unit_direction(ray->dir, dn);
-    for (int a = 0; a < 3; ++a)
-        inv[a] = dn[a] != 0.0f ? 1.0f / dn[a] : 0.0f;
-    float t0 = ray->tmin, t1 = !last && unit ? fminf(level_exit(g, ray->origin, dn, inv), ray->tmax) : ray->tmax;
     const int unsnapped = mode == ROMA_TRACE_UNSNAPPED_ANY || mode == ROMA_TRACE_UNSNAPPED_CLOSEST;
+    /* The traced line: the ray, or a snapped query's candidate (roma_level_walk in GLSL). */
+    int folded = 0;
+    const uint32_t k = unit ? roma_unit_direction_to_map(dn, g->dims[2], &folded) : 0;
+    for (int a = 0; a < 3; ++a) {
+        along[a] = !unsnapped && unit ? (folded ? -frames[k].dir[a] : frames[k].dir[a]) : dn[a];
+        inv[a] = along[a] != 0.0f ? 1.0f / along[a] : 0.0f;
+    }
+    float t0 = ray->tmin, t1 = !last && unit ? fminf(level_exit(g, ray->origin, along, inv), ray->tmax) : ray->tmax;
     for (;;) {
         roma_ray part = *ray;
         part.tmin = t0;
@@ -327,9 +335,9 @@ roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, c
         h.info |= l << ROMA_HIT_LEVEL_SHIFT;
         if ((unsnapped && gave_up) || last || (h.info & ROMA_HIT_FLAG) || !(t1 < ray->tmax))
             return h;
-        t0 = fmaxf(t0, t1);
         g = &grids[++l];
+        t0 = fmaxf(t0, t1 - LEVEL_OVERLAP_CELLS * g->origin[3]);
         last = l + 1 >= levels;
-        t1 = last ? ray->tmax : fminf(level_exit(g, ray->origin, dn, inv), ray->tmax);
+        t1 = last ? ray->tmax : fminf(level_exit(g, ray->origin, along, inv), ray->tmax);
     }
 }

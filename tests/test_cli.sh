@@ -62,7 +62,7 @@ common=(--scene builtin:cornell --size 32x24 --spp 2 --quiet)
 expect_status 0 $? "roma-render (all effects)" || cat "$dir/render.err" >&2
 
 expected_files=()
-for e in ao direct gi lights coverage composed; do
+for e in ao direct gi lights coverage composed distance; do
   expected_files+=("$out/$e.pfm" "$out/$e.png")
 done
 for f in "${expected_files[@]}" "$out/stats.json"; do
@@ -70,7 +70,7 @@ for f in "${expected_files[@]}" "$out/stats.json"; do
   grep -qxF "wrote $f" "$dir/render.out" || fail "no 'wrote $f' line in the output"
 done
 wrote_count=$(grep -c '^wrote ' "$dir/render.out")
-[ "$wrote_count" -eq 13 ] || fail "expected 13 'wrote' lines, got $wrote_count"
+[ "$wrote_count" -eq 15 ] || fail "expected 15 'wrote' lines, got $wrote_count"
 
 if [ -f "$out/stats.json" ]; then
   python3 - "$out/stats.json" <<'EOF' || fail "stats JSON does not parse or lacks the expected keys"
@@ -103,6 +103,23 @@ expect_status 1 $? "roma-compare ao.pfm direct.pfm (channel mismatch)"
 
 "$compare" "$out/ao.pfm" >/dev/null 2>"$dir/compare_usage.err"
 expect_status 2 $? "roma-compare with one image"
+
+# distance.pfm: the distance from the eye where a surface is seen; as a mask with --mask-max,
+# the pixels within that distance (the room's walls are 1 to 5 m from its camera).
+count_pixels() { awk '$1 == "pixels" { print $2 }' "$1"; }
+"$compare" "$out/ao.pfm" "$out/ao.pfm" --mask "$out/coverage.pfm" >"$dir/covered.cmp"
+"$compare" "$out/ao.pfm" "$out/ao.pfm" --mask "$out/distance.pfm" >"$dir/distance_all.cmp"
+"$compare" "$out/ao.pfm" "$out/ao.pfm" --mask "$out/distance.pfm" --mask-max 3 >"$dir/distance_near.cmp"
+"$compare" "$out/ao.pfm" "$out/ao.pfm" --mask "$out/distance.pfm" --mask-max 0.5 >"$dir/distance_none.cmp"
+covered=$(count_pixels "$dir/covered.cmp") all=$(count_pixels "$dir/distance_all.cmp")
+near=$(count_pixels "$dir/distance_near.cmp") none=$(count_pixels "$dir/distance_none.cmp")
+[ -n "$covered" ] && [ "$covered" = "$all" ] ||
+  fail "distance.pfm is not > 0 exactly where coverage.pfm is ($all against $covered pixels)"
+[ -n "$near" ] && [ "$near" -gt 0 ] && [ "$near" -lt "$covered" ] && [ "$none" = 0 ] ||
+  fail "--mask-max on distance.pfm: within 3 m $near, within 0.5 m $none of $covered pixels"
+grep -q "where the mask is > 0 and <= 3)" "$dir/distance_near.cmp" || fail "roma-compare does not say --mask-max's bound"
+"$compare" "$out/ao.pfm" "$out/ao.pfm" --mask-max 3 >/dev/null 2>"$dir/mask_max.err"
+expect_status 2 $? "roma-compare --mask-max without --mask"
 
 # roma-compare for people: labelled figures, relative error and bias, the heat map's
 # scale and legend, a pass/fail threshold, JSON, and the mask's own errors.

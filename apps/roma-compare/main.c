@@ -10,11 +10,13 @@
 #include "stats_json.h"
 
 static const char *usage =
-    "usage: roma-compare A.pfm|A.exr B.pfm|B.exr [--mask M.pfm|M.exr] [--tolerance T] [--heatmap out.png] [--heat-scale S]\n"
+    "usage: roma-compare A.pfm|A.exr B.pfm|B.exr [--mask M.pfm|M.exr [--mask-max V]] [--tolerance T] [--heatmap out.png] [--heat-scale S]\n"
     "                    [--side-by-side out.png] [--exposure E] [--threshold T] [--json out.json]\n"
     "  Images are read as OpenEXR when their name ends in .exr, as PFM otherwise.\n"
     "  Prints mean absolute error, RMSE, max error and the fraction of pixels whose error\n"
     "  exceeds T (default 0.05), over the pixels where the mask (1 channel) is > 0.\n"
+    "  --mask-max V: only where the mask is <= V too (with roma-render's distance.pfm as the\n"
+    "  mask: the pixels whose surface is within V of the eye).\n"
     "  The heat map shows |A-B| (max over channels) with S as white (default: the max error).\n"
     "  A 12-pixel strip under the heat map is its legend: black (0) to white (S), left to right.\n"
     "  --side-by-side writes A and B next to each other, tone-mapped with exposure E (default 1).\n"
@@ -59,7 +61,7 @@ static int write_side_by_side(const roma_image img[2], const char *path, float e
 int main(int argc, char **argv)
 {
     const char *paths[2] = {NULL, NULL}, *mask_path = NULL, *heatmap = NULL, *side_by_side = NULL;
-    float tolerance = 0.05f, heat_scale = 0.0f, exposure = 1.0f, threshold = -1.0f;
+    float tolerance = 0.05f, heat_scale = 0.0f, exposure = 1.0f, threshold = -1.0f, mask_max = INFINITY;
     const char *json_path = NULL;
     int n = 0;
     for (int i = 1; i < argc; ++i) {
@@ -68,6 +70,13 @@ int main(int argc, char **argv)
             fputs(usage, stdout);
             return 0;
         } else if (strcmp(a, "--mask") == 0 && v) mask_path = v, ++i;
+        else if (strcmp(a, "--mask-max") == 0 && v) {
+            mask_max = parse_non_negative(v), ++i;
+            if (!(mask_max > 0.0f)) {
+                fprintf(stderr, "roma-compare: --mask-max takes a number > 0\n%s", usage);
+                return 2;
+            }
+        }
         else if (strcmp(a, "--tolerance") == 0 && v) tolerance = parse_non_negative(v), ++i;
         else if (strcmp(a, "--heatmap") == 0 && v) heatmap = v, ++i;
         else if (strcmp(a, "--heat-scale") == 0 && v) heat_scale = parse_non_negative(v), ++i;
@@ -85,6 +94,10 @@ int main(int argc, char **argv)
             fprintf(stderr, "roma-compare: unexpected argument %s\n%s", a, usage);
             return 2;
         }
+    }
+    if (n == 2 && !mask_path && isfinite(mask_max)) {
+        fprintf(stderr, "roma-compare: --mask-max needs --mask\n%s", usage);
+        return 2;
     }
     if (n != 2 || tolerance < 0.0f || heat_scale < 0.0f || exposure < 0.0f) {
         fprintf(stderr, "roma-compare: %s\n%s",
@@ -114,6 +127,10 @@ int main(int argc, char **argv)
             fprintf(stderr, "roma-compare: the mask %s is %ux%u, the images %ux%u\n", mask_path, mask.width,
                     mask.height, img[0].width, img[0].height);
             status = 1;
+        } else {
+            for (size_t i = 0; i < (size_t)mask.width * mask.height; ++i)
+                if (!(mask.pixels[i] <= mask_max))
+                    mask.pixels[i] = 0.0f;
         }
     }
     roma_image_metrics m;
@@ -149,8 +166,12 @@ int main(int argc, char **argv)
         scale = heat_scale > 0.0f ? heat_scale : m.max_abs_error > 0.0 ? (float)m.max_abs_error : 1.0f;
         printf("A             %s\n", paths[0]);
         printf("B             %s\n", paths[1]);
-        printf("pixels        %-12llu pixels compared%s\n", (unsigned long long)m.pixel_count,
-               mask_path ? " (where the mask is > 0)" : "");
+        if (isfinite(mask_max))
+            printf("pixels        %-12llu pixels compared (where the mask is > 0 and <= %g)\n",
+                   (unsigned long long)m.pixel_count, (double)mask_max);
+        else
+            printf("pixels        %-12llu pixels compared%s\n", (unsigned long long)m.pixel_count,
+                   mask_path ? " (where the mask is > 0)" : "");
         printf("mean_abs      %-12.6g mean |A - B| over every channel\n", m.mean_abs_error);
         printf("relative      %-12.6g mean_abs / mean_b (%.2f%%)\n", relative, 100.0 * relative);
         printf("bias          %-12.6g mean_a - mean_b (> 0: A is brighter)\n", bias);
@@ -202,6 +223,8 @@ int main(int argc, char **argv)
             roma_json_string(&j, "a", paths[0]);
             roma_json_string(&j, "b", paths[1]);
             roma_json_string(&j, "mask", mask_path ? mask_path : "");
+            if (isfinite(mask_max))
+                roma_json_number(&j, "mask_max", mask_max);
             roma_json_int(&j, "pixels", (long long)m.pixel_count);
             roma_json_number(&j, "mean_abs", m.mean_abs_error);
             roma_json_number(&j, "relative", relative);

@@ -94,7 +94,8 @@ static const char *usage =
     "                              where the light points)\n"
     "  --seed N                    sample-sequence seed (default 1)\n"
     "  --threads N                 CPU threads for the reference (default: all cores)\n"
-    "  --out DIR                   output folder (default out); writes DIR/<effect>.<format>\n"
+    "  --out DIR                   output folder (default out); writes DIR/<effect>.<format>,\n"
+    "                              coverage (1 where a surface is seen) and distance (from the eye)\n"
     "  --format LIST               output formats, comma-separated: pfm (linear float), png (8-bit\n"
     "                              sRGB), exr (OpenEXR, linear 32-bit float); default pfm,png\n"
     "  --stats FILE.json           write device, scene size, settings, timings and notes\n"
@@ -691,6 +692,39 @@ static int write_extras(const options *o, const roma_image *coverage, const roma
         composed.pixels[i] = direct->pixels[i] + gi->pixels[i];
     int ok = write_outputs(o, "composed", &composed, coverage, 1.0f);
     roma_image_free(&composed);
+    return ok;
+}
+
+/* distance.pfm: how far from the eye the surface each pixel sees is (0 where none), from
+ * Embree's primary rays whatever the tracer: with roma-compare --mask distance.pfm --mask-max D,
+ * the error over the surfaces within D of the camera. The PNG shows 0 to the farthest. */
+static int write_distance(const options *o, const roma_ref *ref, const roma_camera *cam)
+{
+    const size_t n = (size_t)o->width * o->height;
+    float *planes = malloc(sizeof(float) * 15 * n);
+    roma_image distance = {0};
+    roma_result r = planes ? roma_image_alloc(&distance, o->width, o->height, 1) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    if (r == ROMA_SUCCESS) {
+        const roma_ref_gbuffer g = {planes, planes + 4 * n, planes + 8 * n, planes + 12 * n};
+        r = roma_ref_render_gbuffer(ref, cam, o->width, o->height, &g);
+    }
+    float farthest = 0.0f;
+    for (size_t i = 0; i < n && r == ROMA_SUCCESS; ++i) {
+        float d2 = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            const float d = planes[4 * i + c] - cam->eye[c];
+            d2 += d * d;
+        }
+        distance.pixels[i] = planes[4 * i + 3] > 0.0f ? sqrtf(d2) : 0.0f;
+        farthest = fmaxf(farthest, distance.pixels[i]);
+    }
+    int ok = r == ROMA_SUCCESS;
+    if (!ok)
+        fprintf(stderr, "roma-render: the distance image: %s\n", roma_result_string(r));
+    else
+        ok = write_outputs(o, "distance", &distance, &distance, farthest > 0.0f ? 1.0f / farthest : 1.0f);
+    roma_image_free(&distance);
+    free(planes);
     return ok;
 }
 
@@ -1421,6 +1455,8 @@ int main(int argc, char **argv)
     roma_image_free(&kept_coverage);
     roma_image_free(&kept_direct);
     roma_image_free(&kept_gi);
+    if (status == 0 && !write_distance(&o, ref, &cam))
+        status = 1;
     if (status == 0 && o.stats && !write_stats(&o, &sv, &cam, &run))
         status = 1;
     const uint32_t validation_errors = roma_context_validation_error_count(ctx);

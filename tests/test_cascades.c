@@ -241,6 +241,7 @@ static void check_reuse(roma_context *ctx, const roma_scene *scene)
     CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
     roma_map_get_info(map, &info);
     CHECK(info.levels_rebuilt == LEVELS);
+    CHECK(info.static_copy_bytes == 0); /* no dynamic instance */
     CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
     roma_map_get_info(map, &info);
     CHECK(info.levels_rebuilt == 0);
@@ -301,6 +302,90 @@ done:
     roma_map_destroy(map);
 }
 
+/* A new map of the scene with the mesh as a static instance at `transform`, built from frame:
+ * what a map with it dynamic must hold word for word. */
+static int fresh_equal(roma_context *ctx, const roma_scene *scene, const roma_map_desc *desc,
+                       const roma_map_frame_desc *frame, const float transform[12], const uint32_t *bom,
+                       const uint32_t *maps, uint32_t *bom2, uint32_t *maps2)
+{
+    const uint64_t texel_words = (uint64_t)RES * RES * (RES / 32), map_words = texel_words * ANGULAR * ANGULAR;
+    roma_map *fresh = NULL;
+    uint32_t mesh = 0, instance = 0;
+    int same = roma_map_create(ctx, desc, scene, &fresh) == ROMA_SUCCESS &&
+               roma_map_add_mesh(fresh, scene, &mesh) == ROMA_SUCCESS;
+    roma_instance_desc d = {.mesh = mesh};
+    memcpy(d.transform, transform, sizeof d.transform);
+    same = same && roma_map_add_instance(fresh, &d, &instance) == ROMA_SUCCESS &&
+           roma_map_build(fresh, frame, NULL) == ROMA_SUCCESS && download_all(fresh, bom2, maps2) &&
+           memcmp(bom, bom2, 4 * texel_words * LEVELS) == 0 && memcmp(maps, maps2, 4 * map_words * LEVELS) == 0;
+    roma_map_destroy(fresh);
+    return same;
+}
+
+/* A dynamic instance over static geometry: a build keeps each level's static part and adds the
+ * instance where it is (or restores the level where it was), and the result is word for word a
+ * new map's with the instance static at the same place: near the camera (every level holds
+ * it), moved far (the levels it left and entered redone), moved again far from the finest
+ * levels (those kept), and still (nothing redone). */
+static void check_dynamic(roma_context *ctx, const roma_scene *scene)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    const roma_map_desc desc = {.resolution = RES, .angular = ANGULAR, .cascades = LEVELS};
+    const uint64_t texel_words = (uint64_t)RES * RES * (RES / 32), map_words = texel_words * ANGULAR * ANGULAR;
+    uint32_t *bom = malloc(4 * texel_words * LEVELS), *maps = malloc(4 * map_words * LEVELS);
+    uint32_t *bom2 = malloc(4 * texel_words * LEVELS), *maps2 = malloc(4 * map_words * LEVELS);
+    roma_map *map = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &desc, scene, &map), ROMA_SUCCESS);
+    uint32_t mesh = 0, instance = 0;
+    if (!map || !bom || !maps || !bom2 || !maps2 || roma_map_add_mesh(map, scene, &mesh) != ROMA_SUCCESS) {
+        CHECK(map && "out of memory");
+        goto done;
+    }
+    float focus[3], longest = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        focus[a] = v.bounds_min[a] + (v.bounds_max[a] - v.bounds_min[a]) * (a == 0 ? 0.3f : a == 1 ? 0.3f : 0.4f);
+        longest = fmaxf(longest, v.bounds_max[a] - v.bounds_min[a]);
+    }
+    const roma_map_frame_desc frame = {.frame = 1, .seed = 9, .focus = focus, .finest_extent = longest / 6.0f};
+    /* The room shrunk to 6% of its size, at the focus; then 0.25 of the room's size away
+     * along z (outside the two finest cubes, inside the coarsest); then a little further. */
+    const float s = 0.06f;
+    float t[12] = {s, 0, 0, focus[0], 0, s, 0, focus[1], 0, 0, s, focus[2]};
+    roma_instance_desc d = {.mesh = mesh, .flags = ROMA_INSTANCE_DYNAMIC};
+    memcpy(d.transform, t, sizeof t);
+    CHECK_RESULT(roma_map_add_instance(map, &d, &instance), ROMA_SUCCESS);
+    roma_map_info info;
+    const float moves[3] = {0.0f, 0.25f * longest, 0.03f * longest};
+    uint32_t rebuilt[4] = {0};
+    for (int step = 0; step < 4; ++step) {
+        if (step > 0 && step < 3) {
+            t[11] += moves[step];
+            CHECK_RESULT(roma_map_set_instance_transform(map, instance, t), ROMA_SUCCESS);
+        }
+        CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+        roma_map_get_info(map, &info);
+        rebuilt[step] = info.levels_rebuilt;
+        CHECK(info.static_copy_bytes == 4 * (texel_words + map_words) * LEVELS);
+        CHECK(download_all(map, bom, maps));
+        const int same = fresh_equal(ctx, scene, &desc, &frame, t, bom, maps, bom2, maps2);
+        CHECK(same);
+        if (!same)
+            printf("dynamic: step %d differs from a new map's build\n", step);
+    }
+    printf("dynamic instance: levels redone at the first build %u, moved far %u, moved again %u, still %u (of %u)\n",
+           rebuilt[0], rebuilt[1], rebuilt[2], rebuilt[3], LEVELS);
+    CHECK(rebuilt[0] == LEVELS && rebuilt[1] == LEVELS);
+    CHECK(rebuilt[2] > 0 && rebuilt[2] < LEVELS); /* the finest level neither held it nor holds it */
+    CHECK(rebuilt[3] == 0);
+done:
+    free(bom);
+    free(maps);
+    free(bom2);
+    free(maps2);
+    roma_map_destroy(map);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -311,6 +396,7 @@ int main(void)
     if (scene) {
         check_cascades(ctx, scene);
         check_reuse(ctx, scene);
+        check_dynamic(ctx, scene);
     }
     /* Refused: too many levels, too many maps, a raster BOM mode with levels. */
     roma_map *bad = NULL;

@@ -259,7 +259,11 @@ ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *fr
  * build of a map per frame slot, as roma_map_frame_desc.slot says).
  * Hits do not report an object: the maps hold one occupancy bit per cell, shared by
  * everything in it; a caller that needs the object finds it from the hit point.
- * Transforms are row-major 3x4: world = M[0..2][0..2] * local + M[.][3]. */
+ * Transforms are row-major 3x4: world = M[0..2][0..2] * local + M[.][3].
+ * With the exact BOM, a build keeps what is static apart from the dynamic instances (a copy of
+ * each level's static BOM and maps, roma_map_info.static_copy_bytes): when only dynamic
+ * instances moved, it restores a level's static part and voxelizes and rotates the dynamic
+ * triangles alone, in the levels they were or are in. */
 
 #define ROMA_INSTANCE_DYNAMIC 1u /**< roma_instance_desc.flags: its transform may change */
 
@@ -371,8 +375,13 @@ typedef struct roma_map_info {
      * directions and geometry are those it was last built from keeps its BOM and maps: with
      * jitter_grid and jitter_directions off, static geometry (no new positions, instances
      * unchanged, the same volume) and a focus that leaves the level's snapped cube where it
-     * was, a build rebuilds nothing. */
+     * was, a build rebuilds nothing. Dynamic instances moving over static geometry (the exact
+     * BOM, no new positions) redo only the levels whose cube they were or are in, and those
+     * from a copy of the level's static part plus the dynamic triangles alone. */
     uint32_t levels_rebuilt;
+    /** Device memory of those copies of the static part (each level's BOM and maps), made by
+     * the first build with a dynamic instance; 0 before. */
+    uint64_t static_copy_bytes;
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.

@@ -91,7 +91,8 @@ ROMA_STRUCT_END(roma_bom_push)
 #define ROMA_VOXELIZE_BINDINGS 4
 ROMA_STRUCT_BEGIN(roma_voxelize_push)
     roma_grid_params grid; /* this frame's placement (dims.x = RES, dims.y = words) */
-    ROMA_UVEC4(config);    /* x: triangle count, y: queue capacity (items) */
+    ROMA_UVEC4(config);    /* x: triangle count, y: queue capacity (items), z: the first triangle
+                              (voxelize.comp: triangles z .. z + x - 1) */
 ROMA_STRUCT_END(roma_voxelize_push)
 /* Header of the tile queue; dispatch is the VkDispatchIndirectCommand of voxelize_tiles. */
 ROMA_STRUCT_BEGIN(roma_voxelize_queue)
@@ -119,6 +120,9 @@ ROMA_STRUCT_END(roma_voxelize_queue)
 ROMA_STRUCT_BEGIN(roma_rotate_push)
     ROMA_UVEC4(config);   /* x: cell list capacity, y/z: the gather's workgroups (x, y), w: the cascade
                              level rotated (its grid, frames, BOM and maps) */
+    ROMA_UVEC4(source);   /* x: the BOM slot whose occupied cells the scatter adds: the level's own,
+                             or the slot after the last level, where a build voxelizes the dynamic
+                             instances alone (their cells are added to maps of the static ones) */
 ROMA_STRUCT_END(roma_rotate_push)
 /* Header of the occupied-cell list: two VkDispatchIndirectCommands. */
 ROMA_STRUCT_BEGIN(roma_rotate_cells)

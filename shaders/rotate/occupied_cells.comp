@@ -3,7 +3,8 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "roma_loop_guard.glsl"
-// Lists the occupied BOM cells for the scatter rotation: one invocation per BOM word.
+// Lists the occupied BOM cells for the scatter rotation: one invocation per BOM word of the
+// slot pc.source.x (the level's own BOM, or the dynamic instances' alone).
 // Grows the scatter's indirect dispatch; when the list is full, enables the gather.
 #include "roma_rotate.glsl"
 
@@ -17,7 +18,7 @@ void main()
               + gl_LocalInvocationID.x;
     if (id >= res * res * words)
         return;
-    uint word = bom[roma_rotate_bom_base(grid) + id];
+    uint word = bom[pc.source.x * res * res * words + id];
     if (word == 0u)
         return;
     uint n = uint(bitCount(word));

@@ -9,10 +9,11 @@ layout(local_size_x = ROMA_VOXELIZE_WORKGROUP_SIZE) in;
 
 void main()
 {
-    uint tri = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_VOXELIZE_WORKGROUP_SIZE
-               + gl_LocalInvocationID.x;
-    if (tri >= pc.config.x)
+    uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_VOXELIZE_WORKGROUP_SIZE
+              + gl_LocalInvocationID.x;
+    if (id >= pc.config.x)
         return;
+    uint tri = pc.config.z + id;
     int res = int(pc.grid.dims.x);
     uint words = pc.grid.dims.y;
     roma_vox_triangle t = roma_vox_load(tri, res);

@@ -10,6 +10,11 @@
 
 static const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
+static int is_dynamic(const roma_map_instance *in)
+{
+    return (in->flags & ROMA_INSTANCE_DYNAMIC) != 0;
+}
+
 static int grow(void **items, uint32_t *capacity, uint32_t count, size_t size)
 {
     if (count < *capacity)
@@ -255,20 +260,25 @@ roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out)
         memset(out, 0, sizeof *out);
         return r;
     }
-    /* Scene first, then each live instance: its vertices and its triangles renumbered. */
+    /* Scene first, then each live static instance, then each dynamic one (so that a build can
+     * voxelize the static triangles and the dynamic ones apart): vertices and triangles
+     * renumbered. */
     uint32_t *idx = out->indices.mapped ? out->indices.mapped : out->indices_staging.mapped;
     memcpy(idx, map->indices_host, 12ull * map->triangle_count);
     uint32_t v_at = map->vertex_count;
     size_t t_at = 3ull * map->triangle_count;
-    for (uint32_t i = 0; i < map->instance_count; ++i) {
-        if (!map->instances[i].live)
-            continue;
-        const roma_map_mesh *m = &map->meshes[map->instances[i].mesh];
-        for (size_t k = 0; k < 3ull * m->triangle_count; ++k)
-            idx[t_at + k] = m->indices[k] + v_at;
-        t_at += 3ull * m->triangle_count;
-        v_at += m->vertex_count;
-    }
+    out->static_triangles = map->triangle_count;
+    for (int dynamic = 0; dynamic < 2; ++dynamic)
+        for (uint32_t i = 0; i < map->instance_count; ++i) {
+            if (!map->instances[i].live || is_dynamic(&map->instances[i]) != dynamic)
+                continue;
+            const roma_map_mesh *m = &map->meshes[map->instances[i].mesh];
+            for (size_t k = 0; k < 3ull * m->triangle_count; ++k)
+                idx[t_at + k] = m->indices[k] + v_at;
+            t_at += 3ull * m->triangle_count;
+            v_at += m->vertex_count;
+            out->static_triangles += dynamic ? 0 : m->triangle_count;
+        }
     out->changed = 1;
     out->total_vertices = (uint32_t)vertices;
     out->total_triangles = (uint32_t)triangles;
@@ -306,12 +316,14 @@ void roma_map_instances_record_copies(roma_map *map, VkCommandBuffer cmd, roma_m
         map->voxelizer = layout->voxelizer;
     map->total_vertices = layout->total_vertices;
     map->total_triangles = layout->total_triangles;
-    uint32_t v_at = map->vertex_count;
-    for (uint32_t i = 0; i < map->instance_count; ++i)
-        if (map->instances[i].live) {
-            map->instances[i].first_vertex = v_at;
-            v_at += map->meshes[map->instances[i].mesh].vertex_count;
-        }
+    map->static_triangles = layout->static_triangles;
+    uint32_t v_at = map->vertex_count; /* the order of roma_map_instances_prepare */
+    for (int dynamic = 0; dynamic < 2; ++dynamic)
+        for (uint32_t i = 0; i < map->instance_count; ++i)
+            if (map->instances[i].live && is_dynamic(&map->instances[i]) == dynamic) {
+                map->instances[i].first_vertex = v_at;
+                v_at += map->meshes[map->instances[i].mesh].vertex_count;
+            }
     map->layout_dirty = 0;
 }
 
@@ -338,12 +350,14 @@ void roma_map_instances_record_transforms(roma_map *map, VkCommandBuffer cmd, in
     }
 }
 
-void roma_map_instances_bounds(const roma_map *map, float bmin[3], float bmax[3])
+int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[3], float bmax[3])
 {
+    int found = 0;
     for (uint32_t i = 0; i < map->instance_count; ++i) {
         const roma_map_instance *in = &map->instances[i];
-        if (!in->live)
+        if (!in->live || (dynamic_only && !is_dynamic(in)))
             continue;
+        found = 1;
         const roma_map_mesh *m = &map->meshes[in->mesh];
         for (int c = 0; c < 8; ++c) {
             float p[3] = {c & 1 ? m->bmax[0] : m->bmin[0], c & 2 ? m->bmax[1] : m->bmin[1],
@@ -356,4 +370,13 @@ void roma_map_instances_bounds(const roma_map *map, float bmin[3], float bmax[3]
             }
         }
     }
+    return found;
+}
+
+int roma_map_instances_dynamic(const roma_map *map)
+{
+    for (uint32_t i = 0; i < map->instance_count; ++i)
+        if (map->instances[i].live && is_dynamic(&map->instances[i]))
+            return 1;
+    return 0;
 }

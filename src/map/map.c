@@ -231,6 +231,7 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
     map->triangle_count = sv.triangle_count;
     map->total_vertices = sv.vertex_count;
     map->total_triangles = sv.triangle_count;
+    map->static_triangles = sv.triangle_count;
     map->live_vertices = sv.vertex_count;
     map->live_triangles = sv.triangle_count;
     map->indices_host = indices;
@@ -253,9 +254,11 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
         map->indices_pending = 1;
     }
     /* UNIFORM_TEXEL: the tracing passes read the BOM through bom_view (faster than storage
-     * loads on CPU devices); it is no larger than the maps, so within the same limit. */
+     * loads on CPU devices); it is no larger than the maps, so within the same limit. The
+     * exact BOM has a slot after the last level: the dynamic instances voxelized alone. */
     if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 4 * texel_words * map->levels, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+        r = roma_buffer_create(ctx, 4 * texel_words * (map->levels + (desc.bom_mode == ROMA_BOM_EXACT)),
+                               storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                ROMA_MEMORY_DEVICE, &map->bom);
     if (r == ROMA_SUCCESS)
@@ -369,6 +372,8 @@ void roma_map_destroy(roma_map *map)
     roma_buffer_destroy(ctx, &map->params);
     roma_buffer_destroy(ctx, &map->maps);
     roma_buffer_destroy(ctx, &map->bom);
+    roma_buffer_destroy(ctx, &map->static_maps);
+    roma_buffer_destroy(ctx, &map->static_bom);
     roma_buffer_destroy(ctx, &map->indices);
     roma_buffer_destroy(ctx, &map->indices_staging);
     roma_buffer_destroy(ctx, &map->positions);
@@ -518,17 +523,18 @@ static roma_result check_timer(const roma_map *map, const roma_gpu_timer *timer,
     return ROMA_SUCCESS;
 }
 
-/* Rotation (roma_shared.h) of cascade level `level`: clear its maps (the other levels' are
- * kept), list its occupied BOM cells, scatter them into its maps; the gather runs instead
- * when the list overflowed. */
-static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level)
+/* Rotation (roma_shared.h) of cascade level `level`: clear its maps when `clear` (the other
+ * levels' are kept), list the occupied cells of BOM slot `source` (the level's own, or the
+ * dynamic instances' alone), scatter them into its maps; the gather runs instead, from the
+ * level's whole BOM, when the list overflowed. */
+static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level, uint32_t source, int clear)
 {
     const uint64_t words = (uint64_t)map->res * map->res * map->words;
     const uint64_t gather_groups = (words * map->map_count + ROMA_ROTATE_WORKGROUP_SIZE - 1) /
                                    ROMA_ROTATE_WORKGROUP_SIZE;
     const uint32_t gather_x = gather_groups < 65535u ? (uint32_t)gather_groups : 65535u;
     const uint32_t gather_y = (uint32_t)((gather_groups + gather_x - 1) / gather_x);
-    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, level}};
+    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, level}, .source = {source, 0, 0, 0}};
     /* WAR against earlier readers of the maps and the list (traces, downloads, the
      * previous build's or level's indirect dispatches). */
     roma_cmd_memory_barrier(cmd,
@@ -537,7 +543,8 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level)
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkDeviceSize level_bytes = 4 * words * map->map_count;
-    vkCmdFillBuffer(cmd, map->maps.buffer, level * level_bytes, level_bytes, 0);
+    if (clear)
+        vkCmdFillBuffer(cmd, map->maps.buffer, level * level_bytes, level_bytes, 0);
     const roma_rotate_cells header = {.scatter = {0, map->map_count, 1, 0}, .gather = {0, 0, 1, 0}};
     vkCmdUpdateBuffer(cmd, map->cells.buffer, 0, sizeof header, &header);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -571,7 +578,7 @@ static roma_result record_bom(roma_map *map, VkCommandBuffer cmd, uint32_t level
     if (map->voxelizer) {
         for (uint32_t l = 0; l < map->levels && r == ROMA_SUCCESS; ++l)
             if (levels & (1u << l))
-                r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], map->total_triangles);
+                r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->total_triangles, 1);
         return r;
     }
     if (!(levels & 1u))
@@ -585,6 +592,126 @@ static roma_result record_bom(roma_map *map, VkCommandBuffer cmd, uint32_t level
                    map->total_triangles, map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
     };
     return roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
+}
+
+/* One cascade level's part of the BOM. */
+static VkDeviceSize bom_level_bytes(const roma_map *map)
+{
+    return 4ull * map->res * map->res * map->words;
+}
+
+/* The copies of the static geometry's BOM and maps, made once a build has dynamic instances. */
+static roma_result make_static_copies(roma_map *map)
+{
+    if (map->static_maps.buffer)
+        return ROMA_SUCCESS;
+    const uint64_t texel_words = (uint64_t)map->res * map->res * map->words;
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    roma_result r = roma_buffer_create(map->ctx, 4 * texel_words * map->levels, usage, ROMA_MEMORY_DEVICE,
+                                       &map->static_bom);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(map->ctx, 4 * texel_words * map->map_count * map->levels, usage, ROMA_MEMORY_DEVICE,
+                               &map->static_maps);
+    if (r != ROMA_SUCCESS) {
+        roma_buffer_destroy(map->ctx, &map->static_bom);
+        roma_buffer_destroy(map->ctx, &map->static_maps);
+    }
+    return r;
+}
+
+/* Level l's BOM and maps into the static copies (save) or back from them. */
+static void copy_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, int save)
+{
+    const VkDeviceSize bom_bytes = bom_level_bytes(map), maps_bytes = bom_bytes * map->map_count;
+    if (save) /* the level's voxelization and rotation before the copies read them */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                                VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const VkBufferCopy bom = {l * bom_bytes, l * bom_bytes, bom_bytes}, maps = {l * maps_bytes, l * maps_bytes, maps_bytes};
+    vkCmdCopyBuffer(cmd, save ? map->bom.buffer : map->static_bom.buffer, save ? map->static_bom.buffer : map->bom.buffer,
+                    1, &bom);
+    vkCmdCopyBuffer(cmd, save ? map->maps.buffer : map->static_maps.buffer,
+                    save ? map->static_maps.buffer : map->maps.buffer, 1, &maps);
+}
+
+/* The dynamic instances' triangles added to level l's BOM and maps: voxelized alone into the
+ * slot after the last level, whose cells the scatter adds to the maps, and into the level's
+ * own BOM (the ray-start walk reads it; the gather, if the list overflows, rotates it whole). */
+static roma_result add_dynamic(roma_map *map, VkCommandBuffer cmd, uint32_t l)
+{
+    const uint32_t first = map->static_triangles, count = map->total_triangles - map->static_triangles;
+    roma_grid_params alone = map->grids[l];
+    alone.level[0] = map->levels;
+    roma_result r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &alone, first, count, 1);
+    if (r == ROMA_SUCCESS)
+        r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], first, count, 0);
+    if (r == ROMA_SUCCESS)
+        record_rotation(map, cmd, l, map->levels, 0);
+    return r;
+}
+
+/* Whether the box [bmin, bmax] (world) comes within a cell of level l's cube. */
+static int touches_level(const roma_map *map, uint32_t l, const float bmin[3], const float bmax[3])
+{
+    const roma_grid_params *g = &map->grids[l];
+    for (int a = 0; a < 3; ++a) {
+        const float lo = g->origin[a] - g->origin[3], hi = g->origin[a] + (float)(map->res + 1) * g->origin[3];
+        if (!(bmax[a] >= lo && bmin[a] <= hi))
+            return 0;
+    }
+    return 1;
+}
+
+/* A whole build over dynamic instances (the exact BOM, no new positions): each level whose
+ * static part is stale is voxelized and rotated from the static triangles and saved; a level
+ * whose static part is current is copied back where dynamic cells were; then every level the
+ * dynamic instances touch gets theirs. A level they neither touch nor touched is kept. */
+static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *rebuilt)
+{
+    float dmin[3] = {INFINITY, INFINITY, INFINITY}, dmax[3] = {-INFINITY, -INFINITY, -INFINITY};
+    roma_map_instances_bounds(map, 1, dmin, dmax);
+    const size_t level_frames = sizeof(roma_map_frame) * map->map_count;
+    *rebuilt = 0;
+    for (uint32_t l = 0; l < map->levels; ++l) {
+        const int placed = map->bom_current[l] && map->maps_current[l] &&
+                           memcmp(&map->built_grids[l], &map->grids[l], sizeof map->grids[l]) == 0 &&
+                           memcmp(map->built_frames + l * map->map_count, map->frames + l * map->map_count,
+                                  level_frames) == 0;
+        const int static_same = placed && map->static_current[l] &&
+                                map->built_static_versions[l] == map->static_version;
+        const int touches = touches_level(map, l, dmin, dmax);
+        if (static_same && (map->built_versions[l] == map->geometry_version || (!touches && !map->dynamic_in[l]))) {
+            map->built_versions[l] = map->geometry_version;
+            continue;
+        }
+        roma_result r = ROMA_SUCCESS;
+        if (!static_same) {
+            r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->static_triangles, 1);
+            if (r == ROMA_SUCCESS) {
+                record_rotation(map, cmd, l, l, 1);
+                copy_static(map, cmd, l, 1);
+            }
+        } else if (map->dynamic_in[l]) {
+            copy_static(map, cmd, l, 0);
+        }
+        if (r == ROMA_SUCCESS && touches)
+            r = add_dynamic(map, cmd, l);
+        if (r != ROMA_SUCCESS) { /* what was recorded may have cleared any level */
+            memset(map->bom_current, 0, sizeof map->bom_current);
+            memset(map->maps_current, 0, sizeof map->maps_current);
+            memset(map->static_current, 0, sizeof map->static_current);
+            return r;
+        }
+        map->bom_current[l] = map->maps_current[l] = map->static_current[l] = 1;
+        map->dynamic_in[l] = (uint8_t)touches;
+        map->built_grids[l] = map->grids[l];
+        map->built_versions[l] = map->geometry_version;
+        map->built_static_versions[l] = map->static_version;
+        memcpy(map->built_frames + l * map->map_count, map->frames + l * map->map_count, level_frames);
+        ++*rebuilt;
+    }
+    return ROMA_SUCCESS;
 }
 
 roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *frame_in,
@@ -609,8 +736,14 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     memcpy(bmin, frame.volume ? frame.volume->min : frame.positions ? pmin : map->scene_min, sizeof bmin);
     memcpy(bmax, frame.volume ? frame.volume->max : frame.positions ? pmax : map->scene_max, sizeof bmax);
     if (!frame.volume) /* and the instances, where they are this frame */
-        roma_map_instances_bounds(map, bmin, bmax);
+        roma_map_instances_bounds(map, 0, bmin, bmax);
     r = check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells, "roma_map_record_build");
+    /* Dynamic instances over static geometry: a whole build keeps the static part apart. */
+    const int whole = steps == (ROMA_MAP_STEP_VOXELIZE | ROMA_MAP_STEP_ROTATE);
+    const int layered = whole && map->voxelizer && !frame.positions && !frame.gpu_positions &&
+                        roma_map_instances_dynamic(map);
+    if (r == ROMA_SUCCESS && layered)
+        r = make_static_copies(map);
     roma_map_layout layout = {0};
     if (r == ROMA_SUCCESS)
         r = roma_map_instances_prepare(map, &layout);
@@ -618,9 +751,13 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
         return r;
     roma_map_instances_release(map, 0); /* what the build slots' earlier builds used */
     compute_frame_params(map, &frame, bmin, bmax);
-    if (frame.positions || frame.gpu_positions || layout.changed || map->transforms_dirty || map->builds == 0 ||
-        memcmp(bmin, map->volume_min, sizeof bmin) != 0 || memcmp(bmax, map->volume_max, sizeof bmax) != 0)
+    const int static_moved = frame.positions || frame.gpu_positions || layout.changed || map->builds == 0 ||
+                             memcmp(bmin, map->volume_min, sizeof bmin) != 0 ||
+                             memcmp(bmax, map->volume_max, sizeof bmax) != 0;
+    if (static_moved || map->transforms_dirty)
         map->geometry_version = ++map->ctx->geometry_versions;
+    if (static_moved)
+        map->static_version = map->geometry_version;
     memcpy(map->volume_min, bmin, sizeof bmin);
     memcpy(map->volume_max, bmax, sizeof bmax);
     map->positions_moved |= frame.positions || frame.gpu_positions;
@@ -654,10 +791,22 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     roma_map_instances_record_transforms(map, cmd, layout.changed);
     ++map->builds;
 
+    if (layered) {
+        uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom_and_rotate");
+        r = record_layered(map, cmd, &map->levels_rebuilt);
+        roma_gpu_timer_end(timer, cmd, scope);
+        if (r != ROMA_SUCCESS)
+            return r;
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+        map->built = 1;
+        map->indices_pending = 0;
+        return ROMA_SUCCESS;
+    }
     /* The levels to voxelize and rotate: those whose placement, geometry or directions
      * changed since they were built (a still camera over static geometry without jitter
      * rebuilds nothing); every level where a step is asked alone (the benchmark times each). */
-    const int whole = steps == (ROMA_MAP_STEP_VOXELIZE | ROMA_MAP_STEP_ROTATE);
     const size_t level_frames = sizeof(roma_map_frame) * map->map_count;
     uint32_t stale_bom = 0, stale_maps = 0;
     for (uint32_t l = 0; l < map->levels; ++l) {
@@ -683,11 +832,13 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rotate");
         for (uint32_t l = 0; l < map->levels; ++l)
             if (stale_maps & (1u << l))
-                record_rotation(map, cmd, l);
+                record_rotation(map, cmd, l, l, 1);
         roma_gpu_timer_end(timer, cmd, scope);
     }
     map->levels_rebuilt = 0;
     for (uint32_t l = 0; l < map->levels; ++l) {
+        if ((stale_bom | stale_maps) & (1u << l))
+            map->static_current[l] = 0; /* the level holds every triangle now */
         if ((steps & ROMA_MAP_STEP_VOXELIZE) && (stale_bom & (1u << l))) {
             map->bom_current[l] = 1;
             map->built_grids[l] = map->grids[l];
@@ -749,7 +900,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     memcpy(out->grid_origin, map->grids[0].origin, sizeof out->grid_origin);
     out->grid_cell = map->grids[0].origin[3];
     out->trace_cell = map->grids[0].origin[3] * 1.7320508f;
-    out->bom_bytes = map->bom.size;
+    out->bom_bytes = bom_level_bytes(map) * map->levels; /* the levels' (not the dynamic slot) */
     out->bom_address = map->bom.address;
     out->bom_buffer = map->bom.buffer;
     out->bom_view = map->bom_view;
@@ -765,6 +916,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->trace_set_layout = map->trace_set.layout;
     out->levels = map->levels;
     out->levels_rebuilt = map->levels_rebuilt;
+    out->static_copy_bytes = map->static_bom.size + map->static_maps.size;
     return ROMA_SUCCESS;
 }
 
@@ -970,25 +1122,27 @@ roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_ste
     return r;
 }
 
-static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out, uint64_t word_count)
+/* The first `bytes` of src (the BOM's levels, without the dynamic instances' slot). */
+static roma_result download(roma_map *map, const roma_buffer *src, VkDeviceSize bytes, uint32_t *out,
+                            uint64_t word_count)
 {
     if (!out)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_map download: out_words is NULL");
     /* Compared in words: word_count * 4 wraps for huge counts and could match the size. */
-    if (word_count != src->size / 4)
+    if (word_count != bytes / 4)
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map download: word_count %llu, the buffer holds %llu words",
-                         (unsigned long long)word_count, (unsigned long long)(src->size / 4));
+                         (unsigned long long)word_count, (unsigned long long)(bytes / 4));
     if (!map->built) /* device memory not written yet: no garbage handed out */
         return roma_fail(&map->logger, ROMA_ERROR_NOT_READY, "roma_map download: the map has not been built yet");
     roma_buffer staging;
-    roma_result r = roma_buffer_create(map->ctx, src->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &staging);
+    roma_result r = roma_buffer_create(map->ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &staging);
     if (r != ROMA_SUCCESS)
         return r;
     VkCommandBuffer cmd;
     r = roma_begin_one_shot(map->ctx, &cmd);
     if (r == ROMA_SUCCESS) {
-        VkBufferCopy copy = {0, 0, src->size};
+        VkBufferCopy copy = {0, 0, bytes};
         vkCmdCopyBuffer(cmd, src->buffer, staging.buffer, 1, &copy);
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
@@ -997,20 +1151,20 @@ static roma_result download(roma_map *map, const roma_buffer *src, uint32_t *out
     if (r == ROMA_SUCCESS)
         r = roma_buffer_invalidate(map->ctx, &staging);
     if (r == ROMA_SUCCESS)
-        memcpy(out, staging.mapped, src->size);
+        memcpy(out, staging.mapped, bytes);
     roma_buffer_destroy(map->ctx, &staging);
     return r;
 }
 
 roma_result roma_map_download_bom(roma_map *map, uint32_t *out, uint64_t word_count)
 {
-    return map ? download(map, &map->bom, out, word_count)
+    return map ? download(map, &map->bom, bom_level_bytes(map) * map->levels, out, word_count)
                : roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_download_bom: map is NULL");
 }
 
 roma_result roma_map_download_maps(roma_map *map, uint32_t *out, uint64_t word_count)
 {
-    return map ? download(map, &map->maps, out, word_count)
+    return map ? download(map, &map->maps, map->maps.size, out, word_count)
                : roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_map_download_maps: map is NULL");
 }
 

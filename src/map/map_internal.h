@@ -62,6 +62,7 @@ struct roma_map {
     roma_map_instance *instances;
     uint32_t instance_count, instance_capacity;
     uint32_t total_vertices, total_triangles;
+    uint32_t static_triangles;    /* the first ones: the scene's and the static instances' */
     /* Scene and live instances now, including those added since the last build: the
      * geometry cap is checked against these (the totals above follow the builds). */
     uint64_t live_vertices, live_triangles;
@@ -109,6 +110,17 @@ struct roma_map {
     roma_map_frame *built_frames; /* levels x map_count, in the frames' allocation */
     uint8_t bom_current[ROMA_MAX_LEVELS], maps_current[ROMA_MAX_LEVELS];
     uint32_t levels_rebuilt;      /* by the last build */
+    /* Dynamic instances over static geometry (the exact BOM; record_layered in map.c): each level's BOM and
+     * maps of the static triangles alone, in static_bom / static_maps (made by the first build
+     * that has a dynamic instance). A build that finds a level's static part current copies it
+     * back where the dynamic instances were or are, and adds theirs: voxelized alone into the
+     * BOM slot after the last level (the scatter adds its cells) and into the level's own.
+     * static_version: the geometry version less the dynamic instances' moves;
+     * dynamic_in: the level's BOM and maps hold dynamic cells. */
+    roma_buffer static_bom, static_maps;
+    uint64_t static_version;
+    uint64_t built_static_versions[ROMA_MAX_LEVELS];
+    uint8_t static_current[ROMA_MAX_LEVELS], dynamic_in[ROMA_MAX_LEVELS];
 };
 
 /* roma_map_record_build in parts, so that the benchmark can time each step on devices
@@ -134,12 +146,17 @@ typedef struct roma_map_layout {
     roma_buffer positions, indices, indices_staging; /* staging: where indices is not mapped */
     struct roma_bom_voxelizer *voxelizer;
     uint32_t total_vertices, total_triangles;
+    uint32_t static_triangles; /* the scene's and the static instances': the first ones */
 } roma_map_layout;
 roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out);
 void roma_map_instances_record_copies(roma_map *map, VkCommandBuffer cmd, roma_map_layout *layout);
 void roma_map_instances_record_transforms(roma_map *map, VkCommandBuffer cmd, int all);
 /* Grows bmin/bmax by every live instance's world bounds. */
-void roma_map_instances_bounds(const roma_map *map, float bmin[3], float bmax[3]);
+/* Grows bmin/bmax by the live instances' boxes where they are now (the dynamic ones alone when
+ * dynamic_only); 0 when there were none. */
+int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[3], float bmax[3]);
+/* 1 when a live instance is dynamic (ROMA_INSTANCE_DYNAMIC). */
+int roma_map_instances_dynamic(const roma_map *map);
 /* Releases what the builds recorded so far no longer use; at map destruction, everything. */
 void roma_map_instances_release(roma_map *map, int all);
 

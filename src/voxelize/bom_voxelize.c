@@ -83,11 +83,11 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *v)
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
                                      uint32_t triangles)
 {
-    return roma_bom_voxelize_record_level(v, cmd, grid, triangles);
+    return roma_bom_voxelize_record_level(v, cmd, grid, 0, triangles, 1);
 }
 
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
-                                           uint32_t triangles)
+                                           uint32_t first, uint32_t triangles, int clear)
 {
     if (!v)
         return ROMA_ERROR_INVALID_ARGUMENT;
@@ -102,7 +102,7 @@ roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffe
     if ((VkDeviceSize)grid->level[0] * level_bytes + level_bytes > v->bom_bytes)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_bom_voxelize_record: level %u is outside the BOM buffer", grid->level[0]);
-    roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->queue.capacity, 0, 0}};
+    roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->queue.capacity, first, 0}};
 
     /* WAR/WAW against the previous build (voxelization, rotation, downloads, the
      * indirect read of the queue) and geometry written by transfers or compute. */
@@ -112,7 +112,8 @@ roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffe
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    vkCmdFillBuffer(cmd, v->bom, (VkDeviceSize)grid->level[0] * level_bytes, level_bytes, 0);
+    if (clear)
+        vkCmdFillBuffer(cmd, v->bom, (VkDeviceSize)grid->level[0] * level_bytes, level_bytes, 0);
     roma_tile_queue_record_reset(&v->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

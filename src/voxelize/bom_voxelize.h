@@ -45,10 +45,11 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
  * grid is this frame's placement (dims.x must be the voxelizer's RES, dims.y RES / 32);
  * it travels in push constants. triangle_count 0 clears only. Indices must be in range
  * for positions (not checked on the GPU). */
-/* One cascade level of a map (grid->level.x: its BOM in the buffer, cleared first; the other
- * levels' are kept). */
+/* One cascade level of a map (grid->level.x: its BOM slot in the buffer; the other slots are
+ * kept): triangles first .. first + count - 1, into the slot cleared first when clear is set,
+ * else added to what it holds. */
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
-                                           uint32_t triangles);
+                                           uint32_t first, uint32_t count, int clear);
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
                                      uint32_t triangle_count);
 

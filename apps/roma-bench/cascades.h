@@ -25,4 +25,11 @@ typedef struct roma_bench_cascades_desc {
  * frame. Prints the table (and CSV rows); returns 0 on success. */
 int roma_bench_cascades(roma_context *ctx, const roma_scene *scene, const roma_bench_cascades_desc *desc, FILE *csv);
 
+/* The moving object of both tables (t: its row-major 3x4 transform at frame f): the built-in
+ * room shrunk to a sixth of the finest cube's edge (`finest`), a quarter of it in front of the
+ * camera, moving sideways by one finest cell a frame (back to its start every 16 frames):
+ * inside every level's cube. */
+void roma_bench_object_transform(const roma_bench_cascades_desc *d, const roma_scene *object, float finest,
+                                 uint32_t f, float t[12]);
+
 #endif /* ROMA_BENCH_CASCADES_H */

@@ -42,8 +42,8 @@ static void *ao_worker(void *arg)
     return NULL;
 }
 
-static double embree_ao_ms(const roma_ref *ref, const roma_gbuffer_pixel *px, const uint32_t *covered, uint32_t count,
-                           uint32_t spp, float radius, double *mean)
+double roma_bench_embree_ao_ms(const roma_ref *ref, const roma_gbuffer_pixel *px, const uint32_t *covered,
+                               uint32_t count, uint32_t spp, float radius, double *mean)
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     uint32_t threads = cores < 1 ? 1u : cores > 64 ? 64u : (uint32_t)cores;
@@ -222,7 +222,7 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
                 break;
             }
             samples[3 * runs + k] = roma_app_now_ms() - t0;
-            samples[4 * runs + k] = embree_ao_ms(ref, px, covered, count, spp, d->radius, &ref_mean);
+            samples[4 * runs + k] = roma_bench_embree_ao_ms(ref, px, covered, count, spp, d->radius, &ref_mean);
             roma_ref_destroy(ref);
         }
         /* The last frame's ROMA AO, for the mean beside the reference's. */
@@ -285,7 +285,7 @@ int roma_bench_growth(roma_context *ctx, const roma_scene *scene, const roma_ben
         r = roma_ref_create(scene, NULL, &ref);
         samples[k] = roma_app_now_ms() - t0;
         if (r == ROMA_SUCCESS)
-            samples[runs + k] = embree_ao_ms(ref, fs.px, fs.covered, fs.count, 1, d->radius, &mean);
+            samples[runs + k] = roma_bench_embree_ao_ms(ref, fs.px, fs.covered, fs.count, 1, d->radius, &mean);
         roma_ref_destroy(ref);
     }
     if (r == ROMA_SUCCESS) {

@@ -7,6 +7,7 @@
 
 #include "roma/context.h"
 #include "roma/scene.h"
+#include "roma_shared.h"
 
 typedef struct roma_bench_frame_desc {
     uint32_t width, height;    /* G-buffer of the scene's default camera */
@@ -24,6 +25,12 @@ typedef struct roma_bench_frame_desc {
 double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result recorded);
 
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *desc, FILE *csv);
+
+/* Embree's AO at the covered points (px[covered[i]], count of them), spp samples each (the
+ * reference's sequences, seed 7), over all cores: wall-clock milliseconds; *mean: the mean AO. */
+struct roma_ref;
+double roma_bench_embree_ao_ms(const struct roma_ref *ref, const roma_gbuffer_pixel *px, const uint32_t *covered,
+                               uint32_t count, uint32_t spp, float radius, double *mean);
 
 /* One row of the growth study: ROMA's build steps and its AO pass at 1 spp over the covered
  * pixels (host-observed, submit to fence, each step alone) and Embree's BVH build and AO at the

@@ -635,6 +635,60 @@ static void copy_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, int save
                     save ? map->static_maps.buffer : map->maps.buffer, 1, &maps);
 }
 
+/* Level l's static part copied back over the box [bmin, bmax] (world) alone: its BOM cells
+ * (a cell of margin) and, in each map, the texels whose columns cross the box (two of margin:
+ * every map bit a cell in the box can set). Where the host cannot hold the regions, the whole
+ * level. */
+static void restore_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, const float bmin[3], const float bmax[3])
+{
+    const roma_grid_params *g = &map->grids[l];
+    const int res = (int)map->res;
+    const VkDeviceSize word = 4, bom_base = l * bom_level_bytes(map), maps_base = bom_base * map->map_count;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = (int)fmaxf(floorf((bmin[a] - g->origin[a]) * g->inv_cell[0]) - 1.0f, 0.0f);
+        hi[a] = (int)fminf(floorf((bmax[a] - g->origin[a]) * g->inv_cell[0]) + 1.0f, (float)(res - 1));
+        if (lo[a] > hi[a])
+            return; /* outside the cube: nothing of it was added */
+    }
+    VkBufferCopy *regions = malloc(sizeof *regions * (size_t)res * (map->map_count > 0 ? map->map_count : 1));
+    if (!regions) {
+        copy_static(map, cmd, l, 0);
+        return;
+    }
+    uint32_t n = 0;
+    for (int y = lo[1]; y <= hi[1]; ++y) {
+        const VkDeviceSize at = bom_base + word * ((VkDeviceSize)(y * res + lo[0]) * map->words);
+        regions[n++] = (VkBufferCopy){at, at, word * (VkDeviceSize)(hi[0] - lo[0] + 1) * map->words};
+    }
+    vkCmdCopyBuffer(cmd, map->static_bom.buffer, map->bom.buffer, n, regions);
+    n = 0;
+    for (uint32_t k = 0; k < map->map_count; ++k) {
+        const roma_map_frame *f = &map->frames[l * map->map_count + k];
+        const float *to_map[2] = {f->to_map_0, f->to_map_1};
+        float mlo[2] = {INFINITY, INFINITY}, mhi[2] = {-INFINITY, -INFINITY};
+        for (int c = 0; c < 8; ++c) {
+            float p[3];
+            for (int a = 0; a < 3; ++a) /* the box's corner, in the grid units the frame takes */
+                p[a] = ((c >> a & 1 ? (float)(hi[a] + 1) : (float)lo[a]) * g->origin[3]) * g->inv_cell[1];
+            for (int a = 0; a < 2; ++a) {
+                const float m = to_map[a][0] * p[0] + to_map[a][1] * p[1] + to_map[a][2] * p[2] + to_map[a][3];
+                mlo[a] = fminf(mlo[a], m);
+                mhi[a] = fmaxf(mhi[a], m);
+            }
+        }
+        const int x0 = (int)fmaxf(floorf(mlo[0]) - 2.0f, 0.0f), x1 = (int)fminf(floorf(mhi[0]) + 2.0f, (float)(res - 1));
+        const int y0 = (int)fmaxf(floorf(mlo[1]) - 2.0f, 0.0f), y1 = (int)fminf(floorf(mhi[1]) + 2.0f, (float)(res - 1));
+        for (int y = y0; y <= y1 && x0 <= x1; ++y) {
+            const VkDeviceSize at = maps_base + word * ((VkDeviceSize)(((int)k * res + y) * res + x0) * map->words);
+            regions[n++] = (VkBufferCopy){at, at, word * (VkDeviceSize)(x1 - x0 + 1) * map->words};
+        }
+    }
+    if (n)
+        vkCmdCopyBuffer(cmd, map->static_maps.buffer, map->maps.buffer, n, regions);
+    free(regions);
+}
+
 /* The dynamic instances' triangles added to level l's BOM and maps: voxelized alone into the
  * slot after the last level, whose cells the scatter adds to the maps, and into the level's
  * own BOM (the ray-start walk reads it; the gather, if the list overflows, rotates it whole). */
@@ -693,7 +747,7 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
                 copy_static(map, cmd, l, 1);
             }
         } else if (map->dynamic_in[l]) {
-            copy_static(map, cmd, l, 0);
+            restore_static(map, cmd, l, map->dynamic_min[l], map->dynamic_max[l]);
         }
         if (r == ROMA_SUCCESS && touches)
             r = add_dynamic(map, cmd, l);
@@ -705,6 +759,8 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
         }
         map->bom_current[l] = map->maps_current[l] = map->static_current[l] = 1;
         map->dynamic_in[l] = (uint8_t)touches;
+        memcpy(map->dynamic_min[l], dmin, sizeof dmin);
+        memcpy(map->dynamic_max[l], dmax, sizeof dmax);
         map->built_grids[l] = map->grids[l];
         map->built_versions[l] = map->geometry_version;
         map->built_static_versions[l] = map->static_version;

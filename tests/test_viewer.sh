@@ -38,9 +38,26 @@ headless() {
   shift 2
   "$viewer" --headless --validation "$@" >"$dir/$name.out" 2>&1 || { cat "$dir/$name.out" >&2; fail "roma-viewer $what failed"; }
 }
-# below VALUE BOUND: VALUE <= BOUND
+# numbers VALUE...: every value a decimal number (a missing or empty metric is not: awk would
+# compare it as a string, and "" <= 0.037 holds).
+numbers() {
+  local v
+  for v in "$@"; do
+    [[ $v =~ ^[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?$ ]] || return 1
+  done
+}
+# below VALUE BOUND: VALUE <= BOUND, both numbers
 below() {
-  awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'
+  numbers "$1" "$2" && awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'
+}
+# The checks themselves: a missing, empty or non-numeric value fails them.
+below "" 0.5 && fail "below passes an empty value"
+below "none" 0.5 && fail "below passes a word"
+below 0.4 "" && fail "below passes an empty bound"
+numbers 0.1 "" && fail "numbers passes an empty value"
+# compare_checked ARGS...: roma-compare, a failure when it does not exit 0
+compare_checked() {
+  "$compare" "$@" || fail "roma-compare $* exited $?"
 }
 if [ -n "${ROMA_TOOL_PRELOAD:-}" ]; then
   for tool in viewer render compare; do
@@ -61,9 +78,9 @@ cam="0,1,1.9,0,0.9,0,60"
 "$render" --tracer roma --route internal --effects ao --spp 8 --frames 32 --ao-radius 0.5 --camera "$cam" \
   --size 160x120 --quiet --out "$dir/roma" >/dev/null 2>&1 || fail "roma-render --tracer roma failed"
 if [ -f "$dir/viewer_ao.pfm" ] && [ -f "$dir/reference/ao.pfm" ] && [ -f "$dir/roma/ao.pfm" ]; then
-  "$compare" "$dir/viewer_ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_reference.txt"
-  "$compare" "$dir/viewer_ao.pfm" "$dir/roma/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_roma.txt"
-  "$compare" "$dir/roma/ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/roma_vs_reference.txt"
+  compare_checked "$dir/viewer_ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_reference.txt"
+  compare_checked "$dir/viewer_ao.pfm" "$dir/roma/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_roma.txt"
+  compare_checked "$dir/roma/ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/roma_vs_reference.txt"
   vr=$(metric "$dir/vs_reference.txt" mean_abs)
   vo=$(metric "$dir/vs_roma.txt" mean_abs)
   rr=$(metric "$dir/roma_vs_reference.txt" mean_abs)
@@ -82,7 +99,7 @@ own=$(sed -n 's/.*AO against the Embree reference.*MAE \([0-9.]*\) over 19200 co
 if [ -z "$own" ]; then
   fail "roma-viewer --compare-reference printed no MAE over 19200 pixels"
 elif [ -n "${vr:-}" ]; then
-  awk -v a="$own" -v b="$vr" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 0.00006) }' \
+  numbers "$own" "$vr" && awk -v a="$own" -v b="$vr" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 0.00006) }' \
     || fail "the viewer's own MAE ($own) is not roma-compare's ($vr)"
 fi
 
@@ -106,8 +123,8 @@ echo "direct light MAE (viewer vs Embree): ${direct:-none}"
 "$render" --tracer embree --effects gi --spp 256 --camera "$cam" --size 160x120 --quiet \
   --out "$dir/reference_gi" >/dev/null 2>&1 || fail "roma-render --tracer embree --effects gi failed"
 if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/reference_gi/gi.pfm" ]; then
-  "$compare" "$dir/viewer_gi.pfm" "$dir/roma_gi/gi.pfm" --mask "$dir/reference_gi/coverage.pfm" >"$dir/gi_vs_roma.txt"
-  "$compare" "$dir/viewer_gi.pfm" "$dir/reference_gi/gi.pfm" --mask "$dir/reference_gi/coverage.pfm" \
+  compare_checked "$dir/viewer_gi.pfm" "$dir/roma_gi/gi.pfm" --mask "$dir/reference_gi/coverage.pfm" >"$dir/gi_vs_roma.txt"
+  compare_checked "$dir/viewer_gi.pfm" "$dir/reference_gi/gi.pfm" --mask "$dir/reference_gi/coverage.pfm" \
     >"$dir/gi_vs_reference.txt"
   go=$(metric "$dir/gi_vs_roma.txt" mean_abs)
   gr=$(metric "$dir/gi_vs_reference.txt" mean_abs)
@@ -137,7 +154,7 @@ wall_cam="0,3,4,0,0.3,0,50"
   --frames 32 --camera "$wall_cam" --size 160x120 --quiet --out "$dir/wall_roma" >/dev/null 2>&1 \
   || fail "roma-render --effects gi on the moving wall failed"
 if [ -f "$dir/wall_gi.pfm" ] && [ -f "$dir/wall_roma/gi.pfm" ]; then
-  "$compare" "$dir/wall_gi.pfm" "$dir/wall_roma/gi.pfm" --mask "$dir/wall_roma/coverage.pfm" >"$dir/wall_gi.txt"
+  compare_checked "$dir/wall_gi.pfm" "$dir/wall_roma/gi.pfm" --mask "$dir/wall_roma/coverage.pfm" >"$dir/wall_gi.txt"
   wg=$(metric "$dir/wall_gi.txt" mean_abs)
   echo "GI with the wall moved (time 0.9): viewer vs roma-render of the posed scene, MAE $wg"
   # Measured: 0.00029 (1.2% of the mean); with the surfaces left at the rest pose 0.0195 (82%).
@@ -162,7 +179,7 @@ if [ -f "$dir/steps_8.pfm" ] && [ -f "$dir/steps_64.pfm" ]; then
   g8=$(magenta "$dir/steps_8.pfm"); g64=$(magenta "$dir/steps_64.pfm")
   echo "steps view: shadow rays to the spot that gave up: $g8 of the pixels with 8 steps, $g64 with 64"
   # Measured: 0.859 with 8 steps, 0.0013 with 64 (19,200 pixels).
-  awk -v a="$g8" -v b="$g64" 'BEGIN { exit !(a > 0.85 && b < 0.002) }' || fail "the steps view: gave up $g8 (8), $g64 (64)"
+  numbers "$g8" "$g64" && awk -v a="$g8" -v b="$g64" 'BEGIN { exit !(a > 0.85 && b < 0.002) }' || fail "the steps view: gave up $g8 (8), $g64 (64)"
 fi
 
 # 1b4. The rotated-map view: map 0 and map 9 of the 16 seen along their directions; the
@@ -186,7 +203,7 @@ if [ -f "$dir/rotated_0.pfm" ] && [ -f "$dir/rotated_9.pfm" ]; then
   r0=$(occupied_share "$dir/rotated_0.pfm"); r9=$(occupied_share "$dir/rotated_9.pfm")
   echo "rotated-map view: occupied columns: $r0 of map 0's texels, $r9 of map 9's"
   # Measured: 0.348 (map 0) and 0.490 (map 9) of 14,400 texels.
-  awk -v a="$r0" -v b="$r9" 'BEGIN { exit !(a > 0.33 && a < 0.37 && b > 0.47 && b < 0.51) }' \
+  numbers "$r0" "$r9" && awk -v a="$r0" -v b="$r9" 'BEGIN { exit !(a > 0.33 && a < 0.37 && b > 0.47 && b < 0.51) }' \
     || fail "the rotated-map view: occupied shares $r0 (map 0), $r9 (map 9)"
 fi
 
@@ -208,7 +225,7 @@ if [ -f "$dir/ray_start_1.6.pfm" ] && [ -f "$dir/ray_start_3.2.pfm" ]; then
   s1=$(blocked_share "$dir/ray_start_1.6.pfm"); s2=$(blocked_share "$dir/ray_start_3.2.pfm")
   echo "ray-start view: pixels with a blocked start: $s1 with the default skip (1.6 cells), $s2 with 3.2"
   # Measured: 0.0918 and 0.169 of 19,200 pixels.
-  awk -v a="$s1" -v b="$s2" 'BEGIN { exit !(a > 0.085 && a < 0.1 && b > 0.16 && b < 0.18) }' || fail "the ray-start view: $s1 (1.6), $s2 (3.2)"
+  numbers "$s1" "$s2" && awk -v a="$s1" -v b="$s2" 'BEGIN { exit !(a > 0.085 && a < 0.1 && b > 0.16 && b < 0.18) }' || fail "the ray-start view: $s1 (1.6), $s2 (3.2)"
 fi
 
 # 1b6. Many lights: 256 point lights added to the room's spot, 8 of them traced per pixel and
@@ -223,7 +240,7 @@ done
 headless many_none "(spot only)" --scene builtin:cornell_spot --view direct --frames 16 --camera "$cam" --size 80x60 \
   --linear "$dir/many_none.pfm"
 if [ -f "$dir/many_8_16.pfm" ] && [ -f "$dir/many_8_64.pfm" ] && [ -f "$dir/many_256_16.pfm" ] && [ -f "$dir/many_none.pfm" ]; then
-  for a in 8_16 8_64 none; do "$compare" "$dir/many_$a.pfm" "$dir/many_256_16.pfm" >"$dir/many_$a.txt"; done
+  for a in 8_16 8_64 none; do compare_checked "$dir/many_$a.pfm" "$dir/many_256_16.pfm" >"$dir/many_$a.txt"; done
   r16=$(metric "$dir/many_8_16.txt" relative); r64=$(metric "$dir/many_8_64.txt" relative)
   b16=$(metric "$dir/many_8_16.txt" bias); b64=$(metric "$dir/many_8_64.txt" bias)
   mean=$(metric "$dir/many_8_16.txt" mean_b); spot=$(metric "$dir/many_none.txt" mean_a)
@@ -231,7 +248,7 @@ if [ -f "$dir/many_8_16.pfm" ] && [ -f "$dir/many_8_64.pfm" ] && [ -f "$dir/many
     "(bias $b16, $b64 on a mean of $mean; the spot alone: $spot)"
   # Measured (4,800 pixels): 0.161 and 0.0795 (bias -0.0004 and +0.0004 on 0.156, 0.25% and 0.27%; the spot
   # alone 0.0061).
-  awk -v a="$r16" -v b="$r64" -v c="$b16" -v d="$b64" -v m="$mean" -v s="$spot" 'BEGIN {
+  numbers "$r16" "$r64" "$b16" "$b64" "$mean" "$spot" && awk -v a="$r16" -v b="$r64" -v c="$b16" -v d="$b64" -v m="$mean" -v s="$spot" 'BEGIN {
     exit !(a < 0.175 && b < 0.087 && b < 0.6 * a && c * c < (0.004 * m) ^ 2 && d * d < (0.004 * m) ^ 2 && s < 0.1 * m) }' \
     || fail "many lights: $r16 (16 frames), $r64 (64 frames), bias $b16, $b64, mean $mean, spot alone $spot"
   case " $(json "$dir/many_8_16.json" passes) " in *" many_lights "*) ;; *) fail "no many_lights pass in the stats" ;; esac
@@ -292,16 +309,16 @@ else
   if [ -f "$dir/level_auto.pfm" ] && [ -f "$dir/level_one.pfm" ] && [ -f "$dir/level_reference/ao.pfm" ] &&
     [ -f "$dir/level_roma/ao.pfm" ]; then
     mask=(--mask "$dir/level_reference/coverage.pfm")
-    "$compare" "$dir/level_auto.pfm" "$dir/level_reference/ao.pfm" "${mask[@]}" >"$dir/level_auto.txt"
-    "$compare" "$dir/level_one.pfm" "$dir/level_reference/ao.pfm" "${mask[@]}" >"$dir/level_one.txt"
-    "$compare" "$dir/level_auto.pfm" "$dir/level_roma/ao.pfm" "${mask[@]}" >"$dir/level_vs_roma.txt"
+    compare_checked "$dir/level_auto.pfm" "$dir/level_reference/ao.pfm" "${mask[@]}" >"$dir/level_auto.txt"
+    compare_checked "$dir/level_one.pfm" "$dir/level_reference/ao.pfm" "${mask[@]}" >"$dir/level_one.txt"
+    compare_checked "$dir/level_auto.pfm" "$dir/level_roma/ao.pfm" "${mask[@]}" >"$dir/level_vs_roma.txt"
     la=$(metric "$dir/level_auto.txt" mean_abs)
     lo=$(metric "$dir/level_one.txt" mean_abs)
     lr=$(metric "$dir/level_vs_roma.txt" mean_abs)
     echo "aggressor AO (radius 1.5) MAE vs Embree: 4 cascade levels $la, one grid $lo; viewer vs roma-render $lr"
     # Measured: 0.0362, 0.0969 and 5.1e-6.
     below "$la" 0.037 || fail "the viewer's cascaded AO on the level is further from Embree than 0.037 (MAE $la)"
-    awk -v a="$la" -v b="$lo" 'BEGIN { exit !(a <= 0.40 * b) }' ||
+    numbers "$la" "$lo" && awk -v a="$la" -v b="$lo" 'BEGIN { exit !(a <= 0.40 * b) }' ||
       fail "cascade levels do not bring the level's AO error under 0.40 of one grid's ($la against $lo)"
     below "$lr" 0.00001 || fail "the viewer's cascaded AO differs from roma-render's (MAE $lr)"
   fi
@@ -345,7 +362,7 @@ dm4=${ROMA_LEVELS_DIR:-}/oa_dm4
 if [ -f "$dm4.glb" ] && [ -f "$dm4.cameras" ]; then
   headless unlit "on a level without lights" --scene "$dm4.glb" --camera "$(sed -n 1p "$dm4.cameras")" \
     --view composed --frames 2 --ao-radius 1.5 --size 80x60 --linear "$dir/unlit.pfm" --stats "$dir/unlit.json"
-  near() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6) }'; }
+  near() { numbers "$1" "$2" && awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; exit !(d < 1e-6 && d > -1e-6) }'; }
   near "$(json "$dir/unlit.json" sky)" 1 || fail "the sky of a level without lights is not 1"
   [ ! -f "$dir/level_auto.json" ] || near "$(json "$dir/level_auto.json" sky)" 0.2 ||
     fail "the sky of a level with lights is not 0.2"
@@ -396,7 +413,7 @@ if command -v xvfb-run >/dev/null; then
   windowed orbit "$scripts/orbit.script" || { cat "$dir/orbit.out" >&2; fail "the scripted orbit failed"; }
   frames=$(json "$dir/orbit.json" frames)
   [ "${frames:-0}" -ge 64 ] || fail "the orbit ran ${frames:-no} frames, expected at least 64"
-  "$compare" "$dir/orbit.pfm" "$dir/orbit.pfm" >"$dir/orbit.cmp" 2>&1
+  compare_checked "$dir/orbit.pfm" "$dir/orbit.pfm" >"$dir/orbit.cmp" 2>&1
   grep -q "^non_finite" "$dir/orbit.cmp" && fail "the picture after the orbit has NaN or infinite pixels"
   grep -q "^pixels  *19200" "$dir/orbit.cmp" || fail "the picture after the orbit is not 160x120"
 
@@ -415,7 +432,7 @@ if command -v xvfb-run >/dev/null; then
   case " $passes_direct " in *" direct_light "*) fail "direct off still ran the direct_light pass ($passes_direct)" ;; esac
   case " $passes_gi " in *" gi "*) fail "gi off still ran the gi pass ($passes_gi)" ;; esac
   for effect in ao direct gi; do
-    "$compare" "$dir/all.pfm" "$dir/${effect}_off.pfm" >"$dir/${effect}_off.cmp" 2>&1
+    compare_checked "$dir/all.pfm" "$dir/${effect}_off.pfm" >"$dir/${effect}_off.cmp" 2>&1
     d=$(metric "$dir/${effect}_off.cmp" mean_abs)
     awk -v d="${d:-0}" 'BEGIN { exit !(d > 0.001) }' || fail "turning $effect off did not change the picture (MAE ${d:-none})"
   done
@@ -432,7 +449,7 @@ if command -v xvfb-run >/dev/null; then
   "$render" --tracer embree --effects ao --spp 256 --ao-radius 0.5 --camera "$final" --size 160x120 --quiet \
     --out "$dir/orbit_reference" >/dev/null 2>&1 || fail "the reference at the orbit's end failed"
   for variant in orbit_ao orbit_ao_fresh orbit_ao_filtered; do
-    "$compare" "$dir/$variant.pfm" "$dir/orbit_reference/ao.pfm" --mask "$dir/orbit_reference/coverage.pfm" \
+    compare_checked "$dir/$variant.pfm" "$dir/orbit_reference/ao.pfm" --mask "$dir/orbit_reference/coverage.pfm" \
       >"$dir/$variant.cmp" 2>&1
   done
   kept=$(metric "$dir/orbit_ao.cmp" mean_abs)

@@ -118,7 +118,16 @@ static double host_build_ms(roma_context *ctx, roma_map *map, const roma_map_fra
     VkCommandBuffer cmd;
     if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
         return NAN;
-    return roma_bench_submit_ms(ctx, cmd, roma_map_record_steps(map, cmd, frame, NULL, steps));
+    const double ms = roma_bench_submit_ms(ctx, cmd, roma_map_record_steps(map, cmd, frame, NULL, steps));
+    /* Every build timed here redoes its grid: one the map kept (the same placement and
+     * directions as the last) would time nothing. */
+    roma_map_info info;
+    roma_map_get_info(map, &info);
+    if (info.levels_rebuilt != info.levels) {
+        fprintf(stderr, "roma-bench: a timed build of frame %u kept its grid\n", frame->frame);
+        return NAN;
+    }
+    return ms;
 }
 
 /* AO rays from the surface points the camera sees, repeated until n rays. */
@@ -457,23 +466,31 @@ int main(int argc, char **argv)
     printf("\n| RES | A | maps | voxelize ms (host) | rotate ms (host) | build ms (host) | BOM ms (timestamps) "
            "| rotate ms (timestamps) | maps MiB |\n|---|---|---|---|---|---|---|---|---|\n");
     double *samples = malloc(sizeof(double) * runs * 5);
-    for (int ri = 0; ri < res_n; ++ri)
-        for (int ai = 0; ai < ang_n; ++ai) {
+    int generation_failed = !samples;
+    for (int ri = 0; ri < res_n && !generation_failed; ++ri)
+        for (int ai = 0; ai < ang_n && !generation_failed; ++ai) {
             roma_map_desc desc = {.resolution = res_list[ri], .angular = ang_list[ai]};
             roma_map *map = NULL;
-            if (roma_map_create(ctx, &desc, scene, &map) != ROMA_SUCCESS)
-                continue;
+            if (roma_map_create(ctx, &desc, scene, &map) != ROMA_SUCCESS) {
+                fprintf(stderr, "roma-bench: no map of RES %u, A %u\n", res_list[ri], ang_list[ai]);
+                generation_failed = 1;
+                break;
+            }
             roma_map_frame_desc warm = {.frame = 0, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
             roma_map_build(map, &warm, NULL);
             for (uint32_t k = 0; k < runs; ++k) {
-                roma_map_frame_desc frame = {.frame = k, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
-                /* Each step alone, then the whole build, then the build with timestamps. */
+                /* Each step alone, then the whole build, then the build with timestamps; each
+                 * whole build a new jitter (frames 1 + 3k ..), or the map would keep its grid. */
+                roma_map_frame_desc frame = {.frame = 1 + 3 * k, .seed = 1, .jitter_grid = 1, .jitter_directions = 1};
                 samples[k] = host_build_ms(ctx, map, &frame, ROMA_MAP_STEP_VOXELIZE);
                 samples[runs + k] = host_build_ms(ctx, map, &frame, ROMA_MAP_STEP_ROTATE);
+                frame.frame = 2 + 3 * k;
                 samples[2 * runs + k] = host_build_ms(ctx, map, &frame, ROMA_MAP_STEP_VOXELIZE | ROMA_MAP_STEP_ROTATE);
+                frame.frame = 3 + 3 * k;
                 roma_map_build(map, &frame, timer);
                 samples[3 * runs + k] = timer_ms(timer, "bom");
                 samples[4 * runs + k] = timer_ms(timer, "rotate");
+                generation_failed |= !isfinite(samples[k] + samples[runs + k] + samples[2 * runs + k]);
             }
             roma_map_info mi;
             roma_map_get_info(map, &mi);
@@ -502,7 +519,9 @@ int main(int argc, char **argv)
     uint8_t *occ = malloc((size_t)rays_n);
     roma_map *map = NULL, *map8 = NULL;
     roma_map_desc d4 = {.resolution = 128, .angular = 4}, d8 = {.resolution = 128, .angular = 8};
-    int status = 0;
+    int status = generation_failed;
+    if (generation_failed)
+        fprintf(stderr, "roma-bench: the generation table failed\n");
     if (!rays || !hits || !orgs || !dirs || !t_out || !occ || roma_map_create(ctx, &d4, scene, &map) != ROMA_SUCCESS ||
         roma_map_create(ctx, &d8, scene, &map8) != ROMA_SUCCESS) {
         fprintf(stderr, "roma-bench: out of memory for %u rays\n", rays_n);

@@ -108,9 +108,3 @@ int roma_test_finish(const char *test_name)
     printf("%s: all checks passed\n", test_name);
     return 0;
 }
-
-int roma_test_skip(const char *why)
-{
-    printf("SKIPPED: %s\n", why);
-    return 77;
-}

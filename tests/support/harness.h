@@ -72,7 +72,4 @@ const char *roma_test_tmp_path(const char *name, char *buf, size_t size);
 /* Prints a summary and returns the process exit code (0 ok, 1 failures). */
 int roma_test_finish(const char *test_name);
 
-/* Exits with ctest's skip code 77 after printing why. */
-int roma_test_skip(const char *why);
-
 #endif /* ROMA_TEST_HARNESS_H */

@@ -151,7 +151,7 @@ static int direction_valid(const float d[3])
 }
 
 /* A result is well defined: known info bits, a map that exists, t = INFINITY unless a
- * closest hit, and a closest hit inside [tmin, tmax] (up to rounding). */
+ * closest hit, and a closest hit inside [tmin, tmax]. */
 static int well_defined(const fixture *f, const roma_ray *r, roma_trace_mode mode, roma_hit h)
 {
     if (h.info & ~(ROMA_HIT_FLAG | 0xff00u | 0x10000u))
@@ -163,8 +163,7 @@ static int well_defined(const fixture *f, const roma_ray *r, roma_trace_mode mod
         return h.t == INFINITY;
     if (!isfinite(h.t))
         return 0;
-    float slack = 1e-3f * f->info.grid_cell + 1e-5f * fabsf(h.t);
-    return h.t >= r->tmin && h.t <= r->tmax + slack;
+    return h.t >= r->tmin && h.t <= r->tmax; /* exactly: roma_hit_distance clamps */
 }
 
 /* Where GPU and mirror select different maps, the direction must sit on a stratum edge
@@ -1021,6 +1020,71 @@ static void check_frames(roma_context *ctx, const roma_scene *scene)
     roma_map_destroy(map);
 }
 
+/* --- rays that start on a cell face: the distance's zero and its range --- */
+
+/* Closest hits of rays whose origins lie exactly on BOM cell faces next to plates (the map
+ * axis-aligned: A 1, no jitter, so the faces are the maps' texel faces too), along the axes
+ * and nearly so, with [tmin, tmax] of [0, inf), [-10, -10] and [0, 0]: the GPU and the mirror
+ * agree bit for bit (a zero distance is +0 on both: C's fmaxf and GLSL's max pick different
+ * zeros of -0 and +0) and every distance lies in [tmin, tmax] exactly (an origin on a plate's
+ * face with tmin = tmax = -10 gave 0). */
+static void check_face_origins(roma_context *ctx)
+{
+    mesh m = {0};
+    add_plate(&m, 0.0f, 0.0f, 32.0f, 32.0f, 15.5f);
+    const float lo[3] = {15.5f, 4.0f, 4.0f}, hi[3] = {15.5f + 1e-3f, 28.0f, 28.0f};
+    add_box(&m, lo, hi);
+    add_plate(&m, 0.0f, 0.0f, 32.0f, 32.0f, 0.0f);
+    add_plate(&m, 0.0f, 0.0f, 32.0f, 32.0f, 32.0f);
+    roma_scene *scene = make_scene(&m, 1.0, NULL);
+    const uint32_t angulars[2] = {1, 2};
+    uint32_t rays_total = 0, negative_zero = 0, outside = 0, mismatches = 0;
+    for (int ai = 0; ai < 2; ++ai) {
+        fixture f;
+        if (!fixture_open(ctx, scene, (roma_map_desc){.resolution = 32, .angular = angulars[ai]},
+                          (roma_map_frame_desc){0}, &f))
+            continue;
+        enum { N = 4096 };
+        roma_ray *rays = calloc(N, sizeof *rays);
+        roma_hit *hits[4];
+        for (int k = 0; k < 4; ++k)
+            hits[k] = calloc(N, sizeof(roma_hit));
+        static const float dirs[8][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+                                         {1, 0, 3e-38f}, {-1, 1e-7f, 0}};
+        static const float ranges[3][2] = {{0.0f, INFINITY}, {-10.0f, -10.0f}, {0.0f, 0.0f}};
+        uint32_t n = 0;
+        for (uint32_t i = 0; n < N; ++i) {
+            const uint32_t c = i % 64, d = (i / 64) % 8, r = (i / 512) % 3;
+            /* integer BOM coordinates near the plates: on cell faces in every axis */
+            const float g[3] = {(float)(12 + c % 8), (float)(10 + (c / 8) % 8), (float)(13 + (i / 1536) % 6)};
+            grid_point(&f, g[0], g[1], g[2], rays[n].origin);
+            memcpy(rays[n].dir, dirs[d], sizeof rays[n].dir);
+            rays[n].tmin = ranges[r][0];
+            rays[n].tmax = ranges[r][1];
+            ++n;
+        }
+        trace_counts tc = trace_checked(&f, rays, n, 8, hits, "face origins");
+        mismatches += tc.mismatches + tc.undefined;
+        for (int mode = 1; mode < 4; mode += 2) /* the closest-hit modes */
+            for (uint32_t i = 0; i < n; ++i) {
+                const roma_hit h = hits[mode][i];
+                if (!(h.info & ROMA_HIT_FLAG))
+                    continue;
+                negative_zero += h.t == 0.0f && signbit(h.t);
+                outside += !(h.t >= rays[i].tmin && h.t <= rays[i].tmax);
+            }
+        rays_total += 4 * n;
+        for (int k = 0; k < 4; ++k)
+            free(hits[k]);
+        free(rays);
+        fixture_close(&f);
+    }
+    printf("face origins: %u rays, %u GPU/mirror mismatches or ill-defined results, %u closest hits at -0, "
+           "%u outside [tmin, tmax]\n", rays_total, mismatches, negative_zero, outside);
+    CHECK(mismatches == 0 && negative_zero == 0 && outside == 0);
+    roma_scene_destroy(scene);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -1040,6 +1104,7 @@ int main(void)
     check_supported_range(ctx);
     check_degenerate_scenes(ctx);
     check_frames(ctx, cornell);
+    check_face_origins(ctx);
     /* The crafted directions (scaled to 2^100 and past 2^127, subnormal components, axes)
      * through the corrected division and square root that GPUs trace with, on this device
      * too: IEEE's results from products and sums rounded to nearest, the mirror's bits. */

@@ -324,6 +324,15 @@ int roma_run_end(uint base, int c, bool upward, uint res, uint word)
     return upward ? w * 32 + findLSB(empty) - 1 : w * 32 + findMSB(empty) + 1;
 }
 
+// A closest hit's distance: within [tmin, tmax] (rounding could leave it a little outside, and
+// a ray starting on a cell face with tmin = tmax < 0 gave 0), and +0 rather than -0 (GLSL's
+// max and C's fmaxf pick different zeros; adding +0 makes both +0).
+float roma_hit_distance(float t, float tmin, float tmax)
+{
+    precise float d = min(max(t, tmin), tmax) + 0.0;
+    return d;
+}
+
 // A ray is traced only with a finite origin and tmin <= tmax (NaN bounds miss).
 bool roma_ray_range_valid(vec3 origin, float tmin, float tmax)
 {
@@ -388,7 +397,7 @@ roma_hit roma_trace_snapped_dir(roma_grid_params grid, vec3 origin, roma_ray_dir
     hit.info |= ROMA_HIT_FLAG;
     if (closest) {
         precise float t = folded ? (m.z - float(c + 1)) * cz : (float(c) - m.z) * cz;
-        hit.t = max(t, tmin);
+        hit.t = roma_hit_distance(t, tmin, tmax);
     }
     return hit;
 }
@@ -505,7 +514,7 @@ roma_hit roma_trace_unsnapped_dir(roma_grid_params grid, vec3 origin, roma_ray_d
                                  : dm.z > 0.0 ? (float(c) - m0.z) * inv.z
                                  : dm.z < 0.0 ? (float(c + 1) - m0.z) * inv.z : t_cur;
                 // tmin in grid units may have flushed to zero on a GPU: the bound holds in world units.
-                hit.t = max(max(tc, t_cur) * grid.inv_cell.z, tmin);
+                hit.t = roma_hit_distance(max(tc, t_cur) * grid.inv_cell.z, tmin, tmax);
             }
             return hit;
         }

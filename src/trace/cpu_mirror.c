@@ -110,6 +110,12 @@ static int run_end(const uint32_t *maps, uint32_t base, int c, int upward, uint3
     return upward ? w * 32 + __builtin_ctz(empty) - 1 : w * 32 + 31 - __builtin_clz(empty) + 1;
 }
 
+/* roma_hit_distance in GLSL: within [tmin, tmax], and +0 rather than -0. */
+static float hit_distance(float t, float tmin, float tmax)
+{
+    return fminf(fmaxf(t, tmin), tmax) + 0.0f;
+}
+
 static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame *f, uint32_t k,
                               int folded, const uint32_t *maps, const roma_ray *ray, int closest,
                               roma_hit hit)
@@ -134,7 +140,7 @@ static roma_hit trace_snapped(const roma_grid_params *grid, const roma_map_frame
     hit.info |= ROMA_HIT_FLAG;
     if (closest) {
         float t = folded ? (m[2] - (float)(c + 1)) * cz : ((float)c - m[2]) * cz;
-        hit.t = fmaxf(t, ray->tmin);
+        hit.t = hit_distance(t, ray->tmin, ray->tmax);
     }
     return hit;
 }
@@ -202,7 +208,7 @@ static roma_hit trace_unsnapped(const roma_grid_params *grid, const roma_map_fra
                 float tc = c < 0 ? t_cur
                          : dm[2] > 0.0f ? ((float)c - m0[2]) * inv[2]
                          : dm[2] < 0.0f ? ((float)(c + 1) - m0[2]) * inv[2] : t_cur;
-                hit.t = fmaxf(fmaxf(tc, t_cur) * grid->inv_cell[2], ray->tmin);
+                hit.t = hit_distance(fmaxf(tc, t_cur) * grid->inv_cell[2], ray->tmin, ray->tmax);
             }
             if (counts) {
                 /* A cell wholly before the column's entry was found only by the search back. */

@@ -122,7 +122,8 @@ ROMA_STRUCT_BEGIN(roma_rotate_push)
                              level rotated (its grid, frames, BOM and maps) */
     ROMA_UVEC4(source);   /* x: the BOM slot whose occupied cells the scatter adds: the level's own,
                              or the slot after the last level, where a build voxelizes the dynamic
-                             instances alone (their cells are added to maps of the static ones) */
+                             instances alone (their cells are added to maps of the static ones);
+                             y, z: its first word and word count listed (all, or a box's rows) */
 ROMA_STRUCT_END(roma_rotate_push)
 /* Header of the occupied-cell list: two VkDispatchIndirectCommands. */
 ROMA_STRUCT_BEGIN(roma_rotate_cells)

@@ -4,7 +4,8 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "roma_loop_guard.glsl"
 // Lists the occupied BOM cells for the scatter rotation: one invocation per BOM word of the
-// slot pc.source.x (the level's own BOM, or the dynamic instances' alone).
+// slot pc.source.x (the level's own BOM, or the dynamic instances' alone), words source.y ..
+// source.y + source.z - 1 of it (all, or the rows a dynamic box covers).
 // Grows the scatter's indirect dispatch; when the list is full, enables the gather.
 #include "roma_rotate.glsl"
 
@@ -14,10 +15,11 @@ void main()
 {
     roma_grid_params grid = roma_rotate_grid();
     uint res = grid.dims.x, words = grid.dims.y;
-    uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
-              + gl_LocalInvocationID.x;
-    if (id >= res * res * words)
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_ROTATE_WORKGROUP_SIZE
+             + gl_LocalInvocationID.x;
+    if (i >= pc.source.z)
         return;
+    uint id = pc.source.y + i;
     uint word = bom[pc.source.x * res * res * words + id];
     if (word == 0u)
         return;

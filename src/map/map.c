@@ -527,14 +527,16 @@ static roma_result check_timer(const roma_map *map, const roma_gpu_timer *timer,
  * levels' are kept), list the occupied cells of BOM slot `source` (the level's own, or the
  * dynamic instances' alone), scatter them into its maps; the gather runs instead, from the
  * level's whole BOM, when the list overflowed. */
-static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level, uint32_t source, int clear)
+static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level, uint32_t source, int clear,
+                            uint32_t first_word, uint32_t word_count)
 {
     const uint64_t words = (uint64_t)map->res * map->res * map->words;
     const uint64_t gather_groups = (words * map->map_count + ROMA_ROTATE_WORKGROUP_SIZE - 1) /
                                    ROMA_ROTATE_WORKGROUP_SIZE;
     const uint32_t gather_x = gather_groups < 65535u ? (uint32_t)gather_groups : 65535u;
     const uint32_t gather_y = (uint32_t)((gather_groups + gather_x - 1) / gather_x);
-    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, level}, .source = {source, 0, 0, 0}};
+    roma_rotate_push push = {.config = {map->cell_capacity, gather_x, gather_y, level},
+                             .source = {source, first_word, word_count, 0}};
     /* WAR against earlier readers of the maps and the list (traces, downloads, the
      * previous build's or level's indirect dispatches). */
     roma_cmd_memory_barrier(cmd,
@@ -555,7 +557,7 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level, 
                             &map->rotate_set.set, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->occupied_cells.pipeline);
     vkCmdPushConstants(cmd, map->occupied_cells.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    roma_cmd_dispatch_linear(cmd, words, ROMA_ROTATE_WORKGROUP_SIZE);
+    roma_cmd_dispatch_linear(cmd, word_count, ROMA_ROTATE_WORKGROUP_SIZE);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
@@ -692,7 +694,8 @@ static void restore_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, const
 /* The dynamic instances' triangles added to level l's BOM and maps: voxelized alone into the
  * slot after the last level, whose cells the scatter adds to the maps, and into the level's
  * own BOM (the ray-start walk reads it; the gather, if the list overflows, rotates it whole). */
-static roma_result add_dynamic(roma_map *map, VkCommandBuffer cmd, uint32_t l)
+static roma_result add_dynamic(roma_map *map, VkCommandBuffer cmd, uint32_t l, const float bmin[3],
+                               const float bmax[3])
 {
     const uint32_t first = map->static_triangles, count = map->total_triangles - map->static_triangles;
     roma_grid_params alone = map->grids[l];
@@ -700,8 +703,15 @@ static roma_result add_dynamic(roma_map *map, VkCommandBuffer cmd, uint32_t l)
     roma_result r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &alone, first, count, 1);
     if (r == ROMA_SUCCESS)
         r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], first, count, 0);
+    /* Only the BOM rows (y) the box covers, a cell of margin, hold its cells. */
+    const roma_grid_params *g = &map->grids[l];
+    const float y0 = floorf((bmin[1] - g->origin[1]) * g->inv_cell[0]) - 1.0f;
+    const float y1 = floorf((bmax[1] - g->origin[1]) * g->inv_cell[0]) + 1.0f;
+    const uint32_t row0 = (uint32_t)fminf(fmaxf(y0, 0.0f), (float)(map->res - 1));
+    const uint32_t row1 = (uint32_t)fminf(fmaxf(y1, 0.0f), (float)(map->res - 1));
+    const uint32_t row_words = map->res * map->words;
     if (r == ROMA_SUCCESS)
-        record_rotation(map, cmd, l, map->levels, 0);
+        record_rotation(map, cmd, l, map->levels, 0, row0 * row_words, (row1 - row0 + 1) * row_words);
     return r;
 }
 
@@ -743,14 +753,14 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
         if (!static_same) {
             r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->static_triangles, 1);
             if (r == ROMA_SUCCESS) {
-                record_rotation(map, cmd, l, l, 1);
+                record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
                 copy_static(map, cmd, l, 1);
             }
         } else if (map->dynamic_in[l]) {
             restore_static(map, cmd, l, map->dynamic_min[l], map->dynamic_max[l]);
         }
         if (r == ROMA_SUCCESS && touches)
-            r = add_dynamic(map, cmd, l);
+            r = add_dynamic(map, cmd, l, dmin, dmax);
         if (r != ROMA_SUCCESS) { /* what was recorded may have cleared any level */
             memset(map->bom_current, 0, sizeof map->bom_current);
             memset(map->maps_current, 0, sizeof map->maps_current);
@@ -888,7 +898,7 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rotate");
         for (uint32_t l = 0; l < map->levels; ++l)
             if (stale_maps & (1u << l))
-                record_rotation(map, cmd, l, l, 1);
+                record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
         roma_gpu_timer_end(timer, cmd, scope);
     }
     map->levels_rebuilt = 0;

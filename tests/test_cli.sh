@@ -261,6 +261,23 @@ grep -q "the finest 0.5 wide (--finest-extent)" "$dir/cascades_finest.err" ||
   fail "roma-render does not say the finest level's edge came from --finest-extent"
 ! grep -q "note: cascades" "$dir/cascades_one.err" || fail "roma-render --cascades 1 still notes cascades"
 
+# --jitter off: every frame's grid and directions the first's (the stats say so); a bad value and
+# the internal renderer are refused.
+"$render" --tracer roma --scene builtin:cornell --effects ao --spp 1 --frames 2 --size 32x24 --jitter off \
+  --out "$dir/jitter_off" --stats "$dir/jitter_off/stats.json" >/dev/null 2>"$dir/jitter_off.err"
+expect_status 0 $? "roma-render --jitter off" || cat "$dir/jitter_off.err" >&2
+got=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["settings"]["jitter"])' \
+  "$dir/jitter_off/stats.json" 2>/dev/null)
+[ "$got" = "off" ] || fail "roma-render --jitter off: the stats say jitter '$got'"
+"$render" --tracer roma --scene builtin:cornell --effects ao --size 32x24 --jitter maybe --out "$dir/jitter_bad" \
+  >/dev/null 2>"$dir/jitter_bad.err"
+expect_status 2 $? "roma-render --jitter maybe"
+"$render" --tracer roma --scene builtin:cornell --effects ao --size 32x24 --jitter off --route internal \
+  --out "$dir/jitter_internal" >/dev/null 2>"$dir/jitter_internal.err"
+expect_status 2 $? "roma-render --jitter off --route internal"
+grep -q "jitter off: the public effect passes only" "$dir/jitter_internal.err" ||
+  fail "roma-render --jitter off --route internal does not say why it is refused"
+
 # --- Usage and bad input ---
 "$render" --help >"$dir/help.out" 2>&1
 expect_status 0 $? "roma-render --help"

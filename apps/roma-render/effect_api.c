@@ -284,8 +284,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
     const roma_effect_plan *plan = &job->out->plan;
     VkCommandBuffer cmd = e->cmd;
     roma_gpu_timer_reset(e->timer, cmd);
-    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = 1, .jitter_directions = 1,
-                                 .focus = d->camera.eye};
+    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = !d->jitter_off,
+                                 .jitter_directions = !d->jitter_off, .focus = d->camera.eye};
     roma_result r = ROMA_SUCCESS;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
         /* Cascades: the finest grid's edge from the AO radius unless given. */

@@ -34,6 +34,7 @@ typedef struct effect_api_desc {
      * centred on the camera's eye, the finest cube's edge finest_extent (0: the library's). */
     uint32_t cascades;
     float finest_extent;
+    int jitter_off; /* every frame's grid placement and directions the first frame's */
     void (*progress)(float fraction, void *user_data); /* after each frame */
     void *progress_user_data;
 } effect_api_desc;

@@ -47,6 +47,9 @@ static const char *usage =
     "                              (1..8; default: with AO on a scene more than 4 finest grids wide,\n"
     "                              enough to cover it, else 1: one grid over the scene; at most 4 for\n"
     "                              the shadow rays' A 8 arrays); the public effect passes only\n"
+    "  --jitter on|off             ROMA: a new grid placement and new candidate directions each frame\n"
+    "                              (on, the default), or the first frame's in every frame (off: maps\n"
+    "                              that did not move are kept); the public effect passes only\n"
     "  --finest-extent E           ROMA: the finest cascade grid's edge in scene units (default: RES x\n"
     "                              the AO radius / 30, 30 cells to the radius; with an unbounded\n"
     "                              radius and --cascades K, the scene's size / 2^(K-1))\n"
@@ -127,6 +130,7 @@ typedef struct options {
     uint32_t cascades;    /* --cascades; 0: unset (one grid) */
     int cascades_auto;    /* 1: cascades chosen for a scene much larger than the AO radius */
     float finest_extent;  /* --finest-extent; 0: derived */
+    int jitter_off;       /* --jitter off: every frame's grids and directions the first's */
     float skip, ao_skip; /* < 0: unset (library default) */
     float offset;        /* 0: unset (library default) */
     float ao_radius;
@@ -170,7 +174,7 @@ enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--cascades", "--finest-extent", "--gi-punctual", "--route", "--pixel-dispatch", "--ray-start", "--ao-method", "--skip",
+    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--route", "--pixel-dispatch", "--ray-start", "--ao-method", "--skip",
     "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
@@ -458,6 +462,10 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--max-steps") == 0) ok = parse_u32(v, 1, 1024, &o->max_steps), o->given |= GIVEN_MAX_STEPS;
         else if (strcmp(a, "--cascades") == 0)
             ok = parse_u32(v, 1, ROMA_MAX_LEVELS, &o->cascades), o->given |= GIVEN_CASCADES;
+        else if (strcmp(a, "--jitter") == 0) {
+            ok = strcmp(v, "on") == 0 || strcmp(v, "off") == 0;
+            o->jitter_off = strcmp(v, "off") == 0;
+        }
         else if (strcmp(a, "--finest-extent") == 0) {
             char *end = NULL;
             o->finest_extent = strtof(v, &end);
@@ -822,6 +830,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
             roma_json_end_object(&j);
         }
         roma_json_string(&j, "route", run->api ? "api" : "internal");
+        roma_json_string(&j, "jitter", o->jitter_off ? "off" : "on");
         if (run->api)
             roma_json_string(&j, "pixel_dispatch", run->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list" : "every");
         roma_json_int(&j, "resolution", o->res);
@@ -896,6 +905,11 @@ static int choose_route(options *o, notes *n)
                 why ? why : "--route internal was asked for");
         return -1;
     }
+    if (o->jitter_off && (why || o->route == ROUTE_INTERNAL)) {
+        fprintf(stderr, "roma-render: --jitter off: the public effect passes only, and %s\n",
+                why ? why : "--route internal was asked for");
+        return -1;
+    }
     if (o->route == ROUTE_API && why) {
         fprintf(stderr, "roma-render: --route api: %s\n", why);
         return -1;
@@ -939,7 +953,8 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
         .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
         .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .progress = on_progress,
-        .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent};
+        .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
+        .jitter_off = o->jitter_off};
     double start = roma_app_now_ms();
     roma_result r = effect_api_render(ctx, scene, ref, &d, res);
     add_pass(run, "roma_total", "cpu_wall", roma_app_now_ms() - start);

@@ -261,9 +261,10 @@ ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *fr
  * everything in it; a caller that needs the object finds it from the hit point.
  * Transforms are row-major 3x4: world = M[0..2][0..2] * local + M[.][3].
  * With the exact BOM, a build keeps what is static apart from the dynamic instances (a copy of
- * each level's static BOM and maps, roma_map_info.static_copy_bytes): when only dynamic
- * instances moved, it restores a level's static part and voxelizes and rotates the dynamic
- * triangles alone, in the levels they were or are in. */
+ * each level's static BOM and maps, roma_map_info.static_copy_bytes, made for a level that stays
+ * where it was): when only dynamic instances moved, it restores a level's static part where they
+ * were and voxelizes and rotates their triangles alone, in the levels they were or are in. A
+ * level that moved or has new directions (jitter) is built whole, as without them. */
 
 #define ROMA_INSTANCE_DYNAMIC 1u /**< roma_instance_desc.flags: its transform may change */
 

@@ -727,10 +727,12 @@ static int touches_level(const roma_map *map, uint32_t l, const float bmin[3], c
     return 1;
 }
 
-/* A whole build over dynamic instances (the exact BOM, no new positions): each level whose
- * static part is stale is voxelized and rotated from the static triangles and saved; a level
- * whose static part is current is copied back where dynamic cells were; then every level the
- * dynamic instances touch gets theirs. A level they neither touch nor touched is kept. */
+/* A whole build over dynamic instances (the exact BOM, no new positions). A level that moved or
+ * has new directions is built from every triangle, as without dynamic instances (a static copy
+ * would not outlive the frame: a jittered map pays nothing for them). A level placed as last
+ * time whose static part is stale is voxelized and rotated from the static triangles and saved;
+ * one whose static part is current is copied back where dynamic cells were; then every level
+ * the dynamic instances touch gets theirs. A level they neither touch nor touched is kept. */
 static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *rebuilt)
 {
     float dmin[3] = {INFINITY, INFINITY, INFINITY}, dmax[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -750,7 +752,11 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
             continue;
         }
         roma_result r = ROMA_SUCCESS;
-        if (!static_same) {
+        if (!placed) {
+            r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->total_triangles, 1);
+            if (r == ROMA_SUCCESS)
+                record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
+        } else if (!static_same) {
             r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->static_triangles, 1);
             if (r == ROMA_SUCCESS) {
                 record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
@@ -759,7 +765,7 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
         } else if (map->dynamic_in[l]) {
             restore_static(map, cmd, l, map->dynamic_min[l], map->dynamic_max[l]);
         }
-        if (r == ROMA_SUCCESS && touches)
+        if (r == ROMA_SUCCESS && touches && placed)
             r = add_dynamic(map, cmd, l, dmin, dmax);
         if (r != ROMA_SUCCESS) { /* what was recorded may have cleared any level */
             memset(map->bom_current, 0, sizeof map->bom_current);
@@ -767,7 +773,8 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
             memset(map->static_current, 0, sizeof map->static_current);
             return r;
         }
-        map->bom_current[l] = map->maps_current[l] = map->static_current[l] = 1;
+        map->bom_current[l] = map->maps_current[l] = 1;
+        map->static_current[l] = (uint8_t)placed; /* else it holds every triangle */
         map->dynamic_in[l] = (uint8_t)touches;
         memcpy(map->dynamic_min[l], dmin, sizeof dmin);
         memcpy(map->dynamic_max[l], dmax, sizeof dmax);

@@ -118,6 +118,22 @@ static void test_api(roma_context *ctx, roma_scene *floor, roma_scene *box)
     EXPECT_T(map, 0.0f, 0.0f, 1.25f);
     EXPECT_T(map, -1.0f, 0.0f, 1.25f);
 
+    /* All zero is the identity when moving too, as when adding: the box at the origin. */
+    static const float zero[12];
+    CHECK_RESULT(roma_map_set_instance_transform(map, moving, zero), ROMA_SUCCESS);
+    frame.frame = 20;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    const float at_zero = down_t(map, 0.0f, 0.0f);
+    translation(0.0f, 0.0f, 0.0f, t);
+    CHECK_RESULT(roma_map_set_instance_transform(map, moving, t), ROMA_SUCCESS);
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    const float at_identity = down_t(map, 0.0f, 0.0f);
+    printf("a dynamic instance moved by an all-zero transform: hit at %.4f, by the identity %.4f (the floor: 2)\n",
+           at_zero, at_identity);
+    CHECK(at_zero == at_identity && at_zero < 1.9f);
+    translation(0.0f, 0.5f, 0.0f, t);
+    CHECK_RESULT(roma_map_set_instance_transform(map, moving, t), ROMA_SUCCESS);
+
     /* A second instance of the same mesh; then the static one removed. */
     uint32_t third;
     translation(0.0f, 0.5f, 1.0f, d.transform);

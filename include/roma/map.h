@@ -324,8 +324,8 @@ ROMA_API roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
  *
  * @param map        the map.
  * @param instance   an instance added with ROMA_INSTANCE_DYNAMIC.
- * @param transform  row-major 3x4, local -> world, copied. Unlike roma_instance_desc, all zero
- *                   is not the identity here.
+ * @param transform  row-major 3x4, local -> world, copied; all zero = identity, as in
+ *                   roma_instance_desc.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments, an unknown or static
  *         instance, or a non-finite transform (the old one stays).
  * @par Threads
@@ -386,6 +386,11 @@ typedef struct roma_map_info {
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.
+ *
+ * With frames in flight, the grid (grid_origin, grid_cell, trace_cell) and levels_rebuilt are
+ * those of the build recorded last, not of the one a frame slot's commands will see: read the
+ * info right after recording a slot's build and keep it with that slot. The handles (maps,
+ * parameters, BOM) stay the same for the map's life; geometry_bytes follows the instances.
  *
  * @param map            the map.
  * @param[out] out_info  the information; zeroed on failure. Its handles belong to the map and

@@ -213,9 +213,11 @@ roma_result roma_map_set_instance_transform(roma_map *map, uint32_t id, const fl
         return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_map_set_instance_transform: instance %u is static (add it with ROMA_INSTANCE_DYNAMIC)",
                          id);
-    roma_result r = check_transform(map, transform, "roma_map_set_instance_transform");
+    static const float zero[12];
+    const float *t = memcmp(transform, zero, sizeof zero) == 0 ? identity : transform; /* as when added */
+    roma_result r = check_transform(map, t, "roma_map_set_instance_transform");
     if (r == ROMA_SUCCESS) {
-        memcpy(map->instances[id].transform, transform, sizeof map->instances[id].transform);
+        memcpy(map->instances[id].transform, t, sizeof map->instances[id].transform);
         map->transforms_dirty = 1;
     }
     return r;

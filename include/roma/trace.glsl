@@ -24,7 +24,13 @@
 // are IEEE's, which roma_div and roma_sqrt give on every device (ROMA_CORRECTED_DIVISION).
 // Map selection (atan, 1 / sqrt in roma_hemisphere_to_square) may round apart on a stratum
 // edge, and a GPU that flushes subnormal products may differ where they matter (frames of
-// cells near 2^120 world units).
+// cells near 2^120 world units). Bit-exact results on a GPU need the corrected division:
+// specialize ROMA_CORRECTED_DIVISION_CONSTANT_ID with roma_context_info.corrected_division
+// (roma/trace_types.h), as libroma's own pipelines do.
+// Compiling: libroma's SPIR-V targets Vulkan 1.2 (glslang --target-env vulkan1.2). For
+// --target-env vulkan1.3, glslang writes every compute shader's workgroup size as LocalSizeId,
+// which needs the device's maintenance4 feature enabled (every Vulkan 1.3 device has it;
+// roma_get_device_requirements does not ask for it, since libroma's shaders do not need it).
 #ifndef ROMA_TRACE_GLSL
 #define ROMA_TRACE_GLSL
 

@@ -8,6 +8,9 @@
 //   binding 1: the parameters, a uniform buffer (roma_map_info.params_buffer).
 // roma_map_info.trace_set is such a set, written for the map, with layout
 // roma_map_info.trace_set_layout.
+// Unlike roma/trace.glsl by address, this file enables no extension: a shader that uses
+// buffer references of its own enables GL_EXT_buffer_reference itself (roma/ray_start.glsl
+// enables it for its BOM words).
 #ifndef ROMA_TRACE_DESCRIPTORS_GLSL
 #define ROMA_TRACE_DESCRIPTORS_GLSL
 

@@ -107,7 +107,11 @@ ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_
 ROMA_API void roma_ao_effect_destroy(roma_ao_effect *effect);
 
 /** The engine's images the AO effect reads and writes (views it owns, valid while recorded work
- * runs). */
+ * runs). Usage: the three inputs VK_IMAGE_USAGE_SAMPLED_BIT, any float format (read with
+ * texelFetch through a nearest sampler libroma owns); the output VK_IMAGE_USAGE_STORAGE_BIT.
+ * Before the record: the inputs' writes made visible to compute-shader sampled reads, the
+ * inputs in input_layout, the output in GENERAL. After it: a barrier from compute-shader
+ * storage writes to the output's readers (another record that writes the same image is one). */
 typedef struct roma_ao_images {
     uint32_t width; /**< size of every image, pixels */
     uint32_t height; /**< size of every image, pixels */

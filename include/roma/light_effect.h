@@ -132,7 +132,8 @@ ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_
  * The context's thread. */
 ROMA_API void roma_light_effect_destroy(roma_light_effect *effect);
 
-/** The engine's images the light effect reads and writes. */
+/** The engine's images the light effect reads and writes: usage and barriers as
+ * roma_ao_images says (inputs sampled, the output a storage image in GENERAL). */
 typedef struct roma_light_images {
     uint32_t width; /**< size of every image, pixels */
     uint32_t height; /**< size of every image, pixels */

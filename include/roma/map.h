@@ -361,7 +361,10 @@ typedef struct roma_map_info {
     VkBuffer params_buffer; /**< the parameters as a uniform buffer */
     VkBufferView maps_view; /**< the maps as an R32_UINT uniform texel buffer */
     VkDescriptorSet trace_set; /**< a set holding maps_view and params_buffer */
-    VkDescriptorSetLayout trace_set_layout; /**< trace_set's layout (compute stage) */
+    /** trace_set's layout, for the compute stage only: a fragment (or other) shader binds a set
+     * of its own with the same two bindings (roma/trace_descriptors.glsl), written with
+     * maps_view and params_buffer, or traces by address. */
+    VkDescriptorSetLayout trace_set_layout;
     /** The base occupancy map of this frame (storage buffer; layout in roma/ray_start.glsl),
      * for the exact walk of a ray's skipped start that keeps rays from passing a wall they
      * start next to: its address (roma_use_ray_start), the buffer, and an R32_UINT uniform

@@ -374,6 +374,7 @@ void roma_map_destroy(roma_map *map)
     roma_buffer_destroy(ctx, &map->bom);
     roma_buffer_destroy(ctx, &map->static_maps);
     roma_buffer_destroy(ctx, &map->static_bom);
+    free(map->restore_regions);
     roma_buffer_destroy(ctx, &map->indices);
     roma_buffer_destroy(ctx, &map->indices_staging);
     roma_buffer_destroy(ctx, &map->positions);
@@ -614,6 +615,10 @@ static roma_result make_static_copies(roma_map *map)
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(map->ctx, 4 * texel_words * map->map_count * map->levels, usage, ROMA_MEMORY_DEVICE,
                                &map->static_maps);
+    /* A row of texels per region, at most RES in each map (restore_static), made once here
+     * rather than in every build. */
+    if (r == ROMA_SUCCESS && !(map->restore_regions = malloc(sizeof *map->restore_regions * map->res * map->map_count)))
+        r = roma_fail(&map->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_map_record_build: out of host memory");
     if (r != ROMA_SUCCESS) {
         roma_buffer_destroy(map->ctx, &map->static_bom);
         roma_buffer_destroy(map->ctx, &map->static_maps);
@@ -621,26 +626,21 @@ static roma_result make_static_copies(roma_map *map)
     return r;
 }
 
-/* Level l's BOM and maps into the static copies (save) or back from them. */
-static void copy_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, int save)
+/* Level l's BOM and maps into the static copies, after its voxelization and rotation. */
+static void save_static(roma_map *map, VkCommandBuffer cmd, uint32_t l)
 {
     const VkDeviceSize bom_bytes = bom_level_bytes(map), maps_bytes = bom_bytes * map->map_count;
-    if (save) /* the level's voxelization and rotation before the copies read them */
-        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                                VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkBufferCopy bom = {l * bom_bytes, l * bom_bytes, bom_bytes}, maps = {l * maps_bytes, l * maps_bytes, maps_bytes};
-    vkCmdCopyBuffer(cmd, save ? map->bom.buffer : map->static_bom.buffer, save ? map->static_bom.buffer : map->bom.buffer,
-                    1, &bom);
-    vkCmdCopyBuffer(cmd, save ? map->maps.buffer : map->static_maps.buffer,
-                    save ? map->static_maps.buffer : map->maps.buffer, 1, &maps);
+    vkCmdCopyBuffer(cmd, map->bom.buffer, map->static_bom.buffer, 1, &bom);
+    vkCmdCopyBuffer(cmd, map->maps.buffer, map->static_maps.buffer, 1, &maps);
 }
 
 /* Level l's static part copied back over the box [bmin, bmax] (world) alone: its BOM cells
  * (a cell of margin) and, in each map, the texels whose columns cross the box (two of margin:
- * every map bit a cell in the box can set). Where the host cannot hold the regions, the whole
- * level. */
+ * every map bit a cell in the box can set). */
 static void restore_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, const float bmin[3], const float bmax[3])
 {
     const roma_grid_params *g = &map->grids[l];
@@ -653,11 +653,7 @@ static void restore_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, const
         if (lo[a] > hi[a])
             return; /* outside the cube: nothing of it was added */
     }
-    VkBufferCopy *regions = malloc(sizeof *regions * (size_t)res * (map->map_count > 0 ? map->map_count : 1));
-    if (!regions) {
-        copy_static(map, cmd, l, 0);
-        return;
-    }
+    VkBufferCopy *regions = map->restore_regions;
     uint32_t n = 0;
     for (int y = lo[1]; y <= hi[1]; ++y) {
         const VkDeviceSize at = bom_base + word * ((VkDeviceSize)(y * res + lo[0]) * map->words);
@@ -688,7 +684,6 @@ static void restore_static(roma_map *map, VkCommandBuffer cmd, uint32_t l, const
     }
     if (n)
         vkCmdCopyBuffer(cmd, map->static_maps.buffer, map->maps.buffer, n, regions);
-    free(regions);
 }
 
 /* The dynamic instances' triangles added to level l's BOM and maps: voxelized alone into the
@@ -760,7 +755,7 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
             r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->static_triangles, 1);
             if (r == ROMA_SUCCESS) {
                 record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
-                copy_static(map, cmd, l, 1);
+                save_static(map, cmd, l);
             }
         } else if (map->dynamic_in[l]) {
             restore_static(map, cmd, l, map->dynamic_min[l], map->dynamic_max[l]);

@@ -122,6 +122,7 @@ struct roma_map {
     uint64_t built_static_versions[ROMA_MAX_LEVELS];
     uint8_t static_current[ROMA_MAX_LEVELS], dynamic_in[ROMA_MAX_LEVELS];
     float dynamic_min[ROMA_MAX_LEVELS][3], dynamic_max[ROMA_MAX_LEVELS][3]; /* their box when added */
+    VkBufferCopy *restore_regions; /* RES x map_count: a level's copy-back, made with the copies */
 };
 
 /* roma_map_record_build in parts, so that the benchmark can time each step on devices

@@ -6,22 +6,15 @@
 # distance.pfm as the mask, roma-compare --mask-max 6), with their counts.
 # Usage, from the repository root after a build:
 #     bash docs/bench/cascades_defaults.sh [BUILD_DIR] > docs/bench/cascades_defaults.txt
-set -euo pipefail
-build=${1:-build}
-render=$build/apps/roma-render
-compare=$build/apps/roma-compare
-levels=${ROMA_LEVELS_DIR:-../shared/scenes/levels}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/level_cameras.sh"
 figures() { # MAE, bias and pixels of roma-compare's output
   awk '$1 == "mean_abs" { m = $2 } $1 == "bias" { b = $2 } $1 == "pixels" { n = $2 }
        END { printf "%.4f %+.4f %s", m, b, n }' "$1"
 }
 echo "level camera | picked | whole picture: MAE bias pixels | within 6 m: MAE bias pixels"
-for level in oa_dm4 aggressor ctf_compromise; do
+for level in "${level_names[@]}"; do
   for c in 1 2 3; do
-    camera=$(sed -n "${c}p" "$levels/$level.cameras")
-    common=(--scene "$levels/$level.glb" --camera "$camera" --effects ao --ao-radius 1.5 --size 160x120 --quiet)
+    ao_args "$level" "$c"
     "$render" "${common[@]}" --tracer embree --spp 1024 --out "$tmp/ref" >/dev/null
     "$render" "${common[@]}" --tracer roma --spp 32 --frames 32 --out "$tmp/roma" --stats "$tmp/roma.json" >/dev/null
     picked=$(python3 -c "import json,sys; a=json.load(open(sys.argv[1]))['roma_arrays'][0]; \

@@ -5,19 +5,12 @@
 # covered pixels, 160x120, and roma-render's wall time (start-up included).
 # Usage, from the repository root after a build:
 #     bash docs/bench/cascades_levels.sh [BUILD_DIR] > docs/bench/cascades_levels.txt
-set -euo pipefail
-build=${1:-build}
-render=$build/apps/roma-render
-compare=$build/apps/roma-compare
-levels=${ROMA_LEVELS_DIR:-../shared/scenes/levels}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/level_cameras.sh"
 configs=("--res 128 --cascades 1" "--res 256 --cascades 1" "--res 128 --cascades 4" "--res 256 --cascades 3")
 echo "level camera | one grid RES 128 | one grid RES 256 | RES 128, 4 levels | RES 256, 3 levels   (MAE bias seconds)"
-for level in oa_dm4 aggressor ctf_compromise; do
+for level in "${level_names[@]}"; do
   for c in 1 2 3; do
-    camera=$(sed -n "${c}p" "$levels/$level.cameras")
-    common=(--scene "$levels/$level.glb" --camera "$camera" --effects ao --ao-radius 1.5 --size 160x120 --quiet)
+    ao_args "$level" "$c"
     "$render" "${common[@]}" --tracer embree --spp 256 --out "$tmp/ref" >/dev/null
     line="$level $c"
     for cfg in "${configs[@]}"; do
@@ -25,8 +18,7 @@ for level in oa_dm4 aggressor ctf_compromise; do
       # shellcheck disable=SC2086
       "$render" "${common[@]}" --tracer roma --spp 16 --frames 16 $cfg --out "$tmp/roma" >/dev/null
       end=$(date +%s.%N)
-      line="$line | $("$compare" "$tmp/roma/ao.pfm" "$tmp/ref/ao.pfm" --mask "$tmp/ref/coverage.pfm" |
-        awk '$1 == "mean_abs" { m = $2 } $1 == "bias" { b = $2 } END { printf "%.4f %+.4f", m, b }') $(python3 -c "print('%.1f' % ($end - $start))")"
+      line="$line | $(ao_error "$tmp/roma" "$tmp/ref") $(python3 -c "print('%.1f' % ($end - $start))")"
     done
     echo "$line"
   done

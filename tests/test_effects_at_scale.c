@@ -71,16 +71,24 @@ static int level_camera(const char *path, roma_camera *cam)
     return ok;
 }
 
-static void level(roma_context *ctx)
+/* The shared level aggressor (ROMA_LEVELS_DIR) and its first camera; NULL (a failed check)
+ * when it cannot be read. */
+static roma_scene *load_aggressor(roma_camera *cam)
 {
     const char *dir = getenv("ROMA_LEVELS_DIR");
     char glb[1024], cameras[1024];
     snprintf(glb, sizeof glb, "%s/aggressor.glb", dir ? dir : ".");
     snprintf(cameras, sizeof cameras, "%s/aggressor.cameras", dir ? dir : ".");
     roma_scene *scene = NULL;
-    roma_camera cam;
     CHECK_RESULT(roma_scene_load_gltf(glb, NULL, &scene), ROMA_SUCCESS);
-    CHECK(level_camera(cameras, &cam));
+    CHECK(level_camera(cameras, cam));
+    return scene;
+}
+
+static void level(roma_context *ctx)
+{
+    roma_camera cam;
+    roma_scene *scene = load_aggressor(&cam);
     roma_ref *ref = NULL;
     roma_map *map = NULL;
     roma_gi_effect *gi = NULL;
@@ -172,14 +180,8 @@ done:
 #define MAX_CASCADE_DIRECT_BIAS 0.013
 static void level_cascades(roma_context *ctx)
 {
-    const char *dir = getenv("ROMA_LEVELS_DIR");
-    char glb[1024], cameras[1024];
-    snprintf(glb, sizeof glb, "%s/aggressor.glb", dir ? dir : ".");
-    snprintf(cameras, sizeof cameras, "%s/aggressor.cameras", dir ? dir : ".");
-    roma_scene *scene = NULL;
     roma_camera cam;
-    CHECK_RESULT(roma_scene_load_gltf(glb, NULL, &scene), ROMA_SUCCESS);
-    CHECK(level_camera(cameras, &cam));
+    roma_scene *scene = load_aggressor(&cam);
     roma_ref *ref = NULL;
     roma_ao_effect *ao = NULL;
     roma_light_effect *light = NULL;

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers glslang-tools
-  libglfw3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
+  libglfw3-dev libembree-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libcjson-dev
   clang libclang-rt-14-dev
   libimgui-dev xvfb xauth
   doxygen dpkg-dev

@@ -1,4 +1,5 @@
-/* A small streaming JSON writer for the --stats file. */
+/* The tools' --stats and --json files, written in the order the tools know their figures:
+ * a thin builder over cJSON (Debian's libcjson), printed when the top-level scope closes. */
 #ifndef ROMA_STATS_JSON_H
 #define ROMA_STATS_JSON_H
 
@@ -8,10 +9,15 @@
 extern "C" {
 #endif
 
+struct cJSON;
+
+#define ROMA_JSON_MAX_DEPTH 32
+
 typedef struct roma_json {
-    FILE *f;
-    int depth;
-    int need_comma[32];
+    FILE *f;                                  /* where the document goes; set before the first call */
+    int depth;                                /* open scopes */
+    struct cJSON *scopes[ROMA_JSON_MAX_DEPTH]; /* scopes[0] is the document */
+    int failed;                               /* out of memory or too deep: nothing was written */
 } roma_json;
 
 void roma_json_begin_object(roma_json *j, const char *key); /* key NULL at top level / in arrays */

@@ -243,8 +243,7 @@ int main(int argc, char **argv)
                 roma_json_string(&j, "result", m.mean_abs_error <= threshold ? "pass" : "fail");
             }
             roma_json_end_object(&j);
-            fputc('\n', f);
-            if (ferror(f) | fclose(f)) {
+            if (j.failed | ferror(f) | fclose(f)) {
                 fprintf(stderr, "roma-compare: error while writing %s\n", json_path);
                 status = 1;
             } else {

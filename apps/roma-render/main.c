@@ -876,7 +876,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     }
     roma_json_end_array(&j);
     roma_json_end_object(&j);
-    if (ferror(f) | fclose(f)) {
+    if (j.failed | ferror(f) | fclose(f)) {
         fprintf(stderr, "roma-render: error while writing %s\n", o->stats);
         return 0;
     }

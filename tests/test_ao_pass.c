@@ -115,8 +115,8 @@ static void run(roma_context *ctx)
     }
     CHECK_RESULT(roma_scene_buffers_create(ctx, scene, &g), ROMA_SUCCESS);
     CHECK_RESULT(roma_gbuffer_create(ctx, W, H, &gb), ROMA_SUCCESS);
-    roma_pixel_list list;
-    CHECK_RESULT(roma_pixel_list_create(ctx, W, H, &list), ROMA_SUCCESS);
+    roma_gbuffer_list list;
+    CHECK_RESULT(roma_gbuffer_list_create(ctx, W, H, &list), ROMA_SUCCESS);
     CHECK_RESULT(roma_ao_pass_create(ctx, &ao), ROMA_SUCCESS);
     roma_map_desc md = {0};
     CHECK_RESULT(roma_map_create(ctx, &md, scene, &map), ROMA_SUCCESS);
@@ -143,7 +143,7 @@ static void run(roma_context *ctx)
         CHECK_RESULT(roma_begin_one_shot(ctx, &cmd), ROMA_SUCCESS);
         if (f == 0) {
             CHECK_RESULT(roma_gbuffer_record(gb, cmd, &gin), ROMA_SUCCESS);
-            CHECK_RESULT(roma_pixel_list_record(&list, cmd, roma_gbuffer_pixels_address(gb)), ROMA_SUCCESS);
+            CHECK_RESULT(roma_gbuffer_list_record(&list, cmd, roma_gbuffer_pixels_address(gb)), ROMA_SUCCESS);
             vkCmdFillBuffer(cmd, accum.buffer, 0, VK_WHOLE_SIZE, 0);
         }
         roma_ao_pass_inputs in = {
@@ -219,7 +219,7 @@ done:
     roma_buffer_destroy(ctx, &accum);
     roma_map_destroy(map);
     roma_ao_pass_destroy(ao);
-    roma_pixel_list_destroy(&list);
+    roma_gbuffer_list_destroy(&list);
     roma_gbuffer_destroy(gb);
     roma_scene_buffers_destroy(ctx, &g);
     free(px);

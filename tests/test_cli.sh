@@ -246,8 +246,9 @@ grep -q "the lights effect counts visible lights" "$dir/route_lights.err" ||
   fail "--route api with lights does not say why not"
 [ -e "$dir/route_lights" ] && fail "--route api refused but left an output folder"
 # The public passes over every pixel (a GPU's default) write the same bits as over the list of
-# covered pixels (a CPU device's).
-for pd in list every; do
+# covered pixels each effect makes and as over one list for every effect and frame (a CPU
+# device's default: roma_pixel_list).
+for pd in list every shared; do
   "$render" "${route_args[@]}" --pixel-dispatch $pd --out "$dir/route_$pd" \
     --stats "$dir/route_$pd/stats.json" >/dev/null 2>"$dir/route_$pd.err"
   expect_status 0 $? "roma-render --pixel-dispatch $pd" || cat "$dir/route_$pd.err" >&2
@@ -255,10 +256,13 @@ for pd in list every; do
 done
 for e in ao direct gi; do
   cmp -s "$dir/route_every/$e.pfm" "$dir/route_list/$e.pfm" || fail "$e over every pixel differs from the list's"
+  cmp -s "$dir/route_shared/$e.pfm" "$dir/route_list/$e.pfm" || fail "$e over the shared list differs from the list's"
 done
+has_stat "$dir/route_api/stats.json" pixel_dispatch shared || fail "roma-render's default on lavapipe is not one shared list"
+has_stat "$dir/route_shared/stats.json" name pixel_list || fail "the stats lack the shared list's record"
 "$render" "${route_args[@]}" --pixel-dispatch some --out "$dir/route_some" >/dev/null 2>"$dir/route_some.err"
 expect_status 2 $? "roma-render --pixel-dispatch some"
-grep -q "unknown pixel dispatch 'some' (valid: auto, list, every)" "$dir/route_some.err" ||
+grep -q "unknown pixel dispatch 'some' (valid: auto, list, every, shared)" "$dir/route_some.err" ||
   fail "a bad --pixel-dispatch does not list the choices"
 "$render" "${route_args[@]}" --route bogus --out "$dir/route_bogus" >/dev/null 2>"$dir/route_bogus.err"
 expect_status 2 $? "roma-render --route bogus"

@@ -104,14 +104,14 @@ double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result 
 typedef struct frame_setup {
     roma_scene_buffers geo;
     roma_gbuffer *gb;
-    roma_pixel_list list;
+    roma_gbuffer_list list;
     roma_gbuffer_pixel *px;
     uint32_t *covered, count;
 } frame_setup;
 
 static void setup_destroy(roma_context *ctx, frame_setup *s)
 {
-    roma_pixel_list_destroy(&s->list);
+    roma_gbuffer_list_destroy(&s->list);
     roma_gbuffer_destroy(s->gb);
     roma_scene_buffers_destroy(ctx, &s->geo);
     free(s->px);
@@ -137,7 +137,7 @@ static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint
     if (r == ROMA_SUCCESS)
         r = roma_gbuffer_create(ctx, w, h, &s->gb);
     if (r == ROMA_SUCCESS)
-        r = roma_pixel_list_create(ctx, w, h, &s->list);
+        r = roma_gbuffer_list_create(ctx, w, h, &s->list);
     VkCommandBuffer cmd;
     if (r == ROMA_SUCCESS)
         r = roma_begin_one_shot(ctx, &cmd);
@@ -150,7 +150,7 @@ static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint
         };
         r = roma_gbuffer_record(s->gb, cmd, &gin);
         if (r == ROMA_SUCCESS)
-            r = roma_pixel_list_record(&s->list, cmd, roma_gbuffer_pixels_address(s->gb));
+            r = roma_gbuffer_list_record(&s->list, cmd, roma_gbuffer_pixels_address(s->gb));
         roma_result sr = roma_submit_one_shot(ctx, cmd);
         if (r == ROMA_SUCCESS)
             r = sr;

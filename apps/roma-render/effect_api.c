@@ -37,6 +37,7 @@ typedef struct engine {
     VkCommandBuffer cmd;
     VkFence fence;
     gpu_image images[IMAGE_COUNT];
+    roma_pixel_list *pixels; /* desc.shared_list: listed by the first frame, read by every frame's effects */
     host_buffer upload, readback;
     roma_map *maps[ROMA_PASS_COUNT];
     roma_ao_effect *ao;
@@ -173,6 +174,7 @@ static void engine_free(engine *e)
             vkFreeMemory(e->device, buffers[i]->memory, NULL);
     }
     roma_gpu_timer_destroy(e->timer);
+    roma_pixel_list_destroy(e->pixels);
     roma_gi_effect_destroy(e->gi);
     roma_light_effect_destroy(e->light);
     roma_ao_effect_destroy(e->ao);
@@ -295,13 +297,19 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         r = roma_map_record_build(e->maps[i], cmd, &frame, NULL);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
+    if (r == ROMA_SUCCESS && e->pixels && f == 0) {
+        roma_pixel_list_images list = {d->width, d->height, e->images[IN_POSITION].view, 0, f};
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "list");
+        r = roma_pixel_list_record(e->pixels, cmd, 0, &list);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
     const roma_light *lights = job->view->lights;
     const uint32_t light_count = job->view->light_count;
     if (r == ROMA_SUCCESS && e->ao) {
         roma_ao_settings s = job->ao;
         s.frame = f;
         roma_ao_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
-                             e->images[IN_GEOMETRIC].view, e->images[OUT_AO].view, 0};
+                             e->images[IN_GEOMETRIC].view, e->images[OUT_AO].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "ao");
         r = roma_ao_effect_record(e->ao, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_AO]], &im, &s);
         roma_gpu_timer_end(e->timer, cmd, scope);
@@ -312,7 +320,7 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         int m = plan->pass_map[ROMA_PASS_PUNCTUAL_LIGHTS] >= 0 ? plan->pass_map[ROMA_PASS_PUNCTUAL_LIGHTS]
                                                                 : plan->pass_map[ROMA_PASS_SOFT_SHADOWS];
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
-                                e->images[IN_GEOMETRIC].view, e->images[OUT_DIRECT].view, 0};
+                                e->images[IN_GEOMETRIC].view, e->images[OUT_DIRECT].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "direct");
         r = roma_light_effect_record(e->light, cmd, 0, e->maps[m], &im, lights, light_count, &s);
         roma_gpu_timer_end(e->timer, cmd, scope);
@@ -321,7 +329,7 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_gi_settings s = job->gi;
         s.frame = f;
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
-                                e->images[IN_GEOMETRIC].view, e->images[OUT_GI].view, 0};
+                                e->images[IN_GEOMETRIC].view, e->images[OUT_GI].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "gi");
         r = roma_gi_effect_record(e->gi, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_GI]], &im, lights, light_count,
                                   &s);
@@ -333,8 +341,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
 /* The timer's scopes of the frame just finished, added to the result's sums. */
 static roma_result add_timings(engine *e, effect_api_result *out)
 {
-    roma_gpu_timing t[ROMA_PASS_COUNT + 3];
-    uint32_t count = ROMA_PASS_COUNT + 3;
+    roma_gpu_timing t[ROMA_PASS_COUNT + 4];
+    uint32_t count = ROMA_PASS_COUNT + 4;
     roma_result r = roma_gpu_timer_read(e->timer, t, &count);
     uint32_t build = 0;
     for (uint32_t i = 0; i < count && r == ROMA_SUCCESS; ++i) {
@@ -346,6 +354,8 @@ static roma_result add_timings(engine *e, effect_api_result *out)
             out->direct_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "gi") == 0)
             out->gi_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "list") == 0)
+            out->list_ms += t[i].milliseconds;
     }
     return r;
 }
@@ -426,8 +436,10 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
         r = roma_gi_effect_create(e->ctx, &gi_desc, &e->gi);
     if (r == ROMA_SUCCESS && e->gi)
         r = roma_gi_effect_set_scene(e->gi, scene);
+    if (r == ROMA_SUCCESS && d->shared_list)
+        r = roma_pixel_list_create(e->ctx, &(roma_pixel_list_desc){.frames_in_flight = 1}, &e->pixels);
     if (r == ROMA_SUCCESS)
-        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 3, &e->timer);
+        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 4, &e->timer);
     return r;
 }
 

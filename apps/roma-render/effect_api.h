@@ -30,6 +30,9 @@ typedef struct effect_api_desc {
     float offset_cells, skip_cells, ao_skip_cells;
     uint32_t max_steps;
     roma_pixel_dispatch pixel_dispatch; /* the three effects' */
+    /* The covered pixels listed once (roma_pixel_list) and given to every effect of every
+     * frame: the G-buffer does not change between frames. */
+    int shared_list;
     /* Cascade levels of every array (at most what its A allows: K x A x A <= 256; 0 = 1),
      * centred on the camera's eye, the finest cube's edge finest_extent (0: the library's). */
     uint32_t cascades;
@@ -47,6 +50,7 @@ typedef struct effect_api_result {
     roma_map_info map_info[ROMA_PASS_COUNT]; /* per array of plan.maps */
     double build_ms[ROMA_PASS_COUNT];        /* per array: GPU timestamps summed over frames */
     double ao_ms, direct_ms, gi_ms;          /* each effect's records: GPU timestamps summed */
+    double list_ms;                          /* desc.shared_list: the one list's record */
     double gbuffer_ms;                       /* the primary rays, host clock */
     uint64_t effect_bytes;                   /* the G-buffer, output and transfer memory made here */
 } effect_api_result;

@@ -71,8 +71,10 @@ static const char *usage =
     "                              or through the internal renderer, which also has the study's\n"
     "                              baselines, the lights effect and reflective shadow maps (taken by\n"
     "                              itself when those are asked for; the choice is printed)\n"
-    "  --pixel-dispatch auto|list|every  the public passes over a list of the covered pixels or over\n"
-    "                              every pixel (roma_pixel_dispatch; auto: the list on CPU devices)\n"
+    "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
+    "                              each effect makes, over every pixel (roma_pixel_dispatch), or over\n"
+    "                              one list for every effect and frame (roma_pixel_list); auto: shared\n"
+    "                              on CPU devices, every pixel on GPUs\n"
     "  --gi-punctual rsm|rays      ROMA gi from point and spot lights: their reflective shadow maps\n"
     "                              (the internal renderer) or one shadow ray per light at each bounce\n"
     "                              hit (the public GI effect's way; the default on the api route, rsm on\n"
@@ -144,6 +146,7 @@ typedef struct options {
     int gi_rays;         /* --gi-punctual rays */
     int route;           /* --route: ROUTE_AUTO, ROUTE_API, ROUTE_INTERNAL */
     roma_pixel_dispatch pixel_dispatch; /* --pixel-dispatch (the api route's) */
+    int shared_list;     /* --pixel-dispatch shared */
     int blind_start;     /* --ray-start blind */
     roma_ao_method ao_method; /* --ao-method */
     uint32_t ssao_layers;     /* --ssao-layers */
@@ -383,13 +386,18 @@ static int parse_args(int argc, char **argv, options *o)
             }
         }
         else if (strcmp(a, "--pixel-dispatch") == 0) {
-            int k = strcmp(v, "auto") == 0 ? 0 : strcmp(v, "list") == 0 ? 1 : strcmp(v, "every") == 0 ? 2 : -1;
+            int k = strcmp(v, "auto") == 0    ? 0
+                    : strcmp(v, "list") == 0  ? 1
+                    : strcmp(v, "every") == 0 ? 2
+                    : strcmp(v, "shared") == 0 ? 3
+                                               : -1;
             if (k < 0) {
-                fprintf(stderr, "roma-render: unknown pixel dispatch '%s' (valid: auto, list, every)\n", v);
+                fprintf(stderr, "roma-render: unknown pixel dispatch '%s' (valid: auto, list, every, shared)\n", v);
                 return 0;
             }
             o->pixel_dispatch = k == 1 ? ROMA_PIXEL_DISPATCH_LIST
                                 : k == 2 ? ROMA_PIXEL_DISPATCH_EVERY_PIXEL : ROMA_PIXEL_DISPATCH_AUTO;
+            o->shared_list = k == 3;
             o->given |= GIVEN_PIXEL_DISPATCH;
         }
         else if (strcmp(a, "--gi-punctual") == 0) {
@@ -616,6 +624,7 @@ typedef struct run_record {
     const roma_effect_stats *roma; /* ROMA tracer, internal route */
     const effect_api_result *api;  /* ROMA tracer, public effect passes */
     roma_pixel_dispatch pixel_dispatch; /* the public passes': resolved, never AUTO */
+    int shared_list;                    /* resolved: the pixels listed once (roma_pixel_list) */
     const budget_choice *budget;   /* --budget-ms only */
 } run_record;
 
@@ -832,7 +841,9 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
         roma_json_string(&j, "route", run->api ? "api" : "internal");
         roma_json_string(&j, "jitter", o->jitter_off ? "off" : "on");
         if (run->api)
-            roma_json_string(&j, "pixel_dispatch", run->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list" : "every");
+            roma_json_string(&j, "pixel_dispatch", run->shared_list ? "shared"
+                                                   : run->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list"
+                                                                                                     : "every");
         roma_json_int(&j, "resolution", o->res);
         roma_json_int(&j, "angular", o->angular);
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
@@ -938,12 +949,16 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
 {
     progress_state frames_progress = {"frames", o->quiet, -1, 0.0};
     on_progress(0.0f, &frames_progress);
-    /* AUTO as the library resolves it, for the stats: the list on CPU devices. */
+    /* AUTO as the library resolves it (the list on CPU devices), for the stats; and on CPU
+     * devices one list for every effect and frame: the G-buffer does not change. */
     roma_context_info info;
     run->pixel_dispatch = o->pixel_dispatch;
-    if (run->pixel_dispatch == ROMA_PIXEL_DISPATCH_AUTO && roma_context_get_info(ctx, &info) == ROMA_SUCCESS)
-        run->pixel_dispatch = info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? ROMA_PIXEL_DISPATCH_LIST
-                                                                              : ROMA_PIXEL_DISPATCH_EVERY_PIXEL;
+    run->shared_list = o->shared_list;
+    if (run->pixel_dispatch == ROMA_PIXEL_DISPATCH_AUTO && roma_context_get_info(ctx, &info) == ROMA_SUCCESS) {
+        const int cpu = info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+        run->pixel_dispatch = cpu ? ROMA_PIXEL_DISPATCH_LIST : ROMA_PIXEL_DISPATCH_EVERY_PIXEL;
+        run->shared_list = run->shared_list || (cpu && !(o->given & GIVEN_PIXEL_DISPATCH));
+    }
     effect_api_desc d = {
         .camera = *cam, .width = o->width, .height = o->height,
         .options = {.effects = o->effects, .resolution = o->res, .ao_angular = o->angular, .gi_angular = o->angular,
@@ -952,7 +967,8 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         /* The library takes 0 as its default and a negative value as none. */
         .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
         .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
-        .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .progress = on_progress,
+        .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .shared_list = run->shared_list,
+        .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off};
     double start = roma_app_now_ms();
@@ -964,6 +980,8 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
     }
     run->api = res;
     add_pass(run, "gbuffer", "cpu_wall", res->gbuffer_ms);
+    if (run->shared_list)
+        add_pass(run, "pixel_list", "gpu_timestamp", res->list_ms);
     if (res->ao.pixels)
         add_pass(run, "ao", "gpu_timestamp", res->ao_ms);
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||

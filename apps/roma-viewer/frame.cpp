@@ -52,6 +52,7 @@ template <typename Images> Images gbuffer_images(const viewer &v, VkImageView ou
     images.position = v.gb.position.view;
     images.normal = v.gb.normal.view;
     images.output = output;
+    images.pixels = v.pixels; // listed by record_frame before the effects (CPU devices)
     return images;
 }
 
@@ -141,6 +142,16 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         }
         v.gi_pose_time = s.time;
         v.gi_pose_clip = s.clip;
+    }
+    if (v.pixels && (want_ao || want_direct || want_gi)) { // once for the frame's effects
+        roma_pixel_list_images list{};
+        list.width = v.gb.width;
+        list.height = v.gb.height;
+        list.position = v.gb.position.view;
+        list.frame = v.frame;
+        if (roma_pixel_list_record(v.pixels, cmd, slot, &list) != ROMA_SUCCESS)
+            return false;
+        v.passes.push_back("pixel_list");
     }
     if (want_ao) {
         roma_ao_images images = gbuffer_images<roma_ao_images>(v, v.cp.ao.view);

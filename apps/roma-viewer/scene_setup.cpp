@@ -297,6 +297,10 @@ bool create_libroma(viewer &v)
     gd.frames_in_flight = kSlots;
     roma_temporal_effect_desc td{};
     td.frames_in_flight = kSlots;
+    roma_pixel_list_desc pd{};
+    pd.frames_in_flight = kSlots;
+    if (ci.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU && roma_pixel_list_create(v.ctx, &pd, &v.pixels) != ROMA_SUCCESS)
+        return false;
     return roma_ao_effect_create(v.ctx, &ad, &v.ao) == ROMA_SUCCESS &&
            roma_light_effect_create(v.ctx, &ld, &v.light) == ROMA_SUCCESS &&
            roma_gi_effect_create(v.ctx, &gd, &v.gi) == ROMA_SUCCESS &&
@@ -342,6 +346,7 @@ void destroy(viewer &v)
     vk_buffer_destroy(v.base, v.bom);
     vk_buffer_destroy(v.base, v.reference);
     free_scene(v);
+    roma_pixel_list_destroy(v.pixels);
     roma_ao_effect_destroy(v.ao);
     roma_light_effect_destroy(v.light);
     roma_gi_effect_destroy(v.gi);

@@ -53,8 +53,7 @@ bool write_stats(const viewer &v, int status)
     roma_json_int(&j, "libroma_device_memory_bytes", (long long)v.info.device_memory);
     roma_json_int(&j, "exit_status", status);
     roma_json_end_object(&j);
-    std::fputc('\n', f);
-    bool ok = !std::ferror(f);
+    bool ok = !j.failed && !std::ferror(f);
     ok = std::fclose(f) == 0 && ok;
     return ok;
 }

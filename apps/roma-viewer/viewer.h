@@ -40,6 +40,9 @@ struct viewer {
     roma_ao_effect *ao = nullptr;
     roma_light_effect *light = nullptr;
     roma_gi_effect *gi = nullptr;
+    // On CPU devices the covered pixels listed once a frame for the three effects (what
+    // roma_pixel_dispatch's AUTO would make each effect list again); on GPUs none: every pixel.
+    roma_pixel_list *pixels = nullptr;
     roma_temporal_effect *temporal = nullptr; // the picture averaged over frames
     gbuffer_pass gb;
     compose_pass cp;

@@ -35,6 +35,7 @@
 
 #include "roma/context.h"
 #include "roma/map.h"
+#include "roma/pixel_list.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -120,6 +121,10 @@ typedef struct roma_ao_images {
     VkImageView geometric_normal; /**< sampled, optional (VK_NULL_HANDLE: the shading normal) */
     VkImageView output;           /**< storage, R32_SFLOAT, layout GENERAL */
     VkImageLayout input_layout;   /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
+    /** Optional: the frame's covered pixels, recorded earlier in this slot for images of this
+     * size (roma/pixel_list.h). The effect traces them alone, whatever its pixel_dispatch,
+     * and writes no other pixel. NULL: the effect covers the images as its pixel_dispatch says. */
+    const roma_pixel_list *pixels;
 } roma_ao_images;
 
 /** Records the AO pass into cmd, tracing snapped any-hit rays through the map: one compute

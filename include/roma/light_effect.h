@@ -31,6 +31,7 @@
 
 #include "roma/context.h"
 #include "roma/map.h"
+#include "roma/pixel_list.h"
 #include "roma/scene.h"
 
 #ifdef __cplusplus
@@ -142,6 +143,9 @@ typedef struct roma_light_images {
     VkImageView geometric_normal; /**< sampled, optional (VK_NULL_HANDLE: the shading normal) */
     VkImageView output; /**< storage, R32G32B32A32_SFLOAT, layout GENERAL */
     VkImageLayout input_layout; /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
+    /** Optional: the frame's covered pixels, as roma_ao_images.pixels (the effect writes no
+     * other pixel). */
+    const roma_pixel_list *pixels;
 } roma_light_images;
 
 /** Records the direct-light pass into cmd: over the images or the list of their covered

@@ -39,6 +39,7 @@
 #include "roma/gi_effect.h"
 #include "roma/light_effect.h"
 #include "roma/map.h"
+#include "roma/pixel_list.h"
 #include "roma/presets.h"
 #include "roma/result.h"
 #include "roma/sampling.h"

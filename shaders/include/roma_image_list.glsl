@@ -7,12 +7,17 @@
 
 #include "roma_shared.h"
 
+// An effect's set 1 holds it after its images and the BOM; the frame's shared list
+// (roma_pixel_list, covered_pixels.comp) has a set of its own.
+#ifndef ROMA_IMAGE_LIST_SET
+#define ROMA_IMAGE_LIST_SET 1
 #define ROMA_IMAGE_LIST_BINDING 5
+#endif
 
 #ifndef ROMA_IMAGE_LIST_WRITER
 readonly
 #endif
-layout(set = 1, binding = ROMA_IMAGE_LIST_BINDING, std430) buffer RomaImageList {
+layout(set = ROMA_IMAGE_LIST_SET, binding = ROMA_IMAGE_LIST_BINDING, std430) buffer RomaImageList {
     roma_pixel_list_header header;
     uint pixels[];
 } roma_image_list;

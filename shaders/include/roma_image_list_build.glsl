@@ -1,7 +1,8 @@
-// The body of shaders/effects/image_list_*.comp, which differ in the output's format only.
+// The body of shaders/effects/image_list_*.comp, which differ in the output's format only,
+// and of covered_pixels.comp (the frame's shared list, without an output).
 // config.z = 0: one invocation per pixel lists those whose position image holds a surface
 // (w > 0; one atomic per subgroup, the order does not matter) and writes the background into
-// the others. config.z = 1: the first invocation turns the count into the effect's indirect
+// the others (where there is an output). config.z = 1: the first invocation turns the count into the effect's indirect
 // dispatch (8 x 8 workgroups, each dimension at most 65535).
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -10,8 +11,10 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 1, binding = 0) uniform sampler2D roma_list_position;
+layout(set = ROMA_IMAGE_LIST_SET, binding = 0) uniform sampler2D roma_list_position;
+#ifdef ROMA_IMAGE_LIST_OUTPUT_FORMAT
 layout(set = 1, binding = 3, ROMA_IMAGE_LIST_OUTPUT_FORMAT) uniform writeonly image2D roma_list_output;
+#endif
 
 layout(push_constant) uniform Push { roma_image_list_push pc; };
 
@@ -37,6 +40,8 @@ void main()
     // After the subgroup operations, so that they see the lanes the branch would have split.
     if (covered)
         roma_image_list.pixels[base + before] = xy.y * width + xy.x;
+#ifdef ROMA_IMAGE_LIST_OUTPUT_FORMAT
     else
         imageStore(roma_list_output, ivec2(xy), pc.background);
+#endif
 }

@@ -92,7 +92,7 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
     if (r != ROMA_SUCCESS)
         return roma_fail(&e->base.logger, r, "roma_ao_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, s.frame, map, &info);
+    r = roma_image_effect_begin(&e->base, slot, s.frame, map, im->pixels, im->width, im->height, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_ao_push push = {.bom = info.bom_address,

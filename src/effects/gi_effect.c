@@ -188,7 +188,7 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
         return roma_fail(log, r, "roma_gi_effect_record: invalid settings");
     roma_map_info info;
     /* The lights and the scene record live in buffers per slot (one record per slot and frame). */
-    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
+    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, im, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_context *ctx = e->base.ctx;

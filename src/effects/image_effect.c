@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "effects/pixel_list_internal.h"
 #include "map/map_internal.h"
 #include "roma_shared.h"
 #include "util/log.h"
@@ -61,7 +62,8 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
                           "vkCreatePipelineLayout");
     }
     if (r == ROMA_SUCCESS)
-        r = roma_compute_pipeline_make(ctx, module, e->layout, &(uint32_t){(uint32_t)e->listed}, 1, &e->pipeline);
+        r = roma_compute_pipeline_make(ctx, module, e->layout, &(uint32_t){(uint32_t)e->listed}, 1,
+                                       &e->pipelines[e->listed][0]);
     if (r == ROMA_SUCCESS && e->listed)
         r = roma_compute_pipeline_make(ctx, list_module, e->layout, NULL, 0, &e->list_pipeline);
     const VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, inputs},
@@ -89,10 +91,10 @@ void roma_image_effect_free(roma_image_effect *e)
     }
     if (e->list_pipeline)
         vkDestroyPipeline(dev, e->list_pipeline, a);
-    if (e->pipeline)
-        vkDestroyPipeline(dev, e->pipeline, a);
-    if (e->cascaded_pipeline)
-        vkDestroyPipeline(dev, e->cascaded_pipeline, a);
+    for (int listed = 0; listed < 2; ++listed)
+        for (int cascaded = 0; cascaded < 2; ++cascaded)
+            if (e->pipelines[listed][cascaded])
+                vkDestroyPipeline(dev, e->pipelines[listed][cascaded], a);
     if (e->layout)
         vkDestroyPipelineLayout(dev, e->layout, a);
     if (e->images_layout)
@@ -105,6 +107,7 @@ void roma_image_effect_free(roma_image_effect *e)
 }
 
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
+                                    const roma_pixel_list *pixels, uint32_t width, uint32_t height,
                                     roma_map_info *info)
 {
     if (slot >= e->sets.frames_in_flight)
@@ -115,15 +118,23 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
         return r;
     if (!map->built)
         return roma_fail(&e->logger, ROMA_ERROR_NOT_READY, "%s: record a build of the map first", e->name);
-    /* A map of several cascade levels needs the cascade code (made once, before anything of
-     * the record is recorded). */
-    if (info->levels > 1 && !e->cascaded_pipeline) {
-        r = roma_compute_pipeline_make_flags(e->ctx, e->module, e->layout, &(uint32_t){(uint32_t)e->listed}, 1,
-                                             ROMA_PIPELINE_CASCADES, &e->cascaded_pipeline);
+    VkBuffer shared = VK_NULL_HANDLE;
+    if (pixels) {
+        r = roma_pixel_list_slot_buffer(pixels, &e->logger, e->name, slot, width, height, &shared);
         if (r != ROMA_SUCCESS)
             return r;
     }
-    e->traced = info->levels > 1 ? e->cascaded_pipeline : e->pipeline;
+    /* A map of several cascade levels needs the cascade code, a shared list the listed
+     * variant (made once, before anything of the record is recorded). */
+    const int listed = shared ? 1 : e->listed, cascaded = info->levels > 1;
+    if (!e->pipelines[listed][cascaded]) {
+        r = roma_compute_pipeline_make_flags(e->ctx, e->module, e->layout, &(uint32_t){(uint32_t)listed}, 1,
+                                             cascaded ? ROMA_PIPELINE_CASCADES : 0, &e->pipelines[listed][cascaded]);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
+    e->traced = e->pipelines[listed][cascaded];
+    e->shared_list = shared;
     e->frame = frame;
     return ROMA_SUCCESS;
 }
@@ -219,7 +230,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
 {
     int same_frame = roma_image_effect_same_frame(e, slot);
     roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
-    if (r == ROMA_SUCCESS)
+    if (r == ROMA_SUCCESS && !e->shared_list)
         r = list_reserve(e, slot, same_frame, width, height);
     VkImageLayout in_layouts[ROMA_IMAGE_EFFECT_MAX_IMAGES];
     for (uint32_t i = 0; i < e->inputs; ++i)
@@ -232,7 +243,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
         return r;
     roma_slot_sets_commit(&e->sets, slot);
     const roma_buffer *list = &e->lists[slot];
-    VkDescriptorBufferInfo list_info = {list->buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo list_info = {e->shared_list ? e->shared_list : list->buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet writes[2] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                        .dstSet = set,
                                        .dstBinding = e->inputs + e->outputs,
@@ -248,9 +259,15 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     vkUpdateDescriptorSets(e->ctx->device, 2, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);
-    e->last_list = e->listed ? list->buffer : VK_NULL_HANDLE;
+    e->last_list = e->shared_list ? e->shared_list : e->listed ? list->buffer : VK_NULL_HANDLE;
     e->last_groups[0] = (width + 7) / 8;
     e->last_groups[1] = (height + 7) / 8;
+    if (e->shared_list) { /* listed once for the frame: roma_pixel_list_record's barrier made it visible */
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->traced);
+        vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
+        vkCmdDispatchIndirect(cmd, e->shared_list, 0);
+        return ROMA_SUCCESS;
+    }
     if (e->listed) {
         record_listed_dispatch(e, cmd, list, push, width, height);
         return ROMA_SUCCESS;

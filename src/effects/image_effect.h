@@ -10,6 +10,7 @@
 
 #include "effects/slot_sets.h"
 #include "roma/map.h"
+#include "roma/pixel_list.h"
 #include "vulkan/vk_internal.h"
 
 #define ROMA_IMAGE_EFFECT_MAX_IMAGES 8
@@ -25,10 +26,13 @@ typedef struct roma_image_effect {
     VkDescriptorSetLayout trace_layout, images_layout;
     VkPipelineLayout layout;
     int listed;                    /* the resolved roma_pixel_dispatch */
-    VkPipeline pipeline, list_pipeline; /* the list's only when listed */
-    /* The effect with the cascade code compiled in (ROMA_PIPELINE_CASCADES), made by the first
-     * record of a map of several levels; traced: the one this record's map needs. */
-    VkPipeline cascaded_pipeline, traced;
+    VkPipeline list_pipeline;      /* the effect's own list pass, only when listed */
+    /* The effect over a list ([1]) or every pixel ([0]), with the cascade code compiled in
+     * ([.][1], ROMA_PIPELINE_CASCADES) or not: the one its pixel_dispatch takes for one grid
+     * made at creation, the others by the first record that needs them (a map of several
+     * levels, the frame's shared list); traced: the one this record takes. */
+    VkPipeline pipelines[2][2], traced;
+    VkBuffer shared_list; /* this record's: the frame's roma_pixel_list, or none (its own or every pixel) */
     const char *module;
     float background[4]; /* the output where the position image holds no surface */
     roma_slot_sets sets; /* set 1 of each record */
@@ -66,14 +70,17 @@ int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 roma_result roma_image_effect_check_size(const roma_image_effect *e, const char *name, uint32_t width,
                                          uint32_t height);
 
-/* Checks slot and map; the map's info is returned for the push. */
+/* Checks slot, map and the frame's shared list (pixels, optional: recorded in the slot for
+ * width x height); the map's info is returned for the push. */
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
+                                    const roma_pixel_list *pixels, uint32_t width, uint32_t height,
                                     roma_map_info *info);
 /* Allocates and writes set 1 (views: inputs then the output), then records, with push, the
  * effect's dispatch over ceil(width / 8) x ceil(height / 8) workgroups or, listed, the
  * covered-pixel list of the position image (a list pass over those workgroups, which writes
  * the background elsewhere, and its dispatch's arguments) and the effect's indirect dispatch
- * over it. The slot's list grows here when the images do. */
+ * over it, or, with the frame's shared list (begin's pixels), the indirect dispatch over that
+ * alone. The slot's own list grows here when the images do. */
 roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd, uint32_t slot,
                                        const roma_map_info *info, const VkImageView *views, VkImageLayout input_layout,
                                        const void *push, uint32_t width, uint32_t height);

@@ -162,7 +162,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_light_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, &info);
+    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, im, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_upload *buf = &e->lights[slot];

@@ -22,7 +22,7 @@ typedef struct roma_ao_pass_inputs {
     VkBuffer gbuffer_pixels;        /* width * height roma_gbuffer_pixel */
     uint32_t width, height;
     const roma_map_info *map;       /* of a built map: its maps view and parameters buffer */
-    const struct roma_pixel_list *list; /* covered pixels of this G-buffer (recorded before) */
+    const struct roma_gbuffer_list *list; /* covered pixels of this G-buffer (recorded before) */
     float offset;                   /* origin offset in world units (offset_cells * trace_cell) */
     float radius;                   /* <= 0: unbounded */
     float tmin;                     /* world units skipped at the start of each ray (>= 0) */

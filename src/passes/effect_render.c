@@ -43,7 +43,7 @@ typedef struct renderer {
     roma_buffer sd_pixels;
     VkBufferView sd_view;
     roma_pixel_pass punctual, soft, many, gi;
-    roma_pixel_list list; /* covered pixels of the current G-buffer, for every tracing pass */
+    roma_gbuffer_list list; /* covered pixels of the current G-buffer, for every tracing pass */
     roma_gbuffer *rsm[ROMA_MAX_RSM_VIEWS];
     roma_rsm_views rsm_views;
     uint32_t rsm_size;
@@ -139,7 +139,7 @@ static roma_result create_resources(renderer *R, const roma_scene *scene)
     if (r == ROMA_SUCCESS)
         r = roma_gpu_timer_create(ctx, 2 * ROMA_PASS_COUNT, &R->timer);
     if (r == ROMA_SUCCESS)
-        r = roma_pixel_list_create(ctx, d->width, d->height, &R->list);
+        r = roma_gbuffer_list_create(ctx, d->width, d->height, &R->list);
     for (uint32_t i = 0; i < R->plan.map_count && r == ROMA_SUCCESS; ++i) {
         roma_map_desc md = {.resolution = R->plan.maps[i].resolution, .angular = R->plan.maps[i].angular};
         r = roma_map_create(ctx, &md, scene, &R->maps[i]);
@@ -246,7 +246,7 @@ static void destroy_resources(renderer *R)
     roma_pixel_pass_destroy(&R->gi);
     roma_surface_cells_destroy(&R->surfaces);
     roma_buffer_destroy(ctx, &R->gi_scene);
-    roma_pixel_list_destroy(&R->list);
+    roma_gbuffer_list_destroy(&R->list);
     for (uint32_t v = 0; v < ROMA_MAX_RSM_VIEWS; ++v)
         roma_gbuffer_destroy(R->rsm[v]);
     roma_buffer_destroy(ctx, &R->views_buffer);
@@ -505,7 +505,7 @@ static roma_result run_frames(renderer *R, roma_effect_stats *stats)
             scopes[ROMA_PASS_GBUFFER] = roma_gpu_timer_begin(R->timer, cmd, "gbuffer");
             r = roma_gbuffer_record(gbuffer, cmd, &gin);
             if (r == ROMA_SUCCESS)
-                r = roma_pixel_list_record(&R->list, cmd, roma_gbuffer_pixels_address(gbuffer));
+                r = roma_gbuffer_list_record(&R->list, cmd, roma_gbuffer_pixels_address(gbuffer));
             roma_gpu_timer_end(R->timer, cmd, scopes[ROMA_PASS_GBUFFER]);
             /* Accumulators start at zero; the interactive mode resolves each frame alone. */
             for (int p = 0; p < ROMA_PASS_COUNT; ++p)

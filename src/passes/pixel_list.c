@@ -5,7 +5,7 @@
 #include "roma_shared.h"
 #include "util/log.h"
 
-roma_result roma_pixel_list_create(roma_context *ctx, uint32_t width, uint32_t height, roma_pixel_list *out)
+roma_result roma_gbuffer_list_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer_list *out)
 {
     memset(out, 0, sizeof *out);
     if (!ctx || width == 0 || height == 0)
@@ -13,7 +13,7 @@ roma_result roma_pixel_list_create(roma_context *ctx, uint32_t width, uint32_t h
     /* The tracing passes read it as a texel buffer: 4 header words, then a word a pixel. */
     if (4ull + (uint64_t)width * height > ctx->properties.limits.maxTexelBufferElements)
         return roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
-                         "roma_pixel_list_create: %ux%u pixels exceed this device's maxTexelBufferElements (%u)", width,
+                         "roma_gbuffer_list_create: %ux%u pixels exceed this device's maxTexelBufferElements (%u)", width,
                          height, ctx->properties.limits.maxTexelBufferElements);
     out->ctx = ctx;
     out->width = width;
@@ -28,11 +28,11 @@ roma_result roma_pixel_list_create(roma_context *ctx, uint32_t width, uint32_t h
     if (r == ROMA_SUCCESS)
         r = roma_compute_pipeline_create(ctx, "pixel_list_args.comp", 0, sizeof(roma_pixel_list_push), &out->args);
     if (r != ROMA_SUCCESS)
-        roma_pixel_list_destroy(out);
+        roma_gbuffer_list_destroy(out);
     return r;
 }
 
-void roma_pixel_list_destroy(roma_pixel_list *list)
+void roma_gbuffer_list_destroy(roma_gbuffer_list *list)
 {
     if (!list->ctx)
         return;
@@ -42,7 +42,7 @@ void roma_pixel_list_destroy(roma_pixel_list *list)
     memset(list, 0, sizeof *list);
 }
 
-roma_result roma_pixel_list_record(roma_pixel_list *list, VkCommandBuffer cmd, VkDeviceAddress gbuffer_pixels)
+roma_result roma_gbuffer_list_record(roma_gbuffer_list *list, VkCommandBuffer cmd, VkDeviceAddress gbuffer_pixels)
 {
     if (!list->ctx || !cmd || !gbuffer_pixels)
         return ROMA_ERROR_INVALID_ARGUMENT;

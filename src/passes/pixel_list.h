@@ -6,22 +6,22 @@
 
 #include "vulkan/vk_internal.h"
 
-typedef struct roma_pixel_list {
+typedef struct roma_gbuffer_list {
     roma_context *ctx;
     uint32_t width, height;
     roma_buffer buffer; /* roma_pixel_list_header + width * height uint */
     roma_compute_pipeline build, args;
-} roma_pixel_list;
+} roma_gbuffer_list;
 
 /* On failure *out is zeroed. */
-roma_result roma_pixel_list_create(roma_context *ctx, uint32_t width, uint32_t height, roma_pixel_list *out);
+roma_result roma_gbuffer_list_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer_list *out);
 /* Accepts a zeroed list. */
-void roma_pixel_list_destroy(roma_pixel_list *list);
+void roma_gbuffer_list_destroy(roma_gbuffer_list *list);
 
 /* Records the list of the G-buffer at gbuffer_pixels (width * height roma_gbuffer_pixel,
  * written by fragment or compute shaders before): earlier readers of the list (indirect
  * dispatches, compute) complete first, and the list and its dispatch arguments are
  * visible to compute reads and indirect dispatches after. */
-roma_result roma_pixel_list_record(roma_pixel_list *list, VkCommandBuffer cmd, VkDeviceAddress gbuffer_pixels);
+roma_result roma_gbuffer_list_record(roma_gbuffer_list *list, VkCommandBuffer cmd, VkDeviceAddress gbuffer_pixels);
 
 #endif /* ROMA_PASSES_PIXEL_LIST_H */

@@ -132,7 +132,7 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
     return ROMA_SUCCESS;
 }
 
-roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
+roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_gbuffer_list *list,
                                         const roma_map_info *map, VkBufferView bom, VkBuffer gbuffer, VkBuffer accum,
                                         const void *push)
 {

@@ -55,7 +55,7 @@ roma_result roma_pixel_pass_record(roma_pixel_pass *pass, VkCommandBuffer cmd, u
 /* A tracing pass over the covered pixels of `list` (recorded before for this frame's
  * G-buffer, the buffer `gbuffer`): an indirect dispatch. map: the info of a built map;
  * bom: that map's BOM as a texel buffer (roma_map_info.bom_view); accum: the pass's accumulator. */
-roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_pixel_list *list,
+roma_result roma_pixel_pass_record_list(roma_pixel_pass *pass, VkCommandBuffer cmd, const roma_gbuffer_list *list,
                                         const roma_map_info *map, VkBufferView bom, VkBuffer gbuffer, VkBuffer accum,
                                         const void *push);
 

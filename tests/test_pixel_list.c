@@ -3,7 +3,8 @@
  * engine's G-buffer, AO, direct light and GI recorded over one shared list write, on every
  * covered pixel, the bits each effect writes over the list it makes itself, and leave every
  * other pixel as it was (a sentinel cleared in before); a later frame of the slot reuses the
- * list without recording it again (a still camera). Synchronization validation is on, so a
+ * list without recording it again (a still camera), also at a resolution divisor of 2 (which
+ * traces a list of its own and upsamples the rest). Synchronization validation is on, so a
  * missing barrier between the list and the effects fails. Misuse: a slot the list was not
  * recorded in, images of another size, a fifth record in one frame, bad arguments. */
 #include <math.h>
@@ -87,7 +88,7 @@ static void clear_outputs(frame_objects *f)
 /* AO, direct light and GI of frame n over the images (pixels: the shared list or NULL), the
  * outputs read back into planes 3.. of the staging buffer; submits and waits. */
 static void record_effects(frame_objects *f, const effects *e, const roma_map *map, const roma_scene_view *sv,
-                           const roma_pixel_list *pixels, uint32_t n)
+                           const roma_pixel_list *pixels, uint32_t n, uint32_t divisor)
 {
     roma_ao_images ai = {.width = W, .height = H, .position = f->in[0].view, .normal = f->in[1].view,
                          .geometric_normal = f->in[2].view, .output = f->out[OUT_AO].view, .pixels = pixels};
@@ -96,13 +97,16 @@ static void record_effects(frame_objects *f, const effects *e, const roma_map *m
     roma_light_images gi = li;
     gi.output = f->out[OUT_GI].view;
     CHECK_RESULT(roma_ao_effect_record(e->ao, f->cmd, 0, map, &ai,
-                                       &(roma_ao_settings){.samples = 4, .radius = 0.5f, .seed = 3, .frame = n}),
+                                       &(roma_ao_settings){.samples = 4, .radius = 0.5f, .seed = 3, .frame = n,
+                                                           .resolution_divisor = divisor}),
                  ROMA_SUCCESS);
     CHECK_RESULT(roma_light_effect_record(e->light, f->cmd, 0, map, &li, sv->lights, sv->light_count,
-                                          &(roma_light_settings){.area_samples = 2, .seed = 3, .frame = n}),
+                                          &(roma_light_settings){.area_samples = 2, .seed = 3, .frame = n,
+                                                                 .resolution_divisor = divisor}),
                  ROMA_SUCCESS);
     CHECK_RESULT(roma_gi_effect_record(e->gi, f->cmd, 0, map, &gi, sv->lights, sv->light_count,
-                                       &(roma_gi_settings){.samples = 2, .seed = 3, .frame = n}),
+                                       &(roma_gi_settings){.samples = 2, .seed = 3, .frame = n,
+                                                           .resolution_divisor = divisor}),
                  ROMA_SUCCESS);
     for (int i = 0; i < OUTPUTS; ++i) {
         roma_test_layout_barrier(f->cmd, f->out[i].image, VK_IMAGE_LAYOUT_GENERAL,
@@ -236,13 +240,18 @@ int main(void)
 
     static float ao_own[W * H], direct_own[4 * W * H], gi_own[4 * W * H];
     static float ao[W * H], direct[4 * W * H], gi[4 * W * H];
-    for (uint32_t n = 0; n < 2; ++n) {
-        /* Each effect's own list. */
+    /* Frame 2 at a resolution divisor: the effects trace their own list of one pixel a block
+     * and upsample the rest, leaving the uncovered pixels as they were. */
+    static const char *what[3] = {"frame 0 (list recorded)", "frame 1 (list reused)", "frame 2 (divisor 2)"};
+    for (uint32_t n = 0; n < 3; ++n) {
+        const uint32_t divisor = n == 2 ? 2 : 1;
+        /* Each effect's own list (the background written into the uncovered pixels: the
+         * comparison takes the covered ones). */
         begin(&f);
         clear_outputs(&f);
-        record_effects(&f, &own, map, &sv, NULL, n);
+        record_effects(&f, &own, map, &sv, NULL, n, divisor);
         keep_outputs(&f, ao_own, direct_own, gi_own);
-        /* One list for the three: recorded by frame 0, reused as it is by frame 1. */
+        /* One list for the three: recorded by frame 0, reused as it is by frames 1 and 2. */
         begin(&f);
         clear_outputs(&f);
         if (n == 0)
@@ -250,10 +259,9 @@ int main(void)
                                                 &(roma_pixel_list_images){.width = W, .height = H,
                                                                           .position = f.in[0].view, .frame = n}),
                          ROMA_SUCCESS);
-        record_effects(&f, &shared, map, &sv, list, n);
+        record_effects(&f, &shared, map, &sv, list, n, divisor);
         keep_outputs(&f, ao, direct, gi);
-        compare(n == 0 ? "frame 0 (list recorded)" : "frame 1 (list reused)", covered, ao, direct, gi, ao_own,
-                direct_own, gi_own);
+        compare(what[n], covered, ao, direct, gi, ao_own, direct_own, gi_own);
     }
 
     /* Misuse: nothing recorded, a clear message. */

@@ -573,11 +573,12 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     frame_job job = {
         .d = d, .view = &view, .out = out,
         .ao = {.samples = spp, .radius = radius, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,
-               .seed = d->seed},
+               .seed = d->seed, .resolution_divisor = d->resolution_divisor},
         .light = {.max_steps = d->max_steps, .offset_cells = d->offset_cells, .skip_cells = d->skip_cells,
-                  .area_samples = spp, .seed = d->seed},
+                  .area_samples = spp, .seed = d->seed, .resolution_divisor = d->resolution_divisor},
         .gi = {.samples = spp, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,
-               .shadow_skip_cells = d->skip_cells, .max_steps = d->max_steps, .seed = d->seed},
+               .shadow_skip_cells = d->skip_cells, .max_steps = d->max_steps, .seed = d->seed,
+               .resolution_divisor = d->resolution_divisor},
     };
     if (r == ROMA_SUCCESS)
         r = run_frames(&e, d, &job, out);

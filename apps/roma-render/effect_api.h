@@ -33,6 +33,7 @@ typedef struct effect_api_desc {
     /* The covered pixels listed once (roma_pixel_list) and given to every effect of every
      * frame: the G-buffer does not change between frames. */
     int shared_list;
+    uint32_t resolution_divisor; /* the three effects': 0 or 1 every pixel, 2 or 4 (roma_ao_settings) */
     /* Cascade levels of every array (at most what its A allows: K x A x A <= 256; 0 = 1),
      * centred on the camera's eye, the finest cube's edge finest_extent (0: the library's). */
     uint32_t cascades;

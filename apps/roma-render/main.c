@@ -71,6 +71,8 @@ static const char *usage =
     "                              or through the internal renderer, which also has the study's\n"
     "                              baselines, the lights effect and reflective shadow maps (taken by\n"
     "                              itself when those are asked for; the choice is printed)\n"
+    "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
+    "                              frame (a new one each frame) and upsample the rest (default 1)\n"
     "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
     "                              each effect makes, over every pixel (roma_pixel_dispatch), or over\n"
     "                              one list for every effect and frame (roma_pixel_list); auto: shared\n"
@@ -147,6 +149,7 @@ typedef struct options {
     int route;           /* --route: ROUTE_AUTO, ROUTE_API, ROUTE_INTERNAL */
     roma_pixel_dispatch pixel_dispatch; /* --pixel-dispatch (the api route's) */
     int shared_list;     /* --pixel-dispatch shared */
+    uint32_t resolution_divisor; /* --resolution-divisor: the public effects trace 1 pixel in d x d */
     int blind_start;     /* --ray-start blind */
     roma_ao_method ao_method; /* --ao-method */
     uint32_t ssao_layers;     /* --ssao-layers */
@@ -169,7 +172,7 @@ enum {
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
     GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18,
-    GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20
+    GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20, GIVEN_RESOLUTION_DIVISOR = 1u << 21
 };
 
 /* How ROMA's images are made (effect_api.h). */
@@ -177,7 +180,7 @@ enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--route", "--pixel-dispatch", "--ray-start", "--ao-method", "--skip",
+    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--route", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-method", "--skip",
     "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
@@ -442,7 +445,14 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(a, "--lights") == 0) ok = parse_u32(v, 1, 1u << 16, &o->lights);
         else if (strcmp(a, "--seed") == 0) ok = parse_u32(v, 0, UINT32_MAX, &o->seed);
         else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, 1, 1024, &o->threads), o->given |= GIVEN_THREADS;
-        else if (strcmp(a, "--res") == 0) {
+        else if (strcmp(a, "--resolution-divisor") == 0) {
+            ok = parse_u32(v, 1, 4, &o->resolution_divisor) && o->resolution_divisor != 3;
+            if (!ok) {
+                fprintf(stderr, "roma-render: bad value for --resolution-divisor: '%s' (valid: 1, 2, 4)\n", v);
+                return 0;
+            }
+            o->given |= GIVEN_RESOLUTION_DIVISOR;
+        } else if (strcmp(a, "--res") == 0) {
             ok = parse_u32(v, 32, 256, &o->res) && (o->res == 32 || o->res == 64 || o->res == 128 || o->res == 256);
             o->given |= GIVEN_RES;
             if (!ok) {
@@ -845,6 +855,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
                                                    : run->pixel_dispatch == ROMA_PIXEL_DISPATCH_LIST ? "list"
                                                                                                      : "every");
         roma_json_int(&j, "resolution", o->res);
+        roma_json_int(&j, "resolution_divisor", o->resolution_divisor ? o->resolution_divisor : 1);
         roma_json_int(&j, "angular", o->angular);
         roma_json_int(&j, "shadow_angular", o->shadow_angular);
         roma_json_int(&j, "max_steps", o->max_steps);
@@ -916,6 +927,11 @@ static int choose_route(options *o, notes *n)
                 why ? why : "--route internal was asked for");
         return -1;
     }
+    if (o->resolution_divisor > 1 && (why || o->route == ROUTE_INTERNAL)) {
+        fprintf(stderr, "roma-render: --resolution-divisor: the public effect passes only, and %s\n",
+                why ? why : "--route internal was asked for");
+        return -1;
+    }
     if (o->jitter_off && (why || o->route == ROUTE_INTERNAL)) {
         fprintf(stderr, "roma-render: --jitter off: the public effect passes only, and %s\n",
                 why ? why : "--route internal was asked for");
@@ -968,6 +984,7 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
         .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
         .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .shared_list = run->shared_list,
+        .resolution_divisor = o->resolution_divisor,
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off};
@@ -1168,7 +1185,8 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
         {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"},
-        {GIVEN_CASCADES, "--cascades"}, {GIVEN_FINEST_EXTENT, "--finest-extent"}};
+        {GIVEN_CASCADES, "--cascades"}, {GIVEN_FINEST_EXTENT, "--finest-extent"},
+        {GIVEN_RESOLUTION_DIVISOR, "--resolution-divisor"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
         if (!roma && (o->given & roma_only[i].bit))
             note(n, o->quiet, "%s is a ROMA setting: --tracer embree ignores it%s", roma_only[i].name,

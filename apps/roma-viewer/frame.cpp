@@ -157,6 +157,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         roma_ao_images images = gbuffer_images<roma_ao_images>(v, v.cp.ao.view);
         roma_ao_settings as{};
         as.samples = s.ao_samples;
+        as.resolution_divisor = s.resolution_divisor;
         as.radius = effective_ao_radius(v);
         as.offset_cells = s.offset;
         as.skip_cells = s.ao_skip;
@@ -173,6 +174,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         ls.offset_cells = s.offset;
         ls.skip_cells = s.shadow_skip;
         ls.area_samples = s.area_samples;
+        ls.resolution_divisor = s.resolution_divisor;
         ls.seed = 1;
         ls.frame = v.frame;
         if (v.lights_made != s.many_lights) { // the scene's lights, then the many lights
@@ -202,6 +204,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         roma_light_images images = gbuffer_images<roma_light_images>(v, v.cp.gi.view);
         roma_gi_settings gs{};
         gs.samples = s.gi_samples;
+        gs.resolution_divisor = s.resolution_divisor;
         gs.max_steps = s.max_steps;
         gs.offset_cells = s.offset;
         gs.skip_cells = s.ao_skip;

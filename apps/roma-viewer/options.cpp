@@ -30,6 +30,8 @@ const char *kUsage =
     "                       0: several for a scene much wider than the AO radius, else 1)\n"
     "  --finest-extent E    the finest level's edge (default: RES x the AO radius / 30)\n"
     "  --ao-samples N       AO rays per pixel and frame (default 4)\n"
+    "  --resolution-divisor 1|2|4  the effects trace one pixel of each 2x2 or 4x4 block a frame\n"
+    "                       and upsample the rest (default 1: every pixel)\n"
     "  --ao-radius R        AO ray length (default: 10% of the scene's diagonal)\n"
     "  --area-samples N     area-light samples per pixel and frame (default 4)\n"
     "  --many-lights N      N synthetic point lights added to the direct light (default 0)\n"
@@ -138,6 +140,8 @@ int parse_args(int argc, char **argv, options &o)
                  roma_preset_map_settings(p, &o.settings.res, &o.settings.angular) == ROMA_SUCCESS;
         } else if (a == "--ao-samples") {
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
+        } else if (a == "--resolution-divisor") {
+            ok = parse_u32(v, 1, 4, o.settings.resolution_divisor) && o.settings.resolution_divisor != 3;
         } else if (a == "--ao-skip" || a == "--offset") {
             ok = parse_float(v, 0.01f, 16.0f, a == "--offset" ? o.settings.offset : o.settings.ao_skip);
         } else if (a == "--map") {

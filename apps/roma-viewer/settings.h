@@ -21,6 +21,9 @@ struct viewer_settings {
     bool ao_on = true, direct_on = true, gi_on = true;
     uint32_t gi_samples = 1;         // bounce rays per pixel and frame
     uint32_t ao_samples = 4;
+    // The effects trace one pixel of each 2x2 or 4x4 block a frame (1: every pixel) and
+    // upsample the rest (roma_*_settings.resolution_divisor)
+    uint32_t resolution_divisor = 1;
     float ao_radius = 0.0f;          // 0: from the scene size (auto_ao_radius)
     float auto_ao_radius = 1.0f;
     uint32_t max_steps = 8;

@@ -35,6 +35,7 @@ bool write_stats(const viewer &v, int status)
     roma_json_int(&j, "resolution", mi.resolution);
     roma_json_int(&j, "angular", mi.angular);
     roma_json_int(&j, "levels", mi.levels);
+    roma_json_int(&j, "resolution_divisor", v.s.resolution_divisor);
     roma_json_number(&j, "sky", v.s.ambient);
     roma_json_begin_array(&j, "passes"); // of the last recorded frame
     for (const std::string &p : v.passes)

@@ -51,6 +51,11 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         out.reset_accumulation |= ImGui::Checkbox("direct light", &s.direct_on);
         ImGui::SameLine();
         out.reset_accumulation |= ImGui::Checkbox("GI", &s.gi_on);
+        int scale = s.resolution_divisor == 4 ? 2 : s.resolution_divisor == 2 ? 1 : 0;
+        if (ImGui::Combo("traced pixels", &scale, "every pixel\0one in 2x2\0one in 4x4\0")) {
+            s.resolution_divisor = 1u << scale;
+            out.reset_accumulation = true;
+        }
         int samples = static_cast<int>(s.ao_samples);
         if (ImGui::SliderInt("AO rays per pixel", &samples, 1, 64)) {
             s.ao_samples = static_cast<uint32_t>(samples);

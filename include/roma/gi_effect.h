@@ -80,6 +80,12 @@ typedef struct roma_gi_settings {
     uint32_t max_steps; /**< texels a shadow ray at a hit walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
     uint32_t seed;      /**< sample sequences, as roma_ao_settings */
     uint32_t frame;     /**< the engine's frame counter: new directions, and a new frame of the slot */
+    /** Trace one pixel of each 2 x 2 (2) or 4 x 4 (4) block, its place in the block new each
+     * frame (all places in 4 or 16 frames), and fill the other pixels from the traced ones
+     * around them on a matching surface (normals, plane): about 1/4 or 1/16 of the rays for
+     * blur across a block, which accumulation over frames averages out (the error it costs:
+     * docs/benchmark.md). 0 or 1 = every pixel traced; other values are refused. */
+    uint32_t resolution_divisor;
 } roma_gi_settings;
 
 /** The zero value's meaning filled in (the one place defaults are resolved).

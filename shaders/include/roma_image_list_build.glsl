@@ -28,7 +28,11 @@ void main()
         roma_image_list.header.dispatch.xyz = uvec3(x, x == 0u ? 0u : (groups + x - 1u) / x, 1u);
         return;
     }
-    uvec2 xy = gl_GlobalInvocationID.xy;
+    // config.w: a resolution divisor s (bits 0-7, 0 = 1) and the traced pixel's place in each
+    // s x s block (bits 8-15: x, 16-23: y): with s > 1 one invocation per block lists that
+    // pixel if it is covered, and the effect's upsample writes the rest.
+    uint scale = max(pc.config.w & 0xffu, 1u);
+    uvec2 xy = gl_GlobalInvocationID.xy * scale + uvec2((pc.config.w >> 8) & 0xffu, (pc.config.w >> 16) & 0xffu);
     if (xy.x >= width || xy.y >= height)
         return;
     bool covered = texelFetch(roma_list_position, ivec2(xy), 0).w > 0.0;
@@ -41,7 +45,7 @@ void main()
     if (covered)
         roma_image_list.pixels[base + before] = xy.y * width + xy.x;
 #ifdef ROMA_IMAGE_LIST_OUTPUT_FORMAT
-    else
+    else if (scale == 1u)
         imageStore(roma_list_output, ivec2(xy), pc.background);
 #endif
 }

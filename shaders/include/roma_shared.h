@@ -256,7 +256,10 @@ ROMA_STRUCT_END(roma_pixel_list_push)
  *      shaders/effects/image_list_*.comp): a roma_pixel_list_header, then the pixels ---- */
 
 ROMA_STRUCT_BEGIN(roma_image_list_push)
-    ROMA_UVEC4(config);   /* x: width, y: height, z: 0 list the pixels, 1 the dispatch's arguments */
+    /* x: width, y: height; z: 0 list the pixels, 1 the dispatch's arguments (the upsample: 1
+     * leave uncovered pixels); w: resolution divisor (bits 0-7) and the traced pixel's place in
+     * each block (8-15 x, 16-23 y) */
+    ROMA_UVEC4(config);
     ROMA_VEC4(background); /* written to the output where the position image holds no surface */
 ROMA_STRUCT_END(roma_image_list_push)
 

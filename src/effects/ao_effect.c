@@ -33,6 +33,11 @@ roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_setting
     if (s.offset_cells == 0.0f)
         s.offset_cells = ROMA_DEFAULT_OFFSET_CELLS;
     s.skip_cells = s.skip_cells < 0.0f ? 0.0f : s.skip_cells > 0.0f ? s.skip_cells : ROMA_DEFAULT_AO_SKIP_CELLS;
+    if (!roma_image_effect_divisor_valid(s.resolution_divisor))
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "%s: resolution_divisor %u is not 1, 2 or 4", "roma_ao_settings",
+                         s.resolution_divisor);
+    if (s.resolution_divisor == 0)
+        s.resolution_divisor = 1;
     *out = s;
     return ROMA_SUCCESS;
 }
@@ -92,7 +97,8 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
     if (r != ROMA_SUCCESS)
         return roma_fail(&e->base.logger, r, "roma_ao_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, s.frame, map, im->pixels, im->width, im->height, &info);
+    r = roma_image_effect_begin(&e->base, slot, s.frame, map, im->pixels, im->width, im->height,
+                                s.resolution_divisor, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_ao_push push = {.bom = info.bom_address,
@@ -116,5 +122,7 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
         else
             roma_image_effect_dispatch_more(&e->base, cmd, &push);
     }
+    if (r == ROMA_SUCCESS)
+        roma_image_effect_finish(&e->base, cmd, im->width, im->height);
     return r;
 }

@@ -60,6 +60,11 @@ roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_setting
     s.shadow_skip_cells = s.shadow_skip_cells < 0.0f   ? 0.0f
                           : s.shadow_skip_cells > 0.0f ? s.shadow_skip_cells
                                                        : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
+    if (!roma_image_effect_divisor_valid(s.resolution_divisor))
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "%s: resolution_divisor %u is not 1, 2 or 4", "roma_gi_settings",
+                         s.resolution_divisor);
+    if (s.resolution_divisor == 0)
+        s.resolution_divisor = 1;
     *out = s;
     return ROMA_SUCCESS;
 }
@@ -188,7 +193,7 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
         return roma_fail(log, r, "roma_gi_effect_record: invalid settings");
     roma_map_info info;
     /* The lights and the scene record live in buffers per slot (one record per slot and frame). */
-    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, im, &info);
+    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, im, s.resolution_divisor, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_context *ctx = e->base.ctx;
@@ -248,6 +253,8 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
                                    im->height);
     for (uint32_t part = 1; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, push.part); ++part)
         roma_image_effect_dispatch_more(&e->base, cmd, &push);
+    if (r == ROMA_SUCCESS)
+        roma_image_effect_finish(&e->base, cmd, im->width, im->height);
     if (r == ROMA_SUCCESS) {
         roma_upload_done(&e->lights[slot]);
         roma_upload_done(&e->scene[slot]);

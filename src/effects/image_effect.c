@@ -36,6 +36,9 @@ roma_result roma_image_effect_init(roma_image_effect *e, roma_context *ctx, cons
     e->inputs = inputs;
     e->outputs = outputs;
     e->push_size = push_size;
+    e->list_module = list_module;
+    /* The upsample writes the list pass's output format. */
+    e->upsample_module = strstr(list_module, "rgba32f") ? "image_upsample_rgba32f.comp" : "image_upsample_r32f.comp";
     e->listed = dispatch == ROMA_PIXEL_DISPATCH_LIST ||
                 (dispatch == ROMA_PIXEL_DISPATCH_AUTO && ctx->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     for (int i = 0; i < 4; ++i)
@@ -91,6 +94,8 @@ void roma_image_effect_free(roma_image_effect *e)
     }
     if (e->list_pipeline)
         vkDestroyPipeline(dev, e->list_pipeline, a);
+    if (e->upsample_pipeline)
+        vkDestroyPipeline(dev, e->upsample_pipeline, a);
     for (int listed = 0; listed < 2; ++listed)
         for (int cascaded = 0; cascaded < 2; ++cascaded)
             if (e->pipelines[listed][cascaded])
@@ -106,9 +111,26 @@ void roma_image_effect_free(roma_image_effect *e)
     memset(e, 0, sizeof *e);
 }
 
+int roma_image_effect_divisor_valid(uint32_t resolution_divisor)
+{
+    return resolution_divisor <= 2 || resolution_divisor == 4;
+}
+
+/* The traced pixel's place in an s x s block in frame n: every place once in s * s frames,
+ * in the order of a Bayer matrix, so that consecutive frames trace far-apart places. */
+static void block_place(uint32_t scale, uint32_t frame, uint32_t place[2])
+{
+    static const uint8_t order2[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+    static const uint8_t order4[16][2] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}, {1, 1}, {3, 3}, {3, 1}, {1, 3},
+                                          {1, 0}, {3, 2}, {3, 0}, {1, 2}, {0, 1}, {2, 3}, {2, 1}, {0, 3}};
+    const uint8_t *p = scale == 4 ? order4[frame % 16] : scale == 2 ? order2[frame % 4] : (const uint8_t[2]){0, 0};
+    place[0] = p[0];
+    place[1] = p[1];
+}
+
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
                                     const roma_pixel_list *pixels, uint32_t width, uint32_t height,
-                                    roma_map_info *info)
+                                    uint32_t resolution_divisor, roma_map_info *info)
 {
     if (slot >= e->sets.frames_in_flight)
         return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: slot %u of %u", e->name, slot,
@@ -124,17 +146,32 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
         if (r != ROMA_SUCCESS)
             return r;
     }
-    /* A map of several cascade levels needs the cascade code, a shared list the listed
-     * variant (made once, before anything of the record is recorded). */
-    const int listed = shared ? 1 : e->listed, cascaded = info->levels > 1;
+    /* A map of several cascade levels needs the cascade code, a shared list or a resolution
+     * divisor the listed variant (the divisor's list: the traced pixels), a divisor the list
+     * and upsample passes (made once, before anything of the record is recorded). */
+    const uint32_t scale = resolution_divisor > 1 ? resolution_divisor : 1;
+    const int listed = shared || scale > 1 ? 1 : e->listed, cascaded = info->levels > 1;
     if (!e->pipelines[listed][cascaded]) {
         r = roma_compute_pipeline_make_flags(e->ctx, e->module, e->layout, &(uint32_t){(uint32_t)listed}, 1,
                                              cascaded ? ROMA_PIPELINE_CASCADES : 0, &e->pipelines[listed][cascaded]);
         if (r != ROMA_SUCCESS)
             return r;
     }
+    if (scale > 1 && !e->list_pipeline) {
+        r = roma_compute_pipeline_make(e->ctx, e->list_module, e->layout, NULL, 0, &e->list_pipeline);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
+    if (scale > 1 && !e->upsample_pipeline) {
+        r = roma_compute_pipeline_make(e->ctx, e->upsample_module, e->layout, NULL, 0, &e->upsample_pipeline);
+        if (r != ROMA_SUCCESS)
+            return r;
+    }
     e->traced = e->pipelines[listed][cascaded];
-    e->shared_list = shared;
+    e->given_list = shared != VK_NULL_HANDLE;
+    e->shared_list = scale > 1 ? VK_NULL_HANDLE : shared; /* scaled: the traced pixels' own list */
+    e->scale = scale;
+    block_place(scale, frame, e->place);
     e->frame = frame;
     return ROMA_SUCCESS;
 }
@@ -170,7 +207,8 @@ static roma_result list_reserve(roma_image_effect *e, uint32_t slot, int same_fr
         e->retired_count[slot] = 0;
     }
     /* Not listed: the shader's binding still needs a buffer, never read. */
-    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * (e->listed ? (uint64_t)width * height : 1u);
+    const int own = e->listed || e->scale > 1;
+    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * (own ? (uint64_t)width * height : 1u);
     if (e->lists[slot].buffer && e->lists[slot].size >= size)
         return ROMA_SUCCESS;
     if (e->retired_count[slot] == ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT)
@@ -204,11 +242,13 @@ static void record_listed_dispatch(roma_image_effect *e, VkCommandBuffer cmd, co
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    roma_image_list_push lp = {.config = {width, height, 0, 0}};
+    /* Scaled: one invocation per block lists its traced pixel (the upsample writes the rest). */
+    const uint32_t s = e->scale, blocks_x = (width + s - 1) / s, blocks_y = (height + s - 1) / s;
+    roma_image_list_push lp = {.config = {width, height, 0, s | e->place[0] << 8 | e->place[1] << 16}};
     memcpy(lp.background, e->background, sizeof lp.background);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->list_pipeline);
     vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof lp, &lp);
-    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    vkCmdDispatch(cmd, (blocks_x + 7) / 8, (blocks_y + 7) / 8, 1);
     /* The list for its arguments; the background before the effect writes the same image. */
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -259,7 +299,8 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     vkUpdateDescriptorSets(e->ctx->device, 2, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);
-    e->last_list = e->shared_list ? e->shared_list : e->listed ? list->buffer : VK_NULL_HANDLE;
+    const int own = e->listed || e->scale > 1;
+    e->last_list = e->shared_list ? e->shared_list : own ? list->buffer : VK_NULL_HANDLE;
     e->last_groups[0] = (width + 7) / 8;
     e->last_groups[1] = (height + 7) / 8;
     if (e->shared_list) { /* listed once for the frame: roma_pixel_list_record's barrier made it visible */
@@ -268,7 +309,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
         vkCmdDispatchIndirect(cmd, e->shared_list, 0);
         return ROMA_SUCCESS;
     }
-    if (e->listed) {
+    if (own) {
         record_listed_dispatch(e, cmd, list, push, width, height);
         return ROMA_SUCCESS;
     }
@@ -289,4 +330,20 @@ void roma_image_effect_dispatch_more(roma_image_effect *e, VkCommandBuffer cmd, 
         vkCmdDispatchIndirect(cmd, e->last_list, 0);
     else
         vkCmdDispatch(cmd, e->last_groups[0], e->last_groups[1], 1);
+}
+
+void roma_image_effect_finish(roma_image_effect *e, VkCommandBuffer cmd, uint32_t width, uint32_t height)
+{
+    if (e->scale <= 1)
+        return;
+    /* The traced pixels' values, read here beside the pixels this pass writes. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_image_list_push up = {
+        .config = {width, height, e->given_list ? 1u : 0u, e->scale | e->place[0] << 8 | e->place[1] << 16}};
+    memcpy(up.background, e->background, sizeof up.background);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->upsample_pipeline);
+    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof up, &up);
+    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
 }

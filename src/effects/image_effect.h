@@ -26,13 +26,19 @@ typedef struct roma_image_effect {
     VkDescriptorSetLayout trace_layout, images_layout;
     VkPipelineLayout layout;
     int listed;                    /* the resolved roma_pixel_dispatch */
-    VkPipeline list_pipeline;      /* the effect's own list pass, only when listed */
+    VkPipeline list_pipeline;      /* the effect's own list pass: made when listed or first traced scaled */
+    VkPipeline upsample_pipeline;  /* made by the first record traced at a resolution divisor */
+    const char *list_module, *upsample_module;
     /* The effect over a list ([1]) or every pixel ([0]), with the cascade code compiled in
      * ([.][1], ROMA_PIPELINE_CASCADES) or not: the one its pixel_dispatch takes for one grid
      * made at creation, the others by the first record that needs them (a map of several
      * levels, the frame's shared list); traced: the one this record takes. */
     VkPipeline pipelines[2][2], traced;
     VkBuffer shared_list; /* this record's: the frame's roma_pixel_list, or none (its own or every pixel) */
+    /* This record's resolution divisor (1, 2, 4) and the traced pixel's place in each block;
+     * given_list: the record was given the frame's list (its upsample leaves uncovered pixels). */
+    uint32_t scale, place[2];
+    int given_list;
     const char *module;
     float background[4]; /* the output where the position image holds no surface */
     roma_slot_sets sets; /* set 1 of each record */
@@ -70,11 +76,16 @@ int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot);
 roma_result roma_image_effect_check_size(const roma_image_effect *e, const char *name, uint32_t width,
                                          uint32_t height);
 
-/* Checks slot, map and the frame's shared list (pixels, optional: recorded in the slot for
- * width x height); the map's info is returned for the push. */
+/* Checks slot, map, the frame's shared list (pixels, optional: recorded in the slot for
+ * width x height) and the resolution divisor (0 or 1: every pixel traced; 2 or 4: one pixel
+ * of each 2 x 2 or 4 x 4 block, its place in the block new each frame, the rest upsampled by
+ * roma_image_effect_finish); the map's info is returned for the push. */
 roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_t frame, const roma_map *map,
                                     const roma_pixel_list *pixels, uint32_t width, uint32_t height,
-                                    roma_map_info *info);
+                                    uint32_t resolution_divisor, roma_map_info *info);
+
+/* Whether a settings' resolution_divisor is one the effects take (0, 1, 2, 4). */
+int roma_image_effect_divisor_valid(uint32_t resolution_divisor);
 /* Allocates and writes set 1 (views: inputs then the output), then records, with push, the
  * effect's dispatch over ceil(width / 8) x ceil(height / 8) workgroups or, listed, the
  * covered-pixel list of the position image (a list pass over those workgroups, which writes
@@ -90,5 +101,9 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
  * push (the next part of work a device's loop budget splits, src/vulkan/loop_budget.h),
  * after a barrier so that it reads what the dispatch before it wrote to the output. */
 void roma_image_effect_dispatch_more(roma_image_effect *e, VkCommandBuffer cmd, const void *push);
+
+/* After the last dispatch of a record traced at a resolution divisor: the upsample of the
+ * traced pixels into the others (after a barrier), with the same bindings; else nothing. */
+void roma_image_effect_finish(roma_image_effect *e, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 
 #endif /* ROMA_EFFECTS_IMAGE_EFFECT_H */

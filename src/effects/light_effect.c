@@ -42,6 +42,11 @@ roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_ligh
     if (s.offset_cells == 0.0f)
         s.offset_cells = ROMA_DEFAULT_OFFSET_CELLS;
     s.skip_cells = s.skip_cells < 0.0f ? 0.0f : s.skip_cells > 0.0f ? s.skip_cells : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
+    if (!roma_image_effect_divisor_valid(s.resolution_divisor))
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "%s: resolution_divisor %u is not 1, 2 or 4", "roma_light_settings",
+                         s.resolution_divisor);
+    if (s.resolution_divisor == 0)
+        s.resolution_divisor = 1;
     *out = s;
     return ROMA_SUCCESS;
 }
@@ -162,7 +167,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     if (r != ROMA_SUCCESS)
         return roma_fail(log, r, "roma_light_effect_record: invalid settings");
     roma_map_info info;
-    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, im, &info);
+    r = roma_lit_record_begin(&e->base, name, slot, s.frame, map, im, s.resolution_divisor, &info);
     if (r != ROMA_SUCCESS)
         return r;
     roma_upload *buf = &e->lights[slot];
@@ -203,6 +208,8 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
                                    im->height);
     for (uint32_t part = 1; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, push.part); ++part)
         roma_image_effect_dispatch_more(&e->base, cmd, &push);
+    if (r == ROMA_SUCCESS)
+        roma_image_effect_finish(&e->base, cmd, im->width, im->height);
     if (r == ROMA_SUCCESS) {
         roma_upload_done(buf);
         roma_upload_done(&e->emitters);

@@ -30,9 +30,11 @@ roma_result roma_lit_record_check(const roma_image_effect *e, const char *name, 
 }
 
 roma_result roma_lit_record_begin(roma_image_effect *e, const char *name, uint32_t slot, uint32_t frame,
-                                  const roma_map *map, const roma_light_images *im, roma_map_info *info)
+                                  const roma_map *map, const roma_light_images *im, uint32_t resolution_divisor,
+                                  roma_map_info *info)
 {
-    roma_result r = roma_image_effect_begin(e, slot, frame, map, im->pixels, im->width, im->height, info);
+    roma_result r = roma_image_effect_begin(e, slot, frame, map, im->pixels, im->width, im->height,
+                                            resolution_divisor, info);
     if (r != ROMA_SUCCESS)
         return r;
     /* The lights live in one buffer per slot: a second record in the slot's frame would

@@ -20,7 +20,8 @@ roma_result roma_lit_record_check(const roma_image_effect *e, const char *name, 
 
 /* roma_image_effect_begin, refusing a second record in the slot's frame. */
 roma_result roma_lit_record_begin(roma_image_effect *e, const char *name, uint32_t slot, uint32_t frame,
-                                  const roma_map *map, const roma_light_images *im, roma_map_info *info);
+                                  const roma_map *map, const roma_light_images *im, uint32_t resolution_divisor,
+                                  roma_map_info *info);
 
 /* Makes buf, a slot's storage buffer the shaders reach by address and the host writes
  * (vulkan/upload.h: record its copy before the dispatch), hold at least `bytes`: grown (made

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "harness.h"
-#include "passes/scene_buffers.h"
+#include "effects/scene_buffers.h"
 #include "passes/ao.h"
 #include "passes/gbuffer.h"
 #include "passes/pixel_list.h"

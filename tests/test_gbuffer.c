@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "harness.h"
-#include "passes/scene_buffers.h"
+#include "effects/scene_buffers.h"
 #include "passes/gbuffer.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"

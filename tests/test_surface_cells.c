@@ -1,4 +1,4 @@
-/* The GI pass's surface grid (src/passes/surface_cells.h) against the exact CPU
+/* The GI pass's surface grid (src/effects/surface_cells.h) against the exact CPU
  * voxelizer (tests/support/voxelize_cpu.c) on the same grid: every cell a triangle
  * overlaps holds a triangle, the triangle it holds overlaps it, and (cornell) no triangle
  * of a lower index does; the large triangles went through the tile queue.
@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "harness.h"
-#include "passes/surface_cells.h"
+#include "effects/surface_cells.h"
 #include "roma/builtin_scenes.h"
 #include "roma/context.h"
 #include "roma/scene.h"

@@ -13,7 +13,7 @@
 #include "passes/effect_render.h"
 #include "passes/gbuffer.h"
 #include "passes/pixel_list.h"
-#include "passes/scene_buffers.h"
+#include "effects/scene_buffers.h"
 #include "reference.h"
 #include "map/map_internal.h"
 #include "roma/map.h"

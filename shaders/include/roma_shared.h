@@ -436,8 +436,8 @@ ROMA_STRUCT_BEGIN(roma_rsm_view)
     ROMA_UVEC4(info);     /* x: light index (roma_gpu_light), y: size in pixels (square), zw: pixel address */
 ROMA_STRUCT_END(roma_rsm_view)
 
-/* The surfaces a bounce ray can hit (src/passes/surface_cells.c,
- * shaders/passes/surface_cells.comp and surface_cells_tiles.comp): a grid over the
+/* The surfaces a bounce ray can hit (src/effects/surface_cells.c,
+ * shaders/effects/surface_cells.comp and surface_cells_tiles.comp): a grid over the
  * scene whose cells hold the lowest index of a triangle overlapping them
  * (ROMA_GBUFFER_NO_TRIANGLE when none), so that the GI pass finds the albedo and
  * normal of the surface a ROMA hit lies on. Written when the geometry moves (RES^3

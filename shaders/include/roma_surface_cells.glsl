@@ -1,6 +1,6 @@
-// The GI pass's surface grid (src/passes/surface_cells.h), shared by
-// passes/surface_cells.comp (one invocation per triangle) and
-// passes/surface_cells_tiles.comp (one per queued tile of a large triangle): a
+// The GI pass's surface grid (src/effects/surface_cells.h), shared by
+// effects/surface_cells.comp (one invocation per triangle) and
+// effects/surface_cells_tiles.comp (one per queued tile of a large triangle): a
 // triangle's index is written with atomicMin into every cell it overlaps (the exact
 // voxelizer's test), so that a cell shared by several triangles holds the lowest index
 // whatever the order the invocations ran in. The voxelizer's BOM binding holds the

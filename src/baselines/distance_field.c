@@ -1,4 +1,5 @@
 #include "baselines/distance_field.h"
+#include "passes/study_shaders.h"
 
 #include <string.h>
 
@@ -10,6 +11,7 @@ static const VkDescriptorType df_types[4] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 
 roma_result roma_distance_field_create(roma_context *ctx, VkBuffer bom, uint32_t resolution,
                                        roma_distance_field *out)
 {
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);

@@ -1,4 +1,5 @@
 #include "baselines/naadf.h"
+#include "passes/study_shaders.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -29,6 +30,7 @@ static uint64_t total_words(uint32_t resolution)
 
 roma_result roma_naadf_create(roma_context *ctx, VkBuffer bom, uint32_t resolution, roma_naadf *out)
 {
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);

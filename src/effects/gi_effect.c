@@ -1,7 +1,7 @@
 /* roma_gi_effect: one-bounce GI on the engine's G-buffer images (shaders/effects/
  * gi_images.comp). The scene given between frames brings the surfaces' materials, normals
  * and area lights; the triangles themselves are the map's, where its last build put them:
- * the surface grid the bounce hits look up (passes/surface_cells.h) is rebuilt from the
+ * the surface grid the bounce hits look up (effects/surface_cells.h) is rebuilt from the
  * map's positions whenever they or its box have changed, so animation and instances are
  * followed. The punctual lights and the roma_gi_scene record that points at all of it
  * live in host-visible buffers per frame slot. */
@@ -14,9 +14,9 @@
 #include "effects/image_effect.h"
 #include "effects/lit_record.h"
 #include "map/map_internal.h"
-#include "passes/light_data.h"
-#include "passes/scene_buffers.h"
-#include "passes/surface_cells.h"
+#include "effects/light_data.h"
+#include "effects/scene_buffers.h"
+#include "effects/surface_cells.h"
 #include "roma/ao_effect.h"
 #include "roma_shared.h"
 #include "trace/loop_costs.h"

@@ -10,7 +10,7 @@
 
 #include "effects/image_effect.h"
 #include "effects/lit_record.h"
-#include "passes/light_data.h"
+#include "effects/light_data.h"
 #include "roma_shared.h"
 #include "scene/emitters.h"
 #include "trace/loop_costs.h"

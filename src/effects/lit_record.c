@@ -1,7 +1,7 @@
 /* The start of a record of the light-reading effects (lit_record.h). */
 #include "effects/lit_record.h"
 
-#include "passes/light_data.h"
+#include "effects/light_data.h"
 #include "roma_shared.h"
 #include "util/log.h"
 

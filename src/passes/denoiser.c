@@ -1,4 +1,5 @@
 #include "passes/denoiser.h"
+#include "passes/study_shaders.h"
 
 #include <string.h>
 
@@ -7,6 +8,7 @@
 roma_result roma_denoiser_create(roma_context *ctx, uint32_t width, uint32_t height, uint32_t effect_mask,
                                  roma_denoiser *out)
 {
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
     memset(out, 0, sizeof *out);
     out->ctx = ctx;
     out->width = width;

@@ -1,4 +1,5 @@
 #include "passes/gbuffer.h"
+#include "passes/study_shaders.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -130,6 +131,7 @@ static roma_result create_depth(roma_gbuffer *g)
 static roma_result create_gbuffer(roma_context *ctx, uint32_t width, uint32_t height, int stochastic,
                                   const roma_gbuffer *source, roma_gbuffer **out)
 {
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
     *out = NULL;

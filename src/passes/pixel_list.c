@@ -1,4 +1,5 @@
 #include "passes/pixel_list.h"
+#include "passes/study_shaders.h"
 
 #include <string.h>
 
@@ -7,6 +8,7 @@
 
 roma_result roma_gbuffer_list_create(roma_context *ctx, uint32_t width, uint32_t height, roma_gbuffer_list *out)
 {
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
     memset(out, 0, sizeof *out);
     if (!ctx || width == 0 || height == 0)
         return ROMA_ERROR_INVALID_ARGUMENT;

@@ -1,4 +1,5 @@
 #include "passes/pixel_pass.h"
+#include "passes/study_shaders.h"
 
 #include <string.h>
 
@@ -51,6 +52,7 @@ roma_result roma_pixel_pass_create(roma_context *ctx, const char *module, uint32
 roma_result roma_pixel_pass_create_spec(roma_context *ctx, const char *module, uint32_t push_size, int traces,
                                         const uint32_t *constants, uint32_t constant_count, roma_pixel_pass *out)
 {
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
     memset(out, 0, sizeof *out);
     const uint32_t bindings = traces ? ROMA_PIXEL_BINDINGS : 0;
     roma_result r = roma_compute_pipeline_create_spec(ctx, module, pixel_types, bindings, push_size, constants,

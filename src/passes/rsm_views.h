@@ -18,7 +18,7 @@ typedef struct roma_rsm_views {
     uint32_t count;
 } roma_rsm_views;
 
-/* lights: as uploaded (passes/light_data.h); views refer to them by index.
+/* lights: as uploaded (effects/light_data.h); views refer to them by index.
  * ROMA_ERROR_UNSUPPORTED past ROMA_MAX_RSM_VIEWS views. */
 roma_result roma_rsm_views_plan(const roma_gpu_light *lights, uint32_t light_count, uint32_t size, float near_plane,
                                 const roma_logger *logger, roma_rsm_views *out);

@@ -8,7 +8,7 @@
 roma_result roma_shader_module_create(roma_context *ctx, const char *name, VkShaderModule *out)
 {
     *out = VK_NULL_HANDLE;
-    const roma_spirv_module *m = roma_find_spirv(name);
+    const roma_spirv_module *m = roma_find_spirv(ctx, name);
     if (!m)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "no embedded shader named %s", name);
     VkShaderModuleCreateInfo info = {

@@ -12,7 +12,8 @@
 
 #ifdef ROMA_LOOP_GUARD
 
-/* One slot per embedded module (index in roma_spirv_modules). */
+/* One slot per embedded module: its index in roma_spirv_modules, then in the context's study
+ * table after them. */
 #define GUARD_SLOTS 64u
 
 struct roma_loop_guard {
@@ -20,10 +21,24 @@ struct roma_loop_guard {
     atomic_uint reported[GUARD_SLOTS]; /* 1 once a slot's overrun was reported */
 };
 
-static uint32_t module_slot(const char *module)
+/* The i-th module of both tables, or NULL past them. */
+static const roma_spirv_module *module_at(const roma_context *ctx, uint32_t i)
 {
-    uint32_t i = 0;
-    for (const roma_spirv_module *m = roma_spirv_modules; m->name; ++m, ++i)
+    uint32_t core = 0;
+    while (roma_spirv_modules[core].name)
+        ++core;
+    if (i < core)
+        return &roma_spirv_modules[i];
+    for (const roma_spirv_module *m = ctx->study_modules; m && m->name; ++m)
+        if (++core > i)
+            return m;
+    return NULL;
+}
+
+static uint32_t module_slot(const roma_context *ctx, const char *module)
+{
+    const roma_spirv_module *m;
+    for (uint32_t i = 0; i < GUARD_SLOTS && (m = module_at(ctx, i)) != NULL; ++i)
         if (strcmp(m->name, module) == 0)
             return i;
     return UINT32_MAX;
@@ -64,8 +79,8 @@ static void append_report(const roma_context *ctx)
     if (!f)
         return;
     const volatile uint32_t *peaks = ctx->loop_guard->peaks.mapped;
-    uint32_t i = 0;
-    for (const roma_spirv_module *m = roma_spirv_modules; m->name; ++m, ++i)
+    const roma_spirv_module *m;
+    for (uint32_t i = 0; i < GUARD_SLOTS && (m = module_at(ctx, i)) != NULL; ++i)
         if (peaks[i])
             fprintf(f, "%s %u\n", m->name, peaks[i]);
     fclose(f);
@@ -85,7 +100,7 @@ void roma_loop_guard_destroy(roma_context *ctx)
 uint32_t roma_loop_guard_specialize(const roma_context *ctx, const char *module, VkSpecializationMapEntry *entries,
                                     uint32_t *values, uint32_t at)
 {
-    const uint32_t slot = module ? module_slot(module) : UINT32_MAX;
+    const uint32_t slot = module ? module_slot(ctx, module) : UINT32_MAX;
     if (!ctx->loop_guard || slot == UINT32_MAX)
         return 0;
     const VkDeviceAddress a = ctx->loop_guard->peaks.address;
@@ -105,8 +120,8 @@ void roma_loop_guard_check(const roma_context *ctx)
         return;
     roma_buffer_invalidate((roma_context *)ctx, &g->peaks);
     const volatile uint32_t *peaks = g->peaks.mapped;
-    uint32_t i = 0;
-    for (const roma_spirv_module *m = roma_spirv_modules; m->name; ++m, ++i) {
+    const roma_spirv_module *m;
+    for (uint32_t i = 0; i < GUARD_SLOTS && (m = module_at(ctx, i)) != NULL; ++i) {
         if (peaks[i] <= ROMA_LOOP_GUARD_LIMIT || atomic_exchange(&g->reported[i], 1u))
             continue;
         atomic_fetch_add(&((roma_context *)ctx)->validation_errors, 1u);
@@ -119,7 +134,7 @@ void roma_loop_guard_check(const roma_context *ctx)
 
 uint32_t roma_loop_guard_peak(const roma_context *ctx, const char *module)
 {
-    const uint32_t slot = module ? module_slot(module) : UINT32_MAX;
+    const uint32_t slot = module ? module_slot(ctx, module) : UINT32_MAX;
     if (!ctx || !ctx->loop_guard || slot == UINT32_MAX)
         return 0;
     roma_buffer_invalidate((roma_context *)ctx, &ctx->loop_guard->peaks);

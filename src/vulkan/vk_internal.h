@@ -43,6 +43,9 @@ struct roma_context {
      * where the device has no budget. */
     uint32_t loop_plan;
     struct roma_loop_guard *loop_guard; /* ROMA_LOOP_GUARD builds (loop_guard.h) */
+    /* The tools' internal renderer and study shaders (src/passes/study_shaders.h), set by their
+     * objects' creation; NULL in an engine's context: the installed library has none of them. */
+    const struct roma_spirv_module *study_modules;
     /* Host data reaches the shaders through staging copies even where device memory is
      * host-visible, as on a discrete GPU (ROMA_FORCE_STAGING=1: tests those paths anywhere). */
     int force_staging;
@@ -229,7 +232,8 @@ typedef struct roma_graphics_pipeline_desc {
 roma_result roma_graphics_pipeline_create(roma_context *ctx, const roma_graphics_pipeline_desc *desc,
                                           VkPipeline *out);
 
-/* Looks an embedded module up by name ("fill_u32.comp"); NULL if absent. */
-const struct roma_spirv_module *roma_find_spirv(const char *name);
+/* Looks an embedded module up by name ("fill_u32.comp"): libroma's, then the tools' second
+ * table where the context was given it (study_modules); NULL if absent. */
+const struct roma_spirv_module *roma_find_spirv(const roma_context *ctx, const char *name);
 
 #endif /* ROMA_VULKAN_VK_INTERNAL_H */

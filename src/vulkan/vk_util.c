@@ -241,9 +241,12 @@ roma_result roma_submit_one_shot(roma_context *ctx, VkCommandBuffer cmd)
     return r;
 }
 
-const roma_spirv_module *roma_find_spirv(const char *name)
+const roma_spirv_module *roma_find_spirv(const roma_context *ctx, const char *name)
 {
     for (const roma_spirv_module *m = roma_spirv_modules; m->name; ++m)
+        if (strcmp(m->name, name) == 0)
+            return m;
+    for (const roma_spirv_module *m = ctx->study_modules; m && m->name; ++m)
         if (strcmp(m->name, name) == 0)
             return m;
     return NULL;

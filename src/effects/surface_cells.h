@@ -3,8 +3,8 @@
  * cell, not a triangle) finds the albedo and normal of the surface it reached.
  * The grid is not the BOM's: it does not jitter, and it is built with the exact
  * voxelizer's overlap test whenever the geometry it covers has moved. */
-#ifndef ROMA_PASSES_SURFACE_CELLS_H
-#define ROMA_PASSES_SURFACE_CELLS_H
+#ifndef ROMA_EFFECTS_SURFACE_CELLS_H
+#define ROMA_EFFECTS_SURFACE_CELLS_H
 
 #include "roma/map.h" /* ROMA_MAX_FRAMES_IN_FLIGHT */
 #include "voxelize/tile_queue.h"
@@ -48,4 +48,4 @@ roma_result roma_surface_cells_place(roma_surface_cells *cells, const float boun
 roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd, uint32_t slot,
                                       const roma_surface_geometry *geometry);
 
-#endif /* ROMA_PASSES_SURFACE_CELLS_H */
+#endif /* ROMA_EFFECTS_SURFACE_CELLS_H */

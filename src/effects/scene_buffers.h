@@ -2,8 +2,8 @@
  * buffer address: float4 positions and normals per vertex, uint3 indices and
  * float4 albedo per triangle, in device-local memory, written once (vulkan/upload.h: on a
  * device whose device memory the host cannot map, by one submission that creation waits for). */
-#ifndef ROMA_PASSES_SCENE_BUFFERS_H
-#define ROMA_PASSES_SCENE_BUFFERS_H
+#ifndef ROMA_EFFECTS_SCENE_BUFFERS_H
+#define ROMA_EFFECTS_SCENE_BUFFERS_H
 
 #include "roma/scene.h"
 #include "vulkan/vk_internal.h"
@@ -17,4 +17,4 @@ typedef struct roma_scene_buffers {
 roma_result roma_scene_buffers_create(roma_context *ctx, const roma_scene *scene, roma_scene_buffers *out);
 void roma_scene_buffers_destroy(roma_context *ctx, roma_scene_buffers *buffers);
 
-#endif /* ROMA_PASSES_SCENE_BUFFERS_H */
+#endif /* ROMA_EFFECTS_SCENE_BUFFERS_H */

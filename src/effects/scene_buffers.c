@@ -1,4 +1,4 @@
-#include "passes/scene_buffers.h"
+#include "effects/scene_buffers.h"
 
 #include <stdlib.h>
 #include <string.h>

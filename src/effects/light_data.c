@@ -1,4 +1,4 @@
-#include "passes/light_data.h"
+#include "effects/light_data.h"
 
 #include <math.h>
 #include <stdlib.h>

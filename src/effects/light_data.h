@@ -2,8 +2,8 @@
  * lights (roma_gpu_light), area-light triangles with their sampling CDF
  * (roma_gpu_emitter, scene/emitters.h) and the positions of the many-lights
  * effect. Lights that cast nothing (zero intensity or colour) are left out. */
-#ifndef ROMA_PASSES_LIGHT_DATA_H
-#define ROMA_PASSES_LIGHT_DATA_H
+#ifndef ROMA_EFFECTS_LIGHT_DATA_H
+#define ROMA_EFFECTS_LIGHT_DATA_H
 
 #include "roma/scene.h"
 #include "roma_shared.h"
@@ -30,4 +30,4 @@ void roma_light_data_destroy(roma_context *ctx, roma_light_data *data);
 /* Bytes of GPU memory held. */
 uint64_t roma_light_data_bytes(const roma_light_data *data);
 
-#endif /* ROMA_PASSES_LIGHT_DATA_H */
+#endif /* ROMA_EFFECTS_LIGHT_DATA_H */

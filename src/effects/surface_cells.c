@@ -1,4 +1,4 @@
-#include "passes/surface_cells.h"
+#include "effects/surface_cells.h"
 
 #include <math.h>
 #include <string.h>

@@ -260,6 +260,20 @@ for e in ao direct gi; do
 done
 has_stat "$dir/route_api/stats.json" pixel_dispatch shared || fail "roma-render's default on lavapipe is not one shared list"
 has_stat "$dir/route_shared/stats.json" name pixel_list || fail "the stats lack the shared list's record"
+# --resolution-divisor: the public passes trace one pixel a block (the stats say so); 3 is refused,
+# as is the internal renderer with it.
+"$render" "${route_args[@]}" --resolution-divisor 2 --out "$dir/divisor2" --stats "$dir/divisor2/stats.json" \
+  >/dev/null 2>"$dir/divisor2.err"
+expect_status 0 $? "roma-render --resolution-divisor 2" || cat "$dir/divisor2.err" >&2
+has_stat "$dir/divisor2/stats.json" resolution_divisor 2 || fail "the stats do not say --resolution-divisor 2"
+"$render" "${route_args[@]}" --resolution-divisor 3 --out "$dir/divisor3" >/dev/null 2>"$dir/divisor3.err"
+expect_status 2 $? "roma-render --resolution-divisor 3"
+grep -q "bad value for --resolution-divisor: '3' (valid: 1, 2, 4)" "$dir/divisor3.err" ||
+  fail "a bad --resolution-divisor does not list the choices"
+"$render" "${route_args[@]}" --resolution-divisor 2 --route internal --out "$dir/divisor_internal" >/dev/null \
+  2>"$dir/divisor_internal.err"
+[ $? -ne 0 ] && grep -q "resolution-divisor: the public effect passes only" "$dir/divisor_internal.err" ||
+  fail "--resolution-divisor with --route internal is not refused with a reason"
 "$render" "${route_args[@]}" --pixel-dispatch some --out "$dir/route_some" >/dev/null 2>"$dir/route_some.err"
 expect_status 2 $? "roma-render --pixel-dispatch some"
 grep -q "unknown pixel dispatch 'some' (valid: auto, list, every, shared)" "$dir/route_some.err" ||

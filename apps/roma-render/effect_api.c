@@ -11,7 +11,10 @@
 
 #define PI_F 3.14159265358979323846f
 
-enum { IN_POSITION, IN_NORMAL, IN_GEOMETRIC, OUT_AO, OUT_DIRECT, OUT_GI, IMAGE_COUNT };
+enum { IN_POSITION, IN_NORMAL, IN_GEOMETRIC, OUT_AO, OUT_DIRECT, OUT_GI, OUT_LIGHTS, IMAGE_COUNT };
+/* Shadow steps of the many lights' count: the internal renderer's (effect_render.h,
+ * lights_max_steps' default), so that both routes walk as far. */
+#define MANY_LIGHTS_MAX_STEPS 16u
 #define INPUTS 3
 
 typedef struct gpu_image {
@@ -38,6 +41,8 @@ typedef struct engine {
     VkFence fence;
     gpu_image images[IMAGE_COUNT];
     roma_pixel_list *pixels; /* desc.shared_list: listed by the first frame, read by every frame's effects */
+    roma_light_effect *count;  /* many lights: the light effect counting visible lights */
+    roma_light *many_lights;   /* its unit point lights */
     host_buffer upload, readback;
     roma_map *maps[ROMA_PASS_COUNT];
     roma_ao_effect *ao;
@@ -47,11 +52,8 @@ typedef struct engine {
     uint64_t bytes;
 } engine;
 
-const char *effect_api_unsupported(uint32_t effects, int baseline, int rsm, int blind_start)
+const char *effect_api_unsupported(int baseline, int rsm, int blind_start)
 {
-    if (effects & ROMA_EFFECT_LIGHTS)
-        return "the lights effect counts visible lights, which no public pass outputs (roma_light_effect adds "
-               "many lights to the direct light instead)";
     if (baseline)
         return "--ao-method names a baseline of the accuracy study, which is not a public pass";
     if (rsm)
@@ -175,6 +177,8 @@ static void engine_free(engine *e)
     }
     roma_gpu_timer_destroy(e->timer);
     roma_pixel_list_destroy(e->pixels);
+    roma_light_effect_destroy(e->count);
+    free(e->many_lights);
     roma_gi_effect_destroy(e->gi);
     roma_light_effect_destroy(e->light);
     roma_ao_effect_destroy(e->ao);
@@ -335,14 +339,27 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
                                   &s);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
+    if (r == ROMA_SUCCESS && e->count) {
+        roma_light_settings s = job->light;
+        s.frame = f;
+        s.max_steps = MANY_LIGHTS_MAX_STEPS;
+        s.output = ROMA_LIGHT_OUTPUT_VISIBLE_COUNT;
+        s.lights_per_frame = d->lights_per_frame < plan->many_light_count ? d->lights_per_frame : 0;
+        roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
+                                e->images[IN_GEOMETRIC].view, e->images[OUT_LIGHTS].view, 0, e->pixels};
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "lights");
+        r = roma_light_effect_record(e->count, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_MANY_LIGHTS]], &im,
+                                     e->many_lights, plan->many_light_count, &s);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
     return r;
 }
 
 /* The timer's scopes of the frame just finished, added to the result's sums. */
 static roma_result add_timings(engine *e, effect_api_result *out)
 {
-    roma_gpu_timing t[ROMA_PASS_COUNT + 4];
-    uint32_t count = ROMA_PASS_COUNT + 4;
+    roma_gpu_timing t[ROMA_PASS_COUNT + 5];
+    uint32_t count = ROMA_PASS_COUNT + 5;
     roma_result r = roma_gpu_timer_read(e->timer, t, &count);
     uint32_t build = 0;
     for (uint32_t i = 0; i < count && r == ROMA_SUCCESS; ++i) {
@@ -354,6 +371,8 @@ static roma_result add_timings(engine *e, effect_api_result *out)
             out->direct_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "gi") == 0)
             out->gi_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "lights") == 0)
+            out->lights_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "list") == 0)
             out->list_ms += t[i].milliseconds;
     }
@@ -372,11 +391,16 @@ static void accumulate(const engine *e, const effect_api_desc *d, effect_api_res
                               : NULL;
     const float *gi = e->images[OUT_GI].image ? (const float *)(base + readback_offset(e, OUT_GI, d->width, d->height))
                                               : NULL;
+    const float *count = e->images[OUT_LIGHTS].image
+                             ? (const float *)(base + readback_offset(e, OUT_LIGHTS, d->width, d->height))
+                             : NULL;
     for (size_t i = 0; i < n; ++i) {
         if (!(out->coverage.pixels[i] > 0.0f))
             continue;
         if (ao)
             out->ao.pixels[i] += ao[i];
+        if (count && out->lights.pixels)
+            out->lights.pixels[i] += count[4 * i];
         for (int c = 0; c < 3; ++c) {
             if (direct)
                 out->direct.pixels[3 * i + c] += direct[4 * i + c];
@@ -394,6 +418,8 @@ static void resolve(const effect_api_desc *d, const float *albedo, uint32_t fram
         const int covered = out->coverage.pixels[i] > 0.0f;
         if (out->ao.pixels)
             out->ao.pixels[i] = covered ? out->ao.pixels[i] / (float)frames : 1.0f;
+        if (out->lights.pixels)
+            out->lights.pixels[i] /= (float)frames; /* 0 where nothing is seen */
         for (int c = 0; c < 3; ++c) {
             if (out->direct.pixels)
                 out->direct.pixels[3 * i + c] *= albedo[3 * i + c] / PI_F / (float)frames;
@@ -407,7 +433,7 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
                                   effect_api_result *out)
 {
     roma_effect_options options = d->options;
-    options.effects &= ROMA_EFFECT_AO | ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI;
+    options.effects &= ROMA_EFFECT_AO | ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI | ROMA_EFFECT_LIGHTS;
     roma_result r = roma_effect_plan_derive(scene, &options, NULL, &out->plan);
     const roma_effect_plan *plan = &out->plan;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
@@ -436,10 +462,24 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
         r = roma_gi_effect_create(e->ctx, &gi_desc, &e->gi);
     if (r == ROMA_SUCCESS && e->gi)
         r = roma_gi_effect_set_scene(e->gi, scene);
+    const uint32_t many = plan->many_light_count;
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_MANY_LIGHTS) && many && d->many_light_positions) {
+        r = roma_light_effect_create(e->ctx, &light_desc, &e->count);
+        e->many_lights = r == ROMA_SUCCESS ? calloc(many, sizeof *e->many_lights) : NULL;
+        if (r == ROMA_SUCCESS && !e->many_lights)
+            r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
+        for (uint32_t i = 0; r == ROMA_SUCCESS && i < many; ++i)
+            e->many_lights[i] = (roma_light){.type = ROMA_LIGHT_POINT,
+                                             .position = {d->many_light_positions[3 * i],
+                                                          d->many_light_positions[3 * i + 1],
+                                                          d->many_light_positions[3 * i + 2]},
+                                             .color = {1.0f, 1.0f, 1.0f},
+                                             .intensity = 1.0f};
+    }
     if (r == ROMA_SUCCESS && d->shared_list)
         r = roma_pixel_list_create(e->ctx, &(roma_pixel_list_desc){.frames_in_flight = 1}, &e->pixels);
     if (r == ROMA_SUCCESS)
-        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 4, &e->timer);
+        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 5, &e->timer);
     return r;
 }
 
@@ -457,6 +497,8 @@ static roma_result create_images(engine *e, const effect_api_desc *d)
         r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_DIRECT]);
     if (r == ROMA_SUCCESS && e->gi)
         r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_GI]);
+    if (r == ROMA_SUCCESS && e->count)
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_LIGHTS]);
     if (r == ROMA_SUCCESS)
         r = buffer_create(e, (VkDeviceSize)w * h * 16 * INPUTS, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 0, &e->upload);
     /* (16 bytes more: a buffer of no size is invalid when no output is read back) */
@@ -559,6 +601,8 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
         r = roma_image_alloc(&out->direct, d->width, d->height, 3);
     if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_GI))
         r = roma_image_alloc(&out->gi, d->width, d->height, 3);
+    if (r == ROMA_SUCCESS && (effects & ROMA_EFFECT_LIGHTS))
+        r = roma_image_alloc(&out->lights, d->width, d->height, 1);
     if (r == ROMA_SUCCESS) { /* straight into the upload buffer, one plane an image */
         float *upload = e.upload.mapped;
         const roma_ref_gbuffer g = {upload, upload + 4 * n, upload + 8 * n, albedo};
@@ -601,5 +645,6 @@ void effect_api_result_free(effect_api_result *result)
     roma_image_free(&result->ao);
     roma_image_free(&result->direct);
     roma_image_free(&result->gi);
+    roma_image_free(&result->lights);
     roma_image_free(&result->coverage);
 }

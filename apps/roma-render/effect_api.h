@@ -8,7 +8,7 @@
  * the reference at spp*frames samples does.
  *
  * What the public API has no pass for stays with roma-render's internal renderer (the
- * accuracy study's baselines, the many-lights visibility counts, reflective shadow maps):
+ * accuracy study's baselines, reflective shadow maps, the blind ray start):
  * effect_api_unsupported says why a request needs it. */
 #ifndef ROMA_RENDER_EFFECT_API_H
 #define ROMA_RENDER_EFFECT_API_H
@@ -33,6 +33,11 @@ typedef struct effect_api_desc {
     /* The covered pixels listed once (roma_pixel_list) and given to every effect of every
      * frame: the G-buffer does not change between frames. */
     int shared_list;
+    /* Many lights (options.effects ROMA_EFFECT_LIGHTS): options.many_light_count positions
+     * (3 floats each) of unit point lights, lights_per_frame of them tested per pixel and frame
+     * (0: all): the light effect's count of visible lights (ROMA_LIGHT_OUTPUT_VISIBLE_COUNT). */
+    const float *many_light_positions;
+    uint32_t lights_per_frame;
     uint32_t resolution_divisor; /* the three effects': 0 or 1 every pixel, 2 or 4 (roma_ao_settings) */
     /* Cascade levels of every array (at most what its A allows: K x A x A <= 256; 0 = 1),
      * centred on the camera's eye, the finest cube's edge finest_extent (0: the library's). */
@@ -46,11 +51,11 @@ typedef struct effect_api_desc {
 typedef struct effect_api_result {
     /* ao 1 channel (1 where nothing was seen), direct and gi RGB radiance (albedo / pi times the
      * effects' irradiance), coverage 1 where a primary ray hit: the reference's layout. */
-    roma_image ao, direct, gi, coverage;
+    roma_image ao, direct, gi, lights, coverage;
     roma_effect_plan plan;
     roma_map_info map_info[ROMA_PASS_COUNT]; /* per array of plan.maps */
     double build_ms[ROMA_PASS_COUNT];        /* per array: GPU timestamps summed over frames */
-    double ao_ms, direct_ms, gi_ms;          /* each effect's records: GPU timestamps summed */
+    double ao_ms, direct_ms, gi_ms, lights_ms; /* each effect's records: GPU timestamps summed */
     double list_ms;                          /* desc.shared_list: the one list's record */
     double gbuffer_ms;                       /* the primary rays, host clock */
     uint64_t effect_bytes;                   /* the G-buffer, output and transfer memory made here */
@@ -58,7 +63,7 @@ typedef struct effect_api_result {
 
 /* NULL when the public effects can render this request, else the reason they cannot
  * (a static string naming the option). */
-const char *effect_api_unsupported(uint32_t effects, int baseline, int rsm, int blind_start);
+const char *effect_api_unsupported(int baseline, int rsm, int blind_start);
 
 roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                               const effect_api_desc *desc, effect_api_result *out);

@@ -67,10 +67,10 @@ static const char *usage =
     "                              unseen (the rule before, which leaks light at corners)\n"
     "  --route api|internal        ROMA through libroma's public effect passes (roma_ao_effect,\n"
     "                              roma_light_effect, roma_gi_effect) on a G-buffer of primary rays, as\n"
-    "                              an engine records them (the default where they can: ao, direct, gi),\n"
-    "                              or through the internal renderer, which also has the study's\n"
-    "                              baselines, the lights effect and reflective shadow maps (taken by\n"
-    "                              itself when those are asked for; the choice is printed)\n"
+    "                              an engine records them (the default where they can: ao, direct, gi,\n"
+    "                              lights), or through the internal renderer, which also has the\n"
+    "                              study's baselines and reflective shadow maps (taken by itself when\n"
+    "                              those are asked for; the choice is printed)\n"
     "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
     "                              frame (a new one each frame) and upsample the rest (default 1)\n"
     "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
@@ -915,7 +915,7 @@ static int choose_route(options *o, notes *n)
     /* Options that only matter for an effect asked for do not decide the route without it. */
     const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
     const int rsm = (o->effects & ROMA_EFFECT_GI) && (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays;
-    const char *why = effect_api_unsupported(o->effects, baseline, rsm, o->blind_start);
+    const char *why = effect_api_unsupported(baseline, rsm, o->blind_start);
     if (!why && (o->given & GIVEN_BUDGET))
         why = "--budget-ms calibrates on the internal renderer's frames";
     if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL) && o->cascades_auto) {
@@ -961,7 +961,8 @@ static int choose_route(options *o, notes *n)
 
 /* --route api: the images from effect_api_render, written; the passes' times in run. */
 static int render_api(const options *o, roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
-                      const roma_camera *cam, run_record *run, effect_api_result *res)
+                      const float *light_positions, const roma_camera *cam, run_record *run,
+                      effect_api_result *res)
 {
     progress_state frames_progress = {"frames", o->quiet, -1, 0.0};
     on_progress(0.0f, &frames_progress);
@@ -978,13 +979,15 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
     effect_api_desc d = {
         .camera = *cam, .width = o->width, .height = o->height,
         .options = {.effects = o->effects, .resolution = o->res, .ao_angular = o->angular, .gi_angular = o->angular,
-                    .shadow_angular = o->shadow_angular, .lights_angular = o->shadow_angular},
+                    .shadow_angular = o->shadow_angular, .lights_angular = o->shadow_angular,
+                    .many_light_count = o->effects & ROMA_EFFECT_LIGHTS ? o->lights : 0},
         .spp = o->spp, .frames = o->frames, .seed = o->seed, .ao_radius = o->ao_radius, .offset_cells = o->offset,
         /* The library takes 0 as its default and a negative value as none. */
         .skip_cells = o->skip < 0.0f ? 0.0f : o->skip == 0.0f ? -1.0f : o->skip,
         .ao_skip_cells = o->ao_skip < 0.0f ? 0.0f : o->ao_skip == 0.0f ? -1.0f : o->ao_skip,
         .max_steps = o->max_steps, .pixel_dispatch = o->pixel_dispatch, .shared_list = run->shared_list,
-        .resolution_divisor = o->resolution_divisor,
+        .resolution_divisor = o->resolution_divisor, .many_light_positions = light_positions,
+        .lights_per_frame = o->lights_per_frame,
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off};
@@ -1006,11 +1009,16 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         add_pass(run, "direct", "gpu_timestamp", res->direct_ms);
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_GI))
         add_pass(run, "gi", "gpu_timestamp", res->gi_ms);
+    if (roma_effect_plan_runs(&res->plan, ROMA_PASS_MANY_LIGHTS))
+        add_pass(run, "lights", "gpu_timestamp", res->lights_ms);
     if ((o->effects & ROMA_EFFECT_AO) && !write_outputs(o, "ao", &res->ao, &res->coverage, 1.0f))
         return 1;
     if ((o->effects & ROMA_EFFECT_DIRECT) && !write_outputs(o, "direct", &res->direct, &res->coverage, 1.0f))
         return 1;
     if ((o->effects & ROMA_EFFECT_GI) && !write_outputs(o, "gi", &res->gi, &res->coverage, 1.0f))
+        return 1;
+    if ((o->effects & ROMA_EFFECT_LIGHTS) &&
+        !write_outputs(o, "lights", &res->lights, &res->coverage, 1.0f / (float)o->lights))
         return 1;
     return write_extras(o, &res->coverage, &res->direct, &res->gi) ? 0 : 1;
 }
@@ -1379,7 +1387,7 @@ int main(int argc, char **argv)
             run.device_name = ctx_info.device_name;
         }
         if (ctx && api_route) {
-            status = render_api(&o, ctx, scene, ref, &cam, &run, &api_result);
+            status = render_api(&o, ctx, scene, ref, light_positions, &cam, &run, &api_result);
         } else if (ctx) {
             roma_effect_render_desc desc = {
                 .camera = cam, .width = o.width, .height = o.height,

@@ -44,6 +44,17 @@ extern "C" {
 #define ROMA_DEFAULT_SHADOW_SKIP_CELLS 1.0f /**< shadow rays start one trace cell past their origin */
 #define ROMA_DEFAULT_AREA_LIGHT_SAMPLES 4u  /**< area-light samples per pixel and frame */
 
+/** What roma_light_effect writes. */
+typedef enum roma_light_output {
+    /** Shadowed irradiance from every light (RGB). */
+    ROMA_LIGHT_OUTPUT_IRRADIANCE = 0,
+    /** In x, how many of the punctual lights face the shading normal and reach the point
+     * unshadowed (the many-lights visibility of the constant-time intersection paper, and the
+     * reference's roma_ref_count_visible_lights); with lights_per_frame, the unbiased estimate
+     * of that count. Area lights are not counted; y and z are 0. */
+    ROMA_LIGHT_OUTPUT_VISIBLE_COUNT = 1,
+} roma_light_output;
+
 /** Per-record light settings; the zero value is the default (roma_light_settings_resolve). */
 typedef struct roma_light_settings {
     uint32_t max_steps;   /**< texels an un-snapped shadow ray walks; 0 = ROMA_DEFAULT_SHADOW_STEPS */
@@ -78,6 +89,7 @@ typedef struct roma_light_settings {
      * blur across a block, which accumulation over frames averages out (the error it costs:
      * docs/benchmark.md). 0 or 1 = every pixel traced; other values are refused. */
     uint32_t resolution_divisor;
+    roma_light_output output; /**< 0 = ROMA_LIGHT_OUTPUT_IRRADIANCE */
 } roma_light_settings;
 
 /** The zero value's meaning filled in (the one place defaults are resolved).

@@ -60,9 +60,16 @@ void main()
     // This dispatch's part of the items (roma_light_images_push.part): lights [0, exact),
     // then the sampled ones, then the area-light samples; each loop runs its share of them.
     uint part_first = pc.part.x, part_end = pc.part.y;
+    // roma_light_settings.output: irradiance, or the count of the lights that reach p in x.
+    bool count = pc.config3.z == 1u;
+    // Counting many lights walks one skip length of each ray's start, as the internal
+    // renderer's many-lights pass does (hundreds of segments a pixel: the four-fold walk of
+    // the irradiance costs 35% more there).
+    if (count)
+        roma_start_walk = 1.0;
     for (uint i = part_first; i < min(part_end, exact); ++i) {
         ROMA_LOOP_TICK();
-        E += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, tmin, max_steps);
+        E += roma_punctual_term(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, tmin, max_steps, count);
     }
     if (sampled > 0u) {
         uint first =
@@ -73,7 +80,7 @@ void main()
             ROMA_LOOP_TICK();
             uint i = first + j;
             i = exact + (i >= rest ? i - rest : i);
-            sum += roma_punctual_irradiance(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, tmin, max_steps);
+            sum += roma_punctual_term(RomaLights(pc.lights).l[i], p, ng, n, origin, offset, tmin, max_steps, count);
         }
         E += sum * (float(rest) / float(sampled));
     }

@@ -152,22 +152,31 @@ vec3 roma_bounded_irradiance(float factor, vec3 color)
     return min(factor * color, vec3(ROMA_MAX_IRRADIANCE));
 }
 
-// Shadowed irradiance at p from one punctual light: one un-snapped shadow ray from
-// origin (p offset off its surface); a point or spot light's segment ends `offset`
+// One punctual light at p: its shadowed irradiance, or with count 1 in x when it faces the
+// shading normal and its shadow ray is free (roma_ref_count_visible_lights' rule: the
+// many-lights visibility of the constant-time intersection paper). One un-snapped shadow ray
+// from origin (p offset off its surface); a point or spot light's segment ends `offset`
 // short of the light, a directional light's ray is unbounded.
-vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec3 origin, float offset,
-                              float tmin, uint max_steps)
+vec3 roma_punctual_term(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec3 origin, float offset, float tmin,
+                        uint max_steps, bool count)
 {
     vec3 l;
     float f = roma_punctual_factor(light, p, ng, n, l);
-    if (f == 0.0)
+    if (count ? !(dot(n, l) > 0.0) : f == 0.0)
         return vec3(0.0);
     // A directional light's ray is unbounded; one visibility call for both kinds.
     bool directional = uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL;
     vec3 v = directional ? l : light.position_type.xyz - origin;
     bool visible = roma_ray_visible(origin, v, tmin, directional ? 1.0 / 0.0 : length(v) - offset, max_steps,
                                     ROMA_BACK_SKIP_POINT);
-    return visible ? roma_bounded_irradiance(f, light.color_intensity.rgb) : vec3(0.0);
+    return !visible ? vec3(0.0) : count ? vec3(1.0, 0.0, 0.0) : roma_bounded_irradiance(f, light.color_intensity.rgb);
+}
+
+// Shadowed irradiance at p from one punctual light (roma_punctual_term).
+vec3 roma_punctual_irradiance(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec3 origin, float offset,
+                              float tmin, uint max_steps)
+{
+    return roma_punctual_term(light, p, ng, n, origin, offset, tmin, max_steps, false);
 }
 
 // First i with cdf[i] > u (as roma_emitter_pick).

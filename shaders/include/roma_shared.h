@@ -381,7 +381,8 @@ ROMA_STRUCT_BEGIN(roma_light_images_push)
     ROMA_U64(bom);        /* the map's BOM: the shadow rays' skipped start walked exactly */
     ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
     ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: area samples, w: frame */
-    ROMA_UVEC4(config3);  /* x: lights sampled per frame (0: all), y: lights traced every frame before them */
+    ROMA_UVEC4(config3);  /* x: lights sampled per frame (0: all), y: lights traced every frame before them,
+                             z: roma_light_output (1: the count of visible lights in x) */
     ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units) */
     /* The items [x, y) this dispatch traces (src/vulkan/loop_budget.h), in the order: the
      * lights traced every frame, the sampled lights, the area-light samples; x > 0 adds to

@@ -39,6 +39,9 @@ roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_ligh
         s.max_steps = ROMA_DEFAULT_SHADOW_STEPS;
     if (s.area_samples == 0)
         s.area_samples = ROMA_DEFAULT_AREA_LIGHT_SAMPLES;
+    if ((unsigned)s.output > ROMA_LIGHT_OUTPUT_VISIBLE_COUNT)
+        return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_settings: output %d is not a roma_light_output",
+                         (int)s.output);
     if (s.offset_cells == 0.0f)
         s.offset_cells = ROMA_DEFAULT_OFFSET_CELLS;
     s.skip_cells = s.skip_cells < 0.0f ? 0.0f : s.skip_cells > 0.0f ? s.skip_cells : ROMA_DEFAULT_SHADOW_SKIP_CELLS;
@@ -180,12 +183,14 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     roma_upload_record(buf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_upload_record(&e->emitters, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_upload_record(&e->cdf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    /* Counting visible lights takes the punctual lights only. */
+    const uint32_t area_samples = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 0 : s.area_samples;
     roma_light_images_push push = {.lights = buf->device.address, .bom = info.bom_address,
                                    .emitters = e->emitter_count ? e->emitters.device.address : 0,
                                    .cdf = e->emitter_count ? e->cdf.device.address : 0,
                                    .config = {im->width, im->height, packed, s.max_steps},
-                                   .config2 = {s.seed, e->emitter_count, s.area_samples, s.frame},
-                                   .config3 = {s.lights_per_frame, exact_packed, 0, 0},
+                                   .config2 = {s.seed, e->emitter_count, area_samples, s.frame},
+                                   .config3 = {s.lights_per_frame, exact_packed, (uint32_t)s.output, 0},
                                    .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
@@ -194,7 +199,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     const uint32_t exact = s.lights_per_frame == 0 ? packed : (exact_packed < packed ? exact_packed : packed);
     const uint32_t rest = packed - exact;
     const uint32_t sampled = s.lights_per_frame == 0 || s.lights_per_frame > rest ? rest : s.lights_per_frame;
-    const uint32_t items = exact + sampled + (e->emitter_count ? s.area_samples : 0);
+    const uint32_t items = exact + sampled + (e->emitter_count ? area_samples : 0);
     const roma_shadow_cost shadow = {{info.resolution, info.grid_cell, info.levels}, push.ray[1], ROMA_START_WALK, s.max_steps,
                                      ROMA_BACK_SKIP_POINT, 0};
     uint32_t per_item = roma_loop_cost_punctual_light(&shadow);

@@ -578,6 +578,12 @@ grep -q -- '--budget-ms 1e+09: ultra (RES 256, A 8)' "$dir/budget2.err" ||
 "$render" "${budget[@]}" --budget-ms 1e9 --out "$dir/budget" >/dev/null 2>"$dir/budget3.err"
 expect_status 0 $? "roma-render --budget-ms 1e9 (cached)"
 [ "$(grep -o '(cached)' "$dir/budget3.err" | wc -l)" -eq 4 ] || fail "a second run measures again"
+# The presets are timed on the public passes (an engine's frames), so not with the internal renderer.
+"$render" "${budget[@]}" --budget-ms 50 --route internal --out "$dir/budget_internal" >/dev/null \
+  2>"$dir/budget_internal.err"
+[ $? -ne 0 ] && grep -q "budget-ms: the presets are timed on the public effect passes" "$dir/budget_internal.err" ||
+  fail "--budget-ms with --route internal is not refused with a reason"
+has_stat "$dir/budget/stats.json" route api || fail "--budget-ms did not render through the public passes"
 python3 - "$dir/budget/stats.json" "$dir/budget/low.json" <<'PY' || fail "the stats do not record the budget's choice"
 import json, sys
 a = json.load(open(sys.argv[1]))["settings"]

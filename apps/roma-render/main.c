@@ -916,8 +916,6 @@ static int choose_route(options *o, notes *n)
     const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
     const int rsm = (o->effects & ROMA_EFFECT_GI) && (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays;
     const char *why = effect_api_unsupported(baseline, rsm, o->blind_start);
-    if (!why && (o->given & GIVEN_BUDGET))
-        why = "--budget-ms calibrates on the internal renderer's frames";
     if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL) && o->cascades_auto) {
         note(n, o->quiet, "cascades: none after all: only the public effect passes trace them, and %s",
              why ? why : "--route internal was asked for");
@@ -929,6 +927,11 @@ static int choose_route(options *o, notes *n)
     }
     if (o->resolution_divisor > 1 && (why || o->route == ROUTE_INTERNAL)) {
         fprintf(stderr, "roma-render: --resolution-divisor: the public effect passes only, and %s\n",
+                why ? why : "--route internal was asked for");
+        return -1;
+    }
+    if ((o->given & GIVEN_BUDGET) && (why || o->route == ROUTE_INTERNAL)) {
+        fprintf(stderr, "roma-render: --budget-ms: the presets are timed on the public effect passes, and %s\n",
                 why ? why : "--route internal was asked for");
         return -1;
     }
@@ -960,9 +963,81 @@ static int choose_route(options *o, notes *n)
 }
 
 /* --route api: the images from effect_api_render, written; the passes' times in run. */
-static int render_api(const options *o, roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+/* --budget-ms: one preset's time per frame through the public passes, the difference between
+ * renders of 3 frames and of 1 (what a frame adds beyond the set-up). */
+typedef struct budget_probe {
+    roma_context *ctx;
+    const roma_scene *scene;
+    const roma_ref *ref;
+    effect_api_desc desc; /* the run's, without progress */
+} budget_probe;
+
+static double budget_measure(roma_preset preset, void *user)
+{
+    budget_probe *b = user;
+    effect_api_desc d = b->desc;
+    d.options.resolution = 0, d.options.ao_angular = 0, d.options.gi_angular = 0;
+    d.options.preset = preset;
+    double ms[2];
+    const uint32_t frames[2] = {1, 3};
+    for (int i = 0; i < 2; ++i) {
+        d.frames = frames[i];
+        effect_api_result result;
+        double start = roma_app_now_ms();
+        roma_result r = effect_api_render(b->ctx, b->scene, b->ref, &d, &result);
+        ms[i] = roma_app_now_ms() - start;
+        if (r != ROMA_SUCCESS) {
+            fprintf(stderr, "roma-render: measuring the %s preset failed: %s\n", roma_preset_name(preset),
+                    roma_result_string(r));
+            return -1.0;
+        }
+        effect_api_result_free(&result);
+    }
+    /* On a tiny image the difference can drown in the noise: then the mean of the 3 frames. */
+    return ms[1] > ms[0] ? (ms[1] - ms[0]) / 2.0 : ms[1] / 3.0;
+}
+
+/* Chooses the preset for o->budget_ms (budget.h) and sets desc's RES and A from it. */
+static int apply_budget(options *o, roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
+                        effect_api_desc *desc, budget_choice *choice)
+{
+    roma_context_info info;
+    if (roma_context_get_info(ctx, &info) != ROMA_SUCCESS)
+        return 0;
+    char key[1024];
+    /* Whatever else changes the work of a frame is in the key too; "api": times of the public
+     * passes (a cache from before they calibrated holds the internal renderer's). */
+    snprintf(key, sizeof key,
+             "api|%s|%s|%ux%u|effects %u|spp %u|radius %g|lights %u/%u|shadow A %u|steps %u|divisor %u|list %d",
+             info.device_name, o->scene, o->width, o->height, o->effects, o->spp, (double)o->ao_radius, o->lights,
+             o->lights_per_frame, o->shadow_angular, o->max_steps, o->resolution_divisor, desc->shared_list);
+    for (char *c = key; *c; ++c)
+        if (*c == '\t' || *c == '\n' || *c == '\r')
+            *c = ' ';
+    budget_probe probe = {ctx, scene, ref, *desc};
+    probe.desc.progress = NULL;
+    const char *cache = o->budget_cache ? o->budget_cache : budget_default_cache();
+    if (!budget_choose(o->budget_ms, key, cache, budget_measure, &probe, choice))
+        return 0;
+    o->preset = choice->preset;
+    roma_preset_map_settings(choice->preset, &o->res, &o->angular);
+    desc->options.resolution = o->res, desc->options.ao_angular = o->angular, desc->options.gi_angular = o->angular;
+    if (!o->quiet) {
+        fprintf(stderr, "roma-render: --budget-ms %g: %s (RES %u, A %u)%s; ms a frame:", o->budget_ms,
+                roma_preset_name(choice->preset), o->res, o->angular,
+                choice->fits ? "" : ", the fastest preset, over the budget");
+        for (unsigned p = ROMA_PRESET_LOW; p <= ROMA_PRESET_COUNT; ++p)
+            if (choice->ms[p] >= 0.0)
+                fprintf(stderr, " %s %.1f%s", roma_preset_name((roma_preset)p), choice->ms[p],
+                        choice->cached[p] ? " (cached)" : "");
+        fprintf(stderr, "%s%s\n", cache ? "; cache " : "", cache ? cache : "");
+    }
+    return 1;
+}
+
+static int render_api(options *o, roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                       const float *light_positions, const roma_camera *cam, run_record *run,
-                      effect_api_result *res)
+                      budget_choice *budget, effect_api_result *res)
 {
     progress_state frames_progress = {"frames", o->quiet, -1, 0.0};
     on_progress(0.0f, &frames_progress);
@@ -991,6 +1066,11 @@ static int render_api(const options *o, roma_context *ctx, const roma_scene *sce
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off};
+    if (o->given & GIVEN_BUDGET) {
+        if (!apply_budget(o, ctx, scene, ref, &d, budget))
+            return 1;
+        run->budget = budget;
+    }
     double start = roma_app_now_ms();
     roma_result r = effect_api_render(ctx, scene, ref, &d, res);
     add_pass(run, "roma_total", "cpu_wall", roma_app_now_ms() - start);
@@ -1201,76 +1281,6 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
                  roma_only[i].bit == GIVEN_FRAMES ? " (the reference takes all its samples at once: --spp)" : "");
 }
 
-/* --budget-ms: one preset's time per frame, the difference between renders of 3 frames and
- * of 1 divided by 2 (what each more frame costs: the G-buffer, the resolve and the pipelines'
- * first use are paid once), host-observed; where that difference is not positive (noise on
- * a tiny image), the mean time of the 3 frames' render. */
-typedef struct budget_probe {
-    roma_context *ctx;
-    const roma_scene *scene;
-    roma_effect_render_desc desc; /* the run's, without progress or outputs */
-} budget_probe;
-
-static double budget_measure(roma_preset preset, void *user)
-{
-    budget_probe *b = user;
-    roma_effect_render_desc d = b->desc;
-    d.options.resolution = 0, d.options.ao_angular = 0, d.options.gi_angular = 0;
-    d.options.preset = preset;
-    double ms[2];
-    const uint32_t frames[2] = {1, 3};
-    for (int i = 0; i < 2; ++i) {
-        d.frames = frames[i];
-        roma_effect_images images;
-        roma_effect_stats stats;
-        double start = roma_app_now_ms();
-        roma_result r = roma_effect_render(b->ctx, b->scene, &d, &images, &stats);
-        ms[i] = roma_app_now_ms() - start;
-        if (r != ROMA_SUCCESS) {
-            fprintf(stderr, "roma-render: measuring the %s preset failed: %s\n", roma_preset_name(preset),
-                    roma_result_string(r));
-            return -1.0;
-        }
-        roma_effect_images_free(&images);
-    }
-    /* On a tiny image the difference can drown in the noise: then the mean of the 3 frames. */
-    return ms[1] > ms[0] ? (ms[1] - ms[0]) / 2.0 : ms[1] / 3.0;
-}
-
-/* Chooses the preset for o->budget_ms (budget.h) and sets desc's RES and A from it. */
-static int apply_budget(options *o, roma_context *ctx, const roma_context_info *info, const roma_scene *scene,
-                        roma_effect_render_desc *desc, budget_choice *choice)
-{
-    char key[1024];
-    /* Whatever else changes the work of a frame is in the key too. */
-    snprintf(key, sizeof key,
-             "%s|%s|%ux%u|effects %u|spp %u|radius %g|lights %u/%u|shadow A %u|steps %u|ao %d|gi rays %d|start %d",
-             info->device_name, o->scene, o->width, o->height, o->effects, o->spp, (double)o->ao_radius, o->lights,
-             o->lights_per_frame, o->shadow_angular, o->max_steps, (int)o->ao_method, o->gi_rays, o->blind_start);
-    for (char *c = key; *c; ++c)
-        if (*c == '\t' || *c == '\n' || *c == '\r')
-            *c = ' ';
-    budget_probe probe = {ctx, scene, *desc};
-    probe.desc.progress = NULL, probe.desc.out_gbuffer = NULL, probe.desc.out_light_mask = NULL;
-    const char *cache = o->budget_cache ? o->budget_cache : budget_default_cache();
-    if (!budget_choose(o->budget_ms, key, cache, budget_measure, &probe, choice))
-        return 0;
-    o->preset = choice->preset;
-    roma_preset_map_settings(choice->preset, &o->res, &o->angular);
-    desc->options.resolution = o->res, desc->options.ao_angular = o->angular, desc->options.gi_angular = o->angular;
-    if (!o->quiet) {
-        fprintf(stderr, "roma-render: --budget-ms %g: %s (RES %u, A %u)%s; ms a frame:", o->budget_ms,
-                roma_preset_name(choice->preset), o->res, o->angular,
-                choice->fits ? "" : ", the fastest preset, over the budget");
-        for (unsigned p = ROMA_PRESET_LOW; p <= ROMA_PRESET_COUNT; ++p)
-            if (choice->ms[p] >= 0.0)
-                fprintf(stderr, " %s %.1f%s", roma_preset_name((roma_preset)p), choice->ms[p],
-                        choice->cached[p] ? " (cached)" : "");
-        fprintf(stderr, "%s%s\n", cache ? "; cache " : "", cache ? cache : "");
-    }
-    return 1;
-}
-
 int main(int argc, char **argv)
 {
     options o;
@@ -1387,7 +1397,7 @@ int main(int argc, char **argv)
             run.device_name = ctx_info.device_name;
         }
         if (ctx && api_route) {
-            status = render_api(&o, ctx, scene, ref, light_positions, &cam, &run, &api_result);
+            status = render_api(&o, ctx, scene, ref, light_positions, &cam, &run, &budget, &api_result);
         } else if (ctx) {
             roma_effect_render_desc desc = {
                 .camera = cam, .width = o.width, .height = o.height,
@@ -1403,16 +1413,6 @@ int main(int argc, char **argv)
                 .offset_cells = o.offset,
                 .many_light_positions = light_positions,
             };
-            if (o.given & GIVEN_BUDGET) {
-                if (!apply_budget(&o, ctx, &ctx_info, scene, &desc, &budget)) {
-                    roma_context_destroy(ctx);
-                    free(light_positions);
-                    roma_ref_destroy(ref);
-                    roma_scene_destroy(scene);
-                    return 1;
-                }
-                run.budget = &budget;
-            }
             progress_state frames_progress = {"frames", o.quiet, -1, 0.0};
             on_progress(0.0f, &frames_progress);
             desc.progress = on_progress;

@@ -87,11 +87,7 @@ void roma_image_effect_free(roma_image_effect *e)
     VkDevice dev = e->ctx->device;
     const VkAllocationCallbacks *a = e->ctx->allocator;
     roma_slot_sets_free(&e->sets);
-    for (uint32_t slot = 0; slot < ROMA_MAX_FRAMES_IN_FLIGHT; ++slot) {
-        roma_buffer_destroy(e->ctx, &e->lists[slot]);
-        for (uint32_t i = 0; i < e->retired_count[slot]; ++i)
-            roma_buffer_destroy(e->ctx, &e->retired[slot][i]);
-    }
+    roma_covered_lists_free(&e->lists, e->ctx);
     if (e->list_pipeline)
         vkDestroyPipeline(dev, e->list_pipeline, a);
     if (e->upsample_pipeline)
@@ -197,68 +193,16 @@ int roma_image_effect_same_frame(const roma_image_effect *e, uint32_t slot)
     return roma_slot_sets_same_frame(&e->sets, slot, e->frame);
 }
 
-/* The slot's list holds width * height pixels (a new frame of the slot first frees the lists
- * its previous frame outgrew: the slot rules say the GPU is done with them). */
-static roma_result list_reserve(roma_image_effect *e, uint32_t slot, int same_frame, uint32_t width, uint32_t height)
-{
-    if (!same_frame) {
-        for (uint32_t i = 0; i < e->retired_count[slot]; ++i)
-            roma_buffer_destroy(e->ctx, &e->retired[slot][i]);
-        e->retired_count[slot] = 0;
-    }
-    /* Not listed: the shader's binding still needs a buffer, never read. */
-    const int own = e->listed || e->scale > 1;
-    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * (own ? (uint64_t)width * height : 1u);
-    if (e->lists[slot].buffer && e->lists[slot].size >= size)
-        return ROMA_SUCCESS;
-    if (e->retired_count[slot] == ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT)
-        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: more than %u records in one frame of slot %u",
-                         e->name, ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT, slot);
-    roma_buffer grown;
-    roma_result r = roma_buffer_create(e->ctx, size,
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       ROMA_MEMORY_DEVICE, &grown);
-    if (r != ROMA_SUCCESS)
-        return roma_fail(&e->logger, r, "%s: the covered-pixel list of %ux%u pixels", e->name, width, height);
-    if (e->lists[slot].buffer)
-        e->retired[slot][e->retired_count[slot]++] = e->lists[slot];
-    e->lists[slot] = grown;
-    return ROMA_SUCCESS;
-}
-
 /* The list of the position image, then the effect's indirect dispatch over it. */
 static void record_listed_dispatch(roma_image_effect *e, VkCommandBuffer cmd, const roma_buffer *list,
                                    const void *push, uint32_t width, uint32_t height)
 {
-    /* Earlier records of this frame read the list (indirect arguments, pixel indices) and may
-     * have written the same output. */
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    const roma_pixel_list_header header = {.dispatch = {0, 0, 1, 0}};
-    vkCmdUpdateBuffer(cmd, list->buffer, 0, sizeof header, &header);
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     /* Scaled: one invocation per block lists its traced pixel (the upsample writes the rest). */
     const uint32_t s = e->scale, blocks_x = (width + s - 1) / s, blocks_y = (height + s - 1) / s;
     roma_image_list_push lp = {.config = {width, height, 0, s | e->place[0] << 8 | e->place[1] << 16}};
     memcpy(lp.background, e->background, sizeof lp.background);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->list_pipeline);
-    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof lp, &lp);
-    vkCmdDispatch(cmd, (blocks_x + 7) / 8, (blocks_y + 7) / 8, 1);
-    /* The list for its arguments; the background before the effect writes the same image. */
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    lp.config[2] = 1;
-    vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof lp, &lp);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    roma_covered_list_record(cmd, list->buffer, e->list_pipeline, e->layout, lp, (blocks_x + 7) / 8,
+                             (blocks_y + 7) / 8);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->traced);
     vkCmdPushConstants(cmd, e->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, e->push_size, push);
     vkCmdDispatchIndirect(cmd, list->buffer, 0);
@@ -270,8 +214,11 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
 {
     int same_frame = roma_image_effect_same_frame(e, slot);
     roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
+    /* Not listed: the shader's binding still needs a buffer, never read. */
+    const int own = e->listed || e->scale > 1;
     if (r == ROMA_SUCCESS && !e->shared_list)
-        r = list_reserve(e, slot, same_frame, width, height);
+        r = roma_covered_lists_reserve(&e->lists, e->ctx, &e->logger, e->name, slot, same_frame,
+                                       own ? (uint64_t)width * height : 0);
     VkImageLayout in_layouts[ROMA_IMAGE_EFFECT_MAX_IMAGES];
     for (uint32_t i = 0; i < e->inputs; ++i)
         in_layouts[i] = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -282,7 +229,7 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     if (r != ROMA_SUCCESS)
         return r;
     roma_slot_sets_commit(&e->sets, slot);
-    const roma_buffer *list = &e->lists[slot];
+    const roma_buffer *list = &e->lists.lists[slot];
     VkDescriptorBufferInfo list_info = {e->shared_list ? e->shared_list : list->buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet writes[2] = {{.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                        .dstSet = set,
@@ -299,7 +246,6 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
     vkUpdateDescriptorSets(e->ctx->device, 2, writes, 0, NULL);
     VkDescriptorSet sets[2] = {info->trace_set, set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, e->layout, 0, 2, sets, 0, NULL);
-    const int own = e->listed || e->scale > 1;
     e->last_list = e->shared_list ? e->shared_list : own ? list->buffer : VK_NULL_HANDLE;
     e->last_groups[0] = (width + 7) / 8;
     e->last_groups[1] = (height + 7) / 8;

@@ -8,6 +8,7 @@
 #ifndef ROMA_EFFECTS_IMAGE_EFFECT_H
 #define ROMA_EFFECTS_IMAGE_EFFECT_H
 
+#include "effects/covered_list.h"
 #include "effects/slot_sets.h"
 #include "roma/map.h"
 #include "roma/pixel_list.h"
@@ -42,11 +43,7 @@ typedef struct roma_image_effect {
     const char *module;
     float background[4]; /* the output where the position image holds no surface */
     roma_slot_sets sets; /* set 1 of each record */
-    /* Each slot's covered-pixel list; one outgrown by a larger record of the same frame waits
-     * in retired until the slot's next frame (the GPU may still read it until then). */
-    roma_buffer lists[ROMA_MAX_FRAMES_IN_FLIGHT];
-    roma_buffer retired[ROMA_MAX_FRAMES_IN_FLIGHT][ROMA_IMAGE_EFFECT_RECORDS_PER_SLOT];
-    uint32_t retired_count[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_covered_lists lists; /* each slot's own covered-pixel list */
     /* The last dispatch recorded, which roma_image_effect_dispatch_more repeats. */
     VkBuffer last_list; /* listed: its indirect arguments */
     uint32_t last_groups[2];

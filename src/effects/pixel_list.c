@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "effects/covered_list.h"
 #include "effects/image_effect.h"
 #include "effects/pixel_list_internal.h"
 #include "effects/slot_sets.h"
@@ -23,12 +24,8 @@ struct roma_pixel_list {
     VkPipelineLayout layout;
     VkPipeline pipeline;
     roma_slot_sets sets;
-    roma_buffer lists[ROMA_MAX_FRAMES_IN_FLIGHT];
+    roma_covered_lists lists;
     uint32_t listed[ROMA_MAX_FRAMES_IN_FLIGHT][2]; /* the images' size of the slot's last record */
-    /* Lists a larger record of the same frame outgrew: earlier records may still read them
-     * until the slot's next frame. */
-    roma_buffer retired[ROMA_MAX_FRAMES_IN_FLIGHT][RECORDS_PER_FRAME];
-    uint32_t retired_count[ROMA_MAX_FRAMES_IN_FLIGHT];
 };
 
 roma_result roma_pixel_list_create(roma_context *ctx, const roma_pixel_list_desc *desc_in, roma_pixel_list **out)
@@ -85,11 +82,7 @@ void roma_pixel_list_destroy(roma_pixel_list *l)
     VkDevice dev = l->ctx->device;
     const VkAllocationCallbacks *a = l->ctx->allocator;
     roma_slot_sets_free(&l->sets);
-    for (uint32_t slot = 0; slot < ROMA_MAX_FRAMES_IN_FLIGHT; ++slot) {
-        roma_buffer_destroy(l->ctx, &l->lists[slot]);
-        for (uint32_t i = 0; i < l->retired_count[slot]; ++i)
-            roma_buffer_destroy(l->ctx, &l->retired[slot][i]);
-    }
+    roma_covered_lists_free(&l->lists, l->ctx);
     if (l->pipeline)
         vkDestroyPipeline(dev, l->pipeline, a);
     if (l->layout)
@@ -99,31 +92,6 @@ void roma_pixel_list_destroy(roma_pixel_list *l)
     if (l->sampler)
         vkDestroySampler(dev, l->sampler, a);
     free(l);
-}
-
-/* The slot's list holds width * height pixels; a new frame of the slot first frees the lists
- * its previous frame outgrew (the slot rules: the GPU is done with them). */
-static roma_result reserve(roma_pixel_list *l, uint32_t slot, int same_frame, uint32_t width, uint32_t height)
-{
-    if (!same_frame) {
-        for (uint32_t i = 0; i < l->retired_count[slot]; ++i)
-            roma_buffer_destroy(l->ctx, &l->retired[slot][i]);
-        l->retired_count[slot] = 0;
-    }
-    VkDeviceSize size = sizeof(roma_pixel_list_header) + 4ull * width * height;
-    if (l->lists[slot].buffer && l->lists[slot].size >= size)
-        return ROMA_SUCCESS;
-    roma_buffer grown;
-    roma_result r = roma_buffer_create(l->ctx, size,
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       ROMA_MEMORY_DEVICE, &grown);
-    if (r != ROMA_SUCCESS)
-        return roma_fail(&l->logger, r, "roma_pixel_list_record: the list of %ux%u pixels", width, height);
-    if (l->lists[slot].buffer)
-        l->retired[slot][l->retired_count[slot]++] = l->lists[slot];
-    l->lists[slot] = grown;
-    return ROMA_SUCCESS;
 }
 
 roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint32_t slot,
@@ -144,10 +112,11 @@ roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint
                          im->width, im->height, most, l->ctx->properties.limits.maxStorageBufferRange,
                          (unsigned long long)bytes);
     int same_frame = roma_slot_sets_same_frame(&l->sets, slot, im->frame);
-    /* Refuses a record past RECORDS_PER_FRAME, so that retired cannot overflow. */
+    /* Refuses a record past RECORDS_PER_FRAME (the descriptor pool's size). */
     roma_result r = roma_slot_sets_begin(&l->sets, &l->logger, "roma_pixel_list_record", slot, im->frame);
     if (r == ROMA_SUCCESS)
-        r = reserve(l, slot, same_frame, im->width, im->height);
+        r = roma_covered_lists_reserve(&l->lists, l->ctx, &l->logger, "roma_pixel_list_record", slot, same_frame,
+                                       (uint64_t)im->width * im->height);
     VkDescriptorSet set = VK_NULL_HANDLE;
     const VkImageLayout layout = im->input_layout ? im->input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     if (r == ROMA_SUCCESS)
@@ -156,7 +125,7 @@ roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint
     if (r != ROMA_SUCCESS)
         return r;
     roma_slot_sets_commit(&l->sets, slot);
-    const roma_buffer *list = &l->lists[slot];
+    const roma_buffer *list = &l->lists.lists[slot];
     VkDescriptorBufferInfo list_info = {list->buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet write = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                                   .dstSet = set,
@@ -165,33 +134,10 @@ roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint
                                   .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                   .pBufferInfo = &list_info};
     vkUpdateDescriptorSets(l->ctx->device, 1, &write, 0, NULL);
-
-    /* Effects recorded before may still read the slot's list (its pixels, its arguments), and
-     * a record before wrote it. */
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT |
-                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    const roma_pixel_list_header header = {.dispatch = {0, 0, 1, 0}};
-    vkCmdUpdateBuffer(cmd, list->buffer, 0, sizeof header, &header);
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    roma_image_list_push push = {.config = {im->width, im->height, 0, 0}};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->layout, 0, 1, &set, 0, NULL);
-    vkCmdPushConstants(cmd, l->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    vkCmdDispatch(cmd, (im->width + 7) / 8, (im->height + 7) / 8, 1);
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    push.config[2] = 1; /* the count into the effects' indirect arguments */
-    vkCmdPushConstants(cmd, l->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    roma_covered_list_record(cmd, list->buffer, l->pipeline, l->layout,
+                             (roma_image_list_push){.config = {im->width, im->height, 0, 0}}, (im->width + 7) / 8,
+                             (im->height + 7) / 8);
     l->listed[slot][0] = im->width;
     l->listed[slot][1] = im->height;
     return ROMA_SUCCESS;
@@ -201,13 +147,13 @@ roma_result roma_pixel_list_slot_buffer(const roma_pixel_list *l, const roma_log
                                         uint32_t slot, uint32_t width, uint32_t height, VkBuffer *out)
 {
     *out = VK_NULL_HANDLE;
-    if (slot >= l->sets.frames_in_flight || !l->lists[slot].buffer)
+    if (slot >= l->sets.frames_in_flight || !l->lists.lists[slot].buffer)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "%s: images.pixels holds no list of slot %u (record roma_pixel_list_record first)", name, slot);
     if (l->listed[slot][0] != width || l->listed[slot][1] != height)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "%s: images.pixels lists %ux%u pixels in slot %u, the images are %ux%u", name,
                          l->listed[slot][0], l->listed[slot][1], slot, width, height);
-    *out = l->lists[slot].buffer;
+    *out = l->lists.lists[slot].buffer;
     return ROMA_SUCCESS;
 }

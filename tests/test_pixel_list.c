@@ -6,7 +6,8 @@
  * list without recording it again (a still camera), also at a resolution divisor of 2 (which
  * traces a list of its own and upsamples the rest). Synchronization validation is on, so a
  * missing barrier between the list and the effects fails. Misuse: a slot the list was not
- * recorded in, images of another size, a fifth record in one frame, bad arguments. */
+ * recorded in, images of another size, a list of another context, a fifth record in one
+ * frame, bad arguments. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -296,6 +297,22 @@ int main(void)
     ai.width = W - 1;
     CHECK_RESULT(roma_ao_effect_record(shared.ao, f.cmd, 0, map, &ai, &(roma_ao_settings){.frame = 9}),
                  ROMA_ERROR_INVALID_ARGUMENT);
+    /* A list of another context. */
+    roma_context *other_ctx = roma_test_context();
+    roma_pixel_list *other = NULL;
+    if (other_ctx)
+        CHECK_RESULT(roma_pixel_list_create(other_ctx, NULL, &other), ROMA_SUCCESS);
+    if (other) {
+        ai.width = W;
+        ai.pixels = other;
+        CHECK_RESULT(roma_ao_effect_record(shared.ao, f.cmd, 0, map, &ai, &(roma_ao_settings){.frame = 9}),
+                     ROMA_ERROR_INVALID_ARGUMENT);
+        ai.pixels = logged;
+    }
+    roma_pixel_list_destroy(other);
+    if (other_ctx)
+        roma_test_context_finish(other_ctx);
+    CHECK_RESULT(roma_pixel_list_record(logged, f.cmd, UINT32_MAX, &li), ROMA_ERROR_INVALID_ARGUMENT);
     /* Four records in one frame of a slot, not five. */
     for (int i = 0; i < 3; ++i)
         CHECK_RESULT(roma_pixel_list_record(logged, f.cmd, 0, &li), ROMA_SUCCESS);

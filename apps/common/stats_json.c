@@ -31,9 +31,10 @@ static void add(roma_json *j, const char *key, cJSON *item)
 
 static void open_scope(roma_json *j, const char *key, cJSON *scope)
 {
-    if (j->depth >= ROMA_JSON_MAX_DEPTH) {
+    if (j->depth >= ROMA_JSON_MAX_DEPTH) { /* counted apart, so that the closes stay paired */
         cJSON_Delete(scope);
         j->failed = 1;
+        ++j->too_deep;
         return;
     }
     add(j, key, scope);
@@ -44,6 +45,10 @@ static void open_scope(roma_json *j, const char *key, cJSON *scope)
 
 static void close_scope(roma_json *j)
 {
+    if (j->too_deep > 0) {
+        --j->too_deep;
+        return;
+    }
     if (j->depth == 0) {
         j->failed = 1;
         return;

@@ -18,6 +18,7 @@ typedef struct roma_json {
     int depth;                                /* open scopes */
     struct cJSON *scopes[ROMA_JSON_MAX_DEPTH]; /* scopes[0] is the document */
     int failed;                               /* out of memory or too deep: nothing was written */
+    int too_deep;                             /* scopes opened past ROMA_JSON_MAX_DEPTH, still open */
 } roma_json;
 
 void roma_json_begin_object(roma_json *j, const char *key); /* key NULL at top level / in arrays */

@@ -1008,9 +1008,11 @@ static int apply_budget(options *o, roma_context *ctx, const roma_scene *scene, 
     /* Whatever else changes the work of a frame is in the key too; "api": times of the public
      * passes (a cache from before they calibrated holds the internal renderer's). */
     snprintf(key, sizeof key,
-             "api|%s|%s|%ux%u|effects %u|spp %u|radius %g|lights %u/%u|shadow A %u|steps %u|divisor %u|list %d",
+             "api|%s|%s|%ux%u|effects %u|spp %u|radius %g|lights %u/%u|shadow A %u|steps %u|divisor %u|list %d/%d|"
+             "levels %u|jitter %d",
              info.device_name, o->scene, o->width, o->height, o->effects, o->spp, (double)o->ao_radius, o->lights,
-             o->lights_per_frame, o->shadow_angular, o->max_steps, o->resolution_divisor, desc->shared_list);
+             o->lights_per_frame, o->shadow_angular, o->max_steps, o->resolution_divisor, desc->shared_list,
+             (int)desc->pixel_dispatch, desc->cascades, !o->jitter_off);
     for (char *c = key; *c; ++c)
         if (*c == '\t' || *c == '\n' || *c == '\r')
             *c = ' ';

@@ -128,8 +128,10 @@ typedef struct roma_ao_images {
     VkImageView output;           /**< storage, R32_SFLOAT, layout GENERAL */
     VkImageLayout input_layout;   /**< of the three inputs: SHADER_READ_ONLY_OPTIMAL (0 = that) or GENERAL */
     /** Optional: the frame's covered pixels, recorded earlier in this slot for images of this
-     * size (roma/pixel_list.h). The effect traces them alone, whatever its pixel_dispatch,
-     * and writes no other pixel. NULL: the effect covers the images as its pixel_dispatch says. */
+     * size, on the effect's context (roma/pixel_list.h; a list of another slot, size or
+     * context is refused). The effect traces them alone, whatever its pixel_dispatch, and
+     * writes no other pixel (at a resolution divisor: see roma/pixel_list.h). NULL: the
+     * effect covers the images as its pixel_dispatch says. */
     const roma_pixel_list *pixels;
 } roma_ao_images;
 

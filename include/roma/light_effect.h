@@ -51,7 +51,9 @@ typedef enum roma_light_output {
     /** In x, how many of the punctual lights face the shading normal and reach the point
      * unshadowed (the many-lights visibility of the constant-time intersection paper, and the
      * reference's roma_ref_count_visible_lights); with lights_per_frame, the unbiased estimate
-     * of that count. Area lights are not counted; y and z are 0. */
+     * of that count. A light counts by its position (a directional one by its direction)
+     * alone: spot cones, range windows and intensity are not looked at. Area lights are not
+     * counted; y and z are 0. */
     ROMA_LIGHT_OUTPUT_VISIBLE_COUNT = 1,
 } roma_light_output;
 

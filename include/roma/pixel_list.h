@@ -10,7 +10,9 @@
  * effect's images (roma_ao_images.pixels, roma_light_images.pixels): the effect then traces
  * the listed pixels by an indirect dispatch, whatever its pixel_dispatch, and writes those
  * pixels only; the others keep what its output held (an engine composes them by its own
- * coverage: the position's w).
+ * coverage: the position's w). At a resolution divisor above 1 the effect lists the one
+ * pixel of each block it traces itself (the shared list must still be the slot's, of the
+ * images' size) and its upsample writes the covered pixels only.
  *
  * A record lists the slot's pixels anew. Until the slot's next record, every effect record of
  * that slot may use the list, in this frame or later ones while the position image is

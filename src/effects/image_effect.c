@@ -138,7 +138,7 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
         return roma_fail(&e->logger, ROMA_ERROR_NOT_READY, "%s: record a build of the map first", e->name);
     VkBuffer shared = VK_NULL_HANDLE;
     if (pixels) {
-        r = roma_pixel_list_slot_buffer(pixels, &e->logger, e->name, slot, width, height, &shared);
+        r = roma_pixel_list_slot_buffer(pixels, e->ctx, &e->logger, e->name, slot, width, height, &shared);
         if (r != ROMA_SUCCESS)
             return r;
     }
@@ -146,6 +146,13 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
      * divisor the listed variant (the divisor's list: the traced pixels), a divisor the list
      * and upsample passes (made once, before anything of the record is recorded). */
     const uint32_t scale = resolution_divisor > 1 ? resolution_divisor : 1;
+    /* At a divisor the effect lists one pixel a block itself, listed or not (roma_image_effect_
+     * check_size took only a listed effect's list). */
+    const uint64_t blocks = (uint64_t)((width + scale - 1) / scale) * ((height + scale - 1) / scale);
+    if (scale > 1 && sizeof(roma_pixel_list_header) + 4 * blocks > e->ctx->properties.limits.maxStorageBufferRange)
+        return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "%s: the list of %ux%u pixels' blocks at resolution divisor %u exceeds maxStorageBufferRange",
+                         e->name, width, height, scale);
     const int listed = shared || scale > 1 ? 1 : e->listed, cascaded = info->levels > 1;
     if (!e->pipelines[listed][cascaded]) {
         r = roma_compute_pipeline_make_flags(e->ctx, e->module, e->layout, &(uint32_t){(uint32_t)listed}, 1,
@@ -214,11 +221,13 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
 {
     int same_frame = roma_image_effect_same_frame(e, slot);
     roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
-    /* Not listed: the shader's binding still needs a buffer, never read. */
+    /* Its own list: one entry a block at a divisor, one a pixel listed; not listed, the
+     * shader's binding still needs a buffer, never read. */
     const int own = e->listed || e->scale > 1;
+    const uint64_t blocks = (uint64_t)((width + e->scale - 1) / e->scale) * ((height + e->scale - 1) / e->scale);
     if (r == ROMA_SUCCESS && !e->shared_list)
         r = roma_covered_lists_reserve(&e->lists, e->ctx, &e->logger, e->name, slot, same_frame,
-                                       own ? (uint64_t)width * height : 0);
+                                       own ? blocks : 0);
     VkImageLayout in_layouts[ROMA_IMAGE_EFFECT_MAX_IMAGES];
     for (uint32_t i = 0; i < e->inputs; ++i)
         in_layouts[i] = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

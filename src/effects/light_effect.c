@@ -200,7 +200,9 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     const uint32_t rest = packed - exact;
     const uint32_t sampled = s.lights_per_frame == 0 || s.lights_per_frame > rest ? rest : s.lights_per_frame;
     const uint32_t items = exact + sampled + (e->emitter_count ? area_samples : 0);
-    const roma_shadow_cost shadow = {{info.resolution, info.grid_cell, info.levels}, push.ray[1], ROMA_START_WALK, s.max_steps,
+    /* Counting lights walks one skip length of each start (lights_images.comp). */
+    const float walk = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 1.0f : ROMA_START_WALK;
+    const roma_shadow_cost shadow = {{info.resolution, info.grid_cell, info.levels}, push.ray[1], walk, s.max_steps,
                                      ROMA_BACK_SKIP_POINT, 0};
     uint32_t per_item = roma_loop_cost_punctual_light(&shadow);
     if (e->emitter_count) {

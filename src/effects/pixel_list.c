@@ -111,6 +111,9 @@ roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint
                          "most maxStorageBufferRange (%u bytes; this one: %llu)",
                          im->width, im->height, most, l->ctx->properties.limits.maxStorageBufferRange,
                          (unsigned long long)bytes);
+    if (slot >= l->sets.frames_in_flight)
+        return roma_fail(&l->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_pixel_list_record: slot %u of %u", slot,
+                         l->sets.frames_in_flight);
     int same_frame = roma_slot_sets_same_frame(&l->sets, slot, im->frame);
     /* Refuses a record past RECORDS_PER_FRAME (the descriptor pool's size). */
     roma_result r = roma_slot_sets_begin(&l->sets, &l->logger, "roma_pixel_list_record", slot, im->frame);
@@ -143,10 +146,13 @@ roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint
     return ROMA_SUCCESS;
 }
 
-roma_result roma_pixel_list_slot_buffer(const roma_pixel_list *l, const roma_logger *log, const char *name,
-                                        uint32_t slot, uint32_t width, uint32_t height, VkBuffer *out)
+roma_result roma_pixel_list_slot_buffer(const roma_pixel_list *l, const roma_context *ctx, const roma_logger *log,
+                                        const char *name, uint32_t slot, uint32_t width, uint32_t height,
+                                        VkBuffer *out)
 {
     *out = VK_NULL_HANDLE;
+    if (l->ctx != ctx)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "%s: images.pixels was made on another context", name);
     if (slot >= l->sets.frames_in_flight || !l->lists.lists[slot].buffer)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "%s: images.pixels holds no list of slot %u (record roma_pixel_list_record first)", name, slot);

@@ -101,6 +101,12 @@ uint32_t roma_loop_guard_specialize(const roma_context *ctx, const char *module,
                                     uint32_t *values, uint32_t at)
 {
     const uint32_t slot = module ? module_slot(ctx, module) : UINT32_MAX;
+    if (ctx->loop_guard && slot == UINT32_MAX && module && roma_find_spirv(ctx, module)) {
+        /* Both tables together past the slots: this module would go unguarded. */
+        atomic_fetch_add(&((roma_context *)ctx)->validation_errors, 1u);
+        roma_log_error(&ctx->logger, ROMA_ERROR_VALIDATION, "loop guard: no slot for %s (%u slots)", module,
+                       GUARD_SLOTS);
+    }
     if (!ctx->loop_guard || slot == UINT32_MAX)
         return 0;
     const VkDeviceAddress a = ctx->loop_guard->peaks.address;

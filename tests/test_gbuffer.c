@@ -335,9 +335,13 @@ int main(void)
     CHECK_RESULT(roma_gbuffer_create(ctx, W, H, &gb), ROMA_SUCCESS);
     if (gb) {
         const char *builtins[] = {"cornell", "blinds"};
+        /* The median relative t error's bound sits above the largest median measured on any
+         * device (lavapipe 7.5e-08, 0 and 9.1e-08 for cornell, blinds and bunny; an H100
+         * 7.7e-08, 6.3e-08 and 9.3e-08: docs/bench/gbuffer_h100.txt); the fractions were 1 on
+         * both but bunny's same triangle, 0.9850 on both. */
         const scene_bounds builtin_bounds[] = {
-            {0.99, 1e-5, 0.99, 0.98}, /* measured: 1.0000, 8.0e-08, 1.0000, 1.0000 */
-            {0.99, 1e-5, 0.99, 0.98}, /* measured: 1.0000, 6.2e-08, 1.0000, 1.0000 */
+            {0.995, 1.5e-7, 0.995, 0.995}, /* measured: 1.0000, 7.5e-08, 1.0000, 1.0000 */
+            {0.995, 1.5e-7, 0.995, 0.995}, /* measured: 1.0000, 0, 1.0000, 1.0000 */
         };
         for (int s = 0; s < 2; ++s) {
             roma_scene *scene = NULL;
@@ -351,8 +355,8 @@ int main(void)
             roma_scene *bunny = NULL;
             CHECK_RESULT(roma_scene_load_gltf(path, NULL, &bunny), ROMA_SUCCESS);
             if (bunny)
-                /* measured: 1.0000, 8.9e-08, 1.0000 (geometric 0.9962), 0.9850 */
-                run_scene(ctx, gb, bunny, "bunny", (scene_bounds){0.99, 1e-5, 0.99, 0.97});
+                /* measured: 1.0000, 9.1e-08, 1.0000 (geometric 0.9962), 0.9850 */
+                run_scene(ctx, gb, bunny, "bunny", (scene_bounds){0.995, 1.5e-7, 0.995, 0.98});
             roma_scene_destroy(bunny);
         } else {
             printf("bunny.glb absent: skipped\n");

@@ -134,22 +134,28 @@ int main(void)
     roma_context *ctx = roma_test_context();
     if (!ctx)
         return roma_test_finish("test_roma_vs_embree");
-    /* Bounds: the values measured at RES 128, A 8, seed 1 (docs/accuracy.md), loosened by a
-     * stated margin only: 0.005 on agreement rates, 0.1 cell on the median distance error,
-     * 0.005 on the AO error. The run is deterministic given the device's BOM. */
+    /* Bounds: the worst of seeds 1-6 (the map's jitter; this run takes seed 1), each rounded
+     * outward in its last digit. The run is deterministic given the device's BOM, and the trace
+     * is bit for bit the C mirror's on lavapipe and an H100 (test_roma_mirror), so what moves a
+     * figure is the grid's placement, which the seeds sweep. Columns: snapped any-hit
+     * agreement, un-snapped 8 and 64 steps, closest-hit median error (cells), AO MAE. */
     struct {
         const char *name;
         int builtin;
         bounds limit;
     } cases[] = {
-        /* measured:          0.9997  0.6307  0.9986  1.167  0.0003 */
-        {"cornell", 1, {0.994, 0.625, 0.993, 1.27, 0.006}},
-        /* measured:          0.9723  0.8000  0.9692  0.892  0.0603 */
-        {"blinds", 1, {0.967, 0.795, 0.964, 0.99, 0.066}},
-        /* measured:          0.9903  0.9786  0.9832  1.834  0.0202 */
-        {"bunny.glb", 0, {0.985, 0.973, 0.978, 1.94, 0.026}},
-        /* measured:          0.9374  0.9349  0.9352  0.777  0.0625 */
-        {"2CylinderEngine.glb", 0, {0.932, 0.929, 0.930, 0.88, 0.068}},
+        /* seed 1:            0.9997  0.6321  0.9998  1.167  0.0003
+         * seeds 1-6, worst:  0.9993  0.6131  0.9995  1.224  0.0007 */
+        {"cornell", 1, {0.999, 0.613, 0.999, 1.23, 0.0008}},
+        /* seed 1:            0.9723  0.8004  0.9700  0.892  0.0603
+         * seeds 1-6, worst:  0.9680  0.7866  0.9650  1.341  0.0630 */
+        {"blinds", 1, {0.967, 0.786, 0.964, 1.35, 0.064}},
+        /* seed 1:            0.9903  0.9776  0.9822  1.834  0.0202
+         * seeds 1-6, worst:  0.9844  0.9776  0.9822  1.853  0.0256 */
+        {"bunny.glb", 0, {0.984, 0.977, 0.982, 1.86, 0.026}},
+        /* seed 1:            0.9374  0.9341  0.9345  0.777  0.0625
+         * seeds 1-6, worst:  0.9371  0.9341  0.9345  0.814  0.0630 */
+        {"2CylinderEngine.glb", 0, {0.937, 0.934, 0.934, 0.82, 0.064}},
     };
     printf("| scene | points | rays | snapped any-hit agreement | un-snapped 8 steps | un-snapped 64 steps | "
            "closest-hit error median (cells) | p90 | AO MAE per point |\n|---|---|---|---|---|---|---|---|---|\n");

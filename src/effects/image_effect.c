@@ -174,6 +174,7 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
     e->given_list = shared != VK_NULL_HANDLE;
     e->shared_list = scale > 1 ? VK_NULL_HANDLE : shared; /* scaled: the traced pixels' own list */
     e->scale = scale;
+    e->own_entries = scale > 1 || e->listed ? blocks : 0; /* its own list's; 0: a buffer never read */
     block_place(scale, frame, e->place);
     e->frame = frame;
     return ROMA_SUCCESS;
@@ -221,13 +222,9 @@ roma_result roma_image_effect_dispatch(roma_image_effect *e, VkCommandBuffer cmd
 {
     int same_frame = roma_image_effect_same_frame(e, slot);
     roma_result r = roma_slot_sets_begin(&e->sets, &e->logger, e->name, slot, e->frame);
-    /* Its own list: one entry a block at a divisor, one a pixel listed; not listed, the
-     * shader's binding still needs a buffer, never read. */
-    const int own = e->listed || e->scale > 1;
-    const uint64_t blocks = (uint64_t)((width + e->scale - 1) / e->scale) * ((height + e->scale - 1) / e->scale);
+    const int own = e->own_entries > 0;
     if (r == ROMA_SUCCESS && !e->shared_list)
-        r = roma_covered_lists_reserve(&e->lists, e->ctx, &e->logger, e->name, slot, same_frame,
-                                       own ? blocks : 0);
+        r = roma_covered_lists_reserve(&e->lists, e->ctx, &e->logger, e->name, slot, same_frame, e->own_entries);
     VkImageLayout in_layouts[ROMA_IMAGE_EFFECT_MAX_IMAGES];
     for (uint32_t i = 0; i < e->inputs; ++i)
         in_layouts[i] = input_layout ? input_layout : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

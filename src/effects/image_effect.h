@@ -39,6 +39,9 @@ typedef struct roma_image_effect {
     /* This record's resolution divisor (1, 2, 4) and the traced pixel's place in each block;
      * given_list: the record was given the frame's list (its upsample leaves uncovered pixels). */
     uint32_t scale, place[2];
+    /* Entries of this record's own list: one a block (a pixel at divisor 1) when it lists
+     * them itself, else 0 (the shader's binding still needs a buffer, never read). */
+    uint64_t own_entries;
     int given_list;
     const char *module;
     float background[4]; /* the output where the position image holds no surface */

@@ -258,10 +258,14 @@ if [ -f "$dir/many_8_16.pfm" ] && [ -f "$dir/many_8_64.pfm" ] && [ -f "$dir/many
   mean=$(metric "$dir/many_8_16.txt" mean_b); spot=$(metric "$dir/many_none.txt" mean_a)
   echo "many lights: 8 of 256 per pixel and frame, from every light traced: $r16 after 16 frames, $r64 after 64" \
     "(bias $b16, $b64 on a mean of $mean; the spot alone: $spot)"
-  # Measured (4,800 pixels): 0.161 and 0.0795 (bias -0.0004 and +0.0004 on 0.156, 0.25% and 0.27%; the spot
-  # alone 0.0061).
+  # Measured (4,800 pixels): 0.169 and 0.0832 (bias -0.0007 and +0.0004 on 0.148; the spot alone 0.0061).
+  # The bias is the mean of 4,800 pixels' errors: within three of its standard errors (a
+  # pixel's error spreads about 1.25 times its mean absolute error; 1.6 and 1.8 of them
+  # measured). A bound of 0.4% of the mean, set on one lucky run (0.25%), failed when the
+  # shadow rays' end walk (roma_light_end_blocked) changed which lights some pixels see.
   numbers "$r16" "$r64" "$b16" "$b64" "$mean" "$spot" && awk -v a="$r16" -v b="$r64" -v c="$b16" -v d="$b64" -v m="$mean" -v s="$spot" 'BEGIN {
-    exit !(a < 0.175 && b < 0.087 && b < 0.6 * a && c * c < (0.004 * m) ^ 2 && d * d < (0.004 * m) ^ 2 && s < 0.1 * m) }' \
+    se16 = 1.25 * a * m / sqrt(4800); se64 = 1.25 * b * m / sqrt(4800)
+    exit !(a < 0.175 && b < 0.087 && b < 0.6 * a && c * c < (3 * se16) ^ 2 && d * d < (3 * se64) ^ 2 && s < 0.1 * m) }' \
     || fail "many lights: $r16 (16 frames), $r64 (64 frames), bias $b16, $b64, mean $mean, spot alone $spot"
   case " $(json "$dir/many_8_16.json" passes) " in *" many_lights "*) ;; *) fail "no many_lights pass in the stats" ;; esac
 fi

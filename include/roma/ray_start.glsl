@@ -59,11 +59,11 @@ uint roma_fetch_bom_word(uint index) { return RomaBomWords(roma_start_bom_).w[in
 #endif
 
 // Distance along normalize(dir) at which origin + normalize(dir) * [0, tmax] enters its
-// first occupied BOM cell, or -1 when it meets none within max_cells cells (the exact
-// voxel traversal of the BOM, Amanatides-Woo: the same voxels as ROMA without snapping,
-// rotation or bounded steps), in the BOM of the cascade level that holds the origin, up to
-// that level's edge.
-float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
+// first BOM cell that is occupied (occupied true) or free (false), or -1 when it meets none
+// within max_cells cells (the exact voxel traversal of the BOM, Amanatides-Woo: the same
+// voxels as ROMA without snapping, rotation or bounded steps), in the BOM of the cascade
+// level that holds the origin, up to that level's edge (outside the grid counts as neither).
+float roma_bom_walk_until(vec3 origin, vec3 dir, float tmax, int max_cells, bool occupied)
 {
     if (roma_start_bom_ == uvec2(0u) || !(tmax > 0.0))
         return -1.0;
@@ -101,7 +101,7 @@ float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
         if (inside) {
             uint word =
                 roma_fetch_bom_word(bom_base + (uint(cell.y) * uint(res) + uint(cell.x)) * per_texel + uint(cell.z >> 5));
-            if ((word & (1u << uint(cell.z & 31))) != 0u)
+            if (((word & (1u << uint(cell.z & 31))) != 0u) == occupied)
                 return t / inv_cell;
         }
         if (next.x <= next.y && next.x <= next.z) {
@@ -119,6 +119,13 @@ float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
         }
     }
     return -1.0;
+}
+
+// Distance at which origin + normalize(dir) * [0, tmax] enters its first occupied BOM cell,
+// or -1 (roma_bom_walk_until).
+float roma_bom_walk(vec3 origin, vec3 dir, float tmax, int max_cells)
+{
+    return roma_bom_walk_until(origin, dir, tmax, max_cells, true);
 }
 
 // The skipped start of a ray (tmax: the skip): the walk above, at most 64 cells.

@@ -21,6 +21,9 @@
  * skipped farther (docs/accuracy.md, "Skipping the empty space in front of the light"). */
 #define ROMA_BACK_SKIP_POINT 48
 #define ROMA_BACK_SKIP_AREA 32
+/* Cells of each of the two walks that check a segment's end at its light
+ * (roma_light_end_blocked): an offset of 2.6 BOM cells at a slant of about 85 degrees. */
+#define ROMA_LIGHT_END_CELLS 32
 
 /* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
  * and the pipeline's slot in it as specialization constants, set on every pipeline of a

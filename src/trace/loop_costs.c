@@ -7,6 +7,8 @@
 
 /* One iteration of the loop that runs the item (a light, a sample), besides its calls. */
 #define LOOP_ITSELF 1u
+/* The two walks that check a segment's end at its light (roma_light_end_blocked). */
+#define LIGHT_END (2u * ROMA_LIGHT_END_CELLS)
 
 static uint32_t min_u32(uint64_t a, uint64_t b) { return (uint32_t)(a < b ? a : b); }
 
@@ -53,7 +55,7 @@ uint32_t roma_loop_cost_area_sample(const roma_shadow_cost *s, uint32_t emitters
         ++search;
     roma_shadow_cost area = *s;
     area.back_skip = ROMA_BACK_SKIP_AREA;
-    return min_u32((uint64_t)LOOP_ITSELF + search + roma_loop_cost_shadow_ray(&area), UINT32_MAX);
+    return min_u32((uint64_t)LOOP_ITSELF + search + roma_loop_cost_shadow_ray(&area) + LIGHT_END, UINT32_MAX);
 }
 
 uint32_t roma_loop_cost_punctual_light(const roma_shadow_cost *s)
@@ -62,7 +64,7 @@ uint32_t roma_loop_cost_punctual_light(const roma_shadow_cost *s)
     point.back_skip = ROMA_BACK_SKIP_POINT;
     /* A directional light at a GI hit: its start walk (64 cells, or to the edge when exact)
      * and one snapped query, within the shadow ray's bound. */
-    return min_u32((uint64_t)LOOP_ITSELF + roma_loop_cost_shadow_ray(&point), UINT32_MAX);
+    return min_u32((uint64_t)LOOP_ITSELF + roma_loop_cost_shadow_ray(&point) + LIGHT_END, UINT32_MAX);
 }
 
 uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius)

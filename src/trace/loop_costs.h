@@ -39,10 +39,10 @@ typedef struct roma_shadow_cost {
 } roma_shadow_cost;
 uint32_t roma_loop_cost_shadow_ray(const roma_shadow_cost *s);
 /* One area-light sample (roma_area_sample_irradiance): the emitter's binary search over
- * `emitters` and its shadow ray (back skip ROMA_BACK_SKIP_AREA). */
+ * `emitters`, its shadow ray (back skip ROMA_BACK_SKIP_AREA) and the walks at its light's end. */
 uint32_t roma_loop_cost_area_sample(const roma_shadow_cost *s, uint32_t emitters);
-/* One punctual light of roma_punctual_irradiance (back skip ROMA_BACK_SKIP_POINT), a
- * directional one included, plus the loop over the lights. */
+/* One punctual light of roma_punctual_irradiance (back skip ROMA_BACK_SKIP_POINT, the walks
+ * at its end), a directional one included, plus the loop over the lights. */
 uint32_t roma_loop_cost_punctual_light(const roma_shadow_cost *s);
 /* One AO ray: its start walked over min(skip, radius), then one snapped query. */
 uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius);

@@ -73,3 +73,48 @@ roma_scene *roma_test_box_room(const float rot[9], int with_light)
     return scene;
 }
 
+
+/* The box room with a light near its ceiling (box_room.h). */
+roma_scene *roma_test_box_room_ceiling_light(const float rot[9], const roma_test_outside_light *o)
+{
+    float pos[28 * 3];
+    uint32_t idx[38 * 3], mat[38], vcount = 0, tcount = 0;
+    add_box((const float[3]){-1, 0, -1}, (const float[3]){1, 2, 2}, pos, &vcount, idx, &tcount);
+    add_box((const float[3]){-0.5f, 0, -0.6f}, (const float[3]){0.1f, 0.7f, 0.0f}, pos, &vcount, idx, &tcount);
+    if (o->thickness > 0.0f)
+        add_box((const float[3]){-1, 2, -1}, (const float[3]){1, 2 + o->thickness, 2}, pos, &vcount, idx, &tcount);
+    const float y = o->inside ? 2.0f - o->gap : 2.0f + o->thickness + o->gap;
+    const uint32_t room_triangles = tcount;
+    if (o->kind == ROMA_TEST_OUTSIDE_LAMP) {
+        const float quad[4][3] = {{-0.5f, y, 0.0f}, {0.5f, y, 0.0f}, {0.5f, y, 1.0f}, {-0.5f, y, 1.0f}};
+        memcpy(&pos[3 * vcount], quad, sizeof quad);
+        const uint32_t t[6] = {vcount, vcount + 2, vcount + 1, vcount, vcount + 3, vcount + 2};
+        memcpy(&idx[3 * tcount], t, sizeof t);
+        vcount += 4;
+        tcount += 2;
+    }
+    for (uint32_t i = 0; i < tcount; ++i)
+        mat[i] = i >= room_triangles;
+    for (uint32_t v = 0; v < vcount; ++v) {
+        float p[3] = {pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]};
+        roma_test_rotate(rot, p, &pos[3 * v]);
+    }
+    const roma_material materials[2] = {{.base_color = {0.8f, 0.8f, 0.8f}},
+                                        {.base_color = {0.8f, 0.8f, 0.8f}, .emission = {4.0f, 4.0f, 4.0f}}};
+    roma_light light = {.type = o->kind == ROMA_TEST_OUTSIDE_SPOT ? ROMA_LIGHT_SPOT : ROMA_LIGHT_POINT,
+                        .color = {1, 1, 1}, .intensity = 4.0f, .outer_cone_angle = 1.2f, .inner_cone_angle = 1.0f};
+    roma_test_rotate(rot, (const float[3]){0.0f, y, 0.5f}, light.position);
+    roma_test_rotate(rot, (const float[3]){0.0f, -1.0f, 0.0f}, light.direction);
+    roma_camera cam = {.fovy_deg = 70.0f};
+    roma_test_rotate(rot, (const float[3]){0.0f, 1.0f, 1.9f}, cam.eye);
+    roma_test_rotate(rot, (const float[3]){0.0f, 0.8f, -1.0f}, cam.target);
+    roma_test_rotate(rot, (const float[3]){0.0f, 1.0f, 0.0f}, cam.up);
+    const int punctual = o->kind != ROMA_TEST_OUTSIDE_LAMP;
+    roma_scene_desc d = {.positions = pos, .vertex_count = vcount, .indices = idx, .triangle_count = tcount,
+                         .triangle_materials = mat, .materials = materials, .material_count = 2,
+                         .lights = punctual ? &light : NULL, .light_count = punctual ? 1u : 0u, .camera = &cam,
+                         .name = "box room, light at the ceiling"};
+    roma_scene *scene = NULL;
+    CHECK_RESULT(roma_scene_create(&d, &scene), ROMA_SUCCESS);
+    return scene;
+}

@@ -14,4 +14,22 @@ void roma_test_rotation(const float axis[3], float angle, float r[9]);
  * failure. */
 roma_scene *roma_test_box_room(const float rot[9], int with_light);
 
+/* A light over the box room's middle near its ceiling (y = 2): `gap` (metres) above the
+ * ceiling's top, outside the room, or `gap` below the ceiling, inside it. */
+typedef enum roma_test_outside_kind {
+    ROMA_TEST_OUTSIDE_LAMP = 1, /* an emissive 1 x 1 m quad (two triangles, two-sided) */
+    ROMA_TEST_OUTSIDE_POINT,    /* a point light */
+    ROMA_TEST_OUTSIDE_SPOT      /* a spot light pointing down into the ceiling */
+} roma_test_outside_kind;
+
+typedef struct roma_test_outside_light {
+    roma_test_outside_kind kind;
+    float gap;       /* metres from the ceiling's top */
+    float thickness; /* 0: the ceiling is the room's single quad; > 0: a slab that thick on it */
+    int inside;      /* 1: the light hangs gap under the ceiling, inside the room */
+} roma_test_outside_light;
+
+/* The box room turned by rot with the light o near its ceiling, the room's camera inside. */
+roma_scene *roma_test_box_room_ceiling_light(const float rot[9], const roma_test_outside_light *o);
+
 #endif /* ROMA_TEST_BOX_ROOM_H */

@@ -11,7 +11,8 @@
  * RES 64, 128 and 256.
  *
  * Outside, over the covered pixels: the mean of the largest channel and the share above 0.01,
- * of the direct light and of the GI; the issue's bounds, mean <= 1e-3 and at most 0.2% of the
+ * of the direct light and of the GI, and for a point or spot light the share of pixels that
+ * see it (the light effect's visible-count output, many lights' route); the issue's bounds, mean <= 1e-3 and at most 0.2% of the
  * pixels above 0.01, at gaps of two cells and more. Inside: the direct light against Embree's
  * at the same points. */
 #include <math.h>
@@ -183,16 +184,28 @@ static void one_case(roma_context *ctx, effects *fx, const char *room, const flo
                  ROMA_SUCCESS);
     roma_test_gbuffer_finish(ctx, &g, &rgba, &r);
     const dark_stats bounce = stats_of(&g, rgba);
+    /* Many lights' visibility (the count output) of a point or spot light: the pixels that see it. */
+    dark_stats seen = {0};
+    if (kind != ROMA_TEST_OUTSIDE_LAMP) {
+        cmd = roma_test_gbuffer_begin(&g);
+        CHECK_RESULT(roma_light_effect_record(light, cmd, 1, map, &images, v.lights, v.light_count,
+                                              &(roma_light_settings){.seed = SEED, .frame = fx->frame,
+                                                                     .output = ROMA_LIGHT_OUTPUT_VISIBLE_COUNT}),
+                     ROMA_SUCCESS);
+        roma_test_gbuffer_finish(ctx, &g, &rgba, &r);
+        seen = stats_of(&g, rgba);
+    }
     ++fx->frame;
     CHECK(g.covered_count == W * H);
     const int bounded = gap_cells >= BOUNDED_GAP_CELLS;
     const int over = direct.mean > MAX_MEAN || direct.bright_share > MAX_BRIGHT_SHARE || bounce.mean > MAX_MEAN ||
-                     bounce.bright_share > MAX_BRIGHT_SHARE;
+                     bounce.bright_share > MAX_BRIGHT_SHARE || seen.bright_share > MAX_BRIGHT_SHARE;
     printf("%-6s RES %3u %-5s ceiling %4.2f m gap %3.1f cells (%5.3f m, cell %5.3f): direct mean %.2e, %5.1f%% > 0.01; GI "
-           "mean %.2e, %5.1f%% > 0.01%s\n", room, res, kind_name(kind), thickness, gap_cells, o.gap, cell, direct.mean,
-           100.0 * direct.bright_share, bounce.mean, 100.0 * bounce.bright_share,
-           over ? (bounded ? "  OVER" : "  (not bounded)") : "");
+           "mean %.2e, %5.1f%% > 0.01; seen %5.1f%%%s\n", room, res, kind_name(kind), thickness, gap_cells, o.gap, cell,
+           direct.mean, 100.0 * direct.bright_share, bounce.mean, 100.0 * bounce.bright_share,
+           100.0 * seen.bright_share, over ? (bounded ? "  OVER" : "  (not bounded)") : "");
     if (bounded && checking) {
+        CHECK(seen.bright_share <= MAX_BRIGHT_SHARE);
         CHECK(direct.mean <= MAX_MEAN);
         CHECK(direct.bright_share <= MAX_BRIGHT_SHARE);
         CHECK(bounce.mean <= MAX_MEAN);

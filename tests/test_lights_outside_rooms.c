@@ -228,7 +228,8 @@ int main(int argc, char **argv)
     /* "all": every RES, light, ceiling and gap, printed, not checked (the sweep of
      * docs/accuracy.md, where RES 64 and 256 leave cases above the bounds); otherwise, checked,
      * RES 128 with every light on the thin ceiling at every gap and on the thick one at two,
-     * and RES 64 and 256 with the lamp at the two smallest bounded gaps. */
+     * RES 64 and 256 with the lamp at the two smallest bounded gaps, and RES 256 with the point
+     * light two cells above (the walk back's reach, roma_back_skip_cells). */
     const int all = argc > 1 && strcmp(argv[1], "all") == 0;
     checking = !all;
     effects fx = {0};
@@ -246,9 +247,11 @@ int main(int argc, char **argv)
                     const uint32_t res = resolutions[ri];
                     float cell = 0.0f;
                     for (size_t gi = 0; gi < sizeof gaps / sizeof gaps[0]; ++gi) {
-                        const int in_short = res == 128 ? !thick || gaps[gi] == 0.5f || gaps[gi] == 2.0f
-                                                        : !thick && k == ROMA_TEST_OUTSIDE_LAMP &&
-                                                              (gaps[gi] == 1.5f || gaps[gi] == 2.0f);
+                        const int lamp = k == ROMA_TEST_OUTSIDE_LAMP, point = k == ROMA_TEST_OUTSIDE_POINT;
+                        const int in_short =
+                            res == 128 ? !thick || gaps[gi] == 0.5f || gaps[gi] == 2.0f
+                                       : !thick && ((lamp && (gaps[gi] == 1.5f || gaps[gi] == 2.0f)) ||
+                                                    (res == 256 && point && gaps[gi] == 2.0f));
                         if (!all && !in_short)
                             continue;
                         if (!(cell > 0.0f))

@@ -5,13 +5,15 @@
 # ceiling, and its spot) at 640x360, 16 samples, 4 frames, with this build and with a build of
 # the commit before the walk (BASE_BUILD), three alternating runs; per run the pass's time summed
 # over the frames, in ms, from the stats file.
-# Usage: docs/bench/light_end_cost.sh BASE_BUILD [BUILD_DIR]   (from the repository root)
+# Usage: docs/bench/light_end_cost.sh BASE_BUILD [BUILD_DIR [ROMA_RENDER_ARGS...]]   (from the
+# repository root; e.g. `--res 256` for the walk back's reach at RES 256)
 set -euo pipefail
 base=$1
 build=${2:-build}
+shift $(( $# < 2 ? $# : 2 ))
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-args=(--tracer roma --effects direct,gi --size 640x360 --spp 16 --frames 4 --quiet)
+args=(--tracer roma --effects direct,gi --size 640x360 --spp 16 --frames 4 --quiet "$@")
 echo "# $(git log -1 --format=%h) against $(git -C "$base/.." log -1 --format=%h 2>/dev/null || echo base) on $(nproc) CPU threads; roma-render ${args[*]}"
 for run in 1 2 3; do
   for which in base new; do

@@ -49,6 +49,15 @@ float roma_grid_exit(vec3 origin, vec3 d)
     return min(far.x, min(far.y, far.z)) + grid.origin.w;
 }
 
+// The walk back's reach in cells: back_skip at RES 128 and below, as far in metres above (RES
+// 256: twice the cells), where a shadow segment that crosses a thin wall at a grazing slant far
+// from both ends went unseen by both walks (a point light 2-3 cells above a room's ceiling lit
+// 1% of the room at RES 256; docs/accuracy.md, "Lights just outside a wall").
+int roma_back_skip_cells(int back_skip)
+{
+    return back_skip * max(int(roma_start_grid_.dims.x) / 128, 1);
+}
+
 // 1 when origin + normalize(v) * [0, tmax] is free (tmax may be +INF). The ROMA query
 // skips its first tmin; the start is walked exactly instead (roma/ray_start.glsl), over
 // roma_start_walk * tmin, and a ray shorter than the skip is walked whole (the query would
@@ -89,7 +98,7 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
     float t_back = min(tmax, roma_grid_exit(origin, d));
     float t_wall = isinf(tmax) || !(t_back > tmin)
                        ? -1.0
-                       : roma_bom_walk(origin + d * t_back, -d, t_back - tmin, back_skip);
+                       : roma_bom_walk(origin + d * t_back, -d, t_back - tmin, roma_back_skip_cells(back_skip));
     if (t_wall >= 0.0)
         t_back -= max(t_wall - 2.0 * tmin, 0.0);
     return isinf(tmax) ? (roma_trace_snapped(origin, d, tmin, tmax, false).info & ROMA_HIT_FLAG) == 0u

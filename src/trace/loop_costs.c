@@ -44,7 +44,10 @@ uint32_t roma_loop_cost_shadow_ray(const roma_shadow_cost *s)
         return roma_loop_cost_walk(s->grid, INFINITY, UINT32_MAX);
     const uint64_t start = roma_loop_cost_walk(s->grid, s->start_walk * s->tmin, 64);
     const uint64_t query = roma_loop_cost_unsnapped(s->grid, s->max_steps);
-    const uint64_t back = (uint64_t)s->back_skip + query, sun = roma_loop_cost_snapped(s->grid);
+    /* The walk back's reach: back_skip cells up to RES 128, as far in metres above
+     * (roma_back_skip_cells). */
+    const uint64_t reach = (uint64_t)s->back_skip * (s->grid.res > 128 ? s->grid.res / 128 : 1);
+    const uint64_t back = reach + query, sun = roma_loop_cost_snapped(s->grid);
     return min_u32(start + query + (back > sun ? back : sun), UINT32_MAX);
 }
 

@@ -33,10 +33,11 @@
  * the ROMA paper (libroma's offline renderer) need a rasterization of the light's view,
  * which is the engine's to make. Those shadow rays walk the map's rotated arrays with
  * bounded steps from each end (from the light's end past the empty cells in front of it,
- * up to 48), and what lies beyond both walks counts as open: a point or spot light outside
- * a closed room can light its inside a little (a GI mean of 1e-5 in the tests' closed
- * rooms, where the lit default room's is 0.04; docs/accuracy.md); keep such lights out of
- * the record where that matters.
+ * up to 48 at RES 128, as far in metres at higher RES), and what lies beyond both walks
+ * counts as open: a point or spot light outside a closed room can light its inside a little
+ * (a GI mean of up to 2e-4 in the tests' closed rooms, where the lit default room's is 0.04;
+ * docs/accuracy.md); keep such lights out of the record where that matters. Lights within
+ * about two occupancy cells of a wall's far side pass it as roma_light_effect's do.
  *
  * Threads: an effect is used by one thread at a time, like its context; records write only
  * into the command buffer they are given and never submit or wait. Frame slots: as

@@ -14,6 +14,12 @@
  * point and spot lights, lux for directional ones; range windows; spot cones); their
  * formulas are the reference tracer's. Synchronisation and slots: as roma_ao_effect.
  *
+ * Walls: a shadow ray's end at its light is walked through the map's occupancy, so a light
+ * outside a closed room stays out. A light closer than about two occupancy cells to the far
+ * side of a wall (one cell for an area light parallel to an axis-aligned wall) lies in the
+ * same cells as the wall and cannot be told from a light mounted on it: it lights through
+ * that wall (docs/accuracy.md, "Lights just outside a wall"); keep such lights two cells out.
+ *
  * Many lights: with roma_light_settings.lights_per_frame each pixel traces a fixed number of
  * the lights per frame (a random run of them, scaled to an unbiased estimate), so thousands of
  * lights cost per frame what a few do and the engine's accumulation over frames converges to

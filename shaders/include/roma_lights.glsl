@@ -142,14 +142,16 @@ bool roma_emitter_end_blocked(vec3 y, vec3 n, vec3 dir, float len)
     return t0 < len && roma_bom_walk(y + d * t0, d, len - t0, ROMA_LIGHT_END_CELLS) >= 0.0;
 }
 
-// 1 when a point or spot light at target is visible from origin: the segment traced up to
-// `offset` short of the light, and that end walked from the light (roma_light_end_blocked).
-bool roma_point_visible(vec3 origin, vec3 target, float offset, float tmin, uint max_steps)
+// 1 when a punctual light is visible from origin: v, the segment to a point or spot light
+// (traced up to `offset` short of the light, and that end walked from the light,
+// roma_light_end_blocked), or a directional light's direction (unbounded). One call of the
+// ray for both kinds: it is large and every call is inlined (with a call for each kind,
+// lavapipe leaked memory in the sanitizer suite's leak check, and SIMD devices run both).
+bool roma_punctual_visible(vec3 origin, vec3 v, bool directional, float offset, float tmin, uint max_steps)
 {
-    vec3 v = target - origin;
     float len = length(v);
-    return roma_ray_visible(origin, v, tmin, len - offset, max_steps, ROMA_BACK_SKIP_POINT) &&
-           !roma_light_end_blocked(target, -v, min(offset, len));
+    return roma_ray_visible(origin, v, tmin, directional ? 1.0 / 0.0 : len - offset, max_steps, ROMA_BACK_SKIP_POINT) &&
+           (directional || !roma_light_end_blocked(origin + v, -v, min(offset, len)));
 }
 
 // Unshadowed irradiance factor of a punctual light at p (scale * cos, 0 when
@@ -211,8 +213,7 @@ vec3 roma_punctual_term(roma_gpu_light light, vec3 p, vec3 ng, vec3 n, vec3 orig
     // A directional light's ray is unbounded; one visibility call for both kinds.
     bool directional = uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL;
     vec3 v = directional ? l : light.position_type.xyz - origin;
-    bool visible = directional ? roma_ray_visible(origin, v, tmin, 1.0 / 0.0, max_steps, ROMA_BACK_SKIP_POINT)
-                               : roma_point_visible(origin, light.position_type.xyz, offset, tmin, max_steps);
+    bool visible = roma_punctual_visible(origin, v, directional, offset, tmin, max_steps);
     return !visible ? vec3(0.0) : count ? vec3(1.0, 0.0, 0.0) : roma_bounded_irradiance(f, light.color_intensity.rgb);
 }
 

@@ -58,7 +58,7 @@ void main()
         i = i >= light_count ? i - light_count : i;
         vec3 lp = RomaPositions(pc.positions).p[i].xyz;
         bool lit = dot(n, lp - p) > 0.0 &&
-                   roma_point_visible(origin, lp, offset, pc.ray.y, max_steps);
+                   roma_punctual_visible(origin, lp - origin, false, offset, pc.ray.y, max_steps);
         visible += lit ? 1u : 0u;
         if (write_mask) {
             bits |= lit ? 1u << (i & 31u) : 0u;

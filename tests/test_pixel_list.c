@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu_images.h"
+#include "gbuffer_images.h"
 #include "harness.h"
 #include "reference.h"
 #include "roma/ao_effect.h"
@@ -35,11 +35,13 @@ typedef struct effects {
     roma_gi_effect *gi;
 } effects;
 
+/* The engine's side: the G-buffer inputs and a command buffer (gbuffer_images.h), and three
+ * outputs that can be cleared to the sentinel, read back into a staging buffer of their own. */
 typedef struct frame_objects {
     roma_context *ctx;
-    VkCommandPool pool;
+    roma_test_gbuffer g;
     VkCommandBuffer cmd;
-    roma_test_image in[3], out[OUTPUTS];
+    roma_test_image out[OUTPUTS];
     roma_test_staging staging;
     VkDeviceSize plane; /* W * H * 16 bytes: one RGBA32F image */
 } frame_objects;
@@ -61,12 +63,8 @@ static void destroy_effects(effects *e)
     roma_ao_effect_destroy(e->ao);
 }
 
-static void begin(frame_objects *f)
-{
-    vkResetCommandPool(roma_context_device(f->ctx), f->pool, 0);
-    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    vkBeginCommandBuffer(f->cmd, &bi);
-}
+/* Begins the command buffer (the first time with the G-buffer's upload). */
+static void begin(frame_objects *f) { f->cmd = roma_test_gbuffer_begin(&f->g); }
 
 /* The outputs cleared to the sentinel, then in GENERAL for the effects' storage writes. */
 static void clear_outputs(frame_objects *f)
@@ -87,14 +85,16 @@ static void clear_outputs(frame_objects *f)
 }
 
 /* AO, direct light and GI of frame n over the images (pixels: the shared list or NULL), the
- * outputs read back into planes 3.. of the staging buffer; submits and waits. */
+ * outputs read back into the staging buffer; submits and waits. */
 static void record_effects(frame_objects *f, const effects *e, const roma_map *map, const roma_scene_view *sv,
                            const roma_pixel_list *pixels, uint32_t n, uint32_t divisor)
 {
-    roma_ao_images ai = {.width = W, .height = H, .position = f->in[0].view, .normal = f->in[1].view,
-                         .geometric_normal = f->in[2].view, .output = f->out[OUT_AO].view, .pixels = pixels};
-    roma_light_images li = {.width = W, .height = H, .position = f->in[0].view, .normal = f->in[1].view,
-                            .geometric_normal = f->in[2].view, .output = f->out[OUT_DIRECT].view, .pixels = pixels};
+    roma_ao_images ai = roma_test_gbuffer_ao_images(&f->g);
+    ai.output = f->out[OUT_AO].view;
+    ai.pixels = pixels;
+    roma_light_images li = roma_test_gbuffer_light_images(&f->g);
+    li.output = f->out[OUT_DIRECT].view;
+    li.pixels = pixels;
     roma_light_images gi = li;
     gi.output = f->out[OUT_GI].view;
     CHECK_RESULT(roma_ao_effect_record(e->ao, f->cmd, 0, map, &ai,
@@ -114,7 +114,7 @@ static void record_effects(frame_objects *f, const effects *e, const roma_map *m
                                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
                                  VK_ACCESS_2_TRANSFER_READ_BIT);
-        VkBufferImageCopy copy = {.bufferOffset = (3 + (VkDeviceSize)i) * f->plane,
+        VkBufferImageCopy copy = {.bufferOffset = (VkDeviceSize)i * f->plane,
                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {W, H, 1}};
         vkCmdCopyImageToBuffer(f->cmd, f->out[i].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, f->staging.buffer, 1,
@@ -127,9 +127,9 @@ static void record_effects(frame_objects *f, const effects *e, const roma_map *m
 static void keep_outputs(const frame_objects *f, float *ao, float *direct, float *gi)
 {
     const char *base = f->staging.mapped;
-    memcpy(ao, base + 3 * f->plane, (size_t)W * H * 4);
-    memcpy(direct, base + 4 * f->plane, (size_t)W * H * 16);
-    memcpy(gi, base + 5 * f->plane, (size_t)W * H * 16);
+    memcpy(ao, base, (size_t)W * H * 4);
+    memcpy(direct, base + f->plane, (size_t)W * H * 16);
+    memcpy(gi, base + 2 * f->plane, (size_t)W * H * 16);
 }
 
 /* Covered pixels bit for bit as the own lists', uncovered ones still the sentinel. */
@@ -182,60 +182,20 @@ int main(void)
      * camera's own: the room fills the view. */
     roma_scene_view sv;
     roma_scene_get_view(scene, &sv);
-    roma_camera_frame cam;
-    roma_camera_make_frame(&sv.camera, W, H, &cam);
     frame_objects f = {.ctx = ctx, .plane = (VkDeviceSize)W * H * 16};
-    roma_test_staging_create(ctx, 6 * f.plane, &f.staging);
-    float *pos = f.staging.mapped, *nrm = pos + 4 * W * H, *gnrm = pos + 8 * W * H;
-    static int covered[W * H];
-    uint32_t covered_count = 0;
-    for (uint32_t y = 0; y < H; ++y)
-        for (uint32_t x = 0; x < W; ++x) {
-            uint32_t p = y * W + x;
-            float o[3], d[3];
-            roma_camera_ray(&cam, (float)x + 0.5f, (float)y + 0.5f, o, d);
-            roma_ref_hit hit;
-            covered[p] = x > 2 && y > 2 && roma_ref_intersect(ref, o, d, 0.0f, INFINITY, &hit);
-            covered_count += (uint32_t)covered[p];
-            for (int a = 0; a < 3; ++a) {
-                pos[4 * p + a] = covered[p] ? hit.position[a] : 0.0f;
-                nrm[4 * p + a] = covered[p] ? hit.shading_normal[a] : 0.0f;
-                gnrm[4 * p + a] = covered[p] ? hit.geometric_normal[a] : 0.0f;
-            }
-            pos[4 * p + 3] = covered[p] ? 1.0f : 0.0f;
-            nrm[4 * p + 3] = gnrm[4 * p + 3] = 0.0f;
-        }
-    CHECK(covered_count > W * H / 2 && covered_count < W * H);
-    for (int i = 0; i < 3; ++i)
-        roma_test_image_create(ctx, W, H, VK_FORMAT_R32G32B32A32_SFLOAT,
-                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &f.in[i]);
+    if (!roma_test_gbuffer_create_bordered(ctx, ref, &sv.camera, W, H, 3, &f.g))
+        return roma_test_finish("test_pixel_list");
+    const int *covered = f.g.covered;
+    CHECK(f.g.covered_count > W * H / 2 && f.g.covered_count < W * H);
+    roma_test_staging_create(ctx, 3 * f.plane, &f.staging);
     const VkImageUsageFlags out_usage =
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     roma_test_image_create(ctx, W, H, VK_FORMAT_R32_SFLOAT, out_usage, &f.out[OUT_AO]);
     roma_test_image_create(ctx, W, H, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &f.out[OUT_DIRECT]);
     roma_test_image_create(ctx, W, H, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &f.out[OUT_GI]);
-    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-                                  .queueFamilyIndex = roma_context_queue_family(ctx)};
-    CHECK(vkCreateCommandPool(dev, &pi, NULL, &f.pool) == VK_SUCCESS);
-    VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, .commandPool = f.pool,
-                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
-    CHECK(vkAllocateCommandBuffers(dev, &cai, &f.cmd) == VK_SUCCESS);
 
     /* Upload the G-buffer and build the map. */
     begin(&f);
-    for (int i = 0; i < 3; ++i) {
-        roma_test_layout_barrier(f.cmd, f.in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                 VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        VkBufferImageCopy copy = {.bufferOffset = (VkDeviceSize)i * f.plane,
-                                  .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                  .imageExtent = {W, H, 1}};
-        vkCmdCopyBufferToImage(f.cmd, f.staging.buffer, f.in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        roma_test_layout_barrier(f.cmd, f.in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }
     CHECK_RESULT(roma_map_record_build(map, f.cmd, &(roma_map_frame_desc){.seed = 5}, NULL), ROMA_SUCCESS);
     roma_test_submit_and_wait(ctx, f.cmd);
 
@@ -258,7 +218,7 @@ int main(void)
         if (n == 0)
             CHECK_RESULT(roma_pixel_list_record(list, f.cmd, 0,
                                                 &(roma_pixel_list_images){.width = W, .height = H,
-                                                                          .position = f.in[0].view, .frame = n}),
+                                                                          .position = f.g.in[0].view, .frame = n}),
                          ROMA_SUCCESS);
         record_effects(&f, &shared, map, &sv, list, n, divisor);
         keep_outputs(&f, ao, direct, gi);
@@ -278,7 +238,7 @@ int main(void)
     CHECK_RESULT(roma_pixel_list_create(NULL, NULL, &(roma_pixel_list *){NULL}), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_pixel_list_create(ctx, NULL, NULL), ROMA_ERROR_INVALID_ARGUMENT);
     begin(&f);
-    roma_pixel_list_images li = {.width = W, .height = H, .position = f.in[0].view, .frame = 9};
+    roma_pixel_list_images li = {.width = W, .height = H, .position = f.g.in[0].view, .frame = 9};
     CHECK_RESULT(roma_pixel_list_record(NULL, f.cmd, 0, &li), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_pixel_list_record(logged, f.cmd, 0, NULL), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_pixel_list_record(logged, f.cmd, 2, &li), ROMA_ERROR_INVALID_ARGUMENT);
@@ -286,10 +246,10 @@ int main(void)
                  ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_pixel_list_record(logged, f.cmd, 0,
                                         &(roma_pixel_list_images){.width = 1u << 30, .height = 1u << 30,
-                                                                  .position = f.in[0].view}),
+                                                                  .position = f.g.in[0].view}),
                  ROMA_ERROR_INVALID_ARGUMENT);
     /* An effect of a slot the list holds nothing for, and images of another size. */
-    roma_ao_images ai = {.width = W, .height = H, .position = f.in[0].view, .normal = f.in[1].view,
+    roma_ao_images ai = {.width = W, .height = H, .position = f.g.in[0].view, .normal = f.g.in[1].view,
                          .output = f.out[OUT_AO].view, .pixels = logged};
     CHECK_RESULT(roma_ao_effect_record(shared.ao, f.cmd, 0, map, &ai, &(roma_ao_settings){.frame = 9}),
                  ROMA_ERROR_INVALID_ARGUMENT);
@@ -326,9 +286,7 @@ int main(void)
     roma_pixel_list_destroy(NULL);
     destroy_effects(&shared);
     destroy_effects(&own);
-    vkDestroyCommandPool(dev, f.pool, NULL);
-    for (int i = 0; i < 3; ++i)
-        roma_test_image_destroy(dev, &f.in[i]);
+    roma_test_gbuffer_destroy(ctx, &f.g);
     for (int i = 0; i < OUTPUTS; ++i)
         roma_test_image_destroy(dev, &f.out[i]);
     roma_test_staging_destroy(dev, &f.staging);

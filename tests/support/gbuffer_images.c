@@ -11,6 +11,12 @@ static VkDeviceSize plane_bytes(const roma_test_gbuffer *g) { return (VkDeviceSi
 int roma_test_gbuffer_create(roma_context *ctx, const roma_ref *ref, const roma_camera *camera, uint32_t width,
                              uint32_t height, roma_test_gbuffer *g)
 {
+    return roma_test_gbuffer_create_bordered(ctx, ref, camera, width, height, 0, g);
+}
+
+int roma_test_gbuffer_create_bordered(roma_context *ctx, const roma_ref *ref, const roma_camera *camera,
+                                      uint32_t width, uint32_t height, uint32_t border, roma_test_gbuffer *g)
+{
     memset(g, 0, sizeof *g);
     g->width = width;
     g->height = height;
@@ -30,7 +36,8 @@ int roma_test_gbuffer_create(roma_context *ctx, const roma_ref *ref, const roma_
     for (uint32_t p = 0; p < n; ++p) {
         float o[3], d[3];
         roma_camera_ray(&cam, (float)(p % width) + 0.5f, (float)(p / width) + 0.5f, o, d);
-        g->covered[p] = roma_ref_intersect(ref, o, d, 0.0f, INFINITY, &g->hits[p]);
+        g->covered[p] = p % width >= border && p / width >= border &&
+                        roma_ref_intersect(ref, o, d, 0.0f, INFINITY, &g->hits[p]);
         g->covered_count += (uint32_t)g->covered[p];
         for (int a = 0; a < 3; ++a) {
             host[4 * p + a] = g->covered[p] ? g->hits[p].position[a] : 0.0f;

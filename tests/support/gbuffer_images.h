@@ -26,6 +26,10 @@ typedef struct roma_test_gbuffer {
 /* Returns 0 (a failed check) when something could not be made. */
 int roma_test_gbuffer_create(roma_context *ctx, const roma_ref *ref, const roma_camera *camera, uint32_t width,
                              uint32_t height, roma_test_gbuffer *out);
+/* The same with the first `border` columns and rows left uncovered (w = 0) whatever they
+ * see: pixels an effect must leave as they were. */
+int roma_test_gbuffer_create_bordered(roma_context *ctx, const roma_ref *ref, const roma_camera *camera,
+                                      uint32_t width, uint32_t height, uint32_t border, roma_test_gbuffer *out);
 void roma_test_gbuffer_destroy(roma_context *ctx, roma_test_gbuffer *g);
 
 /* Begins g->cmd: the first time with the inputs' upload; every time with both outputs moved

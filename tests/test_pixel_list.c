@@ -17,7 +17,6 @@
 #include "reference.h"
 #include "roma/ao_effect.h"
 #include "roma/builtin_scenes.h"
-#include "roma/camera.h"
 #include "roma/gi_effect.h"
 #include "roma/light_effect.h"
 #include "roma/map.h"

@@ -255,12 +255,26 @@ v=$(metric "$dir/lights_routes.cmp" relative)
 awk -v v="${v:-1}" 'BEGIN { exit !(v <= 4e-5) }' || fail "lights: the public count differs from the internal one by ${v:-?}"
 # What only the internal renderer has is refused on the public route, with the reason, and
 # leaves no output folder.
-"$render" "${route_args[@]}" --effects ao --ao-method naadf --route api --out "$dir/route_naadf" >/dev/null \
-  2>"$dir/route_naadf.err"
-expect_status 2 $? "roma-render --route api --ao-method naadf"
-grep -q "names a baseline of the accuracy study" "$dir/route_naadf.err" ||
-  fail "--route api with a baseline does not say why not"
-[ -e "$dir/route_naadf" ] && fail "--route api refused but left an output folder"
+"$render" "${route_args[@]}" --effects ao --ao-method screen-space --ssao-layers 2 --ao-radius 0.5 --route api \
+  --out "$dir/route_layers" >/dev/null 2>"$dir/route_layers.err"
+expect_status 2 $? "roma-render --route api --ssao-layers 2"
+grep -q "the stochastic depth map is rasterized by the internal renderer only" "$dir/route_layers.err" ||
+  fail "--route api with a stochastic depth map does not say why not"
+[ -e "$dir/route_layers" ] && fail "--route api refused but left an output folder"
+# The study's AO methods take the public AO pass (study/study_ao.h): the same bits as the
+# internal renderer's pass where both read the same G-buffer values (all but screen space).
+for method in voxel-dda distance-field naadf; do
+  for route in api internal; do
+    "$render" "${route_args[@]}" --effects ao --ao-method "$method" --cascades 1 --route "$route" \
+      --out "$dir/method_${method}_$route" --stats "$dir/method_${method}_$route.json" >/dev/null 2>&1 ||
+      fail "roma-render --ao-method $method --route $route failed"
+  done
+  has_stat "$dir/method_${method}_api.json" route api || fail "--ao-method $method did not take the public AO pass"
+  "$compare" "$dir/method_${method}_api/ao.pfm" "$dir/method_${method}_internal/ao.pfm" >"$dir/method_$method.cmp" 2>&1 ||
+    fail "roma-compare of the two routes' $method AO failed"
+  v=$(metric "$dir/method_$method.cmp" max_abs)
+  awk -v v="${v:-1}" 'BEGIN { exit !(v == 0) }' || fail "$method: the public pass differs from the internal one by ${v:-?}"
+done
 # The public passes over every pixel (a GPU's default) write the same bits as over the list of
 # covered pixels each effect makes and as over one list for every effect and frame (a CPU
 # device's default: roma_pixel_list).

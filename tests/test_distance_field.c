@@ -1,4 +1,4 @@
-/* The distance field baseline of the accuracy study (src/baselines/distance_field.h),
+/* The distance field baseline of the accuracy study (src/study/distance_field.h),
  * built by jump flooding from the BOM of a voxelized sphere (radius 1, 96 x 48 quads):
  *
  * - against the exact distance transform of the same BOM (every cell's distance to the
@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "baselines/distance_field.h"
+#include "study/distance_field.h"
 #include "harness.h"
 #include "roma/map.h"
 #include "vulkan/vk_internal.h"

@@ -1,4 +1,4 @@
-/* The NAADF baseline of the accuracy study (src/baselines/naadf.h):
+/* The NAADF baseline of the accuracy study (src/study/naadf.h):
  *
  * - the hierarchy the GPU builds from a BOM against one built on the CPU from the same BOM
  *   read back: every chunk's and block's state and box, every voxel of every mixed block,
@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "baselines/naadf.h"
+#include "study/naadf.h"
 #include "harness.h"
 #include "passes/effect_render.h"
 #include "roma/builtin_scenes.h"

@@ -1,5 +1,6 @@
 /* roma-render's ROMA images through the public effect API (effect_api.h). Uses libroma's public
- * headers, the reference tracer (for the G-buffer) and the apps' clock only. */
+ * headers, the reference tracer (for the G-buffer), the apps' clock and, for the accuracy
+ * study's AO methods, the tools' study library (study/study_ao.h) on the same pass. */
 #include "effect_api.h"
 
 #include <math.h>
@@ -8,6 +9,7 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "study/study_ao.h"
 
 #define PI_F 3.14159265358979323846f
 
@@ -46,21 +48,23 @@ typedef struct engine {
     host_buffer upload, readback;
     roma_map *maps[ROMA_PASS_COUNT];
     roma_ao_effect *ao;
+    roma_study_ao *study_ao; /* instead of ao: a study's AO method or the blind start */
     roma_light_effect *light;
     roma_gi_effect *gi;
     roma_gpu_timer *timer;
     uint64_t bytes;
 } engine;
 
-const char *effect_api_unsupported(int baseline, int rsm, int blind_start)
+const char *effect_api_unsupported(int ssao_layers, int rsm, int blind_start_lights)
 {
-    if (baseline)
-        return "--ao-method names a baseline of the accuracy study, which is not a public pass";
+    if (ssao_layers)
+        return "--ssao-layers: the stochastic depth map is rasterized by the internal renderer only";
     if (rsm)
         return "--gi-punctual rsm: reflective shadow maps need a rasterization of each light's view, which "
                "the public GI effect leaves to the engine";
-    if (blind_start)
-        return "--ray-start blind is a rule of the study, not a setting of the public passes";
+    if (blind_start_lights)
+        return "--ray-start blind applies to AO alone on the public passes (a rule of the study, not a setting of "
+               "the light and GI effects)";
     return NULL;
 }
 
@@ -182,6 +186,7 @@ static void engine_free(engine *e)
     roma_gi_effect_destroy(e->gi);
     roma_light_effect_destroy(e->light);
     roma_ao_effect_destroy(e->ao);
+    roma_study_ao_destroy(e->study_ao);
     for (int i = 0; i < ROMA_PASS_COUNT; ++i)
         roma_map_destroy(e->maps[i]);
 }
@@ -318,6 +323,22 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         r = roma_ao_effect_record(e->ao, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_AO]], &im, &s);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
+    if (r == ROMA_SUCCESS && e->study_ao) {
+        roma_ao_settings s = job->ao;
+        s.frame = f;
+        const roma_map *map = e->maps[plan->pass_map[ROMA_PASS_AO]];
+        roma_ao_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
+                             e->images[IN_GEOMETRIC].view, e->images[OUT_AO].view, 0, e->pixels};
+        const roma_study_ao_inputs in = {.blind_start = d->blind_start, .camera = &d->camera,
+                                         .ssao_steps = d->ssao_steps};
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "baseline_build");
+        r = roma_study_ao_record_build(e->study_ao, cmd, map);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+        scope = roma_gpu_timer_begin(e->timer, cmd, "ao");
+        if (r == ROMA_SUCCESS)
+            r = roma_study_ao_record(e->study_ao, cmd, 0, map, &im, &s, &in);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
     if (r == ROMA_SUCCESS && e->light) {
         roma_light_settings s = job->light;
         s.frame = f;
@@ -358,8 +379,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
 /* The timer's scopes of the frame just finished, added to the result's sums. */
 static roma_result add_timings(engine *e, effect_api_result *out)
 {
-    roma_gpu_timing t[ROMA_PASS_COUNT + 5];
-    uint32_t count = ROMA_PASS_COUNT + 5;
+    roma_gpu_timing t[ROMA_PASS_COUNT + 6];
+    uint32_t count = ROMA_PASS_COUNT + 6;
     roma_result r = roma_gpu_timer_read(e->timer, t, &count);
     uint32_t build = 0;
     for (uint32_t i = 0; i < count && r == ROMA_SUCCESS; ++i) {
@@ -375,6 +396,10 @@ static roma_result add_timings(engine *e, effect_api_result *out)
             out->lights_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "list") == 0)
             out->list_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "baseline_build") == 0) { /* part of AO's time, as in the study */
+            out->baseline_build_ms += t[i].milliseconds;
+            out->ao_ms += t[i].milliseconds;
+        }
     }
     return r;
 }
@@ -452,8 +477,11 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     const int gi_map = plan->pass_map[ROMA_PASS_GI];
     const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch,
                                          .surface_resolution = gi_map >= 0 ? plan->maps[gi_map].resolution : 0};
-    if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO))
+    const int study_ao = d->ao_method != ROMA_AO_METHOD_ROMA || d->blind_start;
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && !study_ao)
         r = roma_ao_effect_create(e->ctx, &ao_desc, &e->ao);
+    if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && study_ao)
+        r = roma_study_ao_create(e->ctx, (roma_ao_method)d->ao_method, &ao_desc, &e->study_ao);
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_effect_create(e->ctx, &light_desc, &e->light);
     if (r == ROMA_SUCCESS && lit)
@@ -479,7 +507,7 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && d->shared_list)
         r = roma_pixel_list_create(e->ctx, &(roma_pixel_list_desc){.frames_in_flight = 1}, &e->pixels);
     if (r == ROMA_SUCCESS)
-        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 5, &e->timer);
+        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 6, &e->timer);
     return r;
 }
 
@@ -491,7 +519,7 @@ static roma_result create_images(engine *e, const effect_api_desc *d)
     roma_result r = ROMA_SUCCESS;
     for (int i = 0; i < INPUTS && r == ROMA_SUCCESS; ++i)
         r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, &e->images[i]);
-    if (r == ROMA_SUCCESS && e->ao)
+    if (r == ROMA_SUCCESS && (e->ao || e->study_ao))
         r = image_create(e, w, h, VK_FORMAT_R32_SFLOAT, out_usage, &e->images[OUT_AO]);
     if (r == ROMA_SUCCESS && e->light)
         r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_DIRECT]);
@@ -629,6 +657,7 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     if (r == ROMA_SUCCESS)
         resolve(d, albedo, d->frames ? d->frames : 1, out);
     out->effect_bytes = e.bytes;
+    out->baseline_bytes = roma_study_ao_bytes(e.study_ao, &out->baseline_build_bytes);
     if (r != ROMA_SUCCESS && e.device)
         vkDeviceWaitIdle(e.device); /* nothing of this call may still run when its objects go */
     engine_free(&e);

@@ -7,9 +7,10 @@
  * frames is a loop around the public passes. Frame f uses samples f*spp .. f*spp+spp-1, as
  * the reference at spp*frames samples does.
  *
- * What the public API has no pass for stays with roma-render's internal renderer (the
- * accuracy study's baselines, reflective shadow maps, the blind ray start):
- * effect_api_unsupported says why a request needs it. */
+ * The accuracy study's AO methods and the blind ray start run on the same AO pass through the
+ * tools' study library (study/study_ao.h). What the public passes cannot do stays with
+ * roma-render's internal renderer (reflective shadow maps, the stochastic depth map, the blind
+ * start of the light passes): effect_api_unsupported says why a request needs it. */
 #ifndef ROMA_RENDER_EFFECT_API_H
 #define ROMA_RENDER_EFFECT_API_H
 
@@ -44,6 +45,10 @@ typedef struct effect_api_desc {
     uint32_t cascades;
     float finest_extent;
     int jitter_off; /* every frame's grid placement and directions the first frame's */
+    /* What AO rays trace (roma_ao_method, study/ao_methods.h: 0 ROMA), with the blind start
+     * (ROMA only) and the screen-space march's steps (0: the default). */
+    int ao_method, blind_start;
+    uint32_t ssao_steps;
     void (*progress)(float fraction, void *user_data); /* after each frame */
     void *progress_user_data;
 } effect_api_desc;
@@ -59,11 +64,15 @@ typedef struct effect_api_result {
     double list_ms;                          /* desc.shared_list: the one list's record */
     double gbuffer_ms;                       /* the primary rays, host clock */
     uint64_t effect_bytes;                   /* the G-buffer, output and transfer memory made here */
+    /* A study AO method's structure built every frame (distance field, NAADF): its builds'
+     * GPU time summed over frames (also in ao_ms), its memory and what only its build uses. */
+    double baseline_build_ms;
+    uint64_t baseline_bytes, baseline_build_bytes;
 } effect_api_result;
 
 /* NULL when the public effects can render this request, else the reason they cannot
  * (a static string naming the option). */
-const char *effect_api_unsupported(int baseline, int rsm, int blind_start);
+const char *effect_api_unsupported(int ssao_layers, int rsm, int blind_start_lights);
 
 roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                               const effect_api_desc *desc, effect_api_result *out);

@@ -59,18 +59,21 @@ static const char *usage =
     "                              sphere-traced through a distance field built from it every frame,\n"
     "                              through the NAADF hierarchy built from it every frame (the voxels of\n"
     "                              voxel-dda, empty space skipped a box at a time), or marched in screen\n"
-    "                              space against the G-buffer's depth (ao alone)\n"
+    "                              space against the G-buffer's depth (ao alone); each through the\n"
+    "                              public AO pass, on one grid\n"
     "  --ssao-layers K             screen-space ao: also against K layers of a stochastic depth map\n"
     "                              rasterized every frame (0..8, default 0: the depth buffer alone)\n"
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
-    "                              unseen (the rule before, which leaks light at corners)\n"
+    "                              unseen (the rule before, which leaks light at corners; on the public\n"
+    "                              passes for ao alone)\n"
     "  --route api|internal        ROMA through libroma's public effect passes (roma_ao_effect,\n"
     "                              roma_light_effect, roma_gi_effect) on a G-buffer of primary rays, as\n"
     "                              an engine records them (the default where they can: ao, direct, gi,\n"
-    "                              lights), or through the internal renderer, which also has the\n"
-    "                              study's baselines and reflective shadow maps (taken by itself when\n"
-    "                              those are asked for; the choice is printed)\n"
+    "                              lights, the study's ao methods), or through the internal renderer,\n"
+    "                              which also has reflective shadow maps, the stochastic depth map and\n"
+    "                              the blind start of light rays (taken by itself when those are asked\n"
+    "                              for; the choice is printed)\n"
     "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
     "                              frame (a new one each frame) and upsample the rest (default 1)\n"
     "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
@@ -906,6 +909,12 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     return 1;
 }
 
+static const char *ao_method_name(roma_ao_method method)
+{
+    static const char *const names[] = {"roma", "voxel-dda", "distance-field", "screen-space", "naadf"};
+    return (unsigned)method < sizeof names / sizeof names[0] ? names[method] : "?";
+}
+
 /* ROMA through the public effect passes (1), the internal renderer (0), or refused (-1: --route
  * api with a request they cannot render). Printed and noted in the stats. */
 static int choose_route(options *o, notes *n)
@@ -913,9 +922,19 @@ static int choose_route(options *o, notes *n)
     if (strcmp(o->tracer, "roma") != 0)
         return 0;
     /* Options that only matter for an effect asked for do not decide the route without it. */
-    const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
+    const int layers = (o->effects & ROMA_EFFECT_AO) && o->ssao_layers > 0;
     const int rsm = (o->effects & ROMA_EFFECT_GI) && (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays;
-    const char *why = effect_api_unsupported(baseline, rsm, o->blind_start);
+    const int blind_lights = o->blind_start && (o->effects & (ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI | ROMA_EFFECT_LIGHTS));
+    const char *why = effect_api_unsupported(layers, rsm, blind_lights);
+    /* The study's AO baselines trace one grid (study/study_ao.h). */
+    const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
+    if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL && o->cascades_auto) {
+        note(n, o->quiet, "cascades: none after all: --ao-method %s traces one grid", ao_method_name(o->ao_method));
+        o->cascades = 1;
+    } else if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL) {
+        fprintf(stderr, "roma-render: --cascades: --ao-method %s traces one grid\n", ao_method_name(o->ao_method));
+        return -1;
+    }
     if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL) && o->cascades_auto) {
         note(n, o->quiet, "cascades: none after all: only the public effect passes trace them, and %s",
              why ? why : "--route internal was asked for");
@@ -1067,7 +1086,7 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .lights_per_frame = o->lights_per_frame,
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
-        .jitter_off = o->jitter_off};
+        .jitter_off = o->jitter_off, .ao_method = (int)o->ao_method, .blind_start = o->blind_start};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))
             return 1;
@@ -1086,6 +1105,12 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         add_pass(run, "pixel_list", "gpu_timestamp", res->list_ms);
     if (res->ao.pixels)
         add_pass(run, "ao", "gpu_timestamp", res->ao_ms);
+    if (res->ao.pixels && (o->ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || o->ao_method == ROMA_AO_METHOD_NAADF)) {
+        /* the baseline's generation, part of the ao pass's time */
+        add_pass(run, o->ao_method == ROMA_AO_METHOD_NAADF ? "naadf_build" : "distance_field_build", "gpu_timestamp",
+                 res->baseline_build_ms);
+        run->passes[run->pass_count - 1].bytes = res->baseline_bytes;
+    }
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
         roma_effect_plan_runs(&res->plan, ROMA_PASS_SOFT_SHADOWS))
         add_pass(run, "direct", "gpu_timestamp", res->direct_ms);

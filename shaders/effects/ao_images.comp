@@ -1,70 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "roma_loop_guard.glsl"
-// Ambient occlusion from an engine's G-buffer images (roma_ao_effect): per pixel, spp
-// cosine-weighted snapped any-hit rays through the map bound at set 0 (the trace set),
-// the unoccluded fraction into an R32F storage image. Samples as in passes/ao.comp and
-// the reference tracer; a device's loop budget splits them across dispatches
-// (roma_ao_push.sample_first).
-#define ROMA_TRACE_SET 0
-// The map's BOM, bound after the images (image_effect.c), for the exact walk of the
-// rays' start: bound loads are several times faster than loads by address on CPU devices.
-#define ROMA_BOM_SET 1
-#define ROMA_BOM_BINDING 4
-#include "roma_bound_bom.glsl"
-#include "roma_shared.h"
-#include "roma/trace_descriptors.glsl"
-#include "roma/ray_start.glsl"
-#include "roma_sampling.glsl"
-#include "roma_image_list.glsl"
+// Ambient occlusion from an engine's G-buffer images (roma_ao_effect): each ray a snapped
+// any-hit query through the map bound at set 0 (the trace set), after the exact walk of its
+// skipped start. The pass itself is roma_ao_images.glsl.
+#include "roma_ao_images.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-layout(set = 1, binding = 0) uniform sampler2D roma_ao_position;
-layout(set = 1, binding = 1) uniform sampler2D roma_ao_normal;
-layout(set = 1, binding = 2) uniform sampler2D roma_ao_geometric_normal;
-layout(set = 1, binding = 3, r32f) uniform image2D roma_ao_output; // read back by later parts
-
-layout(push_constant) uniform Push { roma_ao_push pc; };
-
-void main()
+bool roma_ao_ray_open(vec3 origin, vec3 dir, float skip, float tmax)
 {
-    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w, pixel;
-    if (!roma_image_pixel(width, height, pixel))
-        return;
-    ivec2 at = ivec2(pixel % width, pixel / width);
-    vec4 position = texelFetch(roma_ao_position, at, 0);
-    // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
-    if (!(position.w > 0.0)) {
-        imageStore(roma_ao_output, at, vec4(1.0));
-        return;
-    }
-    vec3 n = normalize(texelFetch(roma_ao_normal, at, 0).xyz);
-    vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
-    uint seed = pc.config2.x, open = 0u;
-    // Offset and skip in the trace cells of the cascade level that holds the point.
-    float scale = roma_level_scale(position.xyz), skip = pc.ray.z * scale;
-    precise vec3 origin = position.xyz + ng * (pc.ray.x * scale);
-    roma_use_ray_start(pc.bom);
-    // This dispatch's part of the samples; a later part adds to what the earlier ones wrote.
-    for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) {
-        ROMA_LOOP_TICK();
-        uint s = frame * spp + k;
-        vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, 0u),
-                                                                 roma_random(seed, pixel, s, 1u)));
-        // Below the geometric surface counts as occluded, as in the reference.
-        precise float below = dir.x * ng.x + dir.y * ng.y + dir.z * ng.z;
-        if (below <= 0.0)
-            continue;
-        // The skipped start, walked exactly (roma/ray_start.glsl).
-        if (roma_ray_start_blocked(origin, dir, min(skip, pc.ray.y)))
-            continue;
-        roma_hit h = roma_trace_snapped(origin, dir, skip, pc.ray.y, false);
-        open += (h.info & ROMA_HIT_FLAG) == 0u ? 1u : 0u;
-    }
-    float value = float(open) / float(max(spp, 1u));
-    if (pc.sample_first > 0u)
-        value += imageLoad(roma_ao_output, at).x;
-    // Held at 1: a GPU's approximate division may give 1.0000001 for open == spp.
-    imageStore(roma_ao_output, at, vec4(min(value, 1.0)));
+    // The skipped start, walked exactly (roma/ray_start.glsl).
+    if (roma_ray_start_blocked(origin, dir, min(skip, tmax)))
+        return false;
+    roma_hit h = roma_trace_snapped(origin, dir, skip, tmax, false);
+    return (h.info & ROMA_HIT_FLAG) == 0u;
 }

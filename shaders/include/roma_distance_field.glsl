@@ -1,4 +1,4 @@
-// The distance field baseline (src/baselines/distance_field.h): cell indexing and seed
+// The distance field baseline (src/study/distance_field.h): cell indexing and seed
 // packing shared by its build passes, and sphere tracing for the passes that trace it.
 #ifndef ROMA_DISTANCE_FIELD_GLSL
 #define ROMA_DISTANCE_FIELD_GLSL

@@ -1,4 +1,4 @@
-// The NAADF baseline (src/baselines/naadf.h): the layout of its cells, the growth of an
+// The NAADF baseline (src/study/naadf.h): the layout of its cells, the growth of an
 // empty cell's box for its build passes, and the traversal for the passes that trace it.
 #ifndef ROMA_NAADF_GLSL
 #define ROMA_NAADF_GLSL

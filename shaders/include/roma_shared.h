@@ -289,7 +289,7 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_VEC4(up);        /* xyz: image y (up), times height / (2 tan(fovy / 2)) */
 ROMA_STRUCT_END(roma_ao_push)
 
-/* ---- Distance field baseline (src/baselines/distance_field.c, shaders/baselines/df_*.comp) ----
+/* ---- Distance field baseline (src/study/distance_field.c, shaders/study/df_*.comp) ----
  * The accuracy study's comparator of the ROMA paper's Table 2: from the BOM, every cell's
  * Euclidean distance (in cells) to the centre of the nearest occupied cell, by 3D jump
  * flooding: seeds (each cell's nearest occupied cell so far, packed x | y << 10 | z << 20),
@@ -305,7 +305,7 @@ ROMA_STRUCT_BEGIN(roma_df_push)
     ROMA_UVEC4(config);   /* x: RES, y: jump step (cells), z: RES^3 */
 ROMA_STRUCT_END(roma_df_push)
 
-/* ---- NAADF baseline (src/baselines/naadf.c, shaders/baselines/naadf_*.comp) ----
+/* ---- NAADF baseline (src/study/naadf.c, shaders/study/naadf_*.comp) ----
  * The accuracy study's nested cell hierarchy with axis-aligned distance fields (NAADF),
  * built from the BOM every frame: chunks of 4^3 blocks of 4^3 voxels, each cell empty,
  * full or mixed, an empty cell holding how many cells of its layer the empty box around it

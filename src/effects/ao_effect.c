@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "effects/ao_effect_variant.h"
 #include "effects/image_effect.h"
 #include "roma_shared.h"
 #include "trace/loop_costs.h"
@@ -44,6 +45,12 @@ roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_setting
 
 roma_result roma_ao_effect_create(roma_context *ctx, const roma_ao_effect_desc *desc_in, roma_ao_effect **out)
 {
+    return roma_ao_effect_create_variant(ctx, desc_in, "ao_images.comp", out);
+}
+
+roma_result roma_ao_effect_create_variant(roma_context *ctx, const roma_ao_effect_desc *desc_in, const char *module,
+                                          roma_ao_effect **out)
+{
     roma_ao_effect_desc desc = desc_in ? *desc_in : (roma_ao_effect_desc){0};
     const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
     if (!out)
@@ -60,7 +67,7 @@ roma_result roma_ao_effect_create(roma_context *ctx, const roma_ao_effect_desc *
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_effect_create: out of host memory");
     /* inputs: position, normal, geometric normal; output: the AO image */
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_ao_effect_record", "ao_images.comp",
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_ao_effect_record", module,
                                            "image_list_r32f.comp", 1.0f, 3,
                                            sizeof(roma_ao_push), desc.frames_in_flight,
                                            desc.pixel_dispatch);
@@ -82,6 +89,13 @@ void roma_ao_effect_destroy(roma_ao_effect *e)
 
 roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                   const roma_ao_images *im, const roma_ao_settings *settings_in)
+{
+    return roma_ao_effect_record_variant(e, cmd, slot, map, im, settings_in, NULL);
+}
+
+roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                          const roma_ao_images *im, const roma_ao_settings *settings_in,
+                                          const roma_ao_variant *variant)
 {
     if (!e || !cmd || !map || !im)
         return roma_fail(e ? &e->base.logger : NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_effect_record: %s is NULL",
@@ -106,12 +120,27 @@ roma_result roma_ao_effect_record(roma_ao_effect *e, VkCommandBuffer cmd, uint32
                          .config2 = {s.seed, 0, 0, 0},
                          .ray = {s.offset_cells * info.trace_cell, s.radius > 0.0f ? s.radius : INFINITY,
                                  s.skip_cells * info.trace_cell, 0.0f}};
+    uint32_t sample_cost = roma_loop_cost_ao_ray((roma_loop_grid){info.resolution, info.grid_cell, info.levels},
+                                                 push.ray[2], push.ray[1]);
+    if (variant) { /* the study's: its own fields of the push, its structure in the BOM's place */
+        if (variant->blind_start)
+            push.bom = 0;
+        push.config2[1] = variant->push.config2[1];
+        push.config2[2] = variant->push.config2[2];
+        push.ray[3] = variant->push.ray[3];
+        memcpy(push.eye, variant->push.eye, sizeof push.eye);
+        memcpy(push.forward, variant->push.forward, sizeof push.forward);
+        memcpy(push.right, variant->push.right, sizeof push.right);
+        memcpy(push.up, variant->push.up, sizeof push.up);
+        if (variant->bound)
+            info.bom_view = variant->bound;
+        if (variant->sample_cost)
+            sample_cost = variant->sample_cost;
+    }
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* The samples in parts within the device's loop budget (one part where it has none). */
-    const roma_loop_grid grid = {info.resolution, info.grid_cell, info.levels};
-    const roma_loop_parts parts = roma_loop_parts_plan(e->base.ctx, 0, s.samples,
-                                                       roma_loop_cost_ao_ray(grid, push.ray[2], push.ray[1]), 0, 0);
+    const roma_loop_parts parts = roma_loop_parts_plan(e->base.ctx, 0, s.samples, sample_cost, 0, 0);
     uint32_t range[4];
     for (uint32_t part = 0; r == ROMA_SUCCESS && roma_loop_parts_get(&parts, part, range); ++part) {
         push.sample_first = range[0];

@@ -1,5 +1,5 @@
 #include "passes/denoiser.h"
-#include "passes/study_shaders.h"
+#include "study/study_shaders.h"
 
 #include <string.h>
 

@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "baselines/distance_field.h"
-#include "baselines/naadf.h"
+#include "study/distance_field.h"
+#include "study/naadf.h"
 #include "passes/ao.h"
 #include "passes/denoiser.h"
 #include "passes/gbuffer.h"

@@ -1,5 +1,5 @@
 #include "passes/gbuffer.h"
-#include "passes/study_shaders.h"
+#include "study/study_shaders.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -12,8 +12,8 @@
  * RES <= 512 the dense voxels take RES^3 / 2 words); the boxes are built in the same frame
  * rather than in the background over several; voxels carry no material.
  * Internal: it exists to be measured against ROMA, not to be shipped. */
-#ifndef ROMA_BASELINES_NAADF_H
-#define ROMA_BASELINES_NAADF_H
+#ifndef ROMA_STUDY_NAADF_H
+#define ROMA_STUDY_NAADF_H
 
 #include "vulkan/vk_internal.h"
 
@@ -49,4 +49,4 @@ uint64_t roma_naadf_bytes(const roma_naadf *naadf, uint64_t *build_bytes);
 void roma_naadf_layout(uint32_t resolution, uint64_t *chunk_words, uint64_t *block_words, uint64_t *voxel_words,
                        uint64_t *row_words);
 
-#endif /* ROMA_BASELINES_NAADF_H */
+#endif /* ROMA_STUDY_NAADF_H */

@@ -4,8 +4,8 @@
  * Each cell holds the Euclidean distance, in cells, from its centre to the centre of the
  * nearest occupied cell, as float16 (RES^3 / 2 words: the memory of ROMA's maps at A 4).
  * Internal: it exists to be measured against ROMA, not to be shipped. */
-#ifndef ROMA_BASELINES_DISTANCE_FIELD_H
-#define ROMA_BASELINES_DISTANCE_FIELD_H
+#ifndef ROMA_STUDY_DISTANCE_FIELD_H
+#define ROMA_STUDY_DISTANCE_FIELD_H
 
 #include "vulkan/vk_internal.h"
 
@@ -34,4 +34,4 @@ void roma_distance_field_record(roma_distance_field *field, VkCommandBuffer cmd)
 /* Device memory of the field: the distances, and the seeds used only while building. */
 uint64_t roma_distance_field_bytes(const roma_distance_field *field, uint64_t *build_bytes);
 
-#endif /* ROMA_BASELINES_DISTANCE_FIELD_H */
+#endif /* ROMA_STUDY_DISTANCE_FIELD_H */

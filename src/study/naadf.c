@@ -1,5 +1,5 @@
-#include "baselines/naadf.h"
-#include "passes/study_shaders.h"
+#include "study/naadf.h"
+#include "study/study_shaders.h"
 
 #include <stddef.h>
 #include <string.h>

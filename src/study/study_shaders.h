@@ -1,12 +1,12 @@
 /* The SPIR-V of the tools' internal renderer (src/passes/) and the study's comparators
- * (src/baselines/): a table of its own (shaders/CMakeLists.txt, ROMA_STUDY_SHADER_SOURCES),
+ * (src/study/): a table of its own (shaders/CMakeLists.txt, ROMA_STUDY_SHADER_SOURCES),
  * linked into the tools' internal library and never into the installed one. Each of their
  * objects makes its context find that table before it makes a pipeline. */
-#ifndef ROMA_PASSES_STUDY_SHADERS_H
-#define ROMA_PASSES_STUDY_SHADERS_H
+#ifndef ROMA_STUDY_STUDY_SHADERS_H
+#define ROMA_STUDY_STUDY_SHADERS_H
 
 #include "vulkan/vk_internal.h"
 
 void roma_study_shaders_use(roma_context *ctx);
 
-#endif /* ROMA_PASSES_STUDY_SHADERS_H */
+#endif /* ROMA_STUDY_STUDY_SHADERS_H */

@@ -1,5 +1,5 @@
-#include "baselines/distance_field.h"
-#include "passes/study_shaders.h"
+#include "study/distance_field.h"
+#include "study/study_shaders.h"
 
 #include <string.h>
 

@@ -1,4 +1,4 @@
-#include "passes/study_shaders.h"
+#include "study/study_shaders.h"
 
 #include "vulkan/shader_table.h"
 

@@ -61,19 +61,20 @@ static const char *usage =
     "                              voxel-dda, empty space skipped a box at a time), or marched in screen\n"
     "                              space against the G-buffer's depth (ao alone); each through the\n"
     "                              public AO pass, on one grid\n"
+    "  --shadow-method roma|voxel-dda  ROMA direct light, gi and lights: shadow, bounce and visibility\n"
+    "                              rays through the ROMA maps (default), or each walked exactly through\n"
+    "                              the voxel grid to its end (the study's baseline); the public passes\n"
     "  --ssao-layers K             screen-space ao: also against K layers of a stochastic depth map\n"
     "                              rasterized every frame (0..8, default 0: the depth buffer alone)\n"
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
-    "                              unseen (the rule before, which leaks light at corners; on the public\n"
-    "                              passes for ao alone)\n"
+    "                              unseen (the rule before, which leaks light at corners)\n"
     "  --route api|internal        ROMA through libroma's public effect passes (roma_ao_effect,\n"
     "                              roma_light_effect, roma_gi_effect) on a G-buffer of primary rays, as\n"
     "                              an engine records them (the default where they can: ao, direct, gi,\n"
     "                              lights, the study's ao methods), or through the internal renderer,\n"
-    "                              which also has reflective shadow maps, the stochastic depth map and\n"
-    "                              the blind start of light rays (taken by itself when those are asked\n"
-    "                              for; the choice is printed)\n"
+    "                              which also has reflective shadow maps and the stochastic depth map\n"
+    "                              (taken by itself when those are asked for; the choice is printed)\n"
     "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
     "                              frame (a new one each frame) and upsample the rest (default 1)\n"
     "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
@@ -155,6 +156,7 @@ typedef struct options {
     uint32_t resolution_divisor; /* --resolution-divisor: the public effects trace 1 pixel in d x d */
     int blind_start;     /* --ray-start blind */
     roma_ao_method ao_method; /* --ao-method */
+    roma_shadow_method shadow_method; /* --shadow-method */
     uint32_t ssao_layers;     /* --ssao-layers */
     float background[3];
     roma_light extra_lights[16];
@@ -175,7 +177,8 @@ enum {
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
     GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18,
-    GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20, GIVEN_RESOLUTION_DIVISOR = 1u << 21
+    GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20, GIVEN_RESOLUTION_DIVISOR = 1u << 21,
+    GIVEN_SHADOW_METHOD = 1u << 22
 };
 
 /* How ROMA's images are made (effect_api.h). */
@@ -183,7 +186,7 @@ enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--route", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-method", "--skip",
+    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--route", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-method", "--shadow-method", "--skip",
     "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
@@ -357,7 +360,14 @@ static int parse_args(int argc, char **argv, options *o)
         }
         else if (strcmp(a, "--exposure") == 0) ok = parse_floats(v, &o->exposure, 1) && o->exposure > 0.0f;
         else if (strcmp(a, "--ssao-layers") == 0) ok = parse_u32(v, 0, ROMA_AO_SSAO_MAX_LAYERS, &o->ssao_layers);
-        else if (strcmp(a, "--ao-method") == 0) {
+        else if (strcmp(a, "--shadow-method") == 0) {
+            o->given |= GIVEN_SHADOW_METHOD;
+            o->shadow_method = strcmp(v, "voxel-dda") == 0 ? ROMA_SHADOW_METHOD_VOXEL_DDA : ROMA_SHADOW_METHOD_ROMA;
+            if (o->shadow_method == ROMA_SHADOW_METHOD_ROMA && strcmp(v, "roma") != 0) {
+                fprintf(stderr, "roma-render: unknown shadow method '%s' (valid: roma, voxel-dda)\n", v);
+                return 0;
+            }
+        } else if (strcmp(a, "--ao-method") == 0) {
             o->given |= GIVEN_AO_METHOD;
             if (strcmp(v, "roma") == 0)
                 o->ao_method = ROMA_AO_METHOD_ROMA;
@@ -539,6 +549,11 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (o->ao_method == ROMA_AO_METHOD_SCREEN_SPACE && (o->given & GIVEN_EFFECTS) && o->effects != ROMA_EFFECT_AO) {
         fprintf(stderr, "roma-render: --ao-method screen-space renders AO alone: give --effects ao\n");
+        return 0;
+    }
+    if (o->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA && o->blind_start) {
+        fprintf(stderr, "roma-render: --shadow-method voxel-dda walks the voxel grid that --ray-start blind leaves "
+                "unread\n");
         return 0;
     }
     if (o->ssao_layers && o->ao_method != ROMA_AO_METHOD_SCREEN_SPACE) {
@@ -924,8 +939,7 @@ static int choose_route(options *o, notes *n)
     /* Options that only matter for an effect asked for do not decide the route without it. */
     const int layers = (o->effects & ROMA_EFFECT_AO) && o->ssao_layers > 0;
     const int rsm = (o->effects & ROMA_EFFECT_GI) && (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays;
-    const int blind_lights = o->blind_start && (o->effects & (ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI | ROMA_EFFECT_LIGHTS));
-    const char *why = effect_api_unsupported(layers, rsm, blind_lights);
+    const char *why = effect_api_unsupported(layers, rsm);
     /* The study's AO baselines trace one grid (study/study_ao.h). */
     const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
     if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL && o->cascades_auto) {
@@ -1086,7 +1100,8 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .lights_per_frame = o->lights_per_frame,
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
-        .jitter_off = o->jitter_off, .ao_method = (int)o->ao_method, .blind_start = o->blind_start};
+        .jitter_off = o->jitter_off, .ao_method = (int)o->ao_method,
+        .shadow_method = (int)o->shadow_method, .blind_start = o->blind_start};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))
             return 1;
@@ -1299,6 +1314,7 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
+        {GIVEN_SHADOW_METHOD, "--shadow-method"},
         {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"},
         {GIVEN_CASCADES, "--cascades"}, {GIVEN_FINEST_EXTENT, "--finest-extent"},
         {GIVEN_RESOLUTION_DIVISOR, "--resolution-divisor"}};
@@ -1434,6 +1450,7 @@ int main(int argc, char **argv)
                 .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
                 .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame, .gi_punctual_rays = o.gi_rays,
                 .blind_ray_start = o.blind_start, .ao_method = o.ao_method, .ssao_layers = o.ssao_layers,
+                .shadow_method = o.shadow_method,
                 /* The library takes 0 as its default and a negative value as none. */
                 .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
                 .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,

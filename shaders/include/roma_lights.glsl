@@ -26,8 +26,12 @@ float roma_start_walk = ROMA_START_WALK;
 
 // The accuracy study's baseline for shadows: every segment walked exactly through the BOM
 // to its end (3D DDA, no ROMA maps, no step bound): the voxelization's error apart from
-// ROMA's. Set by the direct-light passes from their push constants.
-bool roma_shadow_exact = false;
+// ROMA's. Set by the direct-light passes from their push constants, or fixed by a shader
+// that defines ROMA_SHADOW_EXACT (the study's variants of the public effects).
+#ifndef ROMA_SHADOW_EXACT
+#define ROMA_SHADOW_EXACT false
+#endif
+bool roma_shadow_exact = ROMA_SHADOW_EXACT;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGbufferPixels {
     roma_gbuffer_pixel p[];

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
+#include "effects/lit_effect_variants.h"
 #include "effects/lit_record.h"
 #include "map/map_internal.h"
 #include "effects/light_data.h"
@@ -78,6 +79,12 @@ static void surfaces_free(roma_context *ctx, gi_surfaces *s)
 
 roma_result roma_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *desc_in, roma_gi_effect **out)
 {
+    return roma_gi_effect_create_variant(ctx, desc_in, "gi_images.comp", out);
+}
+
+roma_result roma_gi_effect_create_variant(roma_context *ctx, const roma_gi_effect_desc *desc_in, const char *module,
+                                          roma_gi_effect **out)
+{
     roma_gi_effect_desc desc = desc_in ? *desc_in : (roma_gi_effect_desc){0};
     const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
     if (!out)
@@ -99,7 +106,7 @@ roma_result roma_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_gi_effect_create: out of host memory");
     e->surface_resolution = desc.surface_resolution;
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_gi_effect_record", "gi_images.comp",
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_gi_effect_record", module,
                                            "image_list_rgba32f.comp", 0.0f, 3,
                                            sizeof(roma_gi_images_push), desc.frames_in_flight,
                                            desc.pixel_dispatch);
@@ -182,6 +189,13 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
                                   const roma_light_images *im, const roma_light *lights, uint32_t light_count,
                                   const roma_gi_settings *settings_in)
 {
+    return roma_gi_effect_record_variant(e, cmd, slot, map, im, lights, light_count, settings_in, NULL);
+}
+
+roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                          const roma_light_images *im, const roma_light *lights, uint32_t light_count,
+                                          const roma_gi_settings *settings_in, const roma_shadow_variant *variant)
+{
     const roma_logger *log = e ? &e->base.logger : NULL;
     static const char name[] = "roma_gi_effect_record";
     roma_result r = roma_lit_record_check(e ? &e->base : NULL, name, cmd, map, im, lights, light_count);
@@ -238,12 +252,15 @@ roma_result roma_gi_effect_record(roma_gi_effect *e, VkCommandBuffer cmd, uint32
         .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, s.shadow_skip_cells * info.trace_cell,
                 0},
     };
+    const int exact_rays = variant && variant->exact;
+    if (variant && variant->blind_start)
+        push.bom = 0; /* every BOM walk off */
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* Samples and the lights at their hits in parts within the device's loop budget. */
     const roma_loop_grid grid = {info.resolution, info.grid_cell, info.levels};
-    const roma_shadow_cost shadow = {grid, push.ray[2], ROMA_START_WALK, s.max_steps, ROMA_BACK_SKIP_POINT, 0};
-    uint32_t bounce = roma_loop_cost_gi_bounce(grid, push.ray[1], 0);
+    const roma_shadow_cost shadow = {grid, push.ray[2], ROMA_START_WALK, s.max_steps, ROMA_BACK_SKIP_POINT, exact_rays};
+    uint32_t bounce = roma_loop_cost_gi_bounce(grid, push.ray[1], exact_rays);
     if (have_scene && sf->emitters.emitter_count)
         bounce += roma_loop_cost_area_sample(&shadow, sf->emitters.emitter_count);
     const roma_loop_parts parts =

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "effects/image_effect.h"
+#include "effects/lit_effect_variants.h"
 #include "effects/lit_record.h"
 #include "effects/light_data.h"
 #include "roma_shared.h"
@@ -57,6 +58,12 @@ roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_ligh
 roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_desc *desc_in,
                                      roma_light_effect **out)
 {
+    return roma_light_effect_create_variant(ctx, desc_in, "lights_images.comp", out);
+}
+
+roma_result roma_light_effect_create_variant(roma_context *ctx, const roma_light_effect_desc *desc_in,
+                                             const char *module, roma_light_effect **out)
+{
     roma_light_effect_desc desc = desc_in ? *desc_in : (roma_light_effect_desc){0};
     const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
     if (!out)
@@ -73,7 +80,7 @@ roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_
     roma_light_effect *e = calloc(1, sizeof *e);
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_light_effect_create: out of host memory");
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", "lights_images.comp",
+    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_light_effect_record", module,
                                            "image_list_rgba32f.comp", 0.0f, 3,
                                            sizeof(roma_light_images_push), desc.frames_in_flight,
                                            desc.pixel_dispatch);
@@ -160,6 +167,15 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
                                      const roma_light_images *im, const roma_light *lights, uint32_t light_count,
                                      const roma_light_settings *settings_in)
 {
+    return roma_light_effect_record_variant(e, cmd, slot, map, im, lights, light_count, settings_in, NULL);
+}
+
+roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuffer cmd, uint32_t slot,
+                                             const roma_map *map, const roma_light_images *im,
+                                             const roma_light *lights, uint32_t light_count,
+                                             const roma_light_settings *settings_in,
+                                             const roma_shadow_variant *variant)
+{
     const roma_logger *log = e ? &e->base.logger : NULL;
     static const char name[] = "roma_light_effect_record";
     roma_result r = roma_lit_record_check(e ? &e->base : NULL, name, cmd, map, im, lights, light_count);
@@ -192,6 +208,8 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
                                    .config2 = {s.seed, e->emitter_count, area_samples, s.frame},
                                    .config3 = {s.lights_per_frame, exact_packed, (uint32_t)s.output, 0},
                                    .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
+    if (variant && variant->blind_start)
+        push.bom = 0; /* every BOM walk off */
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* The items (lights traced every frame, sampled lights, area-light samples; as
@@ -203,7 +221,7 @@ roma_result roma_light_effect_record(roma_light_effect *e, VkCommandBuffer cmd, 
     /* Counting lights walks one skip length of each start (lights_images.comp). */
     const float walk = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 1.0f : ROMA_START_WALK;
     const roma_shadow_cost shadow = {{info.resolution, info.grid_cell, info.levels}, push.ray[1], walk, s.max_steps,
-                                     ROMA_BACK_SKIP_POINT, 0};
+                                     ROMA_BACK_SKIP_POINT, variant && variant->exact};
     uint32_t per_item = roma_loop_cost_punctual_light(&shadow);
     if (e->emitter_count) {
         const uint32_t area = roma_loop_cost_area_sample(&shadow, e->emitter_count);

@@ -26,6 +26,7 @@
 #include "roma/map.h"
 #include "passes/ao.h"
 #include "roma_shared.h"
+#include "study/study_shadows.h"
 
 /* ROMA_DEFAULT_AO_SKIP_CELLS (roma/ao_effect.h): AO and GI rays skip their first 1.6 trace
  * cells, with the exact BOM the value that keeps the worst of the three converged AO scenes
@@ -33,11 +34,6 @@
 #include "roma/ao_effect.h"
 #include "roma/light_effect.h"
 
-/* The shadow rays of direct light (the accuracy study's baselines). */
-typedef enum roma_shadow_method {
-    ROMA_SHADOW_METHOD_ROMA = 0,
-    ROMA_SHADOW_METHOD_VOXEL_DDA = 1, /* every segment walked exactly through the BOM, no maps, no step bound */
-} roma_shadow_method;
 
 typedef struct roma_effect_render_desc {
     roma_camera camera;

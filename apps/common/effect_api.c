@@ -1,4 +1,4 @@
-/* roma-render's ROMA images through the public effect API (effect_api.h). Uses libroma's public
+/* The tools' ROMA images through the public effect API (effect_api.h). Uses libroma's public
  * headers, the reference tracer (for the G-buffer), the apps' clock and, for the accuracy
  * study's AO methods, the tools' study library (study/study_ao.h) on the same pass. */
 #include "effect_api.h"
@@ -10,6 +10,7 @@
 
 #include "app_common.h"
 #include "study/study_ao.h"
+#include "study/study_shadows.h"
 
 #define PI_F 3.14159265358979323846f
 
@@ -55,16 +56,13 @@ typedef struct engine {
     uint64_t bytes;
 } engine;
 
-const char *effect_api_unsupported(int ssao_layers, int rsm, int blind_start_lights)
+const char *effect_api_unsupported(int ssao_layers, int rsm)
 {
     if (ssao_layers)
         return "--ssao-layers: the stochastic depth map is rasterized by the internal renderer only";
     if (rsm)
         return "--gi-punctual rsm: reflective shadow maps need a rasterization of each light's view, which "
                "the public GI effect leaves to the engine";
-    if (blind_start_lights)
-        return "--ray-start blind applies to AO alone on the public passes (a rule of the study, not a setting of "
-               "the light and GI effects)";
     return NULL;
 }
 
@@ -72,7 +70,7 @@ static roma_result from_vk(VkResult vr, const char *what)
 {
     if (vr == VK_SUCCESS)
         return ROMA_SUCCESS;
-    fprintf(stderr, "roma-render: %s failed (VkResult %d)\n", what, (int)vr);
+    fprintf(stderr, "effect_api: %s failed (VkResult %d)\n", what, (int)vr);
     return vr == VK_ERROR_OUT_OF_HOST_MEMORY     ? ROMA_ERROR_OUT_OF_HOST_MEMORY
            : vr == VK_ERROR_OUT_OF_DEVICE_MEMORY ? ROMA_ERROR_OUT_OF_DEVICE_MEMORY
            : vr == VK_ERROR_DEVICE_LOST          ? ROMA_ERROR_DEVICE_LOST
@@ -84,7 +82,7 @@ static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropert
                             VkMemoryPropertyFlags prefer, VkDeviceMemory *out)
 {
     if (req.size > e->max_allocation) {
-        fprintf(stderr, "roma-render: out of device memory: an image or buffer of %llu bytes is larger than the "
+        fprintf(stderr, "effect_api: out of device memory: an image or buffer of %llu bytes is larger than the "
                 "device's largest allocation (%llu bytes)\n", (unsigned long long)req.size,
                 (unsigned long long)e->max_allocation);
         return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
@@ -97,7 +95,7 @@ static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropert
                 type = i;
     }
     if (type == UINT32_MAX) {
-        fprintf(stderr, "roma-render: no memory type with the properties 0x%x\n", (unsigned)want);
+        fprintf(stderr, "effect_api: no memory type with the properties 0x%x\n", (unsigned)want);
         return ROMA_ERROR_MISSING_FEATURE;
     }
     VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
@@ -313,6 +311,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     const roma_light *lights = job->view->lights;
+    /* The study's shadow rays (ROMA's by default) and ray start. */
+    const roma_shadow_variant shadows = {d->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA, d->blind_start};
     const uint32_t light_count = job->view->light_count;
     if (r == ROMA_SUCCESS && e->ao) {
         roma_ao_settings s = job->ao;
@@ -347,7 +347,7 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
                                 e->images[IN_GEOMETRIC].view, e->images[OUT_DIRECT].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "direct");
-        r = roma_light_effect_record(e->light, cmd, 0, e->maps[m], &im, lights, light_count, &s);
+        r = roma_light_effect_record_variant(e->light, cmd, 0, e->maps[m], &im, lights, light_count, &s, &shadows);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     if (r == ROMA_SUCCESS && e->gi) {
@@ -356,8 +356,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
                                 e->images[IN_GEOMETRIC].view, e->images[OUT_GI].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "gi");
-        r = roma_gi_effect_record(e->gi, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_GI]], &im, lights, light_count,
-                                  &s);
+        r = roma_gi_effect_record_variant(e->gi, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_GI]], &im, lights,
+                                          light_count, &s, &shadows);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     if (r == ROMA_SUCCESS && e->count) {
@@ -369,8 +369,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
                                 e->images[IN_GEOMETRIC].view, e->images[OUT_LIGHTS].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "lights");
-        r = roma_light_effect_record(e->count, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_MANY_LIGHTS]], &im,
-                                     e->many_lights, plan->many_light_count, &s);
+        r = roma_light_effect_record_variant(e->count, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_MANY_LIGHTS]], &im,
+                                             e->many_lights, plan->many_light_count, &s, &shadows);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     return r;
@@ -483,16 +483,16 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && study_ao)
         r = roma_study_ao_create(e->ctx, (roma_ao_method)d->ao_method, &ao_desc, &e->study_ao);
     if (r == ROMA_SUCCESS && lit)
-        r = roma_light_effect_create(e->ctx, &light_desc, &e->light);
+        r = roma_study_light_effect_create(e->ctx, &light_desc, (roma_shadow_method)d->shadow_method, &e->light);
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_effect_set_area_lights(e->light, scene);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_GI))
-        r = roma_gi_effect_create(e->ctx, &gi_desc, &e->gi);
+        r = roma_study_gi_effect_create(e->ctx, &gi_desc, (roma_shadow_method)d->shadow_method, &e->gi);
     if (r == ROMA_SUCCESS && e->gi)
         r = roma_gi_effect_set_scene(e->gi, scene);
     const uint32_t many = plan->many_light_count;
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_MANY_LIGHTS) && many && d->many_light_positions) {
-        r = roma_light_effect_create(e->ctx, &light_desc, &e->count);
+        r = roma_study_light_effect_create(e->ctx, &light_desc, (roma_shadow_method)d->shadow_method, &e->count);
         e->many_lights = r == ROMA_SUCCESS ? calloc(many, sizeof *e->many_lights) : NULL;
         if (r == ROMA_SUCCESS && !e->many_lights)
             r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
@@ -597,6 +597,10 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     if (!ctx || !scene || !ref || !d || !d->width || !d->height ||
         !roma_camera_make_frame(&d->camera, d->width, d->height, &check))
         return ROMA_ERROR_INVALID_ARGUMENT;
+    if (d->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA && d->blind_start) {
+        fprintf(stderr, "effect_api: the exact shadow rays walk the BOM the blind start leaves unread\n");
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    }
     roma_scene_view view;
     roma_scene_get_view(scene, &view);
     roma_context_info info;
@@ -608,7 +612,7 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(roma_context_physical_device(ctx), &props);
     if (d->width > props.limits.maxImageDimension2D || d->height > props.limits.maxImageDimension2D) {
-        fprintf(stderr, "roma-render: %ux%u is larger than the device's images (maxImageDimension2D %u)\n", d->width,
+        fprintf(stderr, "effect_api: %ux%u is larger than the device's images (maxImageDimension2D %u)\n", d->width,
                 d->height, props.limits.maxImageDimension2D);
         return ROMA_ERROR_INVALID_ARGUMENT;
     }

@@ -1,5 +1,5 @@
-/* roma-render's ROMA images through libroma's public effect API, as an engine records them:
- * roma-render is the engine. Its G-buffer is the reference tracer's primary rays (pixel
+/* The tools' ROMA images (roma-render, roma-bench's study) through libroma's public effect API,
+ * as an engine records them: the tool is the engine. Its G-buffer is the reference tracer's primary rays (pixel
  * centres, the points the Embree reference shades), uploaded into images it owns; every frame
  * it records, into one command buffer of its own, the build of each ROMA array the effect
  * plan needs (new jitter each frame) and the AO, light and GI effects on those images, then
@@ -7,10 +7,10 @@
  * frames is a loop around the public passes. Frame f uses samples f*spp .. f*spp+spp-1, as
  * the reference at spp*frames samples does.
  *
- * The accuracy study's AO methods and the blind ray start run on the same AO pass through the
- * tools' study library (study/study_ao.h). What the public passes cannot do stays with
- * roma-render's internal renderer (reflective shadow maps, the stochastic depth map, the blind
- * start of the light passes): effect_api_unsupported says why a request needs it. */
+ * The accuracy study's AO and shadow methods and the blind ray start run on the same passes
+ * through the tools' study library (study/study_ao.h, study/study_shadows.h). What the public
+ * passes cannot do stays with the internal renderer (reflective shadow maps, the stochastic
+ * depth map): effect_api_unsupported says why a request needs it. */
 #ifndef ROMA_RENDER_EFFECT_API_H
 #define ROMA_RENDER_EFFECT_API_H
 
@@ -45,9 +45,10 @@ typedef struct effect_api_desc {
     uint32_t cascades;
     float finest_extent;
     int jitter_off; /* every frame's grid placement and directions the first frame's */
-    /* What AO rays trace (roma_ao_method, study/ao_methods.h: 0 ROMA), with the blind start
-     * (ROMA only) and the screen-space march's steps (0: the default). */
-    int ao_method, blind_start;
+    /* The study's methods (study/): what AO rays trace (roma_ao_method, 0 ROMA) and the
+     * screen-space march's steps (0: the default); what shadow, bounce and visibility rays
+     * trace (roma_shadow_method, 0 ROMA); blind_start: ROMA's rays skip their start unseen. */
+    int ao_method, shadow_method, blind_start;
     uint32_t ssao_steps;
     void (*progress)(float fraction, void *user_data); /* after each frame */
     void *progress_user_data;
@@ -72,7 +73,7 @@ typedef struct effect_api_result {
 
 /* NULL when the public effects can render this request, else the reason they cannot
  * (a static string naming the option). */
-const char *effect_api_unsupported(int ssao_layers, int rsm, int blind_start_lights);
+const char *effect_api_unsupported(int ssao_layers, int rsm);
 
 roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                               const effect_api_desc *desc, effect_api_result *out);

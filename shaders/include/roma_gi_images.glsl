@@ -1,0 +1,71 @@
+// The body of the GI effect (shaders/effects/gi_images.comp), included by it and by the accuracy
+// study's variants (shaders/study/), which define ROMA_SHADOW_EXACT true first: every
+// shadow segment walked exactly through the BOM (roma_lights.glsl).
+#ifndef ROMA_GI_IMAGES_GLSL
+#define ROMA_GI_IMAGES_GLSL
+// One-bounce diffuse GI on an engine's G-buffer images (roma_gi_effect): per pixel,
+// samples cosine-weighted bounce rays (dimensions 5 and 6, pixel y * width + x, sample
+// frame * samples + k) through the map bound at set 0, each hit lit as in
+// roma_gi_bounce.glsl; writes E = pi * the mean radiance of the hits (cosine sampling
+// cancels cos / pi).
+#define ROMA_TRACE_SET 0
+// The map's BOM, bound after the images (image_effect.c), for the exact walk of the
+// rays' start: bound loads are several times faster than loads by address on CPU devices.
+#define ROMA_BOM_SET 1
+#define ROMA_BOM_BINDING 4
+#include "roma_bound_bom.glsl"
+#include "roma_lights.glsl"
+#include "roma_sampling.glsl"
+#include "roma_image_list.glsl"
+#include "roma_gi_bounce.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform sampler2D roma_gi_position;
+layout(set = 1, binding = 1) uniform sampler2D roma_gi_normal;
+layout(set = 1, binding = 2) uniform sampler2D roma_gi_geometric_normal;
+layout(set = 1, binding = 3, rgba32f) uniform image2D roma_gi_output; // read back by later parts
+
+layout(push_constant) uniform Push { roma_gi_images_push pc; };
+
+void main()
+{
+    uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w, pixel;
+    if (!roma_image_pixel(width, height, pixel))
+        return;
+    ivec2 at = ivec2(pixel % width, pixel / width);
+    vec4 position = texelFetch(roma_gi_position, at, 0);
+    // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
+    if (!(position.w > 0.0) || pc.scene == uvec2(0u)) {
+        imageStore(roma_gi_output, at, vec4(0.0));
+        return;
+    }
+    vec3 n = normalize(texelFetch(roma_gi_normal, at, 0).xyz);
+    vec3 ng = normalize(texelFetch(roma_gi_geometric_normal, at, 0).xyz);
+    // Offset and skip in the trace cells of the cascade level that holds the point (the
+    // shadow rays at a bounce hit: in the hit's, roma_gi_hit_radiance).
+    float scale = roma_level_scale(position.xyz);
+    vec3 origin = position.xyz + ng * (pc.ray.x * scale);
+    roma_use_ray_start(pc.bom);
+    roma_gi_scene S = RomaGiScene(pc.scene).s;
+    uint seed = pc.config2.x;
+    roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights, pc.part.zw);
+    vec3 acc = vec3(0.0);
+    for (uint k = pc.part.x; k < min(pc.part.y, samples); ++k) { // this dispatch's part
+        ROMA_LOOP_TICK();
+        uint s = frame * samples + k;
+        vec3 dir = roma_local_to_world(n, roma_cosine_hemisphere(roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE),
+                                                                 roma_random(seed, pixel, s, ROMA_DIM_GI_BOUNCE + 1u)));
+        if (dot(dir, ng) <= 0.0)
+            continue;
+        bool hit;
+        vec3 hit_point;
+        acc += roma_gi_bounce(S, P, origin, dir, pc.ray.y * scale, true, pixel, s, hit, hit_point);
+    }
+    vec3 E = acc * (3.14159265358979 / float(samples));
+    if (pc.part.x > 0u || pc.part.z > 0u) // a later part adds to the earlier ones
+        E += imageLoad(roma_gi_output, at).rgb;
+    imageStore(roma_gi_output, at, vec4(E, 0.0));
+}
+
+#endif // ROMA_GI_IMAGES_GLSL

@@ -16,7 +16,7 @@
 #include "harness.h"
 #include "effects/scene_buffers.h"
 #include "passes/ao.h"
-#include "passes/gbuffer.h"
+#include "study/gbuffer.h"
 #include "passes/pixel_list.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"

@@ -240,29 +240,33 @@ for e in ao direct gi; do
   awk -v v="${v:-1}" 'BEGIN { exit !(v <= 1e-6) }' ||
     fail "$e: the public passes differ from the internal renderer by ${v:-?}"
 done
-# The study's shadow method and ray start (study/study_shadows.h, study/study_ao.h) on the public
-# passes as in the internal renderer: measured within 2.4e-7 relative too, but for GI's exact
-# bounce rays, 6.7e-6 (a bounce walked to its first occupied cell from a point a few ulps apart).
-for variant in "--shadow-method voxel-dda" "--ray-start blind"; do
-  tag=${variant##* }
+# The study's shadow method, ray start and GI through reflective shadow maps (study/) on the
+# public passes as in the internal renderer: measured within 2.4e-7 relative, but for GI's exact
+# bounce rays, 6.7e-6 (a bounce walked to its first occupied cell from a point a few ulps
+# apart); GI read from the RSMs 2.1e-7.
+for variant in "exact:--shadow-method voxel-dda --gi-punctual rays" "blind:--ray-start blind --gi-punctual rays" \
+               "rsm:--gi-punctual rsm"; do
+  tag=${variant%%:*}
+  args=${variant#*:}
   for r in api internal; do
-    # shellcheck disable=SC2086 # the variant is two words
-    "$render" "${route_args[@]}" $variant --route $r --gi-punctual rays --out "$dir/variant_${tag}_$r" \
+    # shellcheck disable=SC2086 # the variant's arguments, split
+    "$render" "${route_args[@]}" $args --route $r --out "$dir/variant_${tag}_$r" \
       --stats "$dir/variant_${tag}_$r.json" >/dev/null 2>"$dir/variant_${tag}_$r.err"
-    expect_status 0 $? "roma-render $variant --route $r" || cat "$dir/variant_${tag}_$r.err" >&2
+    expect_status 0 $? "roma-render $args --route $r" || cat "$dir/variant_${tag}_$r.err" >&2
   done
-  has_stat "$dir/variant_${tag}_api.json" route api || fail "$variant did not take the public passes"
+  has_stat "$dir/variant_${tag}_api.json" route api || fail "$args did not take the public passes"
   for e in ao direct gi; do
     "$compare" "$dir/variant_${tag}_api/$e.pfm" "$dir/variant_${tag}_internal/$e.pfm" \
       --mask "$dir/variant_${tag}_internal/coverage.pfm" >"$dir/variant_${tag}_$e.cmp" 2>&1 ||
-      fail "roma-compare of the two routes' $e with $variant failed"
+      fail "roma-compare of the two routes' $e with $args failed"
     v=$(metric "$dir/variant_${tag}_$e.cmp" relative)
     bound=1e-6
-    [ "$tag-$e" = voxel-dda-gi ] && bound=1e-5
+    [ "$tag-$e" = exact-gi ] && bound=1e-5
     awk -v v="${v:-1}" -v b=$bound 'BEGIN { exit !(v <= b) }' ||
-      fail "$e with $variant: the public passes differ from the internal renderer by ${v:-?}"
+      fail "$e with $args: the public passes differ from the internal renderer by ${v:-?}"
   done
 done
+has_stat "$dir/variant_rsm_api.json" name rsm || fail "--gi-punctual rsm: the stats lack the RSMs' rasterization"
 # Many lights' visibility: the light effect counting visible lights (ROMA_LIGHT_OUTPUT_VISIBLE_COUNT)
 # against the internal renderer's many-lights pass, the same 64 lights: measured 2.8e-5 relative
 # (one pixel's count half a light apart of 1,645).

@@ -16,7 +16,7 @@
 
 #include "harness.h"
 #include "effects/scene_buffers.h"
-#include "passes/gbuffer.h"
+#include "study/gbuffer.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
 #include "roma/context.h"

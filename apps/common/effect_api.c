@@ -10,6 +10,7 @@
 
 #include "app_common.h"
 #include "study/study_ao.h"
+#include "study/study_rsm.h"
 #include "study/study_shadows.h"
 
 #define PI_F 3.14159265358979323846f
@@ -52,17 +53,15 @@ typedef struct engine {
     roma_study_ao *study_ao; /* instead of ao: a study's AO method or the blind start */
     roma_light_effect *light;
     roma_gi_effect *gi;
+    roma_study_rsm *rsm; /* desc.gi_rsm: the lights' reflective shadow maps */
     roma_gpu_timer *timer;
     uint64_t bytes;
 } engine;
 
-const char *effect_api_unsupported(int ssao_layers, int rsm)
+const char *effect_api_unsupported(int ssao_layers)
 {
     if (ssao_layers)
         return "--ssao-layers: the stochastic depth map is rasterized by the internal renderer only";
-    if (rsm)
-        return "--gi-punctual rsm: reflective shadow maps need a rasterization of each light's view, which "
-               "the public GI effect leaves to the engine";
     return NULL;
 }
 
@@ -185,6 +184,7 @@ static void engine_free(engine *e)
     roma_light_effect_destroy(e->light);
     roma_ao_effect_destroy(e->ao);
     roma_study_ao_destroy(e->study_ao);
+    roma_study_rsm_destroy(e->rsm);
     for (int i = 0; i < ROMA_PASS_COUNT; ++i)
         roma_map_destroy(e->maps[i]);
 }
@@ -312,7 +312,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
     }
     const roma_light *lights = job->view->lights;
     /* The study's shadow rays (ROMA's by default) and ray start. */
-    const roma_shadow_variant shadows = {d->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA, d->blind_start};
+    const roma_shadow_variant shadows = {.exact = d->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA,
+                                         .blind_start = d->blind_start};
     const uint32_t light_count = job->view->light_count;
     if (r == ROMA_SUCCESS && e->ao) {
         roma_ao_settings s = job->ao;
@@ -350,14 +351,23 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         r = roma_light_effect_record_variant(e->light, cmd, 0, e->maps[m], &im, lights, light_count, &s, &shadows);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
+    if (r == ROMA_SUCCESS && e->rsm && f == 0) { /* the lights stand still: their RSMs once */
+        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "rsm");
+        r = roma_study_rsm_record(e->rsm, cmd);
+        roma_gpu_timer_end(e->timer, cmd, scope);
+    }
     if (r == ROMA_SUCCESS && e->gi) {
         roma_gi_settings s = job->gi;
+        roma_shadow_variant gi_rays = shadows;
+        const roma_map_info *gi_info = &job->out->map_info[plan->pass_map[ROMA_PASS_GI]];
+        if (e->rsm)
+            roma_study_rsm_variant(e->rsm, d->rsm_tolerance_cells * gi_info->trace_cell, &gi_rays);
         s.frame = f;
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
                                 e->images[IN_GEOMETRIC].view, e->images[OUT_GI].view, 0, e->pixels};
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "gi");
         r = roma_gi_effect_record_variant(e->gi, cmd, 0, e->maps[plan->pass_map[ROMA_PASS_GI]], &im, lights,
-                                          light_count, &s, &shadows);
+                                          light_count, &s, &gi_rays);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     if (r == ROMA_SUCCESS && e->count) {
@@ -379,8 +389,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
 /* The timer's scopes of the frame just finished, added to the result's sums. */
 static roma_result add_timings(engine *e, effect_api_result *out)
 {
-    roma_gpu_timing t[ROMA_PASS_COUNT + 6];
-    uint32_t count = ROMA_PASS_COUNT + 6;
+    roma_gpu_timing t[ROMA_PASS_COUNT + 7];
+    uint32_t count = ROMA_PASS_COUNT + 7;
     roma_result r = roma_gpu_timer_read(e->timer, t, &count);
     uint32_t build = 0;
     for (uint32_t i = 0; i < count && r == ROMA_SUCCESS; ++i) {
@@ -394,6 +404,8 @@ static roma_result add_timings(engine *e, effect_api_result *out)
             out->gi_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "lights") == 0)
             out->lights_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "rsm") == 0)
+            out->rsm_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "list") == 0)
             out->list_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "baseline_build") == 0) { /* part of AO's time, as in the study */
@@ -460,6 +472,8 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     roma_effect_options options = d->options;
     options.effects &= ROMA_EFFECT_AO | ROMA_EFFECT_DIRECT | ROMA_EFFECT_GI | ROMA_EFFECT_LIGHTS;
     roma_result r = roma_effect_plan_derive(scene, &options, NULL, &out->plan);
+    if (!d->gi_rsm) /* point and spot lights reach GI by shadow rays: no RSM */
+        out->plan.passes &= ~(1u << ROMA_PASS_RSM);
     const roma_effect_plan *plan = &out->plan;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
         const uint32_t angular = plan->maps[i].angular, most = 256u / (angular * angular);
@@ -487,7 +501,9 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_effect_set_area_lights(e->light, scene);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_GI))
-        r = roma_study_gi_effect_create(e->ctx, &gi_desc, (roma_shadow_method)d->shadow_method, &e->gi);
+        r = roma_study_gi_effect_create(e->ctx, &gi_desc, (roma_shadow_method)d->shadow_method, d->gi_rsm, &e->gi);
+    if (r == ROMA_SUCCESS && e->gi && d->gi_rsm)
+        r = roma_study_rsm_create(e->ctx, scene, d->rsm_size, &e->rsm);
     if (r == ROMA_SUCCESS && e->gi)
         r = roma_gi_effect_set_scene(e->gi, scene);
     const uint32_t many = plan->many_light_count;
@@ -507,7 +523,7 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && d->shared_list)
         r = roma_pixel_list_create(e->ctx, &(roma_pixel_list_desc){.frames_in_flight = 1}, &e->pixels);
     if (r == ROMA_SUCCESS)
-        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 6, &e->timer);
+        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 7, &e->timer);
     return r;
 }
 
@@ -662,6 +678,7 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
         resolve(d, albedo, d->frames ? d->frames : 1, out);
     out->effect_bytes = e.bytes;
     out->baseline_bytes = roma_study_ao_bytes(e.study_ao, &out->baseline_build_bytes);
+    out->rsm_bytes = roma_study_rsm_bytes(e.rsm);
     if (r != ROMA_SUCCESS && e.device)
         vkDeviceWaitIdle(e.device); /* nothing of this call may still run when its objects go */
     engine_free(&e);

@@ -7,10 +7,12 @@
  * frames is a loop around the public passes. Frame f uses samples f*spp .. f*spp+spp-1, as
  * the reference at spp*frames samples does.
  *
- * The accuracy study's AO and shadow methods and the blind ray start run on the same passes
+ * The accuracy study's AO and shadow methods, the blind ray start and GI through reflective
+ * shadow maps run on the same passes
  * through the tools' study library (study/study_ao.h, study/study_shadows.h). What the public
- * passes cannot do stays with the internal renderer (reflective shadow maps, the stochastic
- * depth map): effect_api_unsupported says why a request needs it. */
+ * passes cannot do stays with the internal renderer (the stochastic depth map):
+ * effect_api_unsupported says why a request needs it. GI through reflective shadow maps comes
+ * from the study too (study/study_rsm.h), on the public GI pass. */
 #ifndef ROMA_RENDER_EFFECT_API_H
 #define ROMA_RENDER_EFFECT_API_H
 
@@ -50,6 +52,12 @@ typedef struct effect_api_desc {
      * trace (roma_shadow_method, 0 ROMA); blind_start: ROMA's rays skip their start unseen. */
     int ao_method, shadow_method, blind_start;
     uint32_t ssao_steps;
+    /* GI from point and spot lights through their reflective shadow maps (study/study_rsm.h:
+     * rsm_size square views, 0 = 256; a hit up to rsm_tolerance_cells trace cells farther from
+     * the light than its texel's surface is lit) instead of shadow rays. */
+    int gi_rsm;
+    uint32_t rsm_size;
+    float rsm_tolerance_cells;
     void (*progress)(float fraction, void *user_data); /* after each frame */
     void *progress_user_data;
 } effect_api_desc;
@@ -69,11 +77,13 @@ typedef struct effect_api_result {
      * GPU time summed over frames (also in ao_ms), its memory and what only its build uses. */
     double baseline_build_ms;
     uint64_t baseline_bytes, baseline_build_bytes;
+    double rsm_ms;      /* desc.gi_rsm: the views' rasterization (the first frame's) */
+    uint64_t rsm_bytes; /* their memory */
 } effect_api_result;
 
 /* NULL when the public effects can render this request, else the reason they cannot
  * (a static string naming the option). */
-const char *effect_api_unsupported(int ssao_layers, int rsm);
+const char *effect_api_unsupported(int ssao_layers);
 
 roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                               const effect_api_desc *desc, effect_api_result *out);

@@ -11,7 +11,7 @@
 #include "app_common.h"
 #include "passes/ao.h"
 #include "passes/effect_render.h"
-#include "passes/gbuffer.h"
+#include "study/gbuffer.h"
 #include "passes/pixel_list.h"
 #include "effects/scene_buffers.h"
 #include "reference.h"

@@ -938,8 +938,7 @@ static int choose_route(options *o, notes *n)
         return 0;
     /* Options that only matter for an effect asked for do not decide the route without it. */
     const int layers = (o->effects & ROMA_EFFECT_AO) && o->ssao_layers > 0;
-    const int rsm = (o->effects & ROMA_EFFECT_GI) && (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays;
-    const char *why = effect_api_unsupported(layers, rsm);
+    const char *why = effect_api_unsupported(layers);
     /* The study's AO baselines trace one grid (study/study_ao.h). */
     const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
     if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL && o->cascades_auto) {
@@ -991,7 +990,10 @@ static int choose_route(options *o, notes *n)
         note(n, o->quiet,
              "--threads sets the CPU threads of the G-buffer's primary rays; the passes run on the device");
     note(n, o->quiet, "ROMA through libroma's public effect passes on a G-buffer of primary rays (--route)%s",
-         o->effects & ROMA_EFFECT_GI ? "; gi from point and spot lights by shadow rays" : "");
+         !(o->effects & ROMA_EFFECT_GI)                         ? ""
+         : (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays ? "; gi from point and spot lights through their RSMs "
+                                                            "(the study's route on the public GI pass)"
+                                                          : "; gi from point and spot lights by shadow rays");
     return 1;
 }
 
@@ -1101,7 +1103,8 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off, .ao_method = (int)o->ao_method,
-        .shadow_method = (int)o->shadow_method, .blind_start = o->blind_start};
+        .shadow_method = (int)o->shadow_method, .blind_start = o->blind_start,
+        .gi_rsm = (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))
             return 1;
@@ -1129,6 +1132,10 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
         roma_effect_plan_runs(&res->plan, ROMA_PASS_SOFT_SHADOWS))
         add_pass(run, "direct", "gpu_timestamp", res->direct_ms);
+    if (roma_effect_plan_runs(&res->plan, ROMA_PASS_RSM)) {
+        add_pass(run, "rsm", "gpu_timestamp", res->rsm_ms);
+        run->passes[run->pass_count - 1].bytes = res->rsm_bytes;
+    }
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_GI))
         add_pass(run, "gi", "gpu_timestamp", res->gi_ms);
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_MANY_LIGHTS))

@@ -1,4 +1,4 @@
-// G-buffer raster pass, shared by passes/gbuffer.vert and passes/gbuffer.frag.
+// G-buffer raster pass, shared by study/gbuffer.vert and study/gbuffer.frag.
 #ifndef ROMA_GBUFFER_GLSL
 #define ROMA_GBUFFER_GLSL
 

@@ -1,6 +1,7 @@
 // The body of the GI effect (shaders/effects/gi_images.comp), included by it and by the accuracy
-// study's variants (shaders/study/), which define ROMA_SHADOW_EXACT true first: every
-// shadow segment walked exactly through the BOM (roma_lights.glsl).
+// study's variants (shaders/study/), which define ROMA_SHADOW_EXACT true first (every
+// shadow segment walked exactly through the BOM, roma_lights.glsl) or ROMA_GI_RSM_LOOKUP
+// (point and spot lights read from reflective shadow maps at bounce hits).
 #ifndef ROMA_GI_IMAGES_GLSL
 #define ROMA_GI_IMAGES_GLSL
 // One-bounce diffuse GI on an engine's G-buffer images (roma_gi_effect): per pixel,
@@ -18,6 +19,9 @@
 #include "roma_sampling.glsl"
 #include "roma_image_list.glsl"
 #include "roma_gi_bounce.glsl"
+#ifdef ROMA_GI_RSM_LOOKUP
+#include "roma_rsm_lookup.glsl"
+#endif
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -61,6 +65,10 @@ void main()
         bool hit;
         vec3 hit_point;
         acc += roma_gi_bounce(S, P, origin, dir, pc.ray.y * scale, true, pixel, s, hit, hit_point);
+#ifdef ROMA_GI_RSM_LOOKUP // the study's RSM route (roma_rsm_lookup.glsl), with the first lights' part
+        if (hit && pc.part.z == 0u)
+            acc += roma_rsm_radiance(hit_point, origin, pc.views, pc.config2.z, pc.ray.w, pc.lights);
+#endif
     }
     vec3 E = acc * (3.14159265358979 / float(samples));
     if (pc.part.x > 0u || pc.part.z > 0u) // a later part adds to the earlier ones

@@ -184,7 +184,7 @@ ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_UVEC4(config);   /* x: roma_trace_mode, y: max steps, z: ray count */
 ROMA_STRUCT_END(roma_trace_push)
 
-/* ---- G-buffer pass (src/passes/gbuffer.c, shaders/passes/gbuffer.*) ---- */
+/* ---- G-buffer pass (src/study/gbuffer.c, shaders/passes/gbuffer.*) ---- */
 
 /* One camera as the shaders project with it: view-space x = dot(p - eye, right) etc.
  * Clip = (x * right.w, -y * up.w, near, z): row 0 at the top, reversed-Z with an
@@ -398,10 +398,11 @@ ROMA_STRUCT_BEGIN(roma_gi_images_push)
     ROMA_U64(scene);      /* roma_gi_scene of the slot (its lights are the record's) */
     ROMA_U64(lights);     /* roma_gpu_light */
     ROMA_U64(bom);        /* the map's BOM: the rays' skipped start walked exactly */
-    ROMA_U64(pad_);
+    ROMA_U64(views);      /* the study's RSM route only (roma_rsm_lookup.glsl): roma_rsm_view */
     ROMA_UVEC4(config);   /* x: width, y: height, z: samples, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: max steps of the shadow rays at a hit */
-    ROMA_VEC4(ray);       /* x: origin offset, y: the bounce rays' tmin, z: the shadow rays' tmin (world) */
+    ROMA_UVEC4(config2);  /* x: seed, y: max steps of the shadow rays at a hit, z: RSM views (study) */
+    ROMA_VEC4(ray);       /* x: origin offset, y: the bounce rays' tmin, z: the shadow rays' tmin (world),
+                             w: RSM depth tolerance (world, study) */
     /* The samples [x, y) and, at their hits, the lights [z, w) this dispatch traces (the
      * area-light sample with the first lights; src/vulkan/loop_budget.h); a dispatch after the
      * first (x > 0 or z > 0) adds to what those before it wrote. */

@@ -23,10 +23,10 @@
 #include "roma_sampling.glsl"
 #include "roma_pixel_bindings.glsl"
 #include "roma_gi_bounce.glsl"
+#include "roma_rsm_lookup.glsl"
 
 layout(local_size_x = ROMA_PIXEL_WORKGROUP_X, local_size_y = ROMA_PIXEL_WORKGROUP_Y) in;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaViews { roma_rsm_view v[]; };
 layout(std430, set = ROMA_TRACE_SET, binding = ROMA_PIXEL_BINDING_ACCUM) buffer RomaPassAccum { vec4 accum[]; };
 
 layout(push_constant) uniform Push { roma_gi_push gi; };
@@ -38,40 +38,6 @@ layout(push_constant) uniform Push { roma_gi_push gi; };
 layout(constant_id = 0) const bool ROMA_GI_SURFACES = true;
 layout(constant_id = 1) const bool ROMA_GI_RSM = true;
 
-
-// Radiance leaving hit point h towards the bounce ray's origin `from`, from all RSMs.
-vec3 rsm_radiance(vec3 h, vec3 from)
-{
-    vec3 L = vec3(0.0);
-    uint view_count = gi.config2.y;
-    float tolerance = gi.ray.z;
-    for (uint v = 0u; v < view_count; ++v) {
-        ROMA_LOOP_TICK();
-        roma_rsm_view view = RomaViews(gi.views).v[v];
-        float size = float(view.info.y);
-        vec3 q = roma_gbuffer_pixel_of(view.camera, h, vec2(size));
-        if (!(q.z > 0.0) || q.x < 0.0 || q.y < 0.0 || q.x >= size || q.y >= size)
-            continue;
-        uint texel = uint(q.y) * view.info.y + uint(q.x);
-        roma_gbuffer_pixel y = RomaGbufferPixels(view.info.zw).p[texel];
-        if (roma_is_inf(y.position_t.w))
-            continue;
-        roma_gpu_light light = RomaLights(gi.lights).l[view.info.x];
-        vec3 lp = light.position_type.xyz;
-        // Shadow-map test: h is lit when it is no farther from the light than the surface the light sees.
-        if (distance(lp, h) > distance(lp, y.position_t.xyz) + tolerance)
-            continue;
-        // Only the lit side reflects (the RSM's normal faces the light): a hit on the
-        // inside of a wall one cell thick may land just behind it, where the light
-        // outside the room sees the wall's other face.
-        if (dot(from - y.position_t.xyz, y.geometric_normal.xyz) <= 0.0)
-            continue;
-        vec3 l;
-        float f = roma_punctual_factor(light, y.position_t.xyz, y.geometric_normal.xyz, y.shading_normal.xyz, l);
-        L += y.albedo.rgb * ROMA_GI_INV_PI * roma_bounded_irradiance(f, light.color_intensity.rgb);
-    }
-    return L;
-}
 
 void main()
 {
@@ -103,7 +69,7 @@ void main()
         vec3 hit_point;
         acc += roma_gi_bounce(S, P, origin, dir, gi.ray.y, ROMA_GI_SURFACES, pixel, s, hit, hit_point);
         if (ROMA_GI_RSM && hit && gi.part.z == 0u) // the RSMs with the first lights' part
-            acc += rsm_radiance(hit_point, origin);
+            acc += roma_rsm_radiance(hit_point, origin, gi.views, gi.config2.y, gi.ray.z, gi.lights);
     }
     accum[pixel] += vec4(acc, 0.0);
 }

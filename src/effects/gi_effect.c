@@ -234,7 +234,8 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
             .normals = sf->materials.normals.address, .albedo = sf->materials.albedo.address,
             .emitters = sf->emitters.emitters.address, .cdf = sf->emitters.cdf.address,
             .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
-            .config = {c->resolution, sf->emitters.emitter_count, packed, ROMA_GI_PUNCTUAL_RAYS},
+            .config = {c->resolution, sf->emitters.emitter_count, packed,
+                       variant && variant->rsm_views ? ROMA_GI_PUNCTUAL_RSM : ROMA_GI_PUNCTUAL_RAYS},
             .config2 = {sf->materials.triangle_count, normals, 0, 0},
         };
         memcpy(roma_upload_write(&e->scene[slot], sizeof gs), &gs, sizeof gs);
@@ -255,12 +256,17 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
     const int exact_rays = variant && variant->exact;
     if (variant && variant->blind_start)
         push.bom = 0; /* every BOM walk off */
+    if (variant && variant->rsm_views) {
+        push.views = variant->rsm_views;
+        push.config2[2] = variant->rsm_view_count;
+        push.ray[3] = variant->rsm_tolerance;
+    }
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* Samples and the lights at their hits in parts within the device's loop budget. */
     const roma_loop_grid grid = {info.resolution, info.grid_cell, info.levels};
     const roma_shadow_cost shadow = {grid, push.ray[2], ROMA_START_WALK, s.max_steps, ROMA_BACK_SKIP_POINT, exact_rays};
-    uint32_t bounce = roma_loop_cost_gi_bounce(grid, push.ray[1], exact_rays);
+    uint32_t bounce = roma_loop_cost_gi_bounce(grid, push.ray[1], exact_rays) + push.config2[2]; /* RSM views */
     if (have_scene && sf->emitters.emitter_count)
         bounce += roma_loop_cost_area_sample(&shadow, sf->emitters.emitter_count);
     const roma_loop_parts parts =

@@ -11,6 +11,13 @@
 typedef struct roma_shadow_variant {
     int exact;       /* the module walks every segment through the BOM: its loop costs (trace/loop_costs.h) */
     int blind_start; /* 1: every BOM walk off (push bom 0): rays skip their start unseen */
+    /* GI only, with a module that defines ROMA_GI_RSM_LOOKUP: point and spot lights read at
+     * bounce hits from the rsm_view_count reflective shadow map views at rsm_views
+     * (roma_rsm_view) instead of shadow rays; a hit up to rsm_tolerance (world) farther from
+     * the light than the surface its texel holds is lit. */
+    VkDeviceAddress rsm_views;
+    uint32_t rsm_view_count;
+    float rsm_tolerance;
 } roma_shadow_variant;
 
 /* module: a shader that includes roma_lights_images.glsl (roma_gi_images.glsl), found in the

@@ -1,6 +1,6 @@
 /* Ambient-occlusion pass (internal for now).
  *
- * Reads the G-buffer (passes/gbuffer.h) and, per covered pixel, traces spp
+ * Reads the G-buffer (study/gbuffer.h) and, per covered pixel, traces spp
  * cosine-weighted directions around the shading normal (include/roma/sampling.h,
  * sample index frame * spp + k, dimensions 0 and 1) as snapped any-hit queries
  * through a built ROMA map. Directions below the geometric surface count as

@@ -13,10 +13,12 @@ roma_result roma_study_light_effect_create(roma_context *ctx, const roma_light_e
 }
 
 roma_result roma_study_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *desc, roma_shadow_method method,
-                                        roma_gi_effect **out)
+                                        int rsm, roma_gi_effect **out)
 {
-    if (method == ROMA_SHADOW_METHOD_ROMA)
+    const int exact = method == ROMA_SHADOW_METHOD_VOXEL_DDA;
+    if (!exact && !rsm)
         return roma_gi_effect_create(ctx, desc, out);
     roma_study_shaders_use(ctx);
-    return roma_gi_effect_create_variant(ctx, desc, "gi_exact.comp", out);
+    return roma_gi_effect_create_variant(ctx, desc,
+                                         rsm ? (exact ? "gi_exact_rsm.comp" : "gi_rsm.comp") : "gi_exact.comp", out);
 }

@@ -15,8 +15,9 @@ typedef enum roma_shadow_method {
 
 roma_result roma_study_light_effect_create(roma_context *ctx, const roma_light_effect_desc *desc,
                                            roma_shadow_method method, roma_light_effect **out);
-/* Bounce rays and the shadow rays at their hits. */
+/* Bounce rays and the shadow rays at their hits; rsm: point and spot lights read from
+ * reflective shadow maps at the hits instead (study/study_rsm.h gives the variant's views). */
 roma_result roma_study_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *desc, roma_shadow_method method,
-                                        roma_gi_effect **out);
+                                        int rsm, roma_gi_effect **out);
 
 #endif /* ROMA_STUDY_STUDY_SHADOWS_H */

@@ -1,4 +1,4 @@
-#include "passes/gbuffer.h"
+#include "study/gbuffer.h"
 #include "study/study_shaders.h"
 
 #include <math.h>

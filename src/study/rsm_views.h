@@ -2,9 +2,9 @@
  * a spot light looks along its axis with a field of view of twice its outer
  * cone (at most 170 degrees), a point light along the six axes (cube faces of
  * 90 degrees). Directional lights get none. Each view is rendered with the
- * G-buffer pass (passes/gbuffer.h). */
-#ifndef ROMA_PASSES_RSM_VIEWS_H
-#define ROMA_PASSES_RSM_VIEWS_H
+ * G-buffer pass (study/gbuffer.h). */
+#ifndef ROMA_STUDY_RSM_VIEWS_H
+#define ROMA_STUDY_RSM_VIEWS_H
 
 #include "roma/camera.h"
 #include "roma_shared.h"
@@ -23,4 +23,4 @@ typedef struct roma_rsm_views {
 roma_result roma_rsm_views_plan(const roma_gpu_light *lights, uint32_t light_count, uint32_t size, float near_plane,
                                 const roma_logger *logger, roma_rsm_views *out);
 
-#endif /* ROMA_PASSES_RSM_VIEWS_H */
+#endif /* ROMA_STUDY_RSM_VIEWS_H */

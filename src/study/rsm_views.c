@@ -1,9 +1,9 @@
-#include "passes/rsm_views.h"
+#include "study/rsm_views.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "passes/gbuffer.h"
+#include "study/gbuffer.h"
 
 #define PI_F 3.14159265358979323846f
 

@@ -8,8 +8,8 @@
  * the top. Two passes over the geometry: depth only, then shading with depth
  * test EQUAL and early fragment tests, so exactly one fragment writes a pixel.
  * Reversed Z with an infinite far plane: only the near plane is needed. */
-#ifndef ROMA_PASSES_GBUFFER_H
-#define ROMA_PASSES_GBUFFER_H
+#ifndef ROMA_STUDY_GBUFFER_H
+#define ROMA_STUDY_GBUFFER_H
 
 #include <vulkan/vulkan.h>
 
@@ -70,4 +70,4 @@ VkDeviceAddress roma_gbuffer_pixels_address(const roma_gbuffer *g);
  * The recording must have been submitted and completed. */
 roma_result roma_gbuffer_download(roma_gbuffer *g, roma_gbuffer_pixel *out);
 
-#endif /* ROMA_PASSES_GBUFFER_H */
+#endif /* ROMA_STUDY_GBUFFER_H */

@@ -10,6 +10,7 @@
 
 #include "app_common.h"
 #include "study/study_ao.h"
+#include "study/study_depth_layers.h"
 #include "study/study_rsm.h"
 #include "study/study_shadows.h"
 
@@ -51,19 +52,13 @@ typedef struct engine {
     roma_map *maps[ROMA_PASS_COUNT];
     roma_ao_effect *ao;
     roma_study_ao *study_ao; /* instead of ao: a study's AO method or the blind start */
+    roma_study_depth_layers *layers; /* screen-space AO's stochastic depth map */
     roma_light_effect *light;
     roma_gi_effect *gi;
     roma_study_rsm *rsm; /* desc.gi_rsm: the lights' reflective shadow maps */
     roma_gpu_timer *timer;
     uint64_t bytes;
 } engine;
-
-const char *effect_api_unsupported(int ssao_layers)
-{
-    if (ssao_layers)
-        return "--ssao-layers: the stochastic depth map is rasterized by the internal renderer only";
-    return NULL;
-}
 
 static roma_result from_vk(VkResult vr, const char *what)
 {
@@ -185,6 +180,7 @@ static void engine_free(engine *e)
     roma_ao_effect_destroy(e->ao);
     roma_study_ao_destroy(e->study_ao);
     roma_study_rsm_destroy(e->rsm);
+    roma_study_depth_layers_destroy(e->layers);
     for (int i = 0; i < ROMA_PASS_COUNT; ++i)
         roma_map_destroy(e->maps[i]);
 }
@@ -331,9 +327,18 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_ao_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
                              e->images[IN_GEOMETRIC].view, e->images[OUT_AO].view, 0, e->pixels};
         const roma_study_ao_inputs in = {.blind_start = d->blind_start, .camera = &d->camera,
-                                         .ssao_steps = d->ssao_steps};
-        uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "baseline_build");
-        r = roma_study_ao_record_build(e->study_ao, cmd, map);
+                                         .ssao_steps = d->ssao_steps,
+                                         .ssao_layers = roma_study_depth_layers_count(e->layers),
+                                         .layers = roma_study_depth_layers_view(e->layers)};
+        uint32_t scope;
+        if (e->layers) { /* beside the G-buffer, not in AO's time */
+            scope = roma_gpu_timer_begin(e->timer, cmd, "depth_layers");
+            r = roma_study_depth_layers_record(e->layers, cmd, &d->camera, d->seed, f);
+            roma_gpu_timer_end(e->timer, cmd, scope);
+        }
+        scope = roma_gpu_timer_begin(e->timer, cmd, "baseline_build");
+        if (r == ROMA_SUCCESS)
+            r = roma_study_ao_record_build(e->study_ao, cmd, map);
         roma_gpu_timer_end(e->timer, cmd, scope);
         scope = roma_gpu_timer_begin(e->timer, cmd, "ao");
         if (r == ROMA_SUCCESS)
@@ -389,8 +394,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
 /* The timer's scopes of the frame just finished, added to the result's sums. */
 static roma_result add_timings(engine *e, effect_api_result *out)
 {
-    roma_gpu_timing t[ROMA_PASS_COUNT + 7];
-    uint32_t count = ROMA_PASS_COUNT + 7;
+    roma_gpu_timing t[ROMA_PASS_COUNT + 8];
+    uint32_t count = ROMA_PASS_COUNT + 8;
     roma_result r = roma_gpu_timer_read(e->timer, t, &count);
     uint32_t build = 0;
     for (uint32_t i = 0; i < count && r == ROMA_SUCCESS; ++i) {
@@ -404,6 +409,8 @@ static roma_result add_timings(engine *e, effect_api_result *out)
             out->gi_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "lights") == 0)
             out->lights_ms += t[i].milliseconds;
+        else if (strcmp(t[i].name, "depth_layers") == 0)
+            out->depth_layers_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "rsm") == 0)
             out->rsm_ms += t[i].milliseconds;
         else if (strcmp(t[i].name, "list") == 0)
@@ -496,6 +503,9 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
         r = roma_ao_effect_create(e->ctx, &ao_desc, &e->ao);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && study_ao)
         r = roma_study_ao_create(e->ctx, (roma_ao_method)d->ao_method, &ao_desc, &e->study_ao);
+    if (r == ROMA_SUCCESS && e->study_ao && d->ssao_layers)
+        r = roma_study_depth_layers_create(e->ctx, scene, d->width, d->height, d->ssao_layers, d->ssao_keep,
+                                           &e->layers);
     if (r == ROMA_SUCCESS && lit)
         r = roma_study_light_effect_create(e->ctx, &light_desc, (roma_shadow_method)d->shadow_method, &e->light);
     if (r == ROMA_SUCCESS && lit)
@@ -523,7 +533,7 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && d->shared_list)
         r = roma_pixel_list_create(e->ctx, &(roma_pixel_list_desc){.frames_in_flight = 1}, &e->pixels);
     if (r == ROMA_SUCCESS)
-        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 7, &e->timer);
+        r = roma_gpu_timer_create(e->ctx, ROMA_PASS_COUNT + 8, &e->timer);
     return r;
 }
 
@@ -679,6 +689,7 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     out->effect_bytes = e.bytes;
     out->baseline_bytes = roma_study_ao_bytes(e.study_ao, &out->baseline_build_bytes);
     out->rsm_bytes = roma_study_rsm_bytes(e.rsm);
+    out->depth_layers_bytes = roma_study_depth_layers_bytes(e.layers);
     if (r != ROMA_SUCCESS && e.device)
         vkDeviceWaitIdle(e.device); /* nothing of this call may still run when its objects go */
     engine_free(&e);

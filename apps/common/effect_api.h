@@ -1,20 +1,17 @@
-/* The tools' ROMA images (roma-render, roma-bench's study) through libroma's public effect API,
- * as an engine records them: the tool is the engine. Its G-buffer is the reference tracer's primary rays (pixel
- * centres, the points the Embree reference shades), uploaded into images it owns; every frame
- * it records, into one command buffer of its own, the build of each ROMA array the effect
- * plan needs (new jitter each frame) and the AO, light and GI effects on those images, then
- * copies their outputs to the host, submits, waits and adds them up: the accumulation over
- * frames is a loop around the public passes. Frame f uses samples f*spp .. f*spp+spp-1, as
- * the reference at spp*frames samples does.
+/* The tools' ROMA images (roma-render, roma-bench's study) through libroma's public effect
+ * API, as an engine records them: the tool is the engine. Its G-buffer is the reference
+ * tracer's primary rays (pixel centres, the points the Embree reference shades), uploaded into
+ * images it owns; every frame it records, into one command buffer of its own, the build of
+ * each ROMA array the effect plan needs (new jitter each frame) and the AO, light and GI
+ * effects on those images, then copies their outputs to the host, submits, waits and adds
+ * them up: the accumulation over frames is a loop around the public passes. Frame f uses
+ * samples f*spp .. f*spp+spp-1, as the reference at spp*frames samples does.
  *
- * The accuracy study's AO and shadow methods, the blind ray start and GI through reflective
- * shadow maps run on the same passes
- * through the tools' study library (study/study_ao.h, study/study_shadows.h). What the public
- * passes cannot do stays with the internal renderer (the stochastic depth map):
- * effect_api_unsupported says why a request needs it. GI through reflective shadow maps comes
- * from the study too (study/study_rsm.h), on the public GI pass. */
-#ifndef ROMA_RENDER_EFFECT_API_H
-#define ROMA_RENDER_EFFECT_API_H
+ * The accuracy study's methods (its AO baselines and stochastic depth map, exact shadow rays,
+ * the blind ray start, GI through reflective shadow maps) plug into the same passes from the
+ * tools' study library (src/study/). */
+#ifndef ROMA_APPS_EFFECT_API_H
+#define ROMA_APPS_EFFECT_API_H
 
 #include <stdint.h>
 
@@ -52,6 +49,11 @@ typedef struct effect_api_desc {
      * trace (roma_shadow_method, 0 ROMA); blind_start: ROMA's rays skip their start unseen. */
     int ao_method, shadow_method, blind_start;
     uint32_t ssao_steps;
+    /* Screen-space AO: the layers of a stochastic depth map rasterized every frame beside the
+     * G-buffer (0: none; study/study_depth_layers.h), each keeping a fragment with probability
+     * ssao_keep (0 = ROMA_AO_SSAO_KEEP). */
+    uint32_t ssao_layers;
+    float ssao_keep;
     /* GI from point and spot lights through their reflective shadow maps (study/study_rsm.h:
      * rsm_size square views, 0 = 256; a hit up to rsm_tolerance_cells trace cells farther from
      * the light than its texel's surface is lit) instead of shadow rays. */
@@ -79,14 +81,12 @@ typedef struct effect_api_result {
     uint64_t baseline_bytes, baseline_build_bytes;
     double rsm_ms;      /* desc.gi_rsm: the views' rasterization (the first frame's) */
     uint64_t rsm_bytes; /* their memory */
+    double depth_layers_ms;      /* desc.ssao_layers: their rasterization, summed over frames (not in ao_ms) */
+    uint64_t depth_layers_bytes; /* their memory */
 } effect_api_result;
-
-/* NULL when the public effects can render this request, else the reason they cannot
- * (a static string naming the option). */
-const char *effect_api_unsupported(int ssao_layers);
 
 roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                               const effect_api_desc *desc, effect_api_result *out);
 void effect_api_result_free(effect_api_result *result);
 
-#endif /* ROMA_RENDER_EFFECT_API_H */
+#endif /* ROMA_APPS_EFFECT_API_H */

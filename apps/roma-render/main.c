@@ -937,8 +937,7 @@ static int choose_route(options *o, notes *n)
     if (strcmp(o->tracer, "roma") != 0)
         return 0;
     /* Options that only matter for an effect asked for do not decide the route without it. */
-    const int layers = (o->effects & ROMA_EFFECT_AO) && o->ssao_layers > 0;
-    const char *why = effect_api_unsupported(layers);
+    const char *why = NULL; /* the public passes render every request */
     /* The study's AO baselines trace one grid (study/study_ao.h). */
     const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
     if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL && o->cascades_auto) {
@@ -1104,7 +1103,7 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off, .ao_method = (int)o->ao_method,
         .shadow_method = (int)o->shadow_method, .blind_start = o->blind_start,
-        .gi_rsm = (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays};
+        .gi_rsm = (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays, .ssao_layers = o->ssao_layers};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))
             return 1;
@@ -1132,6 +1131,10 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
         roma_effect_plan_runs(&res->plan, ROMA_PASS_SOFT_SHADOWS))
         add_pass(run, "direct", "gpu_timestamp", res->direct_ms);
+    if (res->ao.pixels && o->ssao_layers) { /* the stochastic depth map's rasterization, beside the ao pass */
+        add_pass(run, "depth_layers", "gpu_timestamp", res->depth_layers_ms);
+        run->passes[run->pass_count - 1].bytes = res->depth_layers_bytes;
+    }
     if (roma_effect_plan_runs(&res->plan, ROMA_PASS_RSM)) {
         add_pass(run, "rsm", "gpu_timestamp", res->rsm_ms);
         run->passes[run->pass_count - 1].bytes = res->rsm_bytes;

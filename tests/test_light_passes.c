@@ -1,23 +1,31 @@
-/* The light passes on ROMA (passes/effect_render.h) against the Embree reference
- * on the same surface points and the same samples.
+/* The light passes on ROMA, through the public light and GI passes as the tools record them
+ * (support/public_render.h over apps/common/effect_api.h), against the Embree reference on the
+ * same surface points (the reference's primary rays, which the passes shade) and the same samples.
  *
  * - Direct light on builtin cornell (spot light + area light), 64 x 48, 16 spp x
  *   4 frames: the reference evaluates roma_ref_direct_point at the G-buffer's
  *   points with the same 64 sample indices, so both sides draw the same light
  *   points and the difference is visibility (voxel shadows) only.
- * - Many lights, 256 point lights, exact mode: the visibility bit of every light
- *   at every pixel (last frame) against Embree segments from the same points:
- *   eps_v (fraction of light rays with the wrong visibility) and eps_s (relative
- *   shadow-value error per pixel, |visible_roma - visible_ref| / lights), as in
- *   the constant-time intersection paper. The image (count averaged over frames)
- *   is checked against the same reference too.
+ * - Many lights, 256 point lights, exact mode: the public light effect gives the count of
+ *   visible lights per pixel (ROMA_LIGHT_OUTPUT_VISIBLE_COUNT), not which lights: eps_s
+ *   (relative shadow-value error per pixel, |visible_roma - visible_ref| / lights, as in the
+ *   constant-time intersection paper) on a one-frame render, whose counts are whole numbers,
+ *   against Embree's count from the same points (roma_ref_count_visible_lights); the image
+ *   (count averaged over 4 frames) is checked against the same reference too. eps_v (the
+ *   fraction of light rays with the wrong visibility) needed the internal renderer's
+ *   per-light mask and is dropped: no public output says which lights a pixel sees.
  * - Stochastic many lights (32 random lights per pixel and frame) against the exact count.
  * - One-bounce GI, 1,024 samples, against roma_ref_indirect_point with the same bounce
  *   directions and light samples: cornell (area light + spot), cornell_spot (the spot by
  *   RSM and by shadow rays) and blinds (sun and emissive sky through a window); on
- *   cornell also the composed image (direct + GI) from the two tests' sums.
- * - Passes: only those of the plan run (plates: no punctual-light pass; a scene
- *   without lights: no GPU pass at all).
+ *   cornell also the composed image (direct + GI) from the two tests' sums. The RSM route
+ *   is checked to run its pass (and hold its maps' memory), the shadow-ray route not to.
+ * - Passes: only those of the plan run (plates: no punctual-light pass; a scene without
+ *   lights: no GPU pass at all). The internal renderer's per-pass memory is not reported
+ *   by the public route: a pass that runs shows GPU time of its own, one that does not
+ *   none (no build, no light effect recorded). The internal renderer's rejection of many
+ *   lights without positions has no public equivalent (the tools' route leaves the count
+ *   black) and is dropped.
  * Bounds are the measured values (printed) plus a small margin. */
 #include <math.h>
 #include <stdio.h>
@@ -25,7 +33,7 @@
 #include <string.h>
 
 #include "harness.h"
-#include "passes/effect_render.h"
+#include "public_render.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
 #include "roma/sampling.h"
@@ -39,31 +47,32 @@
 #define LIGHTS 256u
 
 /* Measured on lavapipe with the defaults (RES 128, A = 8, offset 1.5 and skip 1
- * trace cells, 8 steps for direct light, 16 for many lights), plus 0.005. */
+ * trace cells, 8 steps for direct light, 16 for many lights), plus 0.005. "was": the figure
+ * before the port to the public passes (the internal renderer, at its raster G-buffer's points). */
 #define MAX_DIRECT_REL_MAE 0.030  /* measured 0.0257 (0.0265 before the band's rule reached farther) */
 #define MAX_DIRECT_REL_BIAS 0.030 /* measured -0.0255 (-0.0263) */
-#define MAX_EPS_V 0.038           /* measured 0.0320 (the target: 0.10) */
-#define MAX_EPS_S 0.033           /* measured 0.0291 (target 0.03) */
+#define MAX_EPS_S 0.033           /* measured 0.0282 on one frame (target 0.03; was 0.0291, the last of 4) */
 /* GI, 1,024 samples (64 x 16 frames), A = 4: relative MAE and |relative bias| against the
  * reference on the same samples, measured + 0.005. */
-#define MAX_GI_CORNELL_MAE 0.332        /* measured 0.3270: the lamp's ceiling band, below */
-#define MAX_GI_CORNELL_BIAS 0.013       /* measured -0.0080 (-0.0238 while the band's rule reached two offsets) */
+#define MAX_GI_CORNELL_MAE 0.332        /* measured 0.3272 (was 0.3270): the lamp's ceiling band, below */
+#define MAX_GI_CORNELL_BIAS 0.013       /* measured -0.0085 (was -0.0080; -0.0238 while the band's rule reached
+                                         * two offsets) */
 #define MIN_GI_CEILING_SHARE 0.164      /* measured 0.169 */
 /* The composed image (direct + GI) of the room, the two cases above on the same pixels:
  * the issue's target is 3%. */
-#define MAX_COMPOSED_CORNELL_BIAS 0.025 /* measured -0.0204 (-0.0256) */
-#define MAX_GI_SPOT_MAE 0.252           /* measured 0.2463 (RSM) */
-#define MAX_GI_SPOT_BIAS 0.030          /* measured +0.0248 (RSM) */
-#define MAX_GI_SPOT_RAYS_MAE 0.257      /* measured 0.2517 (shadow rays) */
+#define MAX_COMPOSED_CORNELL_BIAS 0.025 /* measured -0.0205 (was -0.0204; -0.0256) */
+#define MAX_GI_SPOT_MAE 0.251           /* measured 0.2459 (RSM; was 0.2463) */
+#define MAX_GI_SPOT_BIAS 0.030          /* measured +0.0247 (RSM; was +0.0248) */
+#define MAX_GI_SPOT_RAYS_MAE 0.257      /* measured 0.2514 (shadow rays; was 0.2517) */
 #define MAX_GI_SPOT_RAYS_BIAS 0.024     /* measured +0.0186 (shadow rays) */
-#define MAX_GI_BLINDS_MAE 0.255         /* measured 0.2501 */
+#define MAX_GI_BLINDS_MAE 0.255         /* measured 0.2499 (was 0.2501) */
 #define MAX_GI_BLINDS_BIAS 0.065        /* measured -0.0597 (-0.0585 before the walk back skipped the
                                          * empty cells in front of the sky); -0.0396 while snapped hits found from
                                          * behind a surface were shaded on its far side (the window
                                          * wall's is in the sun; docs/accuracy.md) */
-#define MAX_STOCHASTIC_ERR 0.026   /* measured 0.0203 (sampling noise of 512 tests per pixel) */
-#define MAX_STOCHASTIC_BIAS 0.011  /* measured 0.0055 */
-#define MAX_COUNT_ERR 0.030       /* measured 0.0259, the 4-frame average against the same reference */
+#define MAX_STOCHASTIC_ERR 0.026   /* measured 0.0202 (was 0.0203; sampling noise of 512 tests per pixel) */
+#define MAX_STOCHASTIC_BIAS 0.011  /* measured 0.0052 (was 0.0055) */
+#define MAX_COUNT_ERR 0.030       /* measured 0.0267 (was 0.0259), the 4-frame average against the same reference */
 
 /* Sums over the covered pixels' channels of ROMA's and the reference's radiance. */
 typedef struct radiance_sums {
@@ -83,35 +92,47 @@ static void test_direct_and_many_lights(roma_context *ctx, radiance_sums *direct
     roma_scene_default_camera(scene, (float)W / (float)H, &cam);
     float *positions = malloc(sizeof(float) * 3 * LIGHTS);
     roma_gbuffer_pixel *px = calloc(W * H, sizeof *px);
-    const uint32_t words = (LIGHTS + 31) / 32;
-    uint32_t *mask = calloc((size_t)W * H * words, sizeof *mask);
+    uint32_t *ref_count = calloc(W * H, sizeof *ref_count);
     roma_ref *ref = NULL;
-    roma_effect_images img;
+    effect_api_result img, one, stoch;
     memset(&img, 0, sizeof img);
-    if (!positions || !px || !mask) {
+    memset(&one, 0, sizeof one);
+    memset(&stoch, 0, sizeof stoch);
+    if (!positions || !px || !ref_count) {
         CHECK(!"out of memory");
         goto done;
     }
     roma_many_lights_positions(v.bounds_min, v.bounds_max, LIGHTS, SEED, positions);
-    roma_effect_render_desc d = {
+    effect_api_desc d = {
         .camera = cam, .width = W, .height = H,
         .options = {.effects = ROMA_EFFECT_DIRECT | ROMA_EFFECT_LIGHTS, .many_light_count = LIGHTS},
         .spp = SPP, .frames = FRAMES, .seed = SEED, .many_light_positions = positions,
-        .out_gbuffer = px, .out_light_mask = mask,
     };
-    roma_effect_stats st;
-    CHECK_RESULT(roma_effect_render(ctx, scene, &d, &img, &st), ROMA_SUCCESS);
     CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
-    if (!img.direct.pixels || !img.lights.pixels || !ref)
+    if (!ref)
         goto done;
-    CHECK(st.plan.map_count == 1 && st.map_info[0].angular == 8);
-    CHECK(roma_effect_plan_runs(&st.plan, ROMA_PASS_PUNCTUAL_LIGHTS));
-    CHECK(roma_effect_plan_runs(&st.plan, ROMA_PASS_SOFT_SHADOWS));
-    CHECK(!roma_effect_plan_runs(&st.plan, ROMA_PASS_AO) && st.pass_bytes[ROMA_PASS_AO] == 0);
+    CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &d, &img, px), ROMA_SUCCESS);
+    if (!img.direct.pixels || !img.lights.pixels)
+        goto done;
+    CHECK(img.plan.map_count == 1 && img.map_info[0].angular == 8);
+    CHECK(roma_effect_plan_runs(&img.plan, ROMA_PASS_PUNCTUAL_LIGHTS));
+    CHECK(roma_effect_plan_runs(&img.plan, ROMA_PASS_SOFT_SHADOWS));
+    CHECK(roma_effect_plan_runs(&img.plan, ROMA_PASS_MANY_LIGHTS) && img.plan.many_light_count == LIGHTS);
+    CHECK(!roma_effect_plan_runs(&img.plan, ROMA_PASS_AO) && !img.ao.pixels && img.ao_ms == 0.0);
+    CHECK(img.direct_ms > 0.0 && img.lights_ms > 0.0);
 
-    uint32_t covered = 0;
+    /* One frame of the exact count: whole numbers, as the internal renderer's last-frame mask
+     * counted (eps_s). */
+    effect_api_desc od = d;
+    od.options.effects = ROMA_EFFECT_LIGHTS;
+    od.frames = 1;
+    CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &od, &one, NULL), ROMA_SUCCESS);
+    if (!one.lights.pixels)
+        goto done;
+
+    uint32_t covered = 0, fractional = 0;
     double sum_abs = 0.0, sum_roma = 0.0, sum_ref = 0.0;
-    double eps_v = 0.0, eps_s = 0.0, count_err = 0.0;
+    double eps_s = 0.0, count_err = 0.0, ref_mean = 0.0;
     for (uint32_t i = 0; i < W * H; ++i) {
         const roma_gbuffer_pixel *p = &px[i];
         if (!isfinite(p->position_t[3]))
@@ -126,29 +147,14 @@ static void test_direct_and_many_lights(roma_context *ctx, radiance_sums *direct
             sum_roma += a;
             sum_ref += rgb[c];
         }
-        /* Per-light visibility from the same point, segments as the reference's. */
-        float origin[3];
-        roma_ref_offset_origin(ref, p->position_t, p->geometric_normal, origin);
-        uint32_t wrong = 0, vis_roma = 0, vis_ref = 0;
-        for (uint32_t l = 0; l < LIGHTS; ++l) {
-            const float *lp = &positions[3 * l];
-            float to[3] = {lp[0] - p->position_t[0], lp[1] - p->position_t[1], lp[2] - p->position_t[2]};
-            int ref_visible = 0;
-            if (to[0] * p->shading_normal[0] + to[1] * p->shading_normal[1] + to[2] * p->shading_normal[2] > 0.0f) {
-                float dir[3] = {lp[0] - origin[0], lp[1] - origin[1], lp[2] - origin[2]};
-                float len = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-                for (int k = 0; k < 3; ++k)
-                    dir[k] /= len > 0.0f ? len : 1.0f; /* Embree's t is in units of |dir| */
-                ref_visible = len > 0.0f && !roma_ref_occluded(ref, origin, dir, 0.0f, len * (1.0f - 1e-4f));
-            }
-            int roma_visible = (mask[(size_t)i * words + l / 32] >> (l % 32)) & 1u;
-            wrong += roma_visible != ref_visible;
-            vis_roma += (uint32_t)roma_visible;
-            vis_ref += (uint32_t)ref_visible;
-        }
-        eps_v += (double)wrong / LIGHTS;
-        eps_s += fabs((double)vis_roma - (double)vis_ref) / LIGHTS;
-        count_err += fabs((double)img.lights.pixels[i] - (double)vis_ref) / LIGHTS;
+        /* Embree's count of visible lights from the same point (segments from the offset origin). */
+        ref_count[i] = roma_ref_count_visible_lights(ref, p->position_t, p->geometric_normal, p->shading_normal,
+                                                     positions, LIGHTS);
+        const double vis_ref = (double)ref_count[i], vis_roma = one.lights.pixels[i];
+        fractional += vis_roma != floor(vis_roma) || vis_roma < 0.0 || vis_roma > LIGHTS;
+        ref_mean += vis_ref;
+        eps_s += fabs(vis_roma - vis_ref) / LIGHTS;
+        count_err += fabs((double)img.lights.pixels[i] - vis_ref) / LIGHTS;
     }
     CHECK(covered > W * H / 2);
     if (!covered)
@@ -156,29 +162,25 @@ static void test_direct_and_many_lights(roma_context *ctx, radiance_sums *direct
     double rel_mae = sum_abs / sum_ref, rel_bias = (sum_roma - sum_ref) / sum_ref;
     direct->roma = sum_roma;
     direct->ref = sum_ref;
-    eps_v /= covered;
     eps_s /= covered;
     count_err /= covered;
     printf("direct (cornell, %u samples): relative MAE %.4f, relative bias %+.4f (mean %.5f vs %.5f)\n",
            SPP * FRAMES, rel_mae, rel_bias, sum_roma / (3.0 * covered), sum_ref / (3.0 * covered));
-    printf("many lights (%u): eps_v %.4f, eps_s %.4f (last frame); count averaged over %u frames: %.4f\n", LIGHTS,
-           eps_v, eps_s, FRAMES, count_err);
+    printf("many lights (%u, Embree sees %.2f a pixel): eps_s %.4f (one frame, %u counts not whole); count averaged "
+           "over %u frames: %.4f\n", LIGHTS, ref_mean / covered, eps_s, fractional, FRAMES, count_err);
     CHECK(rel_mae <= MAX_DIRECT_REL_MAE);
     CHECK(fabs(rel_bias) <= MAX_DIRECT_REL_BIAS);
-    CHECK(eps_v <= MAX_EPS_V);
+    CHECK(fractional == 0);
     CHECK(eps_s <= MAX_EPS_S);
     CHECK(count_err <= MAX_COUNT_ERR);
 
     /* Stochastic mode: 32 of the 256 lights per pixel and frame over 16 frames
      * estimates the same count as testing all of them. */
-    roma_effect_images stoch;
-    roma_effect_render_desc sd = d;
+    effect_api_desc sd = d;
     sd.options.effects = ROMA_EFFECT_LIGHTS;
     sd.frames = 16;
     sd.lights_per_frame = 32;
-    sd.out_gbuffer = NULL;
-    sd.out_light_mask = NULL;
-    CHECK_RESULT(roma_effect_render(ctx, scene, &sd, &stoch, &st), ROMA_SUCCESS);
+    CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &sd, &stoch, NULL), ROMA_SUCCESS);
     if (stoch.lights.pixels) {
         double diff = 0.0, sum_s = 0.0, sum_e = 0.0;
         for (uint32_t i = 0; i < W * H; ++i) {
@@ -189,17 +191,19 @@ static void test_direct_and_many_lights(roma_context *ctx, radiance_sums *direct
             sum_e += img.lights.pixels[i];
         }
         printf("many lights, stochastic (32 per frame, 16 frames) against exact: per-pixel error %.4f of the "
-               "lights, mean count %.2f vs %.2f\n", diff / covered, sum_s / covered, sum_e / covered);
+               "lights, mean count %.2f vs %.2f (relative bias %+.4f)\n", diff / covered, sum_s / covered,
+               sum_e / covered, sum_e > 0.0 ? (sum_s - sum_e) / sum_e : 0.0);
         CHECK(diff / covered <= MAX_STOCHASTIC_ERR);
         CHECK(fabs(sum_s - sum_e) / sum_e <= MAX_STOCHASTIC_BIAS);
     }
-    roma_effect_images_free(&stoch);
 done:
-    roma_effect_images_free(&img);
+    effect_api_result_free(&stoch);
+    effect_api_result_free(&one);
+    effect_api_result_free(&img);
     roma_ref_destroy(ref);
     free(positions);
     free(px);
-    free(mask);
+    free(ref_count);
     roma_scene_destroy(scene);
 }
 
@@ -212,19 +216,25 @@ static void test_planned_passes_only(roma_context *ctx)
         return;
     roma_camera cam;
     roma_scene_default_camera(plates, 1.0f, &cam);
-    roma_effect_render_desc d = {.camera = cam, .width = 16, .height = 16,
-                                 .options = {.effects = ROMA_EFFECT_DIRECT}, .spp = 2};
-    roma_effect_images img;
-    roma_effect_stats st;
-    CHECK_RESULT(roma_effect_render(ctx, plates, &d, &img, &st), ROMA_SUCCESS);
-    CHECK(roma_effect_plan_runs(&st.plan, ROMA_PASS_SOFT_SHADOWS) && st.pass_bytes[ROMA_PASS_SOFT_SHADOWS] > 0);
-    CHECK(!roma_effect_plan_runs(&st.plan, ROMA_PASS_PUNCTUAL_LIGHTS) && st.pass_bytes[ROMA_PASS_PUNCTUAL_LIGHTS] == 0);
-    CHECK(st.plan.map_count == 1 && st.map_info[0].angular == 8 && st.map_info[0].maps_bytes > 0);
+    effect_api_desc d = {.camera = cam, .width = 16, .height = 16, .options = {.effects = ROMA_EFFECT_DIRECT},
+                         .spp = 2};
+    effect_api_result img;
+    memset(&img, 0, sizeof img);
+    roma_ref *ref = NULL;
+    CHECK_RESULT(roma_ref_create(plates, NULL, &ref), ROMA_SUCCESS);
+    if (ref)
+        CHECK_RESULT(roma_test_public_render(ctx, plates, ref, &d, &img, NULL), ROMA_SUCCESS);
+    /* The pass that runs records GPU work of its own (the internal renderer reported its buffers). */
+    CHECK(roma_effect_plan_runs(&img.plan, ROMA_PASS_SOFT_SHADOWS) && img.direct_ms > 0.0 && img.build_ms[0] > 0.0);
+    CHECK(!roma_effect_plan_runs(&img.plan, ROMA_PASS_PUNCTUAL_LIGHTS));
+    CHECK(img.plan.map_count == 1 && img.map_info[0].angular == 8 && img.map_info[0].maps_bytes > 0);
     double lit = 0.0;
     for (uint32_t i = 0; img.direct.pixels && i < 16 * 16 * 3; ++i)
         lit += img.direct.pixels[i];
     CHECK(lit > 0.0);
-    roma_effect_images_free(&img);
+    effect_api_result_free(&img);
+    roma_ref_destroy(ref);
+    ref = NULL;
     roma_scene_destroy(plates);
 
     /* No light anywhere: direct light asks for nothing on the GPU and renders black. */
@@ -237,21 +247,28 @@ static void test_planned_passes_only(roma_context *ctx)
         return;
     roma_scene_default_camera(dark, 1.0f, &cam);
     d.camera = cam;
-    CHECK_RESULT(roma_effect_render(ctx, dark, &d, &img, &st), ROMA_SUCCESS);
-    CHECK(st.plan.passes == 0 && st.plan.map_count == 0 && st.map_info[0].maps_bytes == 0);
-    CHECK(st.pass_bytes[ROMA_PASS_GBUFFER] == 0);
+    CHECK_RESULT(roma_ref_create(dark, NULL, &ref), ROMA_SUCCESS);
+    if (ref)
+        CHECK_RESULT(roma_test_public_render(ctx, dark, ref, &d, &img, NULL), ROMA_SUCCESS);
+    CHECK(img.plan.passes == 0 && img.plan.map_count == 0 && img.map_info[0].maps_bytes == 0);
+    /* No array built, no light effect recorded (the internal renderer: no G-buffer pass either;
+     * the public route's G-buffer is the reference's primary rays, on the host). */
+    CHECK(img.build_ms[0] == 0.0 && img.direct_ms == 0.0);
+    uint32_t seen = 0;
+    for (uint32_t i = 0; img.coverage.pixels && i < 16 * 16; ++i)
+        seen += img.coverage.pixels[i] > 0.0f;
+    CHECK(seen > 0); /* the triangle is in view: black is the light's doing, not an empty frame */
     lit = 0.0;
     for (uint32_t i = 0; img.direct.pixels && i < 16 * 16 * 3; ++i)
         lit += img.direct.pixels[i];
     CHECK(img.direct.pixels && lit == 0.0);
-    roma_effect_images_free(&img);
+    effect_api_result_free(&img);
 
-    /* Lights without positions, and a bad size. */
-    d.options.effects = ROMA_EFFECT_LIGHTS;
-    CHECK_RESULT(roma_effect_render(ctx, dark, &d, &img, &st), ROMA_ERROR_INVALID_ARGUMENT);
-    d.options.effects = ROMA_EFFECT_DIRECT;
+    /* A bad size. */
     d.width = 0;
-    CHECK_RESULT(roma_effect_render(ctx, dark, &d, &img, &st), ROMA_ERROR_INVALID_ARGUMENT);
+    if (ref)
+        CHECK_RESULT(roma_test_public_render(ctx, dark, ref, &d, &img, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    roma_ref_destroy(ref);
     roma_scene_destroy(dark);
 }
 
@@ -320,19 +337,27 @@ static void test_gi_case(roma_context *ctx, const gi_case *k, const radiance_sum
     roma_scene_default_camera(scene, (float)W / (float)H, &cam);
     roma_gbuffer_pixel *px = calloc(W * H, sizeof *px);
     roma_ref *ref = NULL;
-    roma_effect_images img;
+    effect_api_result img;
     memset(&img, 0, sizeof img);
-    roma_effect_render_desc d = {.camera = cam, .width = W, .height = H,
-                                 .options = {.effects = ROMA_EFFECT_GI}, .spp = k->spp, .frames = k->frames,
-                                 .seed = SEED, .out_gbuffer = px, .gi_punctual_rays = k->rays};
-    roma_effect_stats st;
-    if (px)
-        CHECK_RESULT(roma_effect_render(ctx, scene, &d, &img, &st), ROMA_SUCCESS);
+    const effect_api_desc d = {.camera = cam, .width = W, .height = H,
+                               .options = {.effects = ROMA_EFFECT_GI}, .spp = k->spp, .frames = k->frames,
+                               .seed = SEED, .gi_rsm = !k->rays};
     CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    if (px && ref)
+        CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &d, &img, px), ROMA_SUCCESS);
     if (!img.gi.pixels || !ref)
         goto done;
-    CHECK(roma_effect_plan_runs(&st.plan, ROMA_PASS_GI));
-    CHECK(st.plan.map_count == 1 && st.map_info[0].angular == 4);
+    CHECK(roma_effect_plan_runs(&img.plan, ROMA_PASS_GI));
+    /* The RSM route rasterizes the point and spot lights' views (cornell's and cornell_spot's
+     * spot; blinds' sun is directional and always takes shadow rays: no view); the shadow-ray
+     * route none. */
+    const int has_spot = strcmp(k->scene, "blinds") != 0;
+    CHECK(roma_effect_plan_runs(&img.plan, ROMA_PASS_RSM) == (!k->rays && has_spot));
+    if (!k->rays && has_spot)
+        CHECK(img.rsm_bytes > 0 && img.rsm_ms > 0.0);
+    else
+        CHECK(img.rsm_bytes == 0);
+    CHECK(img.plan.map_count == 1 && img.map_info[0].angular == 4);
     uint32_t covered = 0;
     double sum_abs = 0.0, sum_roma = 0.0, sum_ref = 0.0;
     const uint32_t n = k->spp * k->frames;
@@ -356,7 +381,7 @@ static void test_gi_case(roma_context *ctx, const gi_case *k, const radiance_sum
     double rel_mae = sum_abs / sum_ref, rel_bias = (sum_roma - sum_ref) / sum_ref;
     printf("gi (%s, point and spot lights by %s, %u samples): relative MAE %.4f, relative bias %+.4f "
            "(mean %.6f vs %.6f), GI pass %.1f ms\n", k->scene, k->rays ? "shadow rays" : "RSM", n, rel_mae, rel_bias,
-           sum_roma / (3.0 * covered), sum_ref / (3.0 * covered), st.pass_ms[ROMA_PASS_GI]);
+           sum_roma / (3.0 * covered), sum_ref / (3.0 * covered), img.gi_ms);
     CHECK(rel_mae <= k->max_rel_mae);
     CHECK(fabs(rel_bias) <= k->max_rel_bias);
     if (strcmp(k->scene, "cornell") == 0) {
@@ -372,7 +397,7 @@ static void test_gi_case(roma_context *ctx, const gi_case *k, const radiance_sum
         }
     }
 done:
-    roma_effect_images_free(&img);
+    effect_api_result_free(&img);
     roma_ref_destroy(ref);
     free(px);
     roma_scene_destroy(scene);

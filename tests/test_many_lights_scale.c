@@ -1,6 +1,6 @@
 /* Many lights at the scale of the constant-time many-lights paper (1,024 to 7,088 lights):
- * the visible count per pixel (passes/effect_render.h, ROMA_EFFECT_LIGHTS, every light tested
- * in one frame) against Embree's count of the same segments (roma_ref_count_visible_lights),
+ * the visible count per pixel (the public light effect's ROMA_LIGHT_OUTPUT_VISIBLE_COUNT
+ * through support/public_render.h, every light tested in one frame) against Embree's count of the same segments (roma_ref_count_visible_lights),
  * for 256, 1,024, 4,096 and 10,000 random point lights in the built-in room. ROMA's count
  * over Embree's must stay where it is at 256 lights: on lavapipe, before the pass split its
  * lights across dispatches within the loop budget (src/vulkan/loop_budget.h), it fell to
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "harness.h"
-#include "passes/effect_render.h"
+#include "public_render.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
 #include "roma/sampling.h"
@@ -19,9 +19,10 @@
 #define W 24u
 #define H 18u
 #define SEED 5u
-/* |ratio(N) / ratio(256) - 1|: measured at most 0.33% (the issue asks for 2%); with every light
- * in one dispatch (ROMA_LOOP_PLAN=4000000000) -41.7% at 1,024 lights, -94.1% at 10,000. */
-#define MAX_RATIO_DRIFT 0.01
+/* |ratio(N) / ratio(256) - 1|: measured at most 0.25% (the issue asks for 2%; 0.33% on the
+ * internal renderer's pass); with every light in one dispatch (ROMA_LOOP_PLAN=4000000000)
+ * -41.7% at 1,024 lights, -94.1% at 10,000 (the internal pass). */
+#define MAX_RATIO_DRIFT 0.004
 
 /* ROMA's and Embree's mean visible count over the covered pixels, N lights. */
 static int visible_counts(roma_context *ctx, const roma_scene *scene, const roma_ref *ref, const roma_camera *cam,
@@ -31,20 +32,19 @@ static int visible_counts(roma_context *ctx, const roma_scene *scene, const roma
     roma_scene_get_view(scene, &v);
     float *positions = malloc(sizeof(float) * 3 * n);
     roma_gbuffer_pixel *px = calloc(W * H, sizeof *px);
-    roma_effect_images img = {0};
+    effect_api_result img = {0};
     int ok = 0;
     if (!positions || !px) {
         CHECK(!"out of memory");
         goto done;
     }
     roma_many_lights_positions(v.bounds_min, v.bounds_max, n, SEED, positions);
-    roma_effect_render_desc d = {
+    const effect_api_desc d = {
         .camera = *cam, .width = W, .height = H,
         .options = {.effects = ROMA_EFFECT_LIGHTS, .many_light_count = n},
-        .spp = 1, .frames = 1, .seed = SEED, .many_light_positions = positions, .out_gbuffer = px,
+        .spp = 1, .frames = 1, .seed = SEED, .many_light_positions = positions,
     };
-    roma_effect_stats st;
-    CHECK_RESULT(roma_effect_render(ctx, scene, &d, &img, &st), ROMA_SUCCESS);
+    CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &d, &img, px), ROMA_SUCCESS);
     if (!img.lights.pixels)
         goto done;
     double sum_roma = 0.0, sum_ref = 0.0;
@@ -65,7 +65,7 @@ static int visible_counts(roma_context *ctx, const roma_scene *scene, const roma
         ok = *ref_mean > 0.0;
     }
 done:
-    roma_effect_images_free(&img);
+    effect_api_result_free(&img);
     free(px);
     free(positions);
     return ok;

@@ -6,7 +6,7 @@
  *   box checked empty on the BOM itself, within its bounds (a box over an occupied cell
  *   would let rays through it);
  * - the traversal against the exact walk of the same BOM (ROMA_AO_METHOD_VOXEL_DDA), on the
- *   same rays and samples: AO images equal but for rays through a cell's edge or corner,
+ *   same rays and samples, both through the public AO pass (study/study_ao.h): AO images equal but for rays through a cell's edge or corner,
  *   where either may take the other side (measured: none differ).
  * Scenes: the built-in room (rotated blocks), the blinds (thin slats) and the plates, at
  * RES 64 and 128. Closed rooms stay dark through it as through the exact walk
@@ -18,7 +18,8 @@
 
 #include "study/naadf.h"
 #include "harness.h"
-#include "passes/effect_render.h"
+#include "public_render.h"
+#include "reference.h"
 #include "roma/builtin_scenes.h"
 #include "roma/map.h"
 #include "roma_shared.h"
@@ -220,16 +221,18 @@ static void test_traversal(roma_context *ctx, const char *name, const roma_scene
     roma_camera cam = v.camera;
     if (!v.has_camera)
         roma_scene_default_camera(scene, (float)W / (float)H, &cam);
-    roma_effect_images img[2];
+    effect_api_result img[2];
     memset(img, 0, sizeof img);
     const roma_ao_method methods[2] = {ROMA_AO_METHOD_VOXEL_DDA, ROMA_AO_METHOD_NAADF};
-    for (int m = 0; m < 2; ++m) {
-        roma_effect_render_desc d = {.camera = cam, .width = W, .height = H, .spp = 16, .frames = 2, .seed = 3,
-                                     .ao_radius = radius, .ao_method = methods[m],
-                                     .options = {.effects = ROMA_EFFECT_AO, .resolution = res}};
-        roma_effect_stats st;
-        CHECK_RESULT(roma_effect_render(ctx, scene, &d, &img[m], &st), ROMA_SUCCESS);
+    roma_ref *ref = NULL; /* the G-buffer's primary rays */
+    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    for (int m = 0; m < 2 && ref; ++m) {
+        const effect_api_desc d = {.camera = cam, .width = W, .height = H, .spp = 16, .frames = 2, .seed = 3,
+                                   .ao_radius = radius, .ao_method = methods[m],
+                                   .options = {.effects = ROMA_EFFECT_AO, .resolution = res}};
+        CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &d, &img[m], NULL), ROMA_SUCCESS);
     }
+    roma_ref_destroy(ref);
     if (img[0].ao.pixels && img[1].ao.pixels) {
         uint32_t differ = 0;
         float worst = 0.0f;
@@ -243,8 +246,8 @@ static void test_traversal(roma_context *ctx, const char *name, const roma_scene
                name, res, radius > 0.0f ? "0.5" : "inf", differ, W * H, worst);
         CHECK(differ <= MAX_DIFFERING_PIXELS);
     }
-    roma_effect_images_free(&img[0]);
-    roma_effect_images_free(&img[1]);
+    effect_api_result_free(&img[0]);
+    effect_api_result_free(&img[1]);
 }
 
 int main(void)

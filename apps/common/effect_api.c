@@ -502,23 +502,23 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && !study_ao)
         r = roma_ao_effect_create(e->ctx, &ao_desc, &e->ao);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && study_ao)
-        r = roma_study_ao_create(e->ctx, (roma_ao_method)d->ao_method, &ao_desc, &e->study_ao);
+        r = roma_study_ao_create(e->ctx, d->ao_method, &ao_desc, &e->study_ao);
     if (r == ROMA_SUCCESS && e->study_ao && d->ssao_layers)
         r = roma_study_depth_layers_create(e->ctx, scene, d->width, d->height, d->ssao_layers, d->ssao_keep,
                                            &e->layers);
     if (r == ROMA_SUCCESS && lit)
-        r = roma_study_light_effect_create(e->ctx, &light_desc, (roma_shadow_method)d->shadow_method, &e->light);
+        r = roma_study_light_effect_create(e->ctx, &light_desc, d->shadow_method, &e->light);
     if (r == ROMA_SUCCESS && lit)
         r = roma_light_effect_set_area_lights(e->light, scene);
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_GI))
-        r = roma_study_gi_effect_create(e->ctx, &gi_desc, (roma_shadow_method)d->shadow_method, d->gi_rsm, &e->gi);
+        r = roma_study_gi_effect_create(e->ctx, &gi_desc, d->shadow_method, d->gi_rsm, &e->gi);
     if (r == ROMA_SUCCESS && e->gi && d->gi_rsm)
         r = roma_study_rsm_create(e->ctx, scene, d->rsm_size, &e->rsm);
     if (r == ROMA_SUCCESS && e->gi)
         r = roma_gi_effect_set_scene(e->gi, scene);
     const uint32_t many = plan->many_light_count;
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_MANY_LIGHTS) && many && d->many_light_positions) {
-        r = roma_study_light_effect_create(e->ctx, &light_desc, (roma_shadow_method)d->shadow_method, &e->count);
+        r = roma_study_light_effect_create(e->ctx, &light_desc, d->shadow_method, &e->count);
         e->many_lights = r == ROMA_SUCCESS ? calloc(many, sizeof *e->many_lights) : NULL;
         if (r == ROMA_SUCCESS && !e->many_lights)
             r = ROMA_ERROR_OUT_OF_HOST_MEMORY;

@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "reference.h"
+#include "study/study_methods.h"
 #include "roma/roma.h"
 
 typedef struct effect_api_desc {
@@ -44,10 +45,12 @@ typedef struct effect_api_desc {
     uint32_t cascades;
     float finest_extent;
     int jitter_off; /* every frame's grid placement and directions the first frame's */
-    /* The study's methods (study/): what AO rays trace (roma_ao_method, 0 ROMA) and the
+    /* The study's methods (study/study_methods.h): what AO rays trace (0 ROMA) and the
      * screen-space march's steps (0: the default); what shadow, bounce and visibility rays
-     * trace (roma_shadow_method, 0 ROMA); blind_start: ROMA's rays skip their start unseen. */
-    int ao_method, shadow_method, blind_start;
+     * trace (0 ROMA); blind_start: ROMA's rays skip their start unseen. */
+    roma_ao_method ao_method;
+    roma_shadow_method shadow_method;
+    int blind_start;
     uint32_t ssao_steps;
     /* Screen-space AO: the layers of a stochastic depth map rasterized every frame beside the
      * G-buffer (0: none; study/study_depth_layers.h), each keeping a fragment with probability

@@ -1101,8 +1101,8 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .lights_per_frame = o->lights_per_frame,
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
-        .jitter_off = o->jitter_off, .ao_method = (int)o->ao_method,
-        .shadow_method = (int)o->shadow_method, .blind_start = o->blind_start,
+        .jitter_off = o->jitter_off, .ao_method = o->ao_method,
+        .shadow_method = o->shadow_method, .blind_start = o->blind_start,
         .gi_rsm = (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays, .ssao_layers = o->ssao_layers};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))

@@ -15,7 +15,7 @@
 #include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/map.h"
-#include "study/ao_methods.h"
+#include "study/study_methods.h"
 
 typedef struct roma_ao_pass roma_ao_pass;
 

@@ -9,7 +9,7 @@
 
 #include "roma/ao_effect.h"
 #include "roma/camera.h"
-#include "study/ao_methods.h"
+#include "study/study_methods.h"
 
 typedef struct roma_study_ao roma_study_ao;
 

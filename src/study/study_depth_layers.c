@@ -6,7 +6,7 @@
 
 #include "effects/scene_buffers.h"
 #include "roma/sampling.h"
-#include "study/ao_methods.h"
+#include "study/study_methods.h"
 #include "study/gbuffer.h"
 #include "study/study_shaders.h"
 #include "util/log.h"

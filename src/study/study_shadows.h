@@ -6,12 +6,7 @@
 #define ROMA_STUDY_STUDY_SHADOWS_H
 
 #include "effects/lit_effect_variants.h"
-
-/* What shadow rays trace. */
-typedef enum roma_shadow_method {
-    ROMA_SHADOW_METHOD_ROMA = 0,
-    ROMA_SHADOW_METHOD_VOXEL_DDA = 1, /* every segment walked exactly through the BOM, no maps, no step bound */
-} roma_shadow_method;
+#include "study/study_methods.h"
 
 roma_result roma_study_light_effect_create(roma_context *ctx, const roma_light_effect_desc *desc,
                                            roma_shadow_method method, roma_light_effect **out);

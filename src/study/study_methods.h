@@ -1,7 +1,7 @@
-/* What AO rays trace in the accuracy study: ROMA, or one of its baselines
- * (src/study/study_ao.h runs each through the public AO pass). */
-#ifndef ROMA_STUDY_AO_METHODS_H
-#define ROMA_STUDY_AO_METHODS_H
+/* What rays trace in the accuracy study: ROMA, or one of its baselines (src/study/study_ao.h
+ * and study_shadows.h run each through the public passes). */
+#ifndef ROMA_STUDY_STUDY_METHODS_H
+#define ROMA_STUDY_STUDY_METHODS_H
 
 /* What the AO rays trace: ROMA, or one of the accuracy study's baselines. */
 typedef enum roma_ao_method {
@@ -39,4 +39,10 @@ typedef enum roma_ao_method {
 #define ROMA_AO_DF_MAX_STEPS 64u
 #define ROMA_AO_DF_MIN_STEP 0.5f
 
-#endif /* ROMA_STUDY_AO_METHODS_H */
+/* What shadow, bounce and visibility rays trace. */
+typedef enum roma_shadow_method {
+    ROMA_SHADOW_METHOD_ROMA = 0,
+    ROMA_SHADOW_METHOD_VOXEL_DDA = 1, /* every segment walked exactly through the BOM, no maps, no step bound */
+} roma_shadow_method;
+
+#endif /* ROMA_STUDY_STUDY_METHODS_H */

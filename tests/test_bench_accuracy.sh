@@ -105,8 +105,9 @@ EOF
 # Direct light (--effect direct): ROMA at every RES x A of the shadow array and with more
 # steps, the exact traversal of the BOM, Embree. Embree at the reference's own sample count is
 # the reference (MAE 0: the same samples); the GPU methods' error is their shadow rays'
-# (measured 0.0023-0.0070 on a mean radiance of about 0.09; RES 64 at A 2 and 4 0.0068 and
-# 0.0070, 0.0061 at most before the walk searched back as far as a wall's step is long).
+# (measured through the public passes 0.0022-0.0071 on a mean radiance of about 0.09; RES 64
+# at A 2 and 4 0.0071 and 0.0070, 0.0061 at most before the walk searched back as far as a
+# wall's step is long).
 "${bench_run[@]}" --small --accuracy --effect direct --csv "$dir/direct.csv" >"$dir/direct.txt" \
   2>"$dir/direct_progress.txt" ||
   { cat "$dir/direct.txt" "$dir/direct_progress.txt" >&2; fail "roma-bench --accuracy --effect direct failed"; }

@@ -17,8 +17,7 @@
 #define PI_F 3.14159265358979323846f
 
 enum { IN_POSITION, IN_NORMAL, IN_GEOMETRIC, OUT_AO, OUT_DIRECT, OUT_GI, OUT_LIGHTS, IMAGE_COUNT };
-/* Shadow steps of the many lights' count: the internal renderer's (effect_render.h,
- * lights_max_steps' default), so that both routes walk as far. */
+/* Shadow steps of the many lights' count by default (effect_api_desc.lights_max_steps). */
 #define MANY_LIGHTS_MAX_STEPS 16u
 #define INPUTS 3
 
@@ -59,6 +58,47 @@ typedef struct engine {
     roma_gpu_timer *timer;
     uint64_t bytes;
 } engine;
+
+roma_result effect_api_gbuffer(const roma_ref *ref, const roma_camera *camera, uint32_t width, uint32_t height,
+                              roma_gbuffer_pixel *out)
+{
+    roma_camera_frame frame;
+    if (!ref || !camera || !out || !width || !height || !roma_camera_make_frame(camera, width, height, &frame))
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    const size_t n = (size_t)width * height;
+    float *planes = malloc(n * 15 * sizeof(float));
+    if (!planes)
+        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    const roma_ref_gbuffer g = {planes, planes + 4 * n, planes + 8 * n, planes + 12 * n};
+    roma_result r = roma_ref_render_gbuffer(ref, camera, width, height, &g);
+    for (size_t i = 0; i < n && r == ROMA_SUCCESS; ++i) {
+        roma_gbuffer_pixel *p = &out[i];
+        memset(p, 0, sizeof *p);
+        p->position_t[3] = INFINITY;
+        uint32_t triangle = ROMA_GBUFFER_NO_TRIANGLE;
+        if (g.position[4 * i + 3] > 0.0f) {
+            float d2 = 0.0f;
+            for (int k = 0; k < 3; ++k) {
+                const float v = g.position[4 * i + k] - camera->eye[k];
+                d2 += v * v;
+                p->position_t[k] = g.position[4 * i + k];
+                p->shading_normal[k] = g.normal[4 * i + k];
+                p->geometric_normal[k] = g.geometric_normal[4 * i + k];
+                p->albedo[k] = g.albedo[3 * i + k];
+            }
+            p->position_t[3] = sqrtf(d2);
+            /* The triangle, from the same ray (the G-buffer's planes do not carry it). */
+            float org[3], dir[3];
+            roma_ref_hit hit;
+            roma_camera_ray(&frame, (float)(i % width) + 0.5f, (float)(i / width) + 0.5f, org, dir);
+            if (roma_ref_intersect(ref, org, dir, 0.0f, INFINITY, &hit))
+                triangle = hit.triangle;
+        }
+        memcpy(&p->albedo[3], &triangle, sizeof triangle);
+    }
+    free(planes);
+    return r;
+}
 
 static roma_result from_vk(VkResult vr, const char *what)
 {
@@ -282,6 +322,27 @@ typedef struct frame_job {
     roma_gi_settings gi;
 } frame_job;
 
+/* Screen-space AO reads no map: an array that serves it alone is built once, before the
+ * frames (the AO pass still binds it), so that its frames do not pay for voxelizing. */
+static int built_once(const effect_api_desc *d, const roma_effect_plan *plan, uint32_t map)
+{
+    int others = 0;
+    for (int p = 0; p < ROMA_PASS_COUNT; ++p)
+        others |= p != ROMA_PASS_AO && roma_effect_plan_runs(plan, (roma_pass_kind)p) && plan->pass_map[p] == (int)map;
+    return d->ao_method == ROMA_AO_METHOD_SCREEN_SPACE && !others;
+}
+
+static roma_result record_build(engine *e, const effect_api_desc *d, const roma_effect_plan *plan, uint32_t map,
+                                uint32_t f)
+{
+    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = !d->jitter_off,
+                                 .jitter_directions = !d->jitter_off, .focus = d->camera.eye};
+    /* Cascades: the finest grid's edge from the AO radius unless given. */
+    frame.finest_extent = d->finest_extent > 0.0f ? d->finest_extent
+                                                  : roma_app_finest_extent(plan->maps[map].resolution, d->ao_radius);
+    return roma_map_record_build(e->maps[map], e->cmd, &frame, NULL);
+}
+
 /* One frame: the arrays' builds, then each effect on its array, each in a timer scope. */
 static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
 {
@@ -289,15 +350,12 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
     const roma_effect_plan *plan = &job->out->plan;
     VkCommandBuffer cmd = e->cmd;
     roma_gpu_timer_reset(e->timer, cmd);
-    roma_map_frame_desc frame = {.frame = f, .seed = d->seed, .jitter_grid = !d->jitter_off,
-                                 .jitter_directions = !d->jitter_off, .focus = d->camera.eye};
     roma_result r = ROMA_SUCCESS;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
-        /* Cascades: the finest grid's edge from the AO radius unless given. */
-        frame.finest_extent = d->finest_extent > 0.0f ? d->finest_extent
-                                                      : roma_app_finest_extent(plan->maps[i].resolution, d->ao_radius);
+        if (built_once(d, plan, i))
+            continue;
         uint32_t scope = roma_gpu_timer_begin(e->timer, cmd, "build");
-        r = roma_map_record_build(e->maps[i], cmd, &frame, NULL);
+        r = record_build(e, d, plan, i, f);
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     if (r == ROMA_SUCCESS && e->pixels && f == 0) {
@@ -378,7 +436,7 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
     if (r == ROMA_SUCCESS && e->count) {
         roma_light_settings s = job->light;
         s.frame = f;
-        s.max_steps = MANY_LIGHTS_MAX_STEPS;
+        s.max_steps = d->lights_max_steps ? d->lights_max_steps : MANY_LIGHTS_MAX_STEPS;
         s.output = ROMA_LIGHT_OUTPUT_VISIBLE_COUNT;
         s.lights_per_frame = d->lights_per_frame < plan->many_light_count ? d->lights_per_frame : 0;
         roma_light_images im = {d->width, d->height, e->images[IN_POSITION].view, e->images[IN_NORMAL].view,
@@ -579,6 +637,30 @@ static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_j
     const uint32_t frames = d->frames ? d->frames : 1;
     VkQueue queue = roma_context_queue(e->ctx);
     roma_result r = ROMA_SUCCESS;
+    const roma_effect_plan *plan = &out->plan;
+    int once = 0;
+    for (uint32_t i = 0; i < plan->map_count; ++i)
+        once |= built_once(d, plan, i);
+    if (once) { /* before the frames, untimed */
+        VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+        r = from_vk(vkBeginCommandBuffer(e->cmd, &bi), "vkBeginCommandBuffer");
+        for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i)
+            if (built_once(d, plan, i))
+                r = record_build(e, d, plan, i, 0);
+        VkResult ended = e->cmd ? vkEndCommandBuffer(e->cmd) : VK_SUCCESS;
+        if (r == ROMA_SUCCESS)
+            r = from_vk(ended, "vkEndCommandBuffer");
+        VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &e->cmd};
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkQueueSubmit(queue, 1, &si, e->fence), "vkQueueSubmit");
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkWaitForFences(e->device, 1, &e->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkResetFences(e->device, 1, &e->fence), "vkResetFences");
+        if (r == ROMA_SUCCESS)
+            r = from_vk(vkResetCommandBuffer(e->cmd, 0), "vkResetCommandBuffer");
+    }
     for (uint32_t f = 0; f < frames && r == ROMA_SUCCESS; ++f) {
         VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
@@ -597,10 +679,12 @@ static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_j
             r = from_vk(ended, "vkEndCommandBuffer");
         VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                            .pCommandBuffers = &e->cmd};
+        const double submitted = roma_app_now_ms();
         if (r == ROMA_SUCCESS)
             r = from_vk(vkQueueSubmit(queue, 1, &si, e->fence), "vkQueueSubmit");
         if (r == ROMA_SUCCESS)
             r = from_vk(vkWaitForFences(e->device, 1, &e->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        out->frames_ms += roma_app_now_ms() - submitted;
         if (r == ROMA_SUCCESS)
             r = from_vk(vkResetFences(e->device, 1, &e->fence), "vkResetFences");
         if (r == ROMA_SUCCESS)

@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "reference.h"
+#include "roma_shared.h"
 #include "study/study_methods.h"
 #include "roma/roma.h"
 
@@ -39,6 +40,7 @@ typedef struct effect_api_desc {
      * (0: all): the light effect's count of visible lights (ROMA_LIGHT_OUTPUT_VISIBLE_COUNT). */
     const float *many_light_positions;
     uint32_t lights_per_frame;
+    uint32_t lights_max_steps;   /* the count's un-snapped segments' step bound; 0 = 16 */
     uint32_t resolution_divisor; /* the three effects': 0 or 1 every pixel, 2 or 4 (roma_ao_settings) */
     /* Cascade levels of every array (at most what its A allows: K x A x A <= 256; 0 = 1),
      * centred on the camera's eye, the finest cube's edge finest_extent (0: the library's). */
@@ -77,6 +79,10 @@ typedef struct effect_api_result {
     double ao_ms, direct_ms, gi_ms, lights_ms; /* each effect's records: GPU timestamps summed */
     double list_ms;                          /* desc.shared_list: the one list's record */
     double gbuffer_ms;                       /* the primary rays, host clock */
+    /* Every frame from submit to fence, host clock, summed: the arrays' builds, the effects and
+     * the copy of their outputs to the host (what a frame costs where timestamps do not cover
+     * dispatches, as on lavapipe). */
+    double frames_ms;
     uint64_t effect_bytes;                   /* the G-buffer, output and transfer memory made here */
     /* A study AO method's structure built every frame (distance field, NAADF): its builds'
      * GPU time summed over frames (also in ao_ms), its memory and what only its build uses. */
@@ -87,6 +93,12 @@ typedef struct effect_api_result {
     double depth_layers_ms;      /* desc.ssao_layers: their rasterization, summed over frames (not in ao_ms) */
     uint64_t depth_layers_bytes; /* their memory */
 } effect_api_result;
+
+/* The G-buffer effect_api_render shades (the reference's primary rays through the pixel
+ * centres) as width * height roma_gbuffer_pixel: position_t.w the distance from the eye, +INF
+ * where nothing is seen (the rest zero), albedo.w the bits of the triangle's index. */
+roma_result effect_api_gbuffer(const roma_ref *ref, const roma_camera *camera, uint32_t width, uint32_t height,
+                              roma_gbuffer_pixel *out);
 
 roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const roma_ref *ref,
                               const effect_api_desc *desc, effect_api_result *out);

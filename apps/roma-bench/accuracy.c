@@ -1,6 +1,7 @@
 /* roma-bench --accuracy: what accuracy costs in time. Ambient occlusion (or, with
  * --effect direct, direct light: see the end of this comment) rendered
- * by ROMA (passes/effect_render.h) for every RES x A, for every RES by three baselines:
+ * by ROMA through the public effect passes (apps/common/effect_api.h, the study's methods
+ * plugged into them from src/study/) for every RES x A, for every RES by three baselines:
  * the exact traversal of the same voxels (the voxelization's own error), the distance
  * field built from them every frame and sphere-traced (the ROMA paper's comparator) and the
  * NAADF hierarchy built from them every frame (the same voxels, empty space skipped), and
@@ -20,7 +21,7 @@
 #include <string.h>
 
 #include "app_common.h"
-#include "passes/effect_render.h"
+#include "effect_api.h"
 #include "plot.h"
 #include "reference_internal.h"
 #include "roma/sampling.h"
@@ -204,7 +205,7 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
  * same seeds: k frames are the first k of the full run), against the reference; Embree's rows
  * with the same samples (frames x spp) from the equal-time table. Appends the points (x:
  * frames, in ms) and prints the table. */
-static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_camera *cam,
+static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_ref *ref, const roma_camera *cam,
                         const roma_bench_accuracy_desc *d, const roma_image *ref_image,
                         const roma_image *coverage, roma_bench_point *points, int *count, FILE *csv)
 {
@@ -222,15 +223,14 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_c
     for (uint32_t f = 1; f <= d->frames; f *= 2) {
         double mae[2] = {NAN, NAN}, flip[2] = {NAN, NAN};
         for (int m = 0; m < 2; ++m) {
-            roma_effect_render_desc rd = {
+            const effect_api_desc rd = {
                 .camera = *cam, .width = w, .height = h,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = res, .ao_angular = m ? 1u : angular},
                 .spp = d->spp, .frames = f, .seed = 1, .ao_radius = d->radius,
                 .ao_method = m ? ROMA_AO_METHOD_VOXEL_DDA : ROMA_AO_METHOD_ROMA,
             };
-            roma_effect_images img;
-            roma_effect_stats st;
-            roma_result r = roma_effect_render(ctx, scene, &rd, &img, &st);
+            effect_api_result img;
+            roma_result r = effect_api_render(ctx, scene, ref, &rd, &img);
             if (r != ROMA_SUCCESS) {
                 fprintf(stderr, "roma-bench: AO over %u frames failed: %s\n", f, roma_result_string(r));
                 return 1;
@@ -239,7 +239,7 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_c
             image_error(&img.ao, ref_image, coverage, &mae[m], &bias);
             if (roma_image_flip(ref_image, &img.ao, coverage, 0.0f, &flip[m], NULL) != ROMA_SUCCESS)
                 flip[m] = NAN;
-            roma_effect_images_free(&img);
+            effect_api_result_free(&img);
             roma_bench_point *pt = &points[(*count)++];
             snprintf(pt->series, sizeof pt->series, m ? "voxel traversal, RES %u" : "ROMA A %u, RES %u",
                      m ? res : angular, res);
@@ -327,7 +327,7 @@ static const double *find_cached(const study *s, const char *key)
 /* One setting of one method: runs renders of rd (the first one's error), prints its row
  * (res_text, a_text: the table's RES and A columns), adds its point (series, label) and its
  * CSV rows (tag, csv_res, csv_a). Returns 0 with the milliseconds a frame and the MAE. */
-static int measure_setting(study *s, const roma_effect_render_desc *rd, const char *name, const char *tag,
+static int measure_setting(study *s, const effect_api_desc *rd, const char *name, const char *tag,
                            const char *series, const char *label, const char *res_text, const char *a_text,
                            uint32_t csv_res, uint32_t csv_a, double *out_ms, double *out_mae)
 {
@@ -335,16 +335,15 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
     const size_t n = (size_t)d->width * d->height;
     const uint32_t samples = d->spp * d->frames, channels = effect_channels(d->effect);
     double df_ms = 0.0, flip = NAN, mae_0 = NAN, bias_0 = NAN;
-    roma_effect_images img;
-    roma_effect_stats st;
+    effect_api_result img;
     roma_result r = ROMA_SUCCESS;
     char key[1024];
     const int key_length =
-        snprintf(key, sizeof key, "%s|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u|shadow steps %u"
+        snprintf(key, sizeof key, "%s|public passes|%ux%u|%u x %u spp|radius %g|runs %u|%s|%u|%u|steps %u|layers %u|shadow steps %u"
                  "|light steps %u|lights %u|punctual rays %d",
                  d->cache_key ? d->cache_key : "", d->width, d->height, rd->frames, rd->spp, (double)d->radius, d->runs,
                  tag, csv_res, csv_a, rd->ssao_steps, rd->ssao_layers, rd->max_steps, rd->lights_max_steps,
-                 s->light_count, rd->gi_punctual_rays);
+                 s->light_count, !rd->gi_rsm);
     /* A key cut short would name other points too: such a point is neither read nor kept. */
     const int keyed = key_length > 0 && (size_t)key_length < sizeof key && !strpbrk(key, "\t\n");
     /* The first point is always measured: its render makes the G-buffer and the reference. */
@@ -355,13 +354,12 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
         goto report;
     }
     for (uint32_t k = 0; k < d->runs && r == ROMA_SUCCESS; ++k) {
-        double t0 = roma_app_now_ms();
-        r = roma_effect_render(s->ctx, s->scene, rd, &img, &st);
-        s->times[k] = (roma_app_now_ms() - t0) / rd->frames;
+        r = effect_api_render(s->ctx, s->scene, s->ref, rd, &img);
         if (r != ROMA_SUCCESS)
             break;
+        s->times[k] = img.frames_ms / rd->frames; /* submit to fence, host clock */
         if (k == 0)
-            df_ms = st.baseline_build_ms / rd->frames;
+            df_ms = (img.baseline_build_ms + img.depth_layers_ms) / rd->frames;
         if (!s->have_ref) {
             /* The G-buffer does not depend on the method or its settings: one reference for all. */
             embree_job job = {s->ref, s->px, s->ref_values, d->radius, samples, d->effect, s->light_positions,
@@ -383,7 +381,7 @@ static int measure_setting(study *s, const roma_effect_render_desc *rd, const ch
             flip = NAN;
         if (k == 0)
             image_error(out, &s->ref_image, &s->coverage, &mae_0, &bias_0);
-        roma_effect_images_free(&img);
+        effect_api_result_free(&img);
     }
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-bench: %s (%s) at RES %s, A %s failed: %s\n", effect_title(d->effect), name, res_text,
@@ -467,10 +465,10 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
             const char *names[5] = {"ROMA", "voxel traversal", "distance field", "", "NAADF"};
             const char *tags[5] = {"ao", "voxel-dda", "distance-field", "", "naadf"};
             const uint32_t angular = dda ? 1u : d->angular[ai];
-            roma_effect_render_desc rd = {
+            effect_api_desc rd = {
                 .camera = *cam, .width = d->width, .height = d->height,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = d->res[ri], .ao_angular = angular},
-                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius, .out_gbuffer = s->px,
+                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius,
                 .ao_method = method,
             };
             char series[32], label[16], res_text[16], a_text[12] = "-";
@@ -498,10 +496,10 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
         return status;
     }
     for (size_t i = 0; i < sizeof ssao_steps / sizeof ssao_steps[0]; ++i) {
-        roma_effect_render_desc rd = {
+        effect_api_desc rd = {
             .camera = *cam, .width = d->width, .height = d->height,
             .options = {.effects = ROMA_EFFECT_AO, .resolution = 128}, .spp = d->spp, .frames = d->frames, .seed = 1,
-            .ao_radius = d->radius, .out_gbuffer = s->px, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE,
+            .ao_radius = d->radius, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE,
             .ssao_steps = ssao_steps[i],
         };
         char name[48], label[16];
@@ -513,10 +511,10 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
             status = 1;
     }
     for (size_t i = 0; i < sizeof ssao_layers / sizeof ssao_layers[0]; ++i) {
-        roma_effect_render_desc rd = {
+        effect_api_desc rd = {
             .camera = *cam, .width = d->width, .height = d->height,
             .options = {.effects = ROMA_EFFECT_AO, .resolution = 128}, .spp = d->spp, .frames = d->frames, .seed = 1,
-            .ao_radius = d->radius, .out_gbuffer = s->px, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = 16,
+            .ao_radius = d->radius, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = 16,
             .ssao_layers = ssao_layers[i],
         };
         char name[64], label[16];
@@ -547,7 +545,7 @@ static void set_angular(roma_effect_options *o, uint32_t angular)
 /* A light effect's rows: ROMA at every RES x A of its array (`base` with each RES and A) and
  * the exact traversal of the BOM at every RES (tags `tag` and `tag`-voxel-dda). Sets the time
  * (all frames) and error of ROMA at RES 128 and the effect's default A. */
-static int sweep_res_angular(study *s, const roma_effect_render_desc *base, const char *tag, double *anchor_ms,
+static int sweep_res_angular(study *s, const effect_api_desc *base, const char *tag, double *anchor_ms,
                              double *anchor_mae)
 {
     const roma_bench_accuracy_desc *d = s->d;
@@ -556,7 +554,7 @@ static int sweep_res_angular(study *s, const roma_effect_render_desc *base, cons
         for (int ai = 0; ai <= d->angular_count; ++ai) {
             const int dda = ai == d->angular_count;
             const uint32_t angular = dda ? 1u : d->angular[ai];
-            roma_effect_render_desc rd = *base;
+            effect_api_desc rd = *base;
             rd.options.resolution = d->res[ri];
             set_angular(&rd.options, angular);
             rd.shadow_method = dda ? ROMA_SHADOW_METHOD_VOXEL_DDA : ROMA_SHADOW_METHOD_ROMA;
@@ -583,12 +581,12 @@ static int sweep_res_angular(study *s, const roma_effect_render_desc *base, cons
 
 /* ROMA at RES 128, A 8 with other step bounds for the un-snapped segments of a light effect
  * (`base`: direct light or many lights), one row each. */
-static int sweep_steps(study *s, const roma_effect_render_desc *base, const uint32_t *steps, size_t count,
+static int sweep_steps(study *s, const effect_api_desc *base, const uint32_t *steps, size_t count,
                        const char *tag)
 {
     int status = 0;
     for (size_t i = 0; i < count; ++i) {
-        roma_effect_render_desc rd = *base;
+        effect_api_desc rd = *base;
         rd.options.resolution = 128;
         set_angular(&rd.options, 8);
         if (rd.options.effects == ROMA_EFFECT_LIGHTS)
@@ -615,9 +613,9 @@ static const uint32_t shadow_steps[] = {16, 64};
 static int sweep_direct(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
     const roma_bench_accuracy_desc *d = s->d;
-    const roma_effect_render_desc base = {
+    const effect_api_desc base = {
         .camera = *cam, .width = d->width, .height = d->height, .options = {.effects = ROMA_EFFECT_DIRECT},
-        .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px,
+        .spp = d->spp, .frames = d->frames, .seed = 1,
     };
     int status = sweep_res_angular(s, &base, "direct", anchor_ms, anchor_mae);
     return sweep_steps(s, &base, shadow_steps, sizeof shadow_steps / sizeof shadow_steps[0], "direct-steps") | status;
@@ -631,13 +629,13 @@ static int sweep_direct(study *s, const roma_camera *cam, double *anchor_ms, dou
 static int sweep_gi(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
     const roma_bench_accuracy_desc *d = s->d;
-    const roma_effect_render_desc base = {
+    const effect_api_desc base = {
         .camera = *cam, .width = d->width, .height = d->height, .options = {.effects = ROMA_EFFECT_GI},
-        .spp = d->spp, .frames = d->frames, .seed = 1, .out_gbuffer = s->px,
+        .spp = d->spp, .frames = d->frames, .seed = 1, .gi_rsm = 1, /* the ROMA paper's route */
     };
     int status = sweep_res_angular(s, &base, "gi", anchor_ms, anchor_mae);
-    roma_effect_render_desc rd = base;
-    rd.options.resolution = 128, rd.options.gi_angular = 4, rd.gi_punctual_rays = 1;
+    effect_api_desc rd = base;
+    rd.options.resolution = 128, rd.options.gi_angular = 4, rd.gi_rsm = 0;
     double ms, mae;
     if (measure_setting(s, &rd, "ROMA, point and spot lights by shadow rays", "gi-punctual-rays",
                         "ROMA A 4, shadow rays", "128", "128", "4", 128, 4, &ms, &mae))
@@ -657,10 +655,10 @@ static const uint32_t lights_steps[] = {8, 32, 64};
 static int sweep_lights(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
     const roma_bench_accuracy_desc *d = s->d;
-    const roma_effect_render_desc base = {
+    const effect_api_desc base = {
         .camera = *cam, .width = d->width, .height = d->height,
         .options = {.effects = ROMA_EFFECT_LIGHTS, .many_light_count = s->light_count},
-        .spp = 1, .frames = ROMA_BENCH_LIGHTS_FRAMES, .seed = 1, .out_gbuffer = s->px,
+        .spp = 1, .frames = ROMA_BENCH_LIGHTS_FRAMES, .seed = 1,
         .many_light_positions = s->light_positions,
     };
     int status = sweep_res_angular(s, &base, "lights", anchor_ms, anchor_mae);
@@ -694,6 +692,11 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     }
     if (lights)
         roma_many_lights_positions(view.bounds_min, view.bounds_max, s.light_count, 1, s.light_positions);
+    /* The points every render shades: the reference's primary rays (effect_api.h). */
+    if (effect_api_gbuffer(ref, &cam, w, h, s.px) != ROMA_SUCCESS) {
+        status = 1;
+        goto done;
+    }
     load_cache(&s);
     const int per_res = d->res_count * (d->angular_count + 1);
     s.total = direct   ? per_res + (int)(sizeof shadow_steps / sizeof shadow_steps[0])
@@ -711,7 +714,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     if (direct)
         printf("\nDirect light (point, spot and area lights with their shadows), %ux%u, %u samples per pixel (%u per\n"
                "frame over %u frames; area-light samples, one shadow ray to each point or spot light a frame):\n"
-               "time per frame = host-observed render time / frames (%s); error against Embree on the\n"
+               "time per frame = host-observed submit-to-fence time a frame (%s); error against Embree on the\n"
                "same points and samples, over the pixels that see geometry, RGB (FLIP: LDR-FLIP at 67\n"
                "pixels per degree). A: the shadow array's.\n\n"
                "| method | RES | A | ms per frame | - | MAE | bias | FLIP |\n|---|---|---|---|---|---|---|---|\n",
@@ -720,7 +723,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         printf("\nOne-bounce GI (every light of the scene at the bounce hits), %ux%u, %u samples per pixel (%u per\n"
                "frame over %u frames; a bounce ray a sample, at its hit one area-light sample and point and spot\n"
                "lights through their reflective shadow maps or a shadow ray each): time per frame =\n"
-               "host-observed render time / frames (%s); error against Embree on the same points and samples,\n"
+               "host-observed submit-to-fence time a frame (%s); error against Embree on the same points and samples,\n"
                "over the pixels that see geometry, RGB (FLIP: LDR-FLIP at 67 pixels per degree). A: the GI\n"
                "array's; the voxel traversal walks bounce rays and shadow rays through the BOM.\n\n"
                "| method | RES | A | ms per frame | - | MAE | bias | FLIP |\n|---|---|---|---|---|---|---|---|\n",
@@ -728,7 +731,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     else if (lights)
         printf("\nMany-lights visibility: %u point lights spread over the scene's bounds, %ux%u, a segment to\n"
                "every light from every pixel a frame, over %u frames (each with new grid and direction jitter):\n"
-               "time per frame = host-observed render time / frames (%s); error: the share of the lights\n"
+               "time per frame = host-observed submit-to-fence time a frame (%s); error: the share of the lights\n"
                "visible from a pixel, averaged over the frames, against Embree's segments from the same\n"
                "points, over the pixels that see geometry (MAE: the constant-time many-lights paper's\n"
                "per-pixel shadow error; FLIP: LDR-FLIP at 67 pixels per degree of the share). A: the lights'\n"
@@ -737,7 +740,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                s.light_count, w, h, ROMA_BENCH_LIGHTS_FRAMES, how);
     else
         printf("\nAmbient occlusion, %ux%u, %u samples per pixel (%u per frame over %u frames), AO radius %g:\n"
-               "time per frame = host-observed render time / frames (%s); error against Embree\n"
+               "time per frame = host-observed submit-to-fence time a frame (%s); error against Embree\n"
                "on the same points and samples, over the pixels that see geometry (FLIP: LDR-FLIP\n"
                "at 67 pixels per degree).\n\n"
                "| method | RES | A | ms per frame | of which DF, NAADF or depth layers (timestamps) | MAE | bias "
@@ -799,7 +802,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     /* Error against frames (AO): its points follow the others; plotted beside, as NAME_frames.png. */
     const int frames_first = s.point_count;
     if (d->effect == ROMA_BENCH_EFFECT_AO && s.have_ref &&
-        frames_curve(ctx, scene, &cam, d, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
+        frames_curve(ctx, scene, ref, &cam, d, &s.ref_image, &s.coverage, s.points, &s.point_count, csv))
         status = 1;
     if (d->plot_path && s.point_count > frames_first) {
         char path[1024], title[160], x_label[160];

@@ -1,5 +1,8 @@
-/* roma-bench --frame: what a dynamic AO frame costs, ROMA against Embree, host-observed
- * (submit to fence on the GPU side, wall clock on the CPU side), medians of runs. */
+/* roma-bench's dynamic AO frame (and --growth): what a dynamic AO frame costs, ROMA against
+ * Embree, host-observed (submit to fence on the GPU side, wall clock on the CPU side), medians
+ * of runs. roma-bench plays the engine: it owns the G-buffer images (the reference's primary
+ * rays, uploaded once), lists their covered pixels once (roma_pixel_list) and records the
+ * map's build and the public AO effect (roma_ao_effect) into its own command buffers. */
 #include "frame.h"
 
 #include <math.h>
@@ -9,14 +12,10 @@
 #include <unistd.h>
 
 #include "app_common.h"
-#include "passes/ao.h"
-#include "passes/effect_render.h"
-#include "study/gbuffer.h"
-#include "passes/pixel_list.h"
-#include "effects/scene_buffers.h"
 #include "reference.h"
-#include "map/map_internal.h"
+#include "roma/ao_effect.h"
 #include "roma/map.h"
+#include "roma/pixel_list.h"
 #include "vulkan/vk_internal.h"
 
 #define SEED 7u
@@ -64,12 +63,205 @@ double roma_bench_embree_ao_ms(const roma_ref *ref, const roma_gbuffer_pixel *px
     return ms;
 }
 
-/* One submission of `what` (bit 0: map build, bit 1: AO pass), submit to fence. */
-static double roma_frame_ms(roma_context *ctx, roma_map *map, roma_ao_pass *ao, const roma_ao_pass_inputs *in,
-                            roma_buffer *accum, uint32_t frame, int what)
+/* What both sides of a frame share: the G-buffer of the scene's default camera (the
+ * reference's primary rays through the pixel centres, the points Embree shades), uploaded once
+ * into the engine's images, the AO effect's output image, the covered pixels listed once in
+ * each of the effect's two slots, and the same points for Embree's side. */
+#define SLOTS 2u
+
+typedef struct frame_image {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+} frame_image;
+
+typedef struct frame_setup {
+    roma_context *ctx;
+    uint32_t width, height;
+    frame_image in[3], out; /* position, shading normal, geometric normal; the AO (R32F) */
+    roma_buffer readback;   /* the output's copy, for the mean AO */
+    roma_pixel_list *list;  /* the covered pixels, listed in each slot */
+    roma_ao_effect *ao;
+    uint32_t records;       /* AO records so far: their slot alternates */
+    roma_gbuffer_pixel *px; /* Embree's points */
+    uint32_t *covered, count;
+} frame_setup;
+
+static void image_destroy(VkDevice dev, frame_image *im)
+{
+    if (im->view)
+        vkDestroyImageView(dev, im->view, NULL);
+    if (im->image)
+        vkDestroyImage(dev, im->image, NULL);
+    if (im->memory)
+        vkFreeMemory(dev, im->memory, NULL);
+    memset(im, 0, sizeof *im);
+}
+
+/* A device-local w x h image with its view. */
+static roma_result image_create(roma_context *ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
+                                frame_image *out)
+{
+    VkDevice dev = roma_context_device(ctx);
+    memset(out, 0, sizeof *out);
+    const VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                                  .format = format, .extent = {w, h, 1}, .mipLevels = 1, .arrayLayers = 1,
+                                  .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage,
+                                  .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    if (vkCreateImage(dev, &ii, NULL, &out->image) != VK_SUCCESS) {
+        out->image = VK_NULL_HANDLE;
+        return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
+    }
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(dev, out->image, &req);
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(roma_context_physical_device(ctx), &mp);
+    uint32_t type = UINT32_MAX;
+    for (uint32_t i = 0; i < mp.memoryTypeCount && type == UINT32_MAX; ++i)
+        if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+            type = i;
+    const VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                                     .memoryTypeIndex = type};
+    if (type == UINT32_MAX)
+        return ROMA_ERROR_MISSING_FEATURE;
+    if (vkAllocateMemory(dev, &ai, NULL, &out->memory) != VK_SUCCESS) {
+        out->memory = VK_NULL_HANDLE;
+        return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
+    }
+    if (vkBindImageMemory(dev, out->image, out->memory, 0) != VK_SUCCESS)
+        return ROMA_ERROR_VULKAN;
+    const VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
+                                      .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
+                                      .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    if (vkCreateImageView(dev, &vi, NULL, &out->view) != VK_SUCCESS) {
+        out->view = VK_NULL_HANDLE;
+        return ROMA_ERROR_VULKAN;
+    }
+    return ROMA_SUCCESS;
+}
+
+static void layout(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                   VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                   VkAccessFlags2 dst_access)
+{
+    const VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
+                                     .srcAccessMask = src_access, .dstStageMask = dst_stage,
+                                     .dstAccessMask = dst_access, .oldLayout = from, .newLayout = to,
+                                     .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                     .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = image,
+                                     .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    const VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
+                                  .pImageMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+static void setup_destroy(frame_setup *s)
+{
+    if (s->ctx) {
+        VkDevice dev = roma_context_device(s->ctx);
+        for (int i = 0; i < 3; ++i)
+            image_destroy(dev, &s->in[i]);
+        image_destroy(dev, &s->out);
+        roma_buffer_destroy(s->ctx, &s->readback);
+    }
+    roma_pixel_list_destroy(s->list);
+    roma_ao_effect_destroy(s->ao);
+    free(s->px);
+    free(s->covered);
+    memset(s, 0, sizeof *s);
+}
+
+static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint32_t w, uint32_t h, frame_setup *s)
+{
+    memset(s, 0, sizeof *s);
+    s->ctx = ctx;
+    s->width = w;
+    s->height = h;
+    const size_t n = (size_t)w * h;
+    s->px = calloc(n, sizeof *s->px);
+    s->covered = malloc(sizeof *s->covered * n);
+    float *albedo = malloc(sizeof(float) * 3 * n);
+    roma_buffer staging = {0};
+    roma_ref *ref = NULL;
+    roma_camera cam;
+    roma_scene_default_camera(scene, (float)w / (float)h, &cam);
+    roma_result r = s->px && s->covered && albedo ? ROMA_SUCCESS : ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    /* The G-buffer: the reference's primary rays, straight into the upload buffer (one plane an image). */
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, 48ull * n, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_UPLOAD, &staging);
+    if (r == ROMA_SUCCESS)
+        r = roma_ref_create(scene, NULL, &ref);
+    float *host = staging.mapped;
+    if (r == ROMA_SUCCESS)
+        r = roma_ref_render_gbuffer(ref, &cam, w, h, &(roma_ref_gbuffer){host, host + 4 * n, host + 8 * n, albedo});
+    roma_ref_destroy(ref);
+    for (size_t p = 0; p < n && r == ROMA_SUCCESS; ++p) {
+        const int hit = host[4 * p + 3] > 0.0f;
+        for (int a = 0; a < 3; ++a) {
+            s->px[p].position_t[a] = host[4 * p + a];
+            s->px[p].shading_normal[a] = host[4 * (n + p) + a];
+            s->px[p].geometric_normal[a] = host[4 * (2 * n + p) + a];
+        }
+        s->px[p].position_t[3] = hit ? 1.0f : INFINITY;
+        if (hit)
+            s->covered[s->count++] = (uint32_t)p;
+    }
+    const VkImageUsageFlags in_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    for (int i = 0; i < 3 && r == ROMA_SUCCESS; ++i)
+        r = image_create(ctx, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, &s->in[i]);
+    if (r == ROMA_SUCCESS)
+        r = image_create(ctx, w, h, VK_FORMAT_R32_SFLOAT,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &s->out);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, 4ull * n, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &s->readback);
+    if (r == ROMA_SUCCESS)
+        r = roma_pixel_list_create(ctx, &(roma_pixel_list_desc){.frames_in_flight = SLOTS}, &s->list);
+    if (r == ROMA_SUCCESS)
+        r = roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.frames_in_flight = SLOTS}, &s->ao);
+    /* The upload, the output to GENERAL and the list of each slot: once, untimed. */
+    VkCommandBuffer cmd;
+    if (r == ROMA_SUCCESS)
+        r = roma_begin_one_shot(ctx, &cmd);
+    if (r == ROMA_SUCCESS) {
+        for (int i = 0; i < 3; ++i) {
+            layout(cmd, s->in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            const VkBufferImageCopy copy = {.bufferOffset = 16ull * n * (VkDeviceSize)i,
+                                            .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                            .imageExtent = {w, h, 1}};
+            vkCmdCopyBufferToImage(cmd, staging.buffer, s->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                   &copy);
+            layout(cmd, s->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        }
+        layout(cmd, s->out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+               VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        for (uint32_t slot = 0; slot < SLOTS && r == ROMA_SUCCESS; ++slot) {
+            const roma_pixel_list_images li = {.width = w, .height = h, .position = s->in[0].view};
+            r = roma_pixel_list_record(s->list, cmd, slot, &li);
+        }
+        roma_result sr = roma_submit_one_shot(ctx, cmd);
+        if (r == ROMA_SUCCESS)
+            r = sr;
+    }
+    roma_buffer_destroy(ctx, &staging);
+    free(albedo);
+    if (r != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: frame setup failed: %s\n", roma_result_string(r));
+        setup_destroy(s);
+    }
+    return r;
+}
+
+/* One submission of `what` (bit 0: map build, bit 1: the AO effect over the listed pixels),
+ * submit to fence. The records alternate between the effect's two slots, each listed once:
+ * every record starts a new frame of its slot, whatever settings->frame (the samples). */
+static double roma_frame_ms(frame_setup *s, roma_map *map, const roma_ao_settings *settings, uint32_t frame, int what)
 {
     VkCommandBuffer cmd;
-    if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
+    if (roma_begin_one_shot(s->ctx, &cmd) != ROMA_SUCCESS)
         return NAN;
     roma_result r = ROMA_SUCCESS;
     if (what & 1) {
@@ -85,10 +277,46 @@ static double roma_frame_ms(roma_context *ctx, roma_map *map, roma_ao_pass *ao, 
         }
     }
     if (r == ROMA_SUCCESS && (what & 2)) {
-        vkCmdFillBuffer(cmd, accum->buffer, 0, VK_WHOLE_SIZE, 0);
-        r = roma_ao_pass_record(ao, cmd, in);
+        const roma_ao_images images = {.width = s->width, .height = s->height, .position = s->in[0].view,
+                                       .normal = s->in[1].view, .geometric_normal = s->in[2].view,
+                                       .output = s->out.view, .pixels = s->list};
+        r = roma_ao_effect_record(s->ao, cmd, s->records++ % SLOTS, map, &images, settings);
+        /* the next record (or the copy for the mean) after this one's writes */
+        layout(cmd, s->out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+               VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+               VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                   VK_ACCESS_2_TRANSFER_READ_BIT);
     }
-    return roma_bench_submit_ms(ctx, cmd, r);
+    return roma_bench_submit_ms(s->ctx, cmd, r);
+}
+
+/* The mean of the last AO record's output over the covered pixels (a copy, untimed). */
+static roma_result roma_mean_ao(frame_setup *s, double *mean)
+{
+    VkCommandBuffer cmd;
+    roma_result r = roma_begin_one_shot(s->ctx, &cmd);
+    if (r != ROMA_SUCCESS)
+        return r;
+    layout(cmd, s->out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+           VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                    .imageExtent = {s->width, s->height, 1}};
+    vkCmdCopyImageToBuffer(cmd, s->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, s->readback.buffer, 1, &copy);
+    layout(cmd, s->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+           VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    r = roma_submit_one_shot(s->ctx, cmd);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_invalidate(s->ctx, &s->readback);
+    double sum = 0.0;
+    for (uint32_t i = 0; i < s->count && r == ROMA_SUCCESS; ++i)
+        sum += ((const float *)s->readback.mapped)[s->covered[i]];
+    *mean = s->count ? sum / s->count : 0.0;
+    return r;
 }
 
 double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result recorded)
@@ -99,73 +327,12 @@ double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result 
     return recorded == ROMA_SUCCESS && s == ROMA_SUCCESS ? ms : NAN;
 }
 
-/* What both sides of a frame share: the scene's geometry, its G-buffer from the default camera
- * (rendered once) and the covered pixels. */
-typedef struct frame_setup {
-    roma_scene_buffers geo;
-    roma_gbuffer *gb;
-    roma_gbuffer_list list;
-    roma_gbuffer_pixel *px;
-    uint32_t *covered, count;
-} frame_setup;
-
-static void setup_destroy(roma_context *ctx, frame_setup *s)
+/* The AO settings of d: the public defaults (offset, skipped start walked exactly through the
+ * BOM), d's radius (<= 0: unbounded), seed 7, samples frame 0's (those Embree draws). */
+static roma_ao_settings ao_settings(const roma_bench_frame_desc *d, uint32_t spp)
 {
-    roma_gbuffer_list_destroy(&s->list);
-    roma_gbuffer_destroy(s->gb);
-    roma_scene_buffers_destroy(ctx, &s->geo);
-    free(s->px);
-    free(s->covered);
-    memset(s, 0, sizeof *s);
-}
-
-static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint32_t w, uint32_t h, frame_setup *s)
-{
-    memset(s, 0, sizeof *s);
-    s->px = malloc(sizeof *s->px * (size_t)w * h);
-    s->covered = malloc(sizeof *s->covered * (size_t)w * h);
-    roma_scene_view sv;
-    roma_scene_get_view(scene, &sv);
-    float diag = 0.0f;
-    for (int a = 0; a < 3; ++a)
-        diag += (sv.bounds_max[a] - sv.bounds_min[a]) * (sv.bounds_max[a] - sv.bounds_min[a]);
-    roma_camera cam;
-    roma_scene_default_camera(scene, (float)w / (float)h, &cam);
-    roma_result r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
-    if (s->px && s->covered)
-        r = roma_scene_buffers_create(ctx, scene, &s->geo);
-    if (r == ROMA_SUCCESS)
-        r = roma_gbuffer_create(ctx, w, h, &s->gb);
-    if (r == ROMA_SUCCESS)
-        r = roma_gbuffer_list_create(ctx, w, h, &s->list);
-    VkCommandBuffer cmd;
-    if (r == ROMA_SUCCESS)
-        r = roma_begin_one_shot(ctx, &cmd);
-    if (r == ROMA_SUCCESS) {
-        roma_gbuffer_inputs gin = {
-            .positions = s->geo.positions.address, .normals = s->geo.normals.address,
-            .indices = s->geo.indices.address, .albedo = s->geo.albedo.address,
-            .triangle_count = s->geo.triangle_count, .camera = cam, .previous_camera = cam,
-            .near_plane = 1e-4f * sqrtf(diag),
-        };
-        r = roma_gbuffer_record(s->gb, cmd, &gin);
-        if (r == ROMA_SUCCESS)
-            r = roma_gbuffer_list_record(&s->list, cmd, roma_gbuffer_pixels_address(s->gb));
-        roma_result sr = roma_submit_one_shot(ctx, cmd);
-        if (r == ROMA_SUCCESS)
-            r = sr;
-    }
-    if (r == ROMA_SUCCESS)
-        r = roma_gbuffer_download(s->gb, s->px);
-    if (r != ROMA_SUCCESS) {
-        fprintf(stderr, "roma-bench: frame setup failed: %s\n", roma_result_string(r));
-        setup_destroy(ctx, s);
-        return r;
-    }
-    for (uint32_t i = 0; i < w * h; ++i)
-        if (isfinite(s->px[i].position_t[3]))
-            s->covered[s->count++] = i;
-    return ROMA_SUCCESS;
+    return (roma_ao_settings){.samples = spp, .radius = d->radius > 0.0f && isfinite(d->radius) ? d->radius : 0.0f,
+                              .seed = SEED, .frame = 0};
 }
 
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, FILE *csv)
@@ -173,8 +340,6 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
     const uint32_t w = d->width, h = d->height, runs = d->runs ? d->runs : 5;
     frame_setup fs;
     roma_map *map = NULL;
-    roma_ao_pass *ao = NULL;
-    roma_buffer accum = {0};
     double *samples = malloc(sizeof(double) * runs * 5);
     int status = 1;
     roma_map_desc md = {.resolution = d->resolution, .angular = d->angular};
@@ -189,12 +354,6 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
         r = ROMA_ERROR_OUT_OF_HOST_MEMORY;
     if (r == ROMA_SUCCESS)
         r = roma_map_create(ctx, &md, scene, &map);
-    if (r == ROMA_SUCCESS)
-        r = roma_ao_pass_create(ctx, &ao);
-    if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 4ull * w * h, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                               VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                               ROMA_MEMORY_READBACK, &accum);
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-bench: frame setup failed: %s\n", roma_result_string(r));
         goto done;
@@ -204,26 +363,23 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
     roma_map_build(map, &warm, NULL);
     roma_map_get_info(map, &mi);
     printf("\nDynamic AO frame, %ux%u (%u pixels, %u covered), RES %u, A %u, AO radius %s; medians of %u runs.\n"
-           "ROMA: one submission, host-observed; Embree: wall clock, all cores, same points and samples.\n\n"
+           "ROMA: one submission, host-observed, the public AO effect over the covered pixels (listed once);\n"
+           "Embree: wall clock, all cores, same points and samples. G-buffer: the reference's primary rays,\n"
+           "uploaded once, counted by neither side.\n\n"
            "| spp | ROMA build ms | ROMA AO ms | ROMA frame ms | Embree BVH ms | Embree AO ms | Embree frame ms "
            "| ROMA speed-up | AO mean ROMA / Embree |\n|---|---|---|---|---|---|---|---|---|\n",
            w, h, w * h, count, d->resolution, d->angular, d->radius > 0.0f ? "bounded" : "unbounded", runs);
     static const uint32_t spps[2] = {1, 4};
     status = 0;
-    for (int si = 0; si < 2; ++si) {
+    for (int si = 0; si < 2 && status == 0; ++si) {
         const uint32_t spp = spps[si];
-        roma_ao_pass_inputs in = {
-            .gbuffer_pixels = roma_gbuffer_pixels_buffer(fs.gb), .width = w, .height = h, .map = &mi,
-            .list = &fs.list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
-            .tmin = ROMA_DEFAULT_AO_SKIP_CELLS * mi.trace_cell, .spp = spp, .frame = 0, .seed = SEED, .accum = accum.buffer,
-            .bom = mi.bom_view, /* the rays' start walked exactly, as every pass does */
-        };
+        const roma_ao_settings settings = ao_settings(d, spp);
         double ref_mean = 0.0;
         for (uint32_t k = 0; k < runs; ++k) {
             /* frames 1 + 2k and 2 + 2k: each build a new jitter (frame 0 warmed the map) */
-            samples[k] = roma_frame_ms(ctx, map, ao, &in, &accum, 1 + 2 * k, 1);
-            samples[runs + k] = roma_frame_ms(ctx, map, ao, &in, &accum, 1 + 2 * k, 2);
-            samples[2 * runs + k] = roma_frame_ms(ctx, map, ao, &in, &accum, 2 + 2 * k, 3);
+            samples[k] = roma_frame_ms(&fs, map, &settings, 1 + 2 * k, 1);
+            samples[runs + k] = roma_frame_ms(&fs, map, &settings, 1 + 2 * k, 2);
+            samples[2 * runs + k] = roma_frame_ms(&fs, map, &settings, 2 + 2 * k, 3);
             double t0 = roma_app_now_ms();
             roma_ref *ref = NULL;
             if (roma_ref_create(scene, NULL, &ref) != ROMA_SUCCESS) {
@@ -235,11 +391,11 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
             roma_ref_destroy(ref);
         }
         /* The last frame's ROMA AO, for the mean beside the reference's. */
-        roma_buffer_invalidate(ctx, &accum);
-        double open = 0.0;
-        for (uint32_t i = 0; i < count; ++i)
-            open += ((const uint32_t *)accum.mapped)[covered[i]];
-        double roma_mean = count ? open / ((double)count * spp) : 0.0;
+        double roma_mean = 0.0;
+        if (status == 0 && roma_mean_ao(&fs, &roma_mean) != ROMA_SUCCESS)
+            status = 1;
+        if (status != 0)
+            break;
         double med[5];
         for (int c = 0; c < 5; ++c)
             med[c] = roma_app_median(samples + c * runs, (int)runs);
@@ -253,10 +409,8 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
         }
     }
 done:
-    roma_buffer_destroy(ctx, &accum);
-    roma_ao_pass_destroy(ao);
     roma_map_destroy(map);
-    setup_destroy(ctx, &fs);
+    setup_destroy(&fs);
     free(samples);
     return status;
 }

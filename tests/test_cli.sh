@@ -191,11 +191,11 @@ else
 fi
 
 # --- ROMA: every effect, and only the passes the scene calls for (stats "passes") ---
-# roma_passes SCENE: the names of the internal renderer's passes in the stats file, sorted, one line.
+# roma_passes SCENE: the passes of the effect plan in the stats file, sorted, and the arrays, one line.
 roma_passes() {
   local scene=$1 label=$2
   "$render" --scene "$scene" --tracer roma --effects ao,direct,gi,lights --size 16x12 --spp 1 --frames 2 \
-    --lights 16 --route internal --quiet --out "$dir/$label" --stats "$dir/$label/stats.json" >/dev/null \
+    --lights 16 --quiet --out "$dir/$label" --stats "$dir/$label/stats.json" >/dev/null \
     2>"$dir/$label.err"
   expect_status 0 $? "roma-render --tracer roma --scene $scene (all effects)" || { cat "$dir/$label.err" >&2; return 1; }
   for e in ao direct gi lights; do
@@ -204,96 +204,62 @@ roma_passes() {
   python3 - "$dir/$label/stats.json" <<'EOF2'
 import json, sys
 s = json.load(open(sys.argv[1]))
-names = sorted(p["name"] for p in s["passes"] if p["clock"] == "gpu_timestamp")
+names = sorted(s["plan"])
 arrays = sorted((a["resolution"], a["angular"]) for a in s["roma_arrays"])
 print(" ".join(names), "|", " ".join("%dx%d" % a for a in arrays))
 EOF2
 }
-# cornell: area light + spot light: every pass, arrays for A = 4 and A = 8.
+# cornell: area light + spot light: every pass (GI from the spot by shadow rays: no RSM), arrays
+# for A = 4 and A = 8.
 got=$(roma_passes builtin:cornell roma_cornell) || fail "ROMA render of cornell failed"
-want="ao gbuffer gi many_lights punctual_lights rsm soft_shadows | 128x4 128x8"
+want="ao gbuffer gi many_lights punctual_lights soft_shadows | 128x4 128x8"
 [ "$got" = "$want" ] || fail "cornell passes: got '$got', want '$want'"
 # plates: one area light, no punctual light: no punctual-light pass, no RSM; GI by shadow rays.
 got=$(roma_passes builtin:plates roma_plates) || fail "ROMA render of plates failed"
 want="ao gbuffer gi many_lights soft_shadows | 128x4 128x8"
 [ "$got" = "$want" ] || fail "plates passes: got '$got', want '$want'"
 
-# --- ROMA through the public effect passes (--route api, the default for ao, direct and gi) ---
-# roma-render records roma_ao_effect, roma_light_effect and roma_gi_effect on a G-buffer of
-# primary rays; the internal renderer (its gi from the spot by shadow rays too) traces the same
-# samples through the same arrays from its rasterized G-buffer. Measured at this size (an odd pixel
-# count: the read-back copies' offsets are aligned): ao equal, direct and gi within 2.4e-7 and 2.3e-7
-# relative (the two G-buffers' points differ in the last bits).
+# --- ROMA through the public effect passes: every effect, and the study's methods plugged into them ---
 route_args=(--scene builtin:cornell --tracer roma --effects ao,direct,gi --size 47x35 --spp 2 --frames 2
             --ao-radius 0.5 --quiet)
 "$render" "${route_args[@]}" --out "$dir/route_api" --stats "$dir/route_api/stats.json" >/dev/null \
   2>"$dir/route_api.err"
 expect_status 0 $? "roma-render --tracer roma (public effect passes)" || cat "$dir/route_api.err" >&2
-"$render" "${route_args[@]}" --route internal --gi-punctual rays --out "$dir/route_internal" >/dev/null \
-  2>"$dir/route_internal.err"
-expect_status 0 $? "roma-render --route internal" || cat "$dir/route_internal.err" >&2
-has_stat "$dir/route_api/stats.json" route api || fail "the default ROMA render did not take the public passes"
-for e in ao direct gi; do
-  "$compare" "$dir/route_api/$e.pfm" "$dir/route_internal/$e.pfm" --mask "$dir/route_internal/coverage.pfm" \
-    >"$dir/route_$e.cmp" 2>&1 || fail "roma-compare of the two routes' $e failed"
-  v=$(metric "$dir/route_$e.cmp" relative)
-  awk -v v="${v:-1}" 'BEGIN { exit !(v <= 1e-6) }' ||
-    fail "$e: the public passes differ from the internal renderer by ${v:-?}"
-done
-# The study's shadow method, ray start and GI through reflective shadow maps (study/) on the
-# public passes as in the internal renderer: measured within 2.4e-7 relative, but for GI's exact
-# bounce rays, 6.7e-6 (a bounce walked to its first occupied cell from a point a few ulps
-# apart); GI read from the RSMs 2.1e-7.
-for variant in "exact:--shadow-method voxel-dda --gi-punctual rays" "blind:--ray-start blind --gi-punctual rays" \
-               "rsm:--gi-punctual rsm"; do
+has_stat "$dir/route_api/stats.json" route api || fail "the stats do not name the public passes"
+# The study's shadow method, ray start and GI through reflective shadow maps (src/study/) change
+# the images they should change, and only those: the exact traversal and the blind start leave
+# AO's and (the exact one) nothing else alike; RSMs change GI alone.
+for variant in "exact:--shadow-method voxel-dda" "blind:--ray-start blind" "rsm:--gi-punctual rsm"; do
   tag=${variant%%:*}
   args=${variant#*:}
-  for r in api internal; do
-    # shellcheck disable=SC2086 # the variant's arguments, split
-    "$render" "${route_args[@]}" $args --route $r --out "$dir/variant_${tag}_$r" \
-      --stats "$dir/variant_${tag}_$r.json" >/dev/null 2>"$dir/variant_${tag}_$r.err"
-    expect_status 0 $? "roma-render $args --route $r" || cat "$dir/variant_${tag}_$r.err" >&2
-  done
-  has_stat "$dir/variant_${tag}_api.json" route api || fail "$args did not take the public passes"
+  # shellcheck disable=SC2086 # the variant's arguments, split
+  "$render" "${route_args[@]}" $args --out "$dir/variant_$tag" --stats "$dir/variant_$tag.json" >/dev/null \
+    2>"$dir/variant_$tag.err"
+  expect_status 0 $? "roma-render $args" || cat "$dir/variant_$tag.err" >&2
   for e in ao direct gi; do
-    "$compare" "$dir/variant_${tag}_api/$e.pfm" "$dir/variant_${tag}_internal/$e.pfm" \
-      --mask "$dir/variant_${tag}_internal/coverage.pfm" >"$dir/variant_${tag}_$e.cmp" 2>&1 ||
-      fail "roma-compare of the two routes' $e with $args failed"
-    v=$(metric "$dir/variant_${tag}_$e.cmp" relative)
-    bound=1e-6
-    [ "$tag-$e" = exact-gi ] && bound=1e-5
-    awk -v v="${v:-1}" -v b=$bound 'BEGIN { exit !(v <= b) }' ||
-      fail "$e with $args: the public passes differ from the internal renderer by ${v:-?}"
+    same=1
+    cmp -s "$dir/variant_$tag/$e.pfm" "$dir/route_api/$e.pfm" || same=0
+    case "$tag-$e" in
+      exact-ao|rsm-ao|rsm-direct) want=1 ;;
+      *) want=0 ;;
+    esac
+    [ $same = $want ] || fail "$args: $e $([ $want = 1 ] && echo changed || echo "did not change")"
   done
 done
-has_stat "$dir/variant_rsm_api.json" name rsm || fail "--gi-punctual rsm: the stats lack the RSMs' rasterization"
-# Many lights' visibility: the light effect counting visible lights (ROMA_LIGHT_OUTPUT_VISIBLE_COUNT)
-# against the internal renderer's many-lights pass, the same 64 lights: measured 2.8e-5 relative
-# (one pixel's count half a light apart of 1,645).
-for r in api internal; do
-  "$render" "${route_args[@]}" --effects lights --lights 64 --route $r --out "$dir/lights_$r" \
-    --stats "$dir/lights_$r.json" >/dev/null 2>"$dir/lights_$r.err"
-  expect_status 0 $? "roma-render --effects lights --route $r" || cat "$dir/lights_$r.err" >&2
+has_stat "$dir/variant_rsm.json" name rsm || fail "--gi-punctual rsm: the stats lack the RSMs' rasterization"
+# Many lights' visibility: the light effect counting visible lights (ROMA_LIGHT_OUTPUT_VISIBLE_COUNT).
+"$render" "${route_args[@]}" --effects lights --lights 64 --out "$dir/lights_api" --stats "$dir/lights_api.json" \
+  >/dev/null 2>"$dir/lights_api.err"
+expect_status 0 $? "roma-render --effects lights" || cat "$dir/lights_api.err" >&2
+has_stat "$dir/lights_api.json" name lights || fail "the stats lack the lights pass"
+# The study's AO methods take the public AO pass (study/study_ao.h): NAADF traverses the exact
+# traversal's voxels, so both give the same image.
+for method in voxel-dda naadf; do
+  "$render" "${route_args[@]}" --effects ao --ao-method "$method" --cascades 1 --out "$dir/method_$method" \
+    --stats "$dir/method_$method.json" >/dev/null 2>&1 || fail "roma-render --ao-method $method failed"
 done
-has_stat "$dir/lights_api.json" name lights || fail "the public route's stats lack the lights pass"
-"$compare" "$dir/lights_api/lights.pfm" "$dir/lights_internal/lights.pfm" --mask "$dir/lights_internal/coverage.pfm" \
-  >"$dir/lights_routes.cmp" 2>&1 || fail "roma-compare of the two routes' lights failed"
-v=$(metric "$dir/lights_routes.cmp" relative)
-awk -v v="${v:-1}" 'BEGIN { exit !(v <= 4e-5) }' || fail "lights: the public count differs from the internal one by ${v:-?}"
-# The study's AO methods take the public AO pass (study/study_ao.h): the same bits as the
-# internal renderer's pass where both read the same G-buffer values (all but screen space).
-for method in voxel-dda distance-field naadf; do
-  for route in api internal; do
-    "$render" "${route_args[@]}" --effects ao --ao-method "$method" --cascades 1 --route "$route" \
-      --out "$dir/method_${method}_$route" --stats "$dir/method_${method}_$route.json" >/dev/null 2>&1 ||
-      fail "roma-render --ao-method $method --route $route failed"
-  done
-  has_stat "$dir/method_${method}_api.json" route api || fail "--ao-method $method did not take the public AO pass"
-  "$compare" "$dir/method_${method}_api/ao.pfm" "$dir/method_${method}_internal/ao.pfm" >"$dir/method_$method.cmp" 2>&1 ||
-    fail "roma-compare of the two routes' $method AO failed"
-  v=$(metric "$dir/method_$method.cmp" max_abs)
-  awk -v v="${v:-1}" 'BEGIN { exit !(v == 0) }' || fail "$method: the public pass differs from the internal one by ${v:-?}"
-done
+cmp -s "$dir/method_voxel-dda/ao.pfm" "$dir/method_naadf/ao.pfm" || fail "NAADF's AO differs from the exact traversal's"
+has_stat "$dir/method_naadf.json" name naadf_build || fail "the stats lack the NAADF hierarchy's build"
 # The public passes over every pixel (a GPU's default) write the same bits as over the list of
 # covered pixels each effect makes and as over one list for every effect and frame (a CPU
 # device's default: roma_pixel_list).
@@ -309,8 +275,7 @@ for e in ao direct gi; do
 done
 has_stat "$dir/route_api/stats.json" pixel_dispatch shared || fail "roma-render's default on lavapipe is not one shared list"
 has_stat "$dir/route_shared/stats.json" name pixel_list || fail "the stats lack the shared list's record"
-# --resolution-divisor: the public passes trace one pixel a block (the stats say so); 3 is refused,
-# as is the internal renderer with it.
+# --resolution-divisor: the public passes trace one pixel a block (the stats say so); 3 is refused.
 "$render" "${route_args[@]}" --resolution-divisor 2 --out "$dir/divisor2" --stats "$dir/divisor2/stats.json" \
   >/dev/null 2>"$dir/divisor2.err"
 expect_status 0 $? "roma-render --resolution-divisor 2" || cat "$dir/divisor2.err" >&2
@@ -319,18 +284,13 @@ has_stat "$dir/divisor2/stats.json" resolution_divisor 2 || fail "the stats do n
 expect_status 2 $? "roma-render --resolution-divisor 3"
 grep -q "bad value for --resolution-divisor: '3' (valid: 1, 2, 4)" "$dir/divisor3.err" ||
   fail "a bad --resolution-divisor does not list the choices"
-"$render" "${route_args[@]}" --resolution-divisor 2 --route internal --out "$dir/divisor_internal" >/dev/null \
-  2>"$dir/divisor_internal.err"
-[ $? -ne 0 ] && grep -q "resolution-divisor: the public effect passes only" "$dir/divisor_internal.err" ||
-  fail "--resolution-divisor with --route internal is not refused with a reason"
 "$render" "${route_args[@]}" --pixel-dispatch some --out "$dir/route_some" >/dev/null 2>"$dir/route_some.err"
 expect_status 2 $? "roma-render --pixel-dispatch some"
 grep -q "unknown pixel dispatch 'some' (valid: auto, list, every, shared)" "$dir/route_some.err" ||
   fail "a bad --pixel-dispatch does not list the choices"
-"$render" "${route_args[@]}" --route bogus --out "$dir/route_bogus" >/dev/null 2>"$dir/route_bogus.err"
-expect_status 2 $? "roma-render --route bogus"
-grep -q "unknown route 'bogus' (valid: api, internal)" "$dir/route_bogus.err" ||
-  fail "a bad --route does not list the routes"
+"$render" "${route_args[@]}" --route internal --out "$dir/route_gone" >/dev/null 2>"$dir/route_gone.err"
+expect_status 2 $? "roma-render --route internal (the internal renderer is gone)"
+grep -q "unknown option --route" "$dir/route_gone.err" || fail "--route is not refused as an unknown option"
 
 # Cascade levels: AO far shorter than the scene (cornell, 3 wide, radius 0.05) makes roma-render
 # pick levels around the camera and say so (the finest 30 cells to the radius, enough to cover
@@ -352,8 +312,8 @@ grep -q "the finest 0.5 wide (--finest-extent)" "$dir/cascades_finest.err" ||
   fail "roma-render does not say the finest level's edge came from --finest-extent"
 ! grep -q "note: cascades" "$dir/cascades_one.err" || fail "roma-render --cascades 1 still notes cascades"
 
-# --jitter off: every frame's grid and directions the first's (the stats say so); a bad value and
-# the internal renderer are refused.
+# --jitter off: every frame's grid and directions the first's (the stats say so); a bad value is
+# refused.
 "$render" --tracer roma --scene builtin:cornell --effects ao --spp 1 --frames 2 --size 32x24 --jitter off \
   --out "$dir/jitter_off" --stats "$dir/jitter_off/stats.json" >/dev/null 2>"$dir/jitter_off.err"
 expect_status 0 $? "roma-render --jitter off" || cat "$dir/jitter_off.err" >&2
@@ -363,11 +323,6 @@ got=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["settings
 "$render" --tracer roma --scene builtin:cornell --effects ao --size 32x24 --jitter maybe --out "$dir/jitter_bad" \
   >/dev/null 2>"$dir/jitter_bad.err"
 expect_status 2 $? "roma-render --jitter maybe"
-"$render" --tracer roma --scene builtin:cornell --effects ao --size 32x24 --jitter off --route internal \
-  --out "$dir/jitter_internal" >/dev/null 2>"$dir/jitter_internal.err"
-expect_status 2 $? "roma-render --jitter off --route internal"
-grep -q "jitter off: the public effect passes only" "$dir/jitter_internal.err" ||
-  fail "roma-render --jitter off --route internal does not say why it is refused"
 
 # --- Usage and bad input ---
 "$render" --help >"$dir/help.out" 2>&1
@@ -612,11 +567,6 @@ grep -q -- '--budget-ms 1e+09: ultra (RES 256, A 8)' "$dir/budget2.err" ||
 "$render" "${budget[@]}" --budget-ms 1e9 --out "$dir/budget" >/dev/null 2>"$dir/budget3.err"
 expect_status 0 $? "roma-render --budget-ms 1e9 (cached)"
 [ "$(grep -o '(cached)' "$dir/budget3.err" | wc -l)" -eq 4 ] || fail "a second run measures again"
-# The presets are timed on the public passes (an engine's frames), so not with the internal renderer.
-"$render" "${budget[@]}" --budget-ms 50 --route internal --out "$dir/budget_internal" >/dev/null \
-  2>"$dir/budget_internal.err"
-[ $? -ne 0 ] && grep -q "budget-ms: the presets are timed on the public effect passes" "$dir/budget_internal.err" ||
-  fail "--budget-ms with --route internal is not refused with a reason"
 has_stat "$dir/budget/stats.json" route api || fail "--budget-ms did not render through the public passes"
 python3 - "$dir/budget/stats.json" "$dir/budget/low.json" <<'PY' || fail "the stats do not record the budget's choice"
 import json, sys

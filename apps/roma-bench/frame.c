@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "app_common.h"
+#include "map/map_internal.h" /* roma_map_record_steps: a build step alone (--growth) */
 #include "reference.h"
 #include "roma/ao_effect.h"
 #include "roma/map.h"
@@ -433,13 +434,7 @@ int roma_bench_growth(roma_context *ctx, const roma_scene *scene, const roma_ben
     if (setup_create(ctx, scene, w, h, &fs) != ROMA_SUCCESS)
         return 1;
     double *samples = malloc(sizeof(double) * runs * 3);
-    roma_buffer accum = {0};
-    roma_ao_pass *ao = NULL;
-    roma_result r = samples ? roma_ao_pass_create(ctx, &ao) : ROMA_ERROR_OUT_OF_HOST_MEMORY;
-    if (r == ROMA_SUCCESS)
-        r = roma_buffer_create(ctx, 4ull * w * h, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                               VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                               ROMA_MEMORY_READBACK, &accum);
+    roma_result r = samples ? ROMA_SUCCESS : ROMA_ERROR_OUT_OF_HOST_MEMORY;
     /* Embree's side does not depend on RES: measured once for the scene. */
     double bvh_ms = NAN, embree_ms = NAN, mean = 0.0;
     for (uint32_t k = 0; r == ROMA_SUCCESS && k < runs; ++k) {
@@ -463,21 +458,17 @@ int roma_bench_growth(roma_context *ctx, const roma_scene *scene, const roma_ben
         r = roma_map_create(ctx, &md, scene, &map);
         if (r != ROMA_SUCCESS)
             break;
-        roma_map_info mi;
         roma_map_frame_desc warm = {.frame = 0, .seed = SEED, .jitter_grid = 1, .jitter_directions = 1};
         roma_map_build(map, &warm, NULL);
-        roma_map_get_info(map, &mi);
-        roma_ao_pass_inputs in = {
-            .gbuffer_pixels = roma_gbuffer_pixels_buffer(fs.gb), .width = w, .height = h, .map = &mi,
-            .list = &fs.list, .offset = ROMA_DEFAULT_OFFSET_CELLS * mi.trace_cell, .radius = d->radius,
-            .tmin = ROMA_DEFAULT_AO_SKIP_CELLS * mi.trace_cell, .spp = 1, .seed = SEED, .accum = accum.buffer,
-            .bom = mi.bom_view,
-        };
-        roma_frame_ms(ctx, map, ao, &in, &accum, 0, 2); /* the AO pipeline's first use, untimed */
-        for (uint32_t k = 0; k < runs; ++k) {
+        roma_ao_settings settings = ao_settings(d, 1);
+        /* the AO pipeline's first use (at this map's cascade variant), untimed */
+        if (isnan(roma_frame_ms(&fs, map, &settings, 0, 2)))
+            r = ROMA_ERROR_VULKAN;
+        for (uint32_t k = 0; k < runs && r == ROMA_SUCCESS; ++k) {
             samples[k] = step_ms(ctx, map, k, ROMA_MAP_STEP_VOXELIZE);
             samples[runs + k] = step_ms(ctx, map, k, ROMA_MAP_STEP_ROTATE);
-            samples[2 * runs + k] = roma_frame_ms(ctx, map, ao, &in, &accum, k, 2);
+            settings.frame = k;
+            samples[2 * runs + k] = roma_frame_ms(&fs, map, &settings, k, 2);
         }
         rows[i] = (roma_bench_growth_row){
             .triangles = sv.triangle_count, .resolution = res[i], .covered = fs.count,
@@ -488,9 +479,7 @@ int roma_bench_growth(roma_context *ctx, const roma_scene *scene, const roma_ben
     }
     if (r != ROMA_SUCCESS)
         fprintf(stderr, "roma-bench: growth measurement failed: %s\n", roma_result_string(r));
-    roma_buffer_destroy(ctx, &accum);
-    roma_ao_pass_destroy(ao);
-    setup_destroy(ctx, &fs);
+    setup_destroy(&fs);
     free(samples);
     return r == ROMA_SUCCESS ? 0 : 1;
 }

@@ -16,14 +16,15 @@ typedef struct roma_bench_frame_desc {
     float radius;              /* AO rays; <= 0: unbounded */
 } roma_bench_frame_desc;
 
-/* A dynamic AO frame without the G-buffer both sides need: ROMA (voxelize + rotate +
- * AO over the covered pixels) against Embree (BVH rebuild + AO at the same points with
- * the same samples), at 1 and 4 samples per pixel. Prints the table (and CSV rows);
- * returns 0 on success. */
 /* Ends, submits and waits for cmd (recorded by the caller, `recorded` its result): the
  * host-observed milliseconds from submit to fence, NAN on failure. */
 double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result recorded);
 
+/* A dynamic AO frame without the G-buffer both sides need (the reference's primary rays,
+ * uploaded once into roma-bench's images): ROMA (voxelize + rotate + the public AO effect
+ * over the covered pixels, listed once) against Embree (BVH rebuild + AO at the same points
+ * with the same samples), at 1 and 4 samples per pixel. Prints the table (and CSV rows);
+ * returns 0 on success. */
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *desc, FILE *csv);
 
 /* Embree's AO at the covered points (px[covered[i]], count of them), spp samples each (the

@@ -13,7 +13,6 @@
 #include "app_common.h"
 #include "budget.h"
 #include "effect_api.h"
-#include "passes/effect_render.h"
 #include "reference.h"
 #include "roma/builtin_scenes.h"
 #include "roma/roma.h"
@@ -69,23 +68,16 @@ static const char *usage =
     "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
     "                              that no ray passes a wall it starts next to (default), or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
-    "  --route api|internal        ROMA through libroma's public effect passes (roma_ao_effect,\n"
-    "                              roma_light_effect, roma_gi_effect) on a G-buffer of primary rays, as\n"
-    "                              an engine records them (the default where they can: ao, direct, gi,\n"
-    "                              lights, the study's ao methods), or through the internal renderer,\n"
-    "                              which also has reflective shadow maps and the stochastic depth map\n"
-    "                              (taken by itself when those are asked for; the choice is printed)\n"
     "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
     "                              frame (a new one each frame) and upsample the rest (default 1)\n"
     "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
     "                              each effect makes, over every pixel (roma_pixel_dispatch), or over\n"
     "                              one list for every effect and frame (roma_pixel_list); auto: shared\n"
     "                              on CPU devices, every pixel on GPUs\n"
-    "  --gi-punctual rsm|rays      ROMA gi from point and spot lights: their reflective shadow maps\n"
-    "                              (the internal renderer) or one shadow ray per light at each bounce\n"
-    "                              hit (the public GI effect's way; the default on the api route, rsm on\n"
-    "                              the internal one; rays let a light outside a closed room in:\n"
-    "                              docs/accuracy.md)\n"
+    "  --gi-punctual rsm|rays      ROMA gi from point and spot lights: one shadow ray per light at each\n"
+    "                              bounce hit (the public GI effect's way, the default), or their\n"
+    "                              reflective shadow maps (the ROMA paper's, from the study library;\n"
+    "                              docs/accuracy.md compares them)\n"
     "  --skip C                    ROMA shadow rays skip their first C trace cells (default 1)\n"
     "  --ao-skip C                 ROMA ao and gi rays skip their first C trace cells (default 1.6)\n"
     "  --offset C                  ROMA rays start C trace cells off the surface (default 1.5)\n"
@@ -150,8 +142,7 @@ typedef struct options {
     float exposure;
     int reinhard;        /* --tonemap reinhard */
     int gi_rays;         /* --gi-punctual rays */
-    int route;           /* --route: ROUTE_AUTO, ROUTE_API, ROUTE_INTERNAL */
-    roma_pixel_dispatch pixel_dispatch; /* --pixel-dispatch (the api route's) */
+    roma_pixel_dispatch pixel_dispatch; /* --pixel-dispatch */
     int shared_list;     /* --pixel-dispatch shared */
     uint32_t resolution_divisor; /* --resolution-divisor: the public effects trace 1 pixel in d x d */
     int blind_start;     /* --ray-start blind */
@@ -176,17 +167,16 @@ enum {
     GIVEN_MAX_STEPS = 1u << 4, GIVEN_SKIP = 1u << 5, GIVEN_AO_SKIP = 1u << 6, GIVEN_OFFSET = 1u << 7,
     GIVEN_LIGHTS_PER_FRAME = 1u << 8, GIVEN_THREADS = 1u << 9, GIVEN_AO_RADIUS = 1u << 10,
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
-    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_ROUTE = 1u << 17, GIVEN_PIXEL_DISPATCH = 1u << 18,
+    GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_PIXEL_DISPATCH = 1u << 18,
     GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20, GIVEN_RESOLUTION_DIVISOR = 1u << 21,
     GIVEN_SHADOW_METHOD = 1u << 22
 };
 
 /* How ROMA's images are made (effect_api.h). */
-enum { ROUTE_AUTO = 0, ROUTE_API, ROUTE_INTERNAL };
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--route", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-method", "--shadow-method", "--skip",
+    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-method", "--shadow-method", "--skip",
     "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
@@ -390,14 +380,6 @@ static int parse_args(int argc, char **argv, options *o)
             o->given |= GIVEN_RAY_START;
             if (!o->blind_start && strcmp(v, "walk") != 0) {
                 fprintf(stderr, "roma-render: unknown ray start '%s' (valid: walk, blind)\n", v);
-                return 0;
-            }
-        }
-        else if (strcmp(a, "--route") == 0) {
-            o->route = strcmp(v, "api") == 0 ? ROUTE_API : strcmp(v, "internal") == 0 ? ROUTE_INTERNAL : -1;
-            o->given |= GIVEN_ROUTE;
-            if (o->route < 0) {
-                fprintf(stderr, "roma-render: unknown route '%s' (valid: api, internal)\n", v);
                 return 0;
             }
         }
@@ -649,7 +631,6 @@ typedef struct run_record {
     pass_record passes[16];
     notes notes;
     int pass_count;
-    const roma_effect_stats *roma; /* ROMA tracer, internal route */
     const effect_api_result *api;  /* ROMA tracer, public effect passes */
     roma_pixel_dispatch pixel_dispatch; /* the public passes': resolved, never AUTO */
     int shared_list;                    /* resolved: the pixels listed once (roma_pixel_list) */
@@ -866,7 +847,7 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
             roma_json_end_object(&j);
             roma_json_end_object(&j);
         }
-        roma_json_string(&j, "route", run->api ? "api" : "internal");
+        roma_json_string(&j, "route", "api"); /* the public effect passes (the one route) */
         roma_json_string(&j, "jitter", o->jitter_off ? "off" : "on");
         if (run->api)
             roma_json_string(&j, "pixel_dispatch", run->shared_list ? "shared"
@@ -892,10 +873,14 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
     roma_json_number(&j, "fovy_deg", cam->fovy_deg);
     roma_json_end_object(&j);
     roma_json_end_object(&j);
-    if (run->roma) {
-        write_arrays(&j, &run->roma->plan, run->roma->map_info, run->roma->build_ms);
-    } else if (run->api) {
+    if (run->api) {
         write_arrays(&j, &run->api->plan, run->api->map_info, run->api->build_ms);
+        /* The passes the effect plan runs: only those the scene calls for (roma/effects.h). */
+        roma_json_begin_array(&j, "plan");
+        for (int p = 0; p < ROMA_PASS_COUNT; ++p)
+            if (roma_effect_plan_runs(&run->api->plan, (roma_pass_kind)p))
+                roma_json_string(&j, NULL, roma_pass_name((roma_pass_kind)p));
+        roma_json_end_array(&j);
         /* roma-render's own G-buffer, output and transfer memory (the passes' own is libroma's) */
         roma_json_int(&j, "api_images_bytes", (long long)run->api->effect_bytes);
     }
@@ -930,73 +915,33 @@ static const char *ao_method_name(roma_ao_method method)
     return (unsigned)method < sizeof names / sizeof names[0] ? names[method] : "?";
 }
 
-/* ROMA through the public effect passes (1), the internal renderer (0), or refused (-1: --route
- * api with a request they cannot render). Printed and noted in the stats. */
-static int choose_route(options *o, notes *n)
+/* What the public passes will render, noted (printed and in the stats); -1 when the request
+ * cannot be rendered. */
+static int note_route(options *o, notes *n)
 {
     if (strcmp(o->tracer, "roma") != 0)
         return 0;
-    /* Options that only matter for an effect asked for do not decide the route without it. */
-    const char *why = NULL; /* the public passes render every request */
     /* The study's AO baselines trace one grid (study/study_ao.h). */
     const int baseline = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA;
-    if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL && o->cascades_auto) {
+    if (o->cascades > 1 && baseline && o->cascades_auto) {
         note(n, o->quiet, "cascades: none after all: --ao-method %s traces one grid", ao_method_name(o->ao_method));
         o->cascades = 1;
-    } else if (o->cascades > 1 && baseline && !why && o->route != ROUTE_INTERNAL) {
+    } else if (o->cascades > 1 && baseline) {
         fprintf(stderr, "roma-render: --cascades: --ao-method %s traces one grid\n", ao_method_name(o->ao_method));
         return -1;
-    }
-    if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL) && o->cascades_auto) {
-        note(n, o->quiet, "cascades: none after all: only the public effect passes trace them, and %s",
-             why ? why : "--route internal was asked for");
-        o->cascades = 1;
-    } else if (o->cascades > 1 && (why || o->route == ROUTE_INTERNAL)) {
-        fprintf(stderr, "roma-render: --cascades: the public effect passes trace cascades, and %s\n",
-                why ? why : "--route internal was asked for");
-        return -1;
-    }
-    if (o->resolution_divisor > 1 && (why || o->route == ROUTE_INTERNAL)) {
-        fprintf(stderr, "roma-render: --resolution-divisor: the public effect passes only, and %s\n",
-                why ? why : "--route internal was asked for");
-        return -1;
-    }
-    if ((o->given & GIVEN_BUDGET) && (why || o->route == ROUTE_INTERNAL)) {
-        fprintf(stderr, "roma-render: --budget-ms: the presets are timed on the public effect passes, and %s\n",
-                why ? why : "--route internal was asked for");
-        return -1;
-    }
-    if (o->jitter_off && (why || o->route == ROUTE_INTERNAL)) {
-        fprintf(stderr, "roma-render: --jitter off: the public effect passes only, and %s\n",
-                why ? why : "--route internal was asked for");
-        return -1;
-    }
-    if (o->route == ROUTE_API && why) {
-        fprintf(stderr, "roma-render: --route api: %s\n", why);
-        return -1;
-    }
-    if (o->route == ROUTE_INTERNAL || why) {
-        note(n, o->quiet, "ROMA through the internal renderer: %s%s", why ? why : "--route internal",
-             (o->effects & ROMA_EFFECT_GI) && !o->gi_rays ? "; gi from point and spot lights through their RSMs" : "");
-        if (o->given & GIVEN_THREADS)
-            note(n, o->quiet, "--threads sets the reference's CPU threads: the internal renderer ignores it");
-        if (o->given & GIVEN_PIXEL_DISPATCH)
-            note(n, o->quiet, "--pixel-dispatch chooses for the public passes: the internal renderer always traces "
-                 "its list of covered pixels");
-        return 0;
     }
     if (o->given & GIVEN_THREADS)
         note(n, o->quiet,
              "--threads sets the CPU threads of the G-buffer's primary rays; the passes run on the device");
-    note(n, o->quiet, "ROMA through libroma's public effect passes on a G-buffer of primary rays (--route)%s",
+    note(n, o->quiet, "ROMA through libroma's public effect passes on a G-buffer of primary rays%s",
          !(o->effects & ROMA_EFFECT_GI)                         ? ""
          : (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays ? "; gi from point and spot lights through their RSMs "
                                                             "(the study's route on the public GI pass)"
                                                           : "; gi from point and spot lights by shadow rays");
-    return 1;
+    return 0;
 }
 
-/* --route api: the images from effect_api_render, written; the passes' times in run. */
+/* The images from effect_api_render, written; the passes' times in run. */
 /* --budget-ms: one preset's time per frame through the public passes, the difference between
  * renders of 3 frames and of 1 (what a frame adds beyond the set-up). */
 typedef struct budget_probe {
@@ -1325,7 +1270,7 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
         {GIVEN_SHADOW_METHOD, "--shadow-method"},
-        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"}, {GIVEN_ROUTE, "--route"},
+        {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"},
         {GIVEN_CASCADES, "--cascades"}, {GIVEN_FINEST_EXTENT, "--finest-extent"},
         {GIVEN_RESOLUTION_DIVISOR, "--resolution-divisor"}};
     for (size_t i = 0; i < sizeof roma_only / sizeof roma_only[0]; ++i)
@@ -1386,8 +1331,7 @@ int main(int argc, char **argv)
     run_record run = {.device_kind = "cpu", .device_name = "Embree 3 reference (CPU)",
                       .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
     say_what_happens(&o, &sv, &run.notes);
-    const int api_route = choose_route(&o, &run.notes);
-    if (api_route < 0) {
+    if (note_route(&o, &run.notes) < 0) {
         roma_scene_destroy(scene);
         return 2;
     }
@@ -1435,7 +1379,6 @@ int main(int argc, char **argv)
     int status = 0;
     roma_context *ctx = NULL;
     roma_context_info ctx_info;
-    roma_effect_stats roma_stats;
     effect_api_result api_result = {0};
     budget_choice budget;
     if (strcmp(o.tracer, "roma") == 0) {
@@ -1449,68 +1392,8 @@ int main(int argc, char **argv)
             run.device_kind = ctx_info.device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? "cpu_vulkan" : "gpu";
             run.device_name = ctx_info.device_name;
         }
-        if (ctx && api_route) {
+        if (ctx)
             status = render_api(&o, ctx, scene, ref, light_positions, &cam, &run, &budget, &api_result);
-        } else if (ctx) {
-            roma_effect_render_desc desc = {
-                .camera = cam, .width = o.width, .height = o.height,
-                .options = {.effects = o.effects, .resolution = o.res, .ao_angular = o.angular,
-                            .gi_angular = o.angular, .shadow_angular = o.shadow_angular,
-                            .lights_angular = o.shadow_angular, .many_light_count = o.lights},
-                .spp = o.spp, .frames = o.frames, .seed = o.seed, .ao_radius = o.ao_radius,
-                .max_steps = o.max_steps, .lights_per_frame = o.lights_per_frame, .gi_punctual_rays = o.gi_rays,
-                .blind_ray_start = o.blind_start, .ao_method = o.ao_method, .ssao_layers = o.ssao_layers,
-                .shadow_method = o.shadow_method,
-                /* The library takes 0 as its default and a negative value as none. */
-                .skip_cells = o.skip < 0.0f ? 0.0f : o.skip == 0.0f ? -1.0f : o.skip,
-                .ao_skip_cells = o.ao_skip < 0.0f ? 0.0f : o.ao_skip == 0.0f ? -1.0f : o.ao_skip,
-                .offset_cells = o.offset,
-                .many_light_positions = light_positions,
-            };
-            progress_state frames_progress = {"frames", o.quiet, -1, 0.0};
-            on_progress(0.0f, &frames_progress);
-            desc.progress = on_progress;
-            desc.progress_user_data = &frames_progress;
-            roma_effect_images images;
-            double start = roma_app_now_ms();
-            r = roma_effect_render(ctx, scene, &desc, &images, &roma_stats);
-            add_pass(&run, "roma_total", "cpu_wall", roma_app_now_ms() - start);
-            if (r != ROMA_SUCCESS) {
-                fprintf(stderr, "roma-render: ROMA rendering failed: %s\n", roma_result_string(r));
-                status = 1;
-            } else {
-                for (int p = 0; p < ROMA_PASS_COUNT; ++p) {
-                    if (!roma_effect_plan_runs(&roma_stats.plan, (roma_pass_kind)p))
-                        continue;
-                    add_pass(&run, roma_pass_name((roma_pass_kind)p), "gpu_timestamp", roma_stats.pass_ms[p]);
-                    run.passes[run.pass_count - 1].bytes = roma_stats.pass_bytes[p];
-                }
-                if ((o.ao_method == ROMA_AO_METHOD_DISTANCE_FIELD || o.ao_method == ROMA_AO_METHOD_NAADF) &&
-                    roma_effect_plan_runs(&roma_stats.plan, ROMA_PASS_AO)) {
-                    /* the baseline's generation, part of the ao pass's time */
-                    add_pass(&run, o.ao_method == ROMA_AO_METHOD_NAADF ? "naadf_build" : "distance_field_build",
-                             "gpu_timestamp", roma_stats.baseline_build_ms);
-                    run.passes[run.pass_count - 1].bytes = roma_stats.baseline_bytes;
-                }
-                if (o.ssao_layers && roma_effect_plan_runs(&roma_stats.plan, ROMA_PASS_AO))
-                    /* the stochastic depth map's rasterization, beside the ao pass */
-                    add_pass(&run, "depth_layers", "gpu_timestamp", roma_stats.baseline_build_ms);
-                run.roma = &roma_stats;
-                if ((o.effects & ROMA_EFFECT_AO) && !write_outputs(&o, "ao", &images.ao, &images.coverage, 1.0f))
-                    status = 1;
-                if ((o.effects & ROMA_EFFECT_DIRECT) &&
-                    !write_outputs(&o, "direct", &images.direct, &images.coverage, 1.0f))
-                    status = 1;
-                if ((o.effects & ROMA_EFFECT_GI) && !write_outputs(&o, "gi", &images.gi, &images.coverage, 1.0f))
-                    status = 1;
-                if ((o.effects & ROMA_EFFECT_LIGHTS) &&
-                    !write_outputs(&o, "lights", &images.lights, &images.coverage, 1.0f / (float)o.lights))
-                    status = 1;
-                if (status == 0 && !write_extras(&o, &images.coverage, &images.direct, &images.gi))
-                    status = 1;
-                roma_effect_images_free(&images);
-            }
-        }
     }
     roma_image kept_coverage = {0}, kept_direct = {0}, kept_gi = {0};
     effect_output effects[4] = {{"ao", ROMA_EFFECT_AO, 0}, {"direct", ROMA_EFFECT_DIRECT, 0},

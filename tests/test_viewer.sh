@@ -3,7 +3,8 @@
 #  - headless, the AO view accumulated over 32 frames on the built-in room, compared with
 #    the Embree reference (roma-render --tracer embree) on the same camera and radius, and
 #    with roma-render's own ROMA AO: the viewer (public API, its own rasterized G-buffer)
-#    must be as accurate as the library's internal path, and nearly equal to it;
+#    must be as accurate as roma-render (the same public passes on the reference's primary
+#    rays, accumulated offline), and nearly equal to it;
 #  - its own reference comparison, one-bounce GI against roma-render's and the reference,
 #    and the occupancy-slice view (no surface point in an empty cell);
 #  - an animated glTF played headless (the animator, the map following the skinned
@@ -75,7 +76,7 @@ cam="0,1,1.9,0,0.9,0,60"
   || { cat "$dir/viewer.out" >&2; fail "roma-viewer --headless (AO view) failed"; }
 "$render" --tracer embree --effects ao --spp 256 --ao-radius 0.5 --camera "$cam" --size 160x120 --quiet \
   --out "$dir/reference" >/dev/null 2>&1 || fail "roma-render --tracer embree failed"
-"$render" --tracer roma --route internal --effects ao --spp 8 --frames 32 --ao-radius 0.5 --camera "$cam" \
+"$render" --tracer roma --effects ao --spp 8 --frames 32 --ao-radius 0.5 --camera "$cam" \
   --size 160x120 --quiet --out "$dir/roma" >/dev/null 2>&1 || fail "roma-render --tracer roma failed"
 if [ -f "$dir/viewer_ao.pfm" ] && [ -f "$dir/reference/ao.pfm" ] && [ -f "$dir/roma/ao.pfm" ]; then
   compare_checked "$dir/viewer_ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_reference.txt"
@@ -126,11 +127,11 @@ echo "direct light MAE (viewer vs Embree): ${direct:-none}"
   fail "the viewer's direct light is further from the reference than 0.0032 ($direct)"
 
 # 1b''. One-bounce GI through the public effect (roma_gi_effect, 1 bounce ray a frame) against
-#      roma-render's offline GI pass with the same route for the spot (shadow rays) and the
+#      roma-render's offline accumulation of it with the same route for the spot (shadow rays) and the
 #      same samples, and against the reference.
 "$viewer" --headless --validation --view gi --frames 32 --camera "$cam" --size 160x120 \
   --linear "$dir/viewer_gi.pfm" >"$dir/gi.out" 2>&1 || { cat "$dir/gi.out" >&2; fail "roma-viewer --view gi failed"; }
-"$render" --tracer roma --route internal --effects gi --gi-punctual rays --spp 1 --frames 32 --camera "$cam" \
+"$render" --tracer roma --effects gi --gi-punctual rays --spp 1 --frames 32 --camera "$cam" \
   --size 160x120 --quiet --out "$dir/roma_gi" >/dev/null 2>&1 || fail "roma-render --effects gi failed"
 "$render" --tracer embree --effects gi --spp 256 --camera "$cam" --size 160x120 --quiet \
   --out "$dir/reference_gi" >/dev/null 2>&1 || fail "roma-render --tracer embree --effects gi failed"
@@ -162,7 +163,7 @@ wall_cam="0,3,4,0,0.3,0,50"
 "$viewer" --headless --validation --scene "$wall" --time 0.9 --view gi --frames 32 --camera "$wall_cam" \
   --size 160x120 --linear "$dir/wall_gi.pfm" >"$dir/wall_gi.out" 2>&1 \
   || { cat "$dir/wall_gi.out" >&2; fail "roma-viewer --view gi on the moving wall failed"; }
-"$render" --scene "$wall" --time 0.9 --tracer roma --route internal --effects gi --gi-punctual rays --spp 1 \
+"$render" --scene "$wall" --time 0.9 --tracer roma --effects gi --gi-punctual rays --spp 1 \
   --frames 32 --camera "$wall_cam" --size 160x120 --quiet --out "$dir/wall_roma" >/dev/null 2>&1 \
   || fail "roma-render --effects gi on the moving wall failed"
 if [ -f "$dir/wall_gi.pfm" ] && [ -f "$dir/wall_roma/gi.pfm" ]; then

@@ -184,7 +184,7 @@ ROMA_STRUCT_BEGIN(roma_trace_push)
     ROMA_UVEC4(config);   /* x: roma_trace_mode, y: max steps, z: ray count */
 ROMA_STRUCT_END(roma_trace_push)
 
-/* ---- G-buffer pass (src/study/gbuffer.c, shaders/passes/gbuffer.*) ---- */
+/* ---- G-buffer pass (src/study/gbuffer.c, shaders/study/gbuffer.*: the study's reflective shadow maps and depth layers) ---- */
 
 /* One camera as the shaders project with it: view-space x = dot(p - eye, right) etc.
  * Clip = (x * right.w, -y * up.w, near, z): row 0 at the top, reversed-Z with an
@@ -226,34 +226,14 @@ ROMA_STRUCT_BEGIN(roma_gbuffer_pixel)
     ROMA_VEC4(albedo);           /* rgb: base colour; w: triangle id as uint bits */
 ROMA_STRUCT_END(roma_gbuffer_pixel)
 
-/* Every per-pixel pass (AO, lights; src/passes/pixel_pass.h) runs 8 x 8 invocations per workgroup. */
-#define ROMA_PIXEL_WORKGROUP_X 8
-#define ROMA_PIXEL_WORKGROUP_Y 8
 
-/* Every tracing pass binds set 0: the trace set's two bindings, then the G-buffer
- * (RGBA32F uniform texel buffer, 4 texels a pixel), the covered-pixel list (R32UI uniform
- * texel buffer), the pass's accumulator (storage buffer, one element per pixel, added to)
- * and the map's BOM (R32UI uniform texel buffer: the exact walk of the rays' start,
- * roma/ray_start.glsl). On CPU devices texel fetches cost a fraction of storage loads at
- * varying indices, and those a fraction of loads through an address. */
-#define ROMA_PIXEL_BINDING_GBUFFER 2
-#define ROMA_PIXEL_BINDING_LIST 3
-#define ROMA_PIXEL_BINDING_ACCUM 4
-#define ROMA_PIXEL_BINDING_BOM 5
-#define ROMA_PIXEL_BINDINGS 6
-
-/* ---- Covered-pixel list (src/passes/pixel_list.c, shaders/passes/pixel_list*.comp) ----
- * The pixels whose G-buffer sees geometry, built once per frame; every tracing pass runs
- * one invocation per listed pixel (indirect dispatch), so uncovered pixels cost nothing
- * (on SIMD devices that predicate, an early return does not save a lane's work). */
+/* ---- Covered-pixel list (src/effects/image_effect.c, roma/pixel_list.h) ----
+ * The pixels whose G-buffer sees geometry; an effect runs one invocation per listed pixel
+ * (indirect dispatch), so uncovered pixels cost nothing (on SIMD devices that predicate, an
+ * early return does not save a lane's work). */
 ROMA_STRUCT_BEGIN(roma_pixel_list_header)
-    ROMA_UVEC4(dispatch); /* x, y, z: workgroups of the tracing passes; w: pixels listed */
+    ROMA_UVEC4(dispatch); /* x, y, z: workgroups of the effect; w: pixels listed */
 ROMA_STRUCT_END(roma_pixel_list_header)
-ROMA_STRUCT_BEGIN(roma_pixel_list_push)
-    ROMA_U64(pixels);     /* width*height roma_gbuffer_pixel */
-    ROMA_U64(list);       /* roma_pixel_list_header + width*height uint (pixel indices) */
-    ROMA_UVEC4(config);   /* x: width, y: height */
-ROMA_STRUCT_END(roma_pixel_list_push)
 
 /* ---- The public effects' covered-pixel list (src/effects/image_effect.c,
  *      shaders/effects/image_list_*.comp): a roma_pixel_list_header, then the pixels ---- */
@@ -266,7 +246,7 @@ ROMA_STRUCT_BEGIN(roma_image_list_push)
     ROMA_VEC4(background); /* written to the output where the position image holds no surface */
 ROMA_STRUCT_END(roma_image_list_push)
 
-/* ---- AO pass (src/passes/ao.c, shaders/passes/ao.comp) ---- */
+/* ---- AO effect (src/effects/ao_effect.c, shaders/include/roma_ao_images.glsl) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_U64(bom);        /* this frame's BOM (roma/ray_start.glsl), 0: rays skip their start blind */
@@ -337,7 +317,8 @@ ROMA_STRUCT_BEGIN(roma_naadf_push)
     ROMA_UVEC4(config);   /* x: RES, y: chunks a side (RES / 16), z: blocks a side (RES / 4), w: cells of the pass */
 ROMA_STRUCT_END(roma_naadf_push)
 
-/* ---- Light passes (src/passes/effect_render.c, shaders/passes/{punctual_lights,soft_shadows,many_lights}.comp) ---- */
+/* ---- Light and GI effects (src/effects/light_effect.c, gi_effect.c; roma_lights_images.glsl,
+ *      roma_gi_images.glsl) ---- */
 
 /* Irradiance one light (or one area-light sample) may contribute, in W/m^2: a
  * light of finite but enormous intensity next to a surface would otherwise
@@ -367,14 +348,6 @@ ROMA_STRUCT_BEGIN(roma_gpu_emitter)
     ROMA_VEC4(emission);
 ROMA_STRUCT_END(roma_gpu_emitter)
 
-ROMA_STRUCT_BEGIN(roma_punctual_push)
-    ROMA_U64(lights);     /* roma_gpu_light */
-    ROMA_U64(bom);        /* this frame's BOM: the rays' skipped start walked exactly (0: not walked) */
-    ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units), z: 1 = walk
-                             them exactly through the BOM instead (the study's baseline) */
-    ROMA_UVEC4(part);     /* the lights [x, y) this dispatch traces (src/vulkan/loop_budget.h) */
-ROMA_STRUCT_END(roma_punctual_push)
 
 /* roma_light_effect (shaders/effects/lights_images.comp): punctual lights and area lights. */
 ROMA_STRUCT_BEGIN(roma_light_images_push)
@@ -409,29 +382,9 @@ ROMA_STRUCT_BEGIN(roma_gi_images_push)
     ROMA_UVEC4(part);
 ROMA_STRUCT_END(roma_gi_images_push)
 
-ROMA_STRUCT_BEGIN(roma_soft_shadows_push)
-    ROMA_U64(emitters);   /* roma_gpu_emitter */
-    ROMA_U64(cdf);        /* float per emitter */
-    ROMA_U64(bom);        /* as roma_punctual_push */
-    ROMA_U64(pad_);
-    ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: emitter count, z: max steps */
-    ROMA_VEC4(ray);       /* as roma_punctual_push */
-    ROMA_UVEC4(part);     /* the samples [x, y) this dispatch traces (src/vulkan/loop_budget.h) */
-ROMA_STRUCT_END(roma_soft_shadows_push)
 
-ROMA_STRUCT_BEGIN(roma_many_lights_push)
-    ROMA_U64(positions);  /* vec4 per light */
-    ROMA_U64(mask);       /* 0, or words_per_pixel uint per pixel: bit l set when light l is visible */
-    ROMA_U64(bom);        /* as roma_punctual_push */
-    ROMA_U64(pad_);
-    ROMA_UVEC4(config);   /* x: width, y: height, z: light count, w: max steps */
-    ROMA_UVEC4(config2);  /* x: seed, y: frame, z: lights tested per pixel and frame, w: mask words per pixel */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin of the shadow rays (world units), z: as roma_punctual_push */
-    ROMA_UVEC4(part);     /* the tested lights [x, y) this dispatch traces (src/vulkan/loop_budget.h) */
-ROMA_STRUCT_END(roma_many_lights_push)
 
-/* ---- One-bounce GI (shaders/passes/gi.comp) ---- */
+/* ---- One-bounce GI (roma_gi_images.glsl, roma_gi_bounce.glsl) ---- */
 
 /* One view of a reflective shadow map: a G-buffer rendered from a spot light
  * (one view) or a point light (six cube faces). The radiance leaving a texel is
@@ -469,62 +422,7 @@ ROMA_STRUCT_END(roma_gi_scene)
 #define ROMA_GI_PUNCTUAL_RAYS 0u /* one ROMA shadow ray per light */
 #define ROMA_GI_PUNCTUAL_RSM 1u  /* the lights' reflective shadow maps (the ROMA paper's route) */
 
-ROMA_STRUCT_BEGIN(roma_gi_push)
-    ROMA_U64(lights);     /* roma_gpu_light */
-    ROMA_U64(views);      /* roma_rsm_view (RSM route) */
-    ROMA_U64(scene);      /* roma_gi_scene */
-    ROMA_U64(bom);        /* as roma_punctual_push */
-    ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: RSM view count, z: max steps of the shadow rays, w: 1 = bounce and
-                             shadow rays walked exactly through the BOM (the accuracy study's baseline) */
-    ROMA_VEC4(ray);       /* x: origin offset, y: tmin (world units), z: RSM depth tolerance (world units),
-                             w: tmin of the shadow rays at the hit (world units) */
-    /* The samples [x, y) and, at their hits, the lights [z, w) (the area-light sample and the
-     * RSMs with the first lights) this dispatch traces (src/vulkan/loop_budget.h). */
-    ROMA_UVEC4(part);
-ROMA_STRUCT_END(roma_gi_push)
 
-/* ---- Interactive frames: resolve, temporal accumulation, a-trous filter
- *      (shaders/passes/{resolve,temporal,atrous}.comp, src/passes/denoise.c) ---- */
-
-#define ROMA_RESOLVE_AO 0u
-#define ROMA_RESOLVE_DIRECT 1u
-#define ROMA_RESOLVE_GI 2u
-#define ROMA_RESOLVE_LIGHTS 3u
-
-/* One frame's accumulators -> a vec4 image (rgb; AO and light counts in all three). */
-ROMA_STRUCT_BEGIN(roma_resolve_push)
-    ROMA_U64(pixels);     /* roma_gbuffer_pixel */
-    ROMA_U64(a);          /* ao: uint; direct: punctual vec4 (or 0); gi: vec4; lights: uvec2 */
-    ROMA_U64(b);          /* direct: soft-shadow vec4 (or 0) */
-    ROMA_U64(dst);        /* vec4 per pixel */
-    ROMA_UVEC4(config);   /* x: width, y: height, z: ROMA_RESOLVE_*, w: many-light count */
-    ROMA_VEC4(scale);     /* x: 1 / samples per pixel of this frame */
-ROMA_STRUCT_END(roma_resolve_push)
-
-/* Exponential moving average with reprojection through the motion vectors and
- * rejection of disoccluded history (position and normal tests). */
-ROMA_STRUCT_BEGIN(roma_temporal_push)
-    ROMA_U64(current);    /* vec4 */
-    ROMA_U64(history);    /* vec4 of the previous frame: rgb, w = frames accumulated */
-    ROMA_U64(dst);        /* vec4: the new history */
-    ROMA_U64(pixels);     /* this frame's G-buffer */
-    ROMA_U64(previous);   /* the previous frame's G-buffer */
-    ROMA_U64(pad_);
-    ROMA_UVEC4(config);   /* x: width, y: height, z: max frames in the history, w: 1 = history valid */
-    ROMA_VEC4(test);      /* x: position tolerance per unit of view distance, y: min cos between normals */
-ROMA_STRUCT_END(roma_temporal_push)
-
-/* One a-trous iteration (5 x 5 B3-spline taps, step apart), stopped at depth and normal edges. */
-ROMA_STRUCT_BEGIN(roma_atrous_push)
-    ROMA_U64(src);        /* vec4 */
-    ROMA_U64(dst);        /* vec4 */
-    ROMA_U64(pixels);     /* G-buffer */
-    ROMA_U64(pad_);
-    ROMA_UVEC4(config);   /* x: width, y: height, z: step in pixels */
-    ROMA_VEC4(edge);      /* x: position sigma per unit of view distance and pixel of step, y: normal exponent,
-                             z: value sigma in units of the expected noise (0.5 / sqrt(frames) of a [0, 1] value) */
-ROMA_STRUCT_END(roma_atrous_push)
 
 /* The public temporal effect (roma/temporal_effect.h): shaders/effects/temporal_images.comp
  * and shaders/effects/atrous_images.comp. */

@@ -6,7 +6,7 @@
 // front of the point, by at most
 // `thickness` (a depth buffer knows where surfaces start, not where they end). A point off
 // the image or behind the eye ends the march unblocked: what the image does not see cannot
-// occlude. Include after roma_pixel_bindings.glsl and roma_bound_bom.glsl; needs
+// occlude. Include after roma_bound_bom.glsl and a roma_gbuffer_fetch(pixel); needs
 // roma_ao_push pc.
 #ifndef ROMA_SSAO_GLSL
 #define ROMA_SSAO_GLSL

@@ -121,11 +121,6 @@ void roma_study_rsm_variant(const roma_study_rsm *rsm, float tolerance, roma_sha
     variant->rsm_tolerance = tolerance;
 }
 
-uint32_t roma_study_rsm_view_count(const roma_study_rsm *rsm)
-{
-    return rsm ? rsm->views.count : 0;
-}
-
 uint64_t roma_study_rsm_bytes(const roma_study_rsm *rsm)
 {
     if (!rsm)

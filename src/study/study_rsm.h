@@ -25,7 +25,6 @@ roma_result roma_study_rsm_record(roma_study_rsm *rsm, VkCommandBuffer cmd);
 /* The GI variant's RSM fields (rsm_views, rsm_view_count, rsm_tolerance in world units). */
 void roma_study_rsm_variant(const roma_study_rsm *rsm, float tolerance, roma_shadow_variant *variant);
 
-uint32_t roma_study_rsm_view_count(const roma_study_rsm *rsm);
 /* Device memory of the views and their table. */
 uint64_t roma_study_rsm_bytes(const roma_study_rsm *rsm);
 

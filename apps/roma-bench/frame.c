@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "app_common.h"
+#include "app_image.h"
 #include "map/map_internal.h" /* roma_map_record_steps: a build step alone (--growth) */
 #include "reference.h"
 #include "roma/ao_effect.h"
@@ -70,16 +71,11 @@ double roma_bench_embree_ao_ms(const roma_ref *ref, const roma_gbuffer_pixel *px
  * each of the effect's two slots, and the same points for Embree's side. */
 #define SLOTS 2u
 
-typedef struct frame_image {
-    VkImage image;
-    VkDeviceMemory memory;
-    VkImageView view;
-} frame_image;
 
 typedef struct frame_setup {
     roma_context *ctx;
     uint32_t width, height;
-    frame_image in[3], out; /* position, shading normal, geometric normal; the AO (R32F) */
+    app_image in[3], out; /* position, shading normal, geometric normal; the AO (R32F) */
     roma_buffer readback;   /* the output's copy, for the mean AO */
     roma_pixel_list *list;  /* the covered pixels, listed in each slot */
     roma_ao_effect *ao;
@@ -88,81 +84,12 @@ typedef struct frame_setup {
     uint32_t *covered, count;
 } frame_setup;
 
-static void image_destroy(VkDevice dev, frame_image *im)
-{
-    if (im->view)
-        vkDestroyImageView(dev, im->view, NULL);
-    if (im->image)
-        vkDestroyImage(dev, im->image, NULL);
-    if (im->memory)
-        vkFreeMemory(dev, im->memory, NULL);
-    memset(im, 0, sizeof *im);
-}
-
-/* A device-local w x h image with its view. */
-static roma_result image_create(roma_context *ctx, uint32_t w, uint32_t h, VkFormat format, VkImageUsageFlags usage,
-                                frame_image *out)
-{
-    VkDevice dev = roma_context_device(ctx);
-    memset(out, 0, sizeof *out);
-    const VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
-                                  .format = format, .extent = {w, h, 1}, .mipLevels = 1, .arrayLayers = 1,
-                                  .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage,
-                                  .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
-    if (vkCreateImage(dev, &ii, NULL, &out->image) != VK_SUCCESS) {
-        out->image = VK_NULL_HANDLE;
-        return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
-    }
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, out->image, &req);
-    VkPhysicalDeviceMemoryProperties mp;
-    vkGetPhysicalDeviceMemoryProperties(roma_context_physical_device(ctx), &mp);
-    uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < mp.memoryTypeCount && type == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
-            type = i;
-    const VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                                     .memoryTypeIndex = type};
-    if (type == UINT32_MAX)
-        return ROMA_ERROR_MISSING_FEATURE;
-    if (vkAllocateMemory(dev, &ai, NULL, &out->memory) != VK_SUCCESS) {
-        out->memory = VK_NULL_HANDLE;
-        return ROMA_ERROR_OUT_OF_DEVICE_MEMORY;
-    }
-    if (vkBindImageMemory(dev, out->image, out->memory, 0) != VK_SUCCESS)
-        return ROMA_ERROR_VULKAN;
-    const VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
-                                      .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
-                                      .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    if (vkCreateImageView(dev, &vi, NULL, &out->view) != VK_SUCCESS) {
-        out->view = VK_NULL_HANDLE;
-        return ROMA_ERROR_VULKAN;
-    }
-    return ROMA_SUCCESS;
-}
-
-static void layout(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                   VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                   VkAccessFlags2 dst_access)
-{
-    const VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
-                                     .srcAccessMask = src_access, .dstStageMask = dst_stage,
-                                     .dstAccessMask = dst_access, .oldLayout = from, .newLayout = to,
-                                     .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                     .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = image,
-                                     .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    const VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
-                                  .pImageMemoryBarriers = &b};
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 static void setup_destroy(frame_setup *s)
 {
     if (s->ctx) {
-        VkDevice dev = roma_context_device(s->ctx);
         for (int i = 0; i < 3; ++i)
-            image_destroy(dev, &s->in[i]);
-        image_destroy(dev, &s->out);
+            app_image_destroy(s->ctx, &s->in[i]);
+        app_image_destroy(s->ctx, &s->out);
         roma_buffer_destroy(s->ctx, &s->readback);
     }
     roma_pixel_list_destroy(s->list);
@@ -209,9 +136,9 @@ static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint
     }
     const VkImageUsageFlags in_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     for (int i = 0; i < 3 && r == ROMA_SUCCESS; ++i)
-        r = image_create(ctx, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, &s->in[i]);
+        r = app_image_create(ctx, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, &s->in[i]);
     if (r == ROMA_SUCCESS)
-        r = image_create(ctx, w, h, VK_FORMAT_R32_SFLOAT,
+        r = app_image_create(ctx, w, h, VK_FORMAT_R32_SFLOAT,
                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &s->out);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, 4ull * n, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &s->readback);
@@ -225,19 +152,19 @@ static roma_result setup_create(roma_context *ctx, const roma_scene *scene, uint
         r = roma_begin_one_shot(ctx, &cmd);
     if (r == ROMA_SUCCESS) {
         for (int i = 0; i < 3; ++i) {
-            layout(cmd, s->in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+            app_image_barrier(cmd, s->in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
             const VkBufferImageCopy copy = {.bufferOffset = 16ull * n * (VkDeviceSize)i,
                                             .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                             .imageExtent = {w, h, 1}};
             vkCmdCopyBufferToImage(cmd, staging.buffer, s->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                                    &copy);
-            layout(cmd, s->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+            app_image_barrier(cmd, s->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
         }
-        layout(cmd, s->out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+        app_image_barrier(cmd, s->out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         for (uint32_t slot = 0; slot < SLOTS && r == ROMA_SUCCESS; ++slot) {
             const roma_pixel_list_images li = {.width = w, .height = h, .position = s->in[0].view};
@@ -283,7 +210,7 @@ static double roma_frame_ms(frame_setup *s, roma_map *map, const roma_ao_setting
                                        .output = s->out.view, .pixels = s->list};
         r = roma_ao_effect_record(s->ao, cmd, s->records++ % SLOTS, map, &images, settings);
         /* the next record (or the copy for the mean) after this one's writes */
-        layout(cmd, s->out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+        app_image_barrier(cmd, s->out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
@@ -299,13 +226,13 @@ static roma_result roma_mean_ao(frame_setup *s, double *mean)
     roma_result r = roma_begin_one_shot(s->ctx, &cmd);
     if (r != ROMA_SUCCESS)
         return r;
-    layout(cmd, s->out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+    app_image_barrier(cmd, s->out.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
            VK_ACCESS_2_TRANSFER_READ_BIT);
     const VkBufferImageCopy copy = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                     .imageExtent = {s->width, s->height, 1}};
     vkCmdCopyImageToBuffer(cmd, s->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, s->readback.buffer, 1, &copy);
-    layout(cmd, s->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+    app_image_barrier(cmd, s->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
            VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,

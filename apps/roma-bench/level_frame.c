@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "app_image.h"
 #include "frame.h"
 #include "reference.h"
 #include "roma/ao_effect.h"
@@ -19,72 +20,10 @@
 #define H 120u
 #define SEED 7u
 
-typedef struct level_image {
-    VkImage image;
-    VkDeviceMemory memory;
-    VkImageView view;
-} level_image;
-
-static void image_destroy(VkDevice dev, level_image *im)
-{
-    if (im->view)
-        vkDestroyImageView(dev, im->view, NULL);
-    if (im->image)
-        vkDestroyImage(dev, im->image, NULL);
-    if (im->memory)
-        vkFreeMemory(dev, im->memory, NULL);
-    memset(im, 0, sizeof *im);
-}
-
-/* A device-local W x H image of one level and layer, with its view. */
-static int image_create(roma_context *ctx, VkFormat format, VkImageUsageFlags usage, level_image *out)
-{
-    VkDevice dev = roma_context_device(ctx);
-    memset(out, 0, sizeof *out);
-    const VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
-                                  .format = format, .extent = {W, H, 1}, .mipLevels = 1, .arrayLayers = 1,
-                                  .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage,
-                                  .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
-    if (vkCreateImage(dev, &ii, NULL, &out->image) != VK_SUCCESS)
-        return 0;
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, out->image, &req);
-    VkPhysicalDeviceMemoryProperties mp;
-    vkGetPhysicalDeviceMemoryProperties(roma_context_physical_device(ctx), &mp);
-    uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < mp.memoryTypeCount && type == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
-            type = i;
-    const VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                                     .memoryTypeIndex = type};
-    if (type == UINT32_MAX || vkAllocateMemory(dev, &ai, NULL, &out->memory) != VK_SUCCESS ||
-        vkBindImageMemory(dev, out->image, out->memory, 0) != VK_SUCCESS)
-        return 0;
-    const VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
-                                      .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
-                                      .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    return vkCreateImageView(dev, &vi, NULL, &out->view) == VK_SUCCESS;
-}
-
-static void layout(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                   VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                   VkAccessFlags2 dst_access)
-{
-    const VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
-                                     .srcAccessMask = src_access, .dstStageMask = dst_stage,
-                                     .dstAccessMask = dst_access, .oldLayout = from, .newLayout = to,
-                                     .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                     .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = image,
-                                     .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    const VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
-                                  .pImageMemoryBarriers = &b};
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 /* The engine's side: the G-buffer (position, shading and geometric normal) of Embree's camera
  * rays on the level, uploaded once; the AO output; the points for Embree's side. */
 typedef struct level_gbuffer {
-    level_image in[3], out;
+    app_image in[3], out;
     roma_buffer staging, readback;
     roma_gbuffer_pixel *px;
     uint32_t *covered, count;
@@ -92,10 +31,9 @@ typedef struct level_gbuffer {
 
 static void gbuffer_destroy(roma_context *ctx, level_gbuffer *g)
 {
-    VkDevice dev = roma_context_device(ctx);
     for (int i = 0; i < 3; ++i)
-        image_destroy(dev, &g->in[i]);
-    image_destroy(dev, &g->out);
+        app_image_destroy(ctx, &g->in[i]);
+    app_image_destroy(ctx, &g->out);
     roma_buffer_destroy(ctx, &g->staging);
     roma_buffer_destroy(ctx, &g->readback);
     free(g->px);
@@ -134,26 +72,27 @@ static int gbuffer_create(roma_context *ctx, const roma_ref *ref, const roma_cam
             g->covered[g->count++] = p;
     }
     for (int i = 0; i < 3; ++i)
-        if (!image_create(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                          &g->in[i]))
+        if (app_image_create(ctx, W, H, VK_FORMAT_R32G32B32A32_SFLOAT,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &g->in[i]) != ROMA_SUCCESS)
             return 0;
-    if (!image_create(ctx, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &g->out))
+    if (app_image_create(ctx, W, H, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                         &g->out) != ROMA_SUCCESS)
         return 0;
     VkCommandBuffer cmd;
     if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS)
         return 0;
     for (int i = 0; i < 3; ++i) {
-        layout(cmd, g->in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        app_image_barrier(cmd, g->in[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         const VkBufferImageCopy copy = {.bufferOffset = 16ull * n * (VkDeviceSize)i,
                                         .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                         .imageExtent = {W, H, 1}};
         vkCmdCopyBufferToImage(cmd, g->staging.buffer, g->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        layout(cmd, g->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+        app_image_barrier(cmd, g->in[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
-    layout(cmd, g->out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+    app_image_barrier(cmd, g->out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     return roma_submit_one_shot(ctx, cmd) == ROMA_SUCCESS;
 }
@@ -193,7 +132,7 @@ static double roma_ms(const level_side *s, uint32_t f, uint32_t spp, int what, i
         const roma_ao_settings settings = {.samples = spp, .radius = s->d->radius, .seed = SEED, .frame = f};
         r = roma_ao_effect_record(s->ao, cmd, 0, s->map, &images, &settings);
         /* the next record (or the copy) after this one's writes */
-        layout(cmd, s->g->out.image, VK_IMAGE_LAYOUT_GENERAL, read ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL
+        app_image_barrier(cmd, s->g->out.image, VK_IMAGE_LAYOUT_GENERAL, read ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL
                                                                    : VK_IMAGE_LAYOUT_GENERAL,
                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -204,7 +143,7 @@ static double roma_ms(const level_side *s, uint32_t f, uint32_t spp, int what, i
                                             .imageExtent = {W, H, 1}};
             vkCmdCopyImageToBuffer(cmd, s->g->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, s->g->readback.buffer, 1,
                                    &copy);
-            layout(cmd, s->g->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+            app_image_barrier(cmd, s->g->out.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
             roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,

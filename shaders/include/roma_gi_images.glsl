@@ -34,6 +34,11 @@ layout(push_constant) uniform Push { roma_gi_images_push pc; };
 
 void main()
 {
+#ifdef ROMA_GI_EXACT_FROM_PUSH
+    // The study's exact rays, switched on by the push (config2.w) rather than fixed at compile
+    // time: compiled with the switch fixed, lavapipe (Mesa 22.3) leaks its JIT's memory.
+    roma_shadow_exact = pc.config2.w != 0u;
+#endif
     uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w, pixel;
     if (!roma_image_pixel(width, height, pixel))
         return;

@@ -373,7 +373,8 @@ ROMA_STRUCT_BEGIN(roma_gi_images_push)
     ROMA_U64(bom);        /* the map's BOM: the rays' skipped start walked exactly */
     ROMA_U64(views);      /* the study's RSM route only (roma_rsm_lookup.glsl): roma_rsm_view */
     ROMA_UVEC4(config);   /* x: width, y: height, z: samples, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: max steps of the shadow rays at a hit, z: RSM views (study) */
+    ROMA_UVEC4(config2);  /* x: seed, y: max steps of the shadow rays at a hit, z: RSM views (study),
+                             w: 1 = the study's exact rays (its exact module only) */
     ROMA_VEC4(ray);       /* x: origin offset, y: the bounce rays' tmin, z: the shadow rays' tmin (world),
                              w: RSM depth tolerance (world, study) */
     /* The samples [x, y) and, at their hits, the lights [z, w) this dispatch traces (the

@@ -256,6 +256,7 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
     const int exact_rays = variant && variant->exact;
     if (variant && variant->blind_start)
         push.bom = 0; /* every BOM walk off */
+    push.config2[3] = exact_rays; /* read by the study's exact module only */
     if (variant && variant->rsm_views) {
         push.views = variant->rsm_views;
         push.config2[2] = variant->rsm_view_count;

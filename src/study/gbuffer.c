@@ -231,6 +231,16 @@ void roma_gbuffer_destroy(roma_gbuffer *g)
     free(g);
 }
 
+float roma_gbuffer_near_plane(const roma_scene *scene)
+{
+    roma_scene_view view;
+    roma_scene_get_view(scene, &view);
+    float diag = 0.0f;
+    for (int k = 0; k < 3; ++k)
+        diag += (view.bounds_max[k] - view.bounds_min[k]) * (view.bounds_max[k] - view.bounds_min[k]);
+    return 1e-4f * sqrtf(diag);
+}
+
 int roma_gbuffer_camera_make(const roma_camera *cam, uint32_t w, uint32_t h, float near_plane,
                              roma_gbuffer_camera *out)
 {

@@ -15,6 +15,7 @@
 
 #include "roma/camera.h"
 #include "roma/context.h"
+#include "roma/scene.h"
 #include "roma_shared.h"
 
 typedef struct roma_gbuffer roma_gbuffer;
@@ -36,6 +37,9 @@ typedef struct roma_gbuffer_inputs {
     float keep;
     uint32_t seed;
 } roma_gbuffer_inputs;
+
+/* The near plane for a scene's views: 1e-4 of its bounds' diagonal. */
+float roma_gbuffer_near_plane(const roma_scene *scene);
 
 /* The camera as the shaders project with it (roma_shared.h); 0 for a degenerate camera. */
 int roma_gbuffer_camera_make(const roma_camera *cam, uint32_t width, uint32_t height, float near_plane,

@@ -1,7 +1,6 @@
 /* The study's stochastic depth map (study/study_depth_layers.h). */
 #include "study/study_depth_layers.h"
 
-#include <math.h>
 #include <stdlib.h>
 
 #include "effects/scene_buffers.h"
@@ -59,12 +58,7 @@ roma_result roma_study_depth_layers_create(roma_context *ctx, const roma_scene *
     d->height = height;
     d->keep = keep > 0.0f ? keep : ROMA_AO_SSAO_KEEP;
     roma_study_shaders_use(ctx);
-    roma_scene_view view;
-    roma_scene_get_view(scene, &view);
-    float diag = 0.0f;
-    for (int k = 0; k < 3; ++k)
-        diag += (view.bounds_max[k] - view.bounds_min[k]) * (view.bounds_max[k] - view.bounds_min[k]);
-    d->near_plane = 1e-4f * sqrtf(diag); /* as the engine-side G-buffer of the study (roma-render's primary rays) */
+    d->near_plane = roma_gbuffer_near_plane(scene);
     roma_result r = roma_scene_buffers_create(ctx, scene, &d->geometry);
     /* The layers share the first one's pipelines. */
     for (uint32_t l = 0; l < layers && r == ROMA_SUCCESS; ++l)

@@ -1,7 +1,6 @@
 /* The study's reflective shadow maps (study/study_rsm.h). */
 #include "study/study_rsm.h"
 
-#include <math.h>
 #include <stdlib.h>
 
 #include "effects/light_data.h"
@@ -50,10 +49,7 @@ roma_result roma_study_rsm_create(roma_context *ctx, const roma_scene *scene, ui
     roma_study_shaders_use(ctx);
     roma_scene_view view;
     roma_scene_get_view(scene, &view);
-    float diag = 0.0f;
-    for (int k = 0; k < 3; ++k)
-        diag += (view.bounds_max[k] - view.bounds_min[k]) * (view.bounds_max[k] - view.bounds_min[k]);
-    rsm->near_plane = 1e-4f * sqrtf(diag);
+    rsm->near_plane = roma_gbuffer_near_plane(scene);
     /* The lights packed as the GI effect packs the same list: the views name them by index. */
     roma_gpu_light *packed = calloc(view.light_count ? view.light_count : 1, sizeof *packed);
     uint32_t count = 0;

@@ -129,11 +129,13 @@ typedef struct render_out {
     roma_gbuffer_pixel px[W * H];
 } render_out;
 
-/* Renders every effect (a still camera over one frame, then a moved one over three frames with
- * the last seed: its hashes wrap) and checks the images; the still camera's images and
- * G-buffer stay in *keep if given. */
+/* Renders every effect (a still camera over one frame, then, with also_moved, a moved one over three
+ * frames with the last seed: its hashes wrap) and checks the images; the still camera's images
+ * and G-buffer stay in *keep if given. The moved camera on the cases of extreme values and
+ * back faces only: each render builds every effect's pipelines, which under the sanitizers
+ * takes most of the test's time. */
 static void run_case(roma_context *ctx, const char *name, scene_variant v, const roma_camera *cam,
-                     render_out *keep)
+                     render_out *keep, int also_moved)
 {
     roma_scene *scene = make_scene(v);
     if (!scene)
@@ -150,7 +152,7 @@ static void run_case(roma_context *ctx, const char *name, scene_variant v, const
     roma_camera moved = *cam;
     moved.eye[0] += 0.2f;
     render_out *out = malloc(sizeof *out);
-    for (int moving = 0; moving < 2 && out && ref; ++moving) {
+    for (int moving = 0; moving < 1 + also_moved && out && ref; ++moving) {
         memset(out, 0, sizeof *out);
         const effect_api_desc d = {
             .camera = moving ? moved : *cam, .width = W, .height = H, .spp = 2, .frames = moving ? 3 : 1,
@@ -264,8 +266,18 @@ static void check_direct_against_embree(roma_context *ctx, const char *name, con
     roma_scene_destroy(scene);
 }
 
-int main(void)
+/* The part to run (ctest runs each as a test of its own, in parallel: every render builds
+ * every effect's pipelines, which takes most of the time, several times longer under the
+ * sanitizers): "1" the first cases of 1., "2" the others and 2., "3" the checks of 3.; no
+ * argument: all. */
+int main(int argc, char **argv)
 {
+    const int part = argc > 1 ? atoi(argv[1]) : 0;
+    if (argc > 1 && (part < 1 || part > 3)) {
+        fprintf(stderr, "usage: test_effects_hard_cases [1|2|3]\n");
+        return 2;
+    }
+    const int two = part == 0 || part == 2, three = part == 0 || part == 3;
     roma_context *ctx = roma_test_context();
     if (!ctx)
         return roma_test_finish("test_effects_hard_cases");
@@ -291,31 +303,37 @@ int main(void)
                                  .color = {1, 1, 1}, .intensity = 3e38f};
     const roma_light sun_and_spot[2] = {grazing, hard_spot};
 
-    /* 1. Finite and in range. */
-    run_case(ctx, "point light on the floor", (scene_variant){&on_floor, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "point light inside the box", (scene_variant){&in_box, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "grazing sun", (scene_variant){&grazing, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "spot with inner = outer", (scene_variant){&hard_spot, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "spot with a 1e-6 rad cone", (scene_variant){&needle_spot, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "light of intensity 1e30", (scene_variant){&huge, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "3e38 cd, 1 mm above the floor", (scene_variant){&near_max, 1, NORMALS_UP, 3.0f}, &outside, NULL);
-    run_case(ctx, "area light of emission 1e30", (scene_variant){&on_floor, 1, NORMALS_UP, 1e30f}, &outside, NULL);
-    run_case(ctx, "normals flipped, no punctual light", (scene_variant){NULL, 0, NORMALS_FLIPPED, 3.0f}, &outside,
-             NULL);
-    run_case(ctx, "normals flipped, sun and spot", (scene_variant){sun_and_spot, 2, NORMALS_FLIPPED, 3.0f},
-             &outside, NULL);
-    run_case(ctx, "normals missing, point light", (scene_variant){&on_floor, 1, NORMALS_MISSING, 3.0f}, &outside,
-             NULL);
-    run_case(ctx, "back faces: camera inside the lit box", (scene_variant){&in_box, 1, NORMALS_MISSING, 3.0f},
-             &inside_box, NULL);
-    run_case(ctx, "back faces: camera under the floor", (scene_variant){sun_and_spot, 2, NORMALS_UP, 3.0f},
-             &under_floor, NULL);
+    /* 1. Finite and in range: each case in its part, the moved camera where also_moved. */
+    const struct {
+        const char *name;
+        scene_variant v;
+        const roma_camera *cam;
+        int also_moved, part;
+    } cases[] = {
+        {"point light on the floor", {&on_floor, 1, NORMALS_UP, 3.0f}, &outside, 1, 1},
+        {"point light inside the box", {&in_box, 1, NORMALS_UP, 3.0f}, &outside, 0, 1},
+        {"grazing sun", {&grazing, 1, NORMALS_UP, 3.0f}, &outside, 0, 1},
+        {"spot with inner = outer", {&hard_spot, 1, NORMALS_UP, 3.0f}, &outside, 0, 1},
+        {"spot with a 1e-6 rad cone", {&needle_spot, 1, NORMALS_UP, 3.0f}, &outside, 0, 1},
+        {"light of intensity 1e30", {&huge, 1, NORMALS_UP, 3.0f}, &outside, 1, 1},
+        {"3e38 cd, 1 mm above the floor", {&near_max, 1, NORMALS_UP, 3.0f}, &outside, 1, 1},
+        {"area light of emission 1e30", {&on_floor, 1, NORMALS_UP, 1e30f}, &outside, 1, 2},
+        {"normals flipped, no punctual light", {NULL, 0, NORMALS_FLIPPED, 3.0f}, &outside, 0, 2},
+        {"normals flipped, sun and spot", {sun_and_spot, 2, NORMALS_FLIPPED, 3.0f}, &outside, 1, 2},
+        {"normals missing, point light", {&on_floor, 1, NORMALS_MISSING, 3.0f}, &outside, 0, 2},
+        {"back faces: camera inside the lit box", {&in_box, 1, NORMALS_MISSING, 3.0f}, &inside_box, 0, 2},
+        {"back faces: camera under the floor", {sun_and_spot, 2, NORMALS_UP, 3.0f}, &under_floor, 1, 2},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i)
+        if (part == 0 || part == cases[i].part)
+            run_case(ctx, cases[i].name, cases[i].v, cases[i].cam, NULL, cases[i].also_moved);
 
     /* 2. Zero intensity is no light. */
-    render_out *with_dark = calloc(1, sizeof *with_dark), *without = calloc(1, sizeof *without);
+    render_out *with_dark = two ? calloc(1, sizeof *with_dark) : NULL;
+    render_out *without = two ? calloc(1, sizeof *without) : NULL;
     if (with_dark && without) {
-        run_case(ctx, "zero-intensity light", (scene_variant){&dark, 1, NORMALS_UP, 3.0f}, &outside, with_dark);
-        run_case(ctx, "no punctual light", (scene_variant){NULL, 0, NORMALS_UP, 3.0f}, &outside, without);
+        run_case(ctx, "zero-intensity light", (scene_variant){&dark, 1, NORMALS_UP, 3.0f}, &outside, with_dark, 0);
+        run_case(ctx, "no punctual light", (scene_variant){NULL, 0, NORMALS_UP, 3.0f}, &outside, without, 0);
         check_same_images("zero-intensity light = no light:", with_dark, without);
         effect_api_result_free(&with_dark->img);
         effect_api_result_free(&without->img);
@@ -333,15 +351,18 @@ int main(void)
                                  .color = {1, 1, 1}, .intensity = 3.0f};
     const roma_light sun_30deg = {.type = ROMA_LIGHT_DIRECTIONAL, .direction = {0.8660254f, -0.5f, 0.0f},
                                   .color = {1, 1, 1}, .intensity = 3.0f};
-    /* All dark in Embree: the leak is bounded by the fraction of pixels ROMA lights. */
-    check_direct_against_embree(ctx, "light shut in the box", &in_box, (direct_bounds){INFINITY, 0.008, 0});
-    check_direct_against_embree(ctx, "light on the floor", &on_floor, (direct_bounds){0.198, 0.005, 1});
-    check_direct_against_embree(ctx, "sun in the floor's plane", &grazing, (direct_bounds){0.0, 0.005, 1});
-    check_direct_against_embree(ctx, "sun 1 degree above the floor", &sun_1deg, (direct_bounds){0.005, 0.005, 0});
-    check_direct_against_embree(ctx, "sun 30 degrees above the floor", &sun_30deg, (direct_bounds){0.028, 0.005, 0});
-    check_direct_against_embree(ctx, "spot with inner = outer", &hard_spot, (direct_bounds){0.037, 0.005, 0});
-    check_direct_against_embree(ctx, "spot with a 1e-6 rad cone", &needle_spot, (direct_bounds){0.0, 0.005, 0});
-    check_direct_against_embree(ctx, "3e38 cd, 1 mm above the floor", &near_max, (direct_bounds){0.676, 0.048, 0});
+    if (three) {
+        /* All dark in Embree: the leak is bounded by the fraction of pixels ROMA lights. */
+        check_direct_against_embree(ctx, "light shut in the box", &in_box, (direct_bounds){INFINITY, 0.008, 0});
+        check_direct_against_embree(ctx, "light on the floor", &on_floor, (direct_bounds){0.198, 0.005, 1});
+        check_direct_against_embree(ctx, "sun in the floor's plane", &grazing, (direct_bounds){0.0, 0.005, 1});
+        check_direct_against_embree(ctx, "sun 1 degree above the floor", &sun_1deg, (direct_bounds){0.005, 0.005, 0});
+        check_direct_against_embree(ctx, "sun 30 degrees above the floor", &sun_30deg,
+                                    (direct_bounds){0.028, 0.005, 0});
+        check_direct_against_embree(ctx, "spot with inner = outer", &hard_spot, (direct_bounds){0.037, 0.005, 0});
+        check_direct_against_embree(ctx, "spot with a 1e-6 rad cone", &needle_spot, (direct_bounds){0.0, 0.005, 0});
+        check_direct_against_embree(ctx, "3e38 cd, 1 mm above the floor", &near_max, (direct_bounds){0.676, 0.048, 0});
+    }
 
     roma_test_context_finish(ctx);
     return roma_test_finish("test_effects_hard_cases");

@@ -365,9 +365,8 @@ static roma_result record_frame(engine *e, const frame_job *job, uint32_t f)
         roma_gpu_timer_end(e->timer, cmd, scope);
     }
     const roma_light *lights = job->view->lights;
-    /* The study's shadow rays (ROMA's by default) and ray start. */
-    const roma_shadow_variant shadows = {.exact = d->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA,
-                                         .blind_start = d->blind_start};
+    /* The study's ray start (the effects were made with its shadow method). */
+    const roma_shadow_variant shadows = {.blind_start = d->blind_start};
     const uint32_t light_count = job->view->light_count;
     if (r == ROMA_SUCCESS && e->ao) {
         roma_ao_settings s = job->ao;
@@ -645,10 +644,11 @@ static roma_result run_frames(engine *e, const effect_api_desc *d, const frame_j
         VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
         r = from_vk(vkBeginCommandBuffer(e->cmd, &bi), "vkBeginCommandBuffer");
+        const int begun = r == ROMA_SUCCESS;
         for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i)
             if (built_once(d, plan, i))
                 r = record_build(e, d, plan, i, 0);
-        VkResult ended = e->cmd ? vkEndCommandBuffer(e->cmd) : VK_SUCCESS;
+        VkResult ended = begun ? vkEndCommandBuffer(e->cmd) : VK_SUCCESS;
         if (r == ROMA_SUCCESS)
             r = from_vk(ended, "vkEndCommandBuffer");
         VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &e->cmd};

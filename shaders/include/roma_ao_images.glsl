@@ -1,6 +1,6 @@
 // The public AO effect on an engine's G-buffer images (roma_ao_effect): per pixel, spp
-// cosine-weighted rays, the unoccluded fraction into an R32F storage image. Samples as in
-// passes/ao.comp and the reference tracer; a device's loop budget splits them across
+// cosine-weighted rays, the unoccluded fraction into an R32F storage image. Samples as the
+// reference tracer draws them; a device's loop budget splits them across
 // dispatches (roma_ao_push.sample_first). What one ray meets is the includer's
 // roma_ao_ray_open: ROMA's snapped any-hit ray (effects/ao_images.comp), or in the tools'
 // study library one of the accuracy study's baselines through the same pass

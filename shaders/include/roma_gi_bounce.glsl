@@ -1,8 +1,8 @@
-// One-bounce GI's bounce hits (passes/gi.comp and the public roma_gi_effect's
-// effects/gi_images.comp): a snapped closest hit is a cell, not a surface; the surface
-// grid of roma_gi_scene names the triangle in the cells around it, which gives the point
-// where the ray meets that triangle's plane (when the BOM shows nothing between that point
-// and the hit), its normals and its albedo, and the light
+// One-bounce GI's bounce hits (the public roma_gi_effect's roma_gi_images.glsl): a snapped
+// closest hit is a cell, not a surface; the surface grid of roma_gi_scene names the triangle
+// in the cells around it, which gives the point where the ray meets that triangle's plane
+// (when the BOM shows nothing between that point and the hit), its normals and its albedo,
+// and the light
 // leaving that point is the direct light there, as the reference computes it: one
 // area-light sample (dimensions 7-9) and directional lights through ROMA shadow rays,
 // point and spot lights by shadow rays too (ROMA_GI_PUNCTUAL_RAYS) or left to the caller.

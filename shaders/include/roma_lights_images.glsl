@@ -7,7 +7,7 @@
 // (roma_light_effect): per pixel and punctual light one un-snapped shadow ray through the
 // map bound at set 0; per area-light sample one more, the samples drawn as the reference
 // draws them (dimensions 2-4, pixel y * width + x, sample frame * samples + k); formulas as
-// passes/punctual_lights.comp, passes/soft_shadows.comp and the reference tracer.
+// the reference tracer's.
 #define ROMA_TRACE_SET 0
 // The map's BOM, bound after the images (image_effect.c), for the exact walk of the
 // rays' start: bound loads are several times faster than loads by address on CPU devices.
@@ -29,7 +29,7 @@ layout(set = 1, binding = 3, rgba32f) uniform image2D roma_light_output; // read
 layout(push_constant) uniform Push { roma_light_images_push pc; };
 
 const uint DIM_DIRECT_AREA = 2u;
-const uint DIM_MANY_LIGHTS = 10u; // as passes/many_lights.comp
+const uint DIM_MANY_LIGHTS = 10u; // the random run of lights tested a frame (lights_per_frame)
 
 void main()
 {
@@ -62,9 +62,8 @@ void main()
     uint part_first = pc.part.x, part_end = pc.part.y;
     // roma_light_settings.output: irradiance, or the count of the lights that reach p in x.
     bool count = pc.config3.z == 1u;
-    // Counting many lights walks one skip length of each ray's start, as the internal
-    // renderer's many-lights pass does (hundreds of segments a pixel: the four-fold walk of
-    // the irradiance costs 35% more there).
+    // Counting many lights walks one skip length of each ray's start (hundreds of segments a
+    // pixel: the four-fold walk of the irradiance cost 35% more there).
     if (count)
         roma_start_walk = 1.0;
     for (uint i = part_first; i < min(part_end, exact); ++i) {

@@ -38,6 +38,7 @@ struct roma_gi_effect {
     uint64_t grid_version;          /* the grid holds the map geometry of this version (0: none) */
     roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_upload scene[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_gi_scene per slot */
+    int exact; /* the module walks bounce and shadow rays through the BOM (the study's) */
 };
 
 roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_settings *out)
@@ -79,11 +80,11 @@ static void surfaces_free(roma_context *ctx, gi_surfaces *s)
 
 roma_result roma_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *desc_in, roma_gi_effect **out)
 {
-    return roma_gi_effect_create_variant(ctx, desc_in, "gi_images.comp", out);
+    return roma_gi_effect_create_variant(ctx, desc_in, "gi_images.comp", 0, out);
 }
 
 roma_result roma_gi_effect_create_variant(roma_context *ctx, const roma_gi_effect_desc *desc_in, const char *module,
-                                          roma_gi_effect **out)
+                                          int exact, roma_gi_effect **out)
 {
     roma_gi_effect_desc desc = desc_in ? *desc_in : (roma_gi_effect_desc){0};
     const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
@@ -114,6 +115,7 @@ roma_result roma_gi_effect_create_variant(roma_context *ctx, const roma_gi_effec
         free(e);
         return r;
     }
+    e->exact = exact;
     *out = e;
     return ROMA_SUCCESS;
 }
@@ -253,7 +255,7 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
         .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, s.shadow_skip_cells * info.trace_cell,
                 0},
     };
-    const int exact_rays = variant && variant->exact;
+    const int exact_rays = e->exact;
     if (variant && variant->blind_start)
         push.bom = 0; /* every BOM walk off */
     push.config2[3] = exact_rays; /* read by the study's exact module only */

@@ -24,6 +24,7 @@ struct roma_light_effect {
     roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_upload emitters, cdf; /* area lights; absent when emitter_count is 0 */
     uint32_t emitter_count;
+    int exact; /* the module walks every segment through the BOM (the study's; its loop costs) */
 };
 
 roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out)
@@ -58,11 +59,11 @@ roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_ligh
 roma_result roma_light_effect_create(roma_context *ctx, const roma_light_effect_desc *desc_in,
                                      roma_light_effect **out)
 {
-    return roma_light_effect_create_variant(ctx, desc_in, "lights_images.comp", out);
+    return roma_light_effect_create_variant(ctx, desc_in, "lights_images.comp", 0, out);
 }
 
 roma_result roma_light_effect_create_variant(roma_context *ctx, const roma_light_effect_desc *desc_in,
-                                             const char *module, roma_light_effect **out)
+                                             const char *module, int exact, roma_light_effect **out)
 {
     roma_light_effect_desc desc = desc_in ? *desc_in : (roma_light_effect_desc){0};
     const roma_logger *log = desc.logger.fn ? &desc.logger : (ctx ? &ctx->logger : NULL);
@@ -88,6 +89,7 @@ roma_result roma_light_effect_create_variant(roma_context *ctx, const roma_light
         free(e);
         return r;
     }
+    e->exact = exact;
     *out = e;
     return ROMA_SUCCESS;
 }
@@ -221,7 +223,7 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
     /* Counting lights walks one skip length of each start (lights_images.comp). */
     const float walk = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 1.0f : ROMA_START_WALK;
     const roma_shadow_cost shadow = {{info.resolution, info.grid_cell, info.levels}, push.ray[1], walk, s.max_steps,
-                                     ROMA_BACK_SKIP_POINT, variant && variant->exact};
+                                     ROMA_BACK_SKIP_POINT, e->exact};
     uint32_t per_item = roma_loop_cost_punctual_light(&shadow);
     if (e->emitter_count) {
         const uint32_t area = roma_loop_cost_area_sample(&shadow, e->emitter_count);

@@ -105,8 +105,8 @@ static void barrier(VkCommandBuffer cmd)
     roma_cmd_memory_barrier(cmd, stages,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, stages,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT |
-                                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+                                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT |
+                                VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
 }
 
 static void bind(roma_naadf *f, VkCommandBuffer cmd, const roma_compute_pipeline *p, uint32_t count)

@@ -30,7 +30,9 @@ typedef struct roma_study_ao_inputs {
 
 /* The distance field's or NAADF's build from map's BOM as its last recorded build leaves it
  * (nothing for the other methods); record it after the map's build and before
- * roma_study_ao_record, between timestamps of its own. The map must have one level. */
+ * roma_study_ao_record, between timestamps of its own. The map must have one level. One
+ * structure serves every frame: the GPU must be done with the previous frame's record (the
+ * tools wait for each frame), and another map's BOM makes it again. */
 roma_result roma_study_ao_record_build(roma_study_ao *ao, VkCommandBuffer cmd, const roma_map *map);
 
 /* The AO pass as roma_ao_effect_record records it, with the method's rays. */

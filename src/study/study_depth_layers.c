@@ -27,7 +27,7 @@ void roma_study_depth_layers_destroy(roma_study_depth_layers *d)
     for (uint32_t l = ROMA_AO_SSAO_MAX_LAYERS; l-- > 0;) /* the first one's pipelines last */
         roma_gbuffer_destroy(d->layers[l]);
     if (d->view)
-        vkDestroyBufferView(d->ctx->device, d->view, NULL);
+        vkDestroyBufferView(d->ctx->device, d->view, d->ctx->allocator);
     roma_buffer_destroy(d->ctx, &d->pixels);
     roma_scene_buffers_destroy(d->ctx, &d->geometry);
     free(d);

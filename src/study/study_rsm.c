@@ -101,7 +101,8 @@ roma_result roma_study_rsm_record(roma_study_rsm *rsm, VkCommandBuffer cmd)
     if (r == ROMA_SUCCESS && !rsm->written) {
         /* At most ROMA_MAX_RSM_VIEWS small entries: within vkCmdUpdateBuffer's 65,536 bytes. */
         vkCmdUpdateBuffer(cmd, rsm->table.buffer, 0, sizeof(roma_rsm_view) * rsm->views.count, rsm->views.views);
-        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        /* vkCmdUpdateBuffer is a clear-class transfer command: the transfer stage covers it. */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
         rsm->written = 1;
     }

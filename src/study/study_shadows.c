@@ -9,7 +9,7 @@ roma_result roma_study_light_effect_create(roma_context *ctx, const roma_light_e
     if (method == ROMA_SHADOW_METHOD_ROMA)
         return roma_light_effect_create(ctx, desc, out);
     roma_study_shaders_use(ctx);
-    return roma_light_effect_create_variant(ctx, desc, "lights_exact.comp", out);
+    return roma_light_effect_create_variant(ctx, desc, "lights_exact.comp", 1, out);
 }
 
 roma_result roma_study_gi_effect_create(roma_context *ctx, const roma_gi_effect_desc *desc, roma_shadow_method method,
@@ -20,5 +20,6 @@ roma_result roma_study_gi_effect_create(roma_context *ctx, const roma_gi_effect_
         return roma_gi_effect_create(ctx, desc, out);
     roma_study_shaders_use(ctx);
     return roma_gi_effect_create_variant(ctx, desc,
-                                         rsm ? (exact ? "gi_exact_rsm.comp" : "gi_rsm.comp") : "gi_exact.comp", out);
+                                         rsm ? (exact ? "gi_exact_rsm.comp" : "gi_rsm.comp") : "gi_exact.comp", exact,
+                                         out);
 }

@@ -43,7 +43,7 @@ struct roma_context {
      * where the device has no budget. */
     uint32_t loop_plan;
     struct roma_loop_guard *loop_guard; /* ROMA_LOOP_GUARD builds (loop_guard.h) */
-    /* The tools' internal renderer and study shaders (src/study/study_shaders.h), set by their
+    /* The accuracy study's shaders (src/study/study_shaders.h), set by their
      * objects' creation; NULL in an engine's context: the installed library has none of them. */
     const struct roma_spirv_module *study_modules;
     /* Host data reaches the shaders through staging copies even where device memory is

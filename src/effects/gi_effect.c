@@ -155,7 +155,7 @@ roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
     if (r == ROMA_SUCCESS)
         r = roma_scene_buffers_create(ctx, scene, &s.materials);
     if (r == ROMA_SUCCESS)
-        r = roma_light_data_create(ctx, scene, NULL, 0, &s.emitters);
+        r = roma_light_data_create(ctx, scene, &s.emitters);
     if (r != ROMA_SUCCESS) {
         surfaces_free(ctx, &s);
         return roma_fail(log, r, "roma_gi_effect_set_scene: cannot upload the scene's surfaces");

@@ -64,30 +64,21 @@ int roma_light_pack(const roma_light *l, roma_gpu_light *out)
     return 1;
 }
 
-roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const float *many_positions,
-                                   uint32_t many_count, roma_light_data *out)
+roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, roma_light_data *out)
 {
     memset(out, 0, sizeof *out);
     roma_scene_view v;
     roma_result r = roma_scene_get_view(scene, &v);
     if (r != ROMA_SUCCESS)
         return r;
-    if (many_count && !many_positions)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "light data: many-light positions missing");
     roma_emitter_table table;
     r = roma_emitter_table_build(&v, &ctx->logger, &table);
     if (r != ROMA_SUCCESS)
         return r;
-    roma_gpu_light *lights = calloc(v.light_count ? v.light_count : 1, sizeof *lights);
     roma_gpu_emitter *emitters = calloc(table.count ? table.count : 1, sizeof *emitters);
-    float *positions = calloc(many_count ? 4 * (size_t)many_count : 1, sizeof *positions);
-    if (!lights || !emitters || !positions) {
+    if (!emitters)
         r = roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "light data: out of memory");
-        goto done;
-    }
-    for (uint32_t i = 0; i < v.light_count; ++i)
-        out->light_count += (uint32_t)roma_light_pack(&v.lights[i], &lights[out->light_count]);
-    for (uint32_t i = 0; i < table.count; ++i) {
+    for (uint32_t i = 0; emitters && i < table.count; ++i) {
         const roma_emitter *e = &table.emitters[i];
         roma_gpu_emitter *g = &emitters[i];
         for (int k = 0; k < 3; ++k) {
@@ -99,41 +90,22 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, c
         }
         g->v0_pdf[3] = e->pdf_area;
     }
-    for (uint32_t i = 0; i < many_count; ++i)
-        memcpy(&positions[4 * (size_t)i], &many_positions[3 * (size_t)i], 3 * sizeof(float));
-    if (out->light_count)
-        r = upload(ctx, lights, sizeof *lights * out->light_count, &out->lights);
     if (r == ROMA_SUCCESS && table.count) {
         r = upload(ctx, emitters, sizeof *emitters * table.count, &out->emitters);
         if (r == ROMA_SUCCESS)
             r = upload(ctx, table.cdf, sizeof(float) * table.count, &out->cdf);
         out->emitter_count = table.count;
     }
-    if (r == ROMA_SUCCESS && many_count) {
-        r = upload(ctx, positions, 4 * sizeof(float) * many_count, &out->positions);
-        out->position_count = many_count;
-    }
-done:
-    out->host_lights = lights;
     if (r != ROMA_SUCCESS)
-        roma_light_data_destroy(ctx, out); /* frees lights too */
+        roma_light_data_destroy(ctx, out);
     free(emitters);
-    free(positions);
     roma_emitter_table_free(&table);
     return r;
 }
 
 void roma_light_data_destroy(roma_context *ctx, roma_light_data *data)
 {
-    roma_buffer_destroy(ctx, &data->lights);
     roma_buffer_destroy(ctx, &data->emitters);
     roma_buffer_destroy(ctx, &data->cdf);
-    roma_buffer_destroy(ctx, &data->positions);
-    free(data->host_lights);
     memset(data, 0, sizeof *data);
-}
-
-uint64_t roma_light_data_bytes(const roma_light_data *data)
-{
-    return data->lights.size + data->emitters.size + data->cdf.size + data->positions.size;
 }

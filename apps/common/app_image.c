@@ -45,6 +45,7 @@ roma_result app_image_create(roma_context *ctx, uint32_t width, uint32_t height,
     }
     if (r == ROMA_SUCCESS && vkBindImageMemory(dev, out->image, out->memory, 0) != VK_SUCCESS)
         r = ROMA_ERROR_VULKAN;
+    out->bytes = req.size;
     const VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
                                       .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
                                       .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};

@@ -9,6 +9,7 @@ typedef struct app_image {
     VkImage image;
     VkDeviceMemory memory;
     VkImageView view;
+    VkDeviceSize bytes; /* its memory's size */
 } app_image;
 
 /* One level, one layer, optimal tiling; on failure nothing stays made. */

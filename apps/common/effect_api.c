@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "app_image.h"
 #include "study/study_ao.h"
 #include "study/study_depth_layers.h"
 #include "study/study_rsm.h"
@@ -20,13 +21,6 @@ enum { IN_POSITION, IN_NORMAL, IN_GEOMETRIC, OUT_AO, OUT_DIRECT, OUT_GI, OUT_LIG
 /* Shadow steps of the many lights' count by default (effect_api_desc.lights_max_steps). */
 #define MANY_LIGHTS_MAX_STEPS 16u
 #define INPUTS 3
-
-typedef struct gpu_image {
-    VkImage image;
-    VkDeviceMemory memory;
-    VkImageView view;
-    VkDeviceSize bytes_per_pixel;
-} gpu_image;
 
 typedef struct host_buffer {
     VkBuffer buffer;
@@ -43,7 +37,8 @@ typedef struct engine {
     VkCommandPool pool;
     VkCommandBuffer cmd;
     VkFence fence;
-    gpu_image images[IMAGE_COUNT];
+    app_image images[IMAGE_COUNT];
+    VkDeviceSize texel_bytes[IMAGE_COUNT];
     roma_pixel_list *pixels; /* desc.shared_list: listed by the first frame, read by every frame's effects */
     roma_light_effect *count;  /* many lights: the light effect counting visible lights */
     roma_light *many_lights;   /* its unit point lights */
@@ -143,27 +138,14 @@ static roma_result allocate(engine *e, VkMemoryRequirements req, VkMemoryPropert
 }
 
 static roma_result image_create(engine *e, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                                gpu_image *out)
+                                int index)
 {
-    out->bytes_per_pixel = format == VK_FORMAT_R32_SFLOAT ? 4 : 16;
-    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
-                            .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
-                            .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL, .usage = usage};
-    roma_result r = from_vk(vkCreateImage(e->device, &ii, NULL, &out->image), "vkCreateImage");
+    e->texel_bytes[index] = format == VK_FORMAT_R32_SFLOAT ? 4 : 16;
+    roma_result r = app_image_create(e->ctx, width, height, format, usage, &e->images[index]);
     if (r != ROMA_SUCCESS)
-        out->image = VK_NULL_HANDLE;
-    VkMemoryRequirements req;
-    if (r == ROMA_SUCCESS) {
-        vkGetImageMemoryRequirements(e->device, out->image, &req);
-        r = allocate(e, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, &out->memory);
-    }
-    if (r == ROMA_SUCCESS)
-        r = from_vk(vkBindImageMemory(e->device, out->image, out->memory, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = out->image,
-                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
-                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    if (r == ROMA_SUCCESS && (r = from_vk(vkCreateImageView(e->device, &vi, NULL, &out->view), "vkCreateImageView")))
-        out->view = VK_NULL_HANDLE;
+        fprintf(stderr, "effect_api: cannot make a %ux%u image (%s)\n", width, height, roma_result_string(r));
+    else
+        e->bytes += e->images[index].bytes;
     return r;
 }
 
@@ -195,15 +177,8 @@ static void engine_free(engine *e)
         vkDestroyFence(e->device, e->fence, NULL);
     if (e->pool)
         vkDestroyCommandPool(e->device, e->pool, NULL);
-    for (int i = 0; i < IMAGE_COUNT; ++i) {
-        gpu_image *im = &e->images[i];
-        if (im->view)
-            vkDestroyImageView(e->device, im->view, NULL);
-        if (im->image)
-            vkDestroyImage(e->device, im->image, NULL);
-        if (im->memory)
-            vkFreeMemory(e->device, im->memory, NULL);
-    }
+    for (int i = 0; i < IMAGE_COUNT; ++i)
+        app_image_destroy(e->ctx, &e->images[i]);
     host_buffer *buffers[2] = {&e->upload, &e->readback};
     for (int i = 0; i < 2; ++i) {
         if (buffers[i]->buffer)
@@ -225,21 +200,6 @@ static void engine_free(engine *e)
         roma_map_destroy(e->maps[i]);
 }
 
-static void image_barrier(VkCommandBuffer cmd, const gpu_image *im, VkImageLayout from, VkImageLayout to,
-                          VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                          VkAccessFlags2 dst_access)
-{
-    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = src_stage,
-                               .srcAccessMask = src_access, .dstStageMask = dst_stage, .dstAccessMask = dst_access,
-                               .oldLayout = from, .newLayout = to,
-                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                               .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .image = im->image,
-                               .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
-                            .pImageMemoryBarriers = &b};
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 static void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                            VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
 {
@@ -256,22 +216,23 @@ static void record_upload(engine *e, uint32_t width, uint32_t height)
     VkCommandBuffer cmd = e->cmd;
     const VkDeviceSize plane = (VkDeviceSize)width * height * 16;
     for (int i = 0; i < INPUTS; ++i) {
-        gpu_image *im = &e->images[i];
-        image_barrier(cmd, im, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        const app_image *im = &e->images[i];
+        app_image_barrier(cmd, im->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy copy = {.bufferOffset = plane * (VkDeviceSize)i,
                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {width, height, 1}};
         vkCmdCopyBufferToImage(cmd, e->upload.buffer, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        image_barrier(cmd, im, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        app_image_barrier(cmd, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                          VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
     for (int i = INPUTS; i < IMAGE_COUNT; ++i)
         if (e->images[i].image)
-            image_barrier(cmd, &e->images[i], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                          VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+            app_image_barrier(cmd, e->images[i].image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                              VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 /* The outputs' copies to the host: their offsets in the readback buffer, each a multiple of 16
@@ -281,7 +242,7 @@ static VkDeviceSize readback_offset(const engine *e, int image, uint32_t width, 
     VkDeviceSize offset = 0;
     for (int i = INPUTS; i < image; ++i)
         if (e->images[i].image)
-            offset += ((VkDeviceSize)width * height * e->images[i].bytes_per_pixel + 15u) & ~(VkDeviceSize)15u;
+            offset += ((VkDeviceSize)width * height * e->texel_bytes[i] + 15u) & ~(VkDeviceSize)15u;
     return offset;
 }
 
@@ -290,9 +251,9 @@ static void record_outputs_writable(engine *e)
 {
     for (int i = INPUTS; i < IMAGE_COUNT; ++i)
         if (e->images[i].image)
-            image_barrier(e->cmd, &e->images[i], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                          VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+            app_image_barrier(e->cmd, e->images[i].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                              VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 static void record_readback(engine *e, uint32_t width, uint32_t height)
@@ -300,9 +261,9 @@ static void record_readback(engine *e, uint32_t width, uint32_t height)
     for (int i = INPUTS; i < IMAGE_COUNT; ++i) {
         if (!e->images[i].image)
             continue;
-        image_barrier(e->cmd, &e->images[i], VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        app_image_barrier(e->cmd, e->images[i].image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferImageCopy copy = {.bufferOffset = readback_offset(e, i, width, height),
                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                   .imageExtent = {width, height, 1}};
@@ -599,19 +560,19 @@ static roma_result create_images(engine *e, const effect_api_desc *d)
     const uint32_t w = d->width, h = d->height;
     const VkImageUsageFlags in_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     const VkImageUsageFlags out_usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    roma_result r = ROMA_SUCCESS;
+    /* The upload first: the largest allocation before the images (its size checked there). */
+    roma_result r = buffer_create(e, (VkDeviceSize)w * h * 16 * INPUTS, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 0,
+                                  &e->upload);
     for (int i = 0; i < INPUTS && r == ROMA_SUCCESS; ++i)
-        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, &e->images[i]);
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, in_usage, i);
     if (r == ROMA_SUCCESS && (e->ao || e->study_ao))
-        r = image_create(e, w, h, VK_FORMAT_R32_SFLOAT, out_usage, &e->images[OUT_AO]);
+        r = image_create(e, w, h, VK_FORMAT_R32_SFLOAT, out_usage, OUT_AO);
     if (r == ROMA_SUCCESS && e->light)
-        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_DIRECT]);
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, OUT_DIRECT);
     if (r == ROMA_SUCCESS && e->gi)
-        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_GI]);
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, OUT_GI);
     if (r == ROMA_SUCCESS && e->count)
-        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, &e->images[OUT_LIGHTS]);
-    if (r == ROMA_SUCCESS)
-        r = buffer_create(e, (VkDeviceSize)w * h * 16 * INPUTS, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 0, &e->upload);
+        r = image_create(e, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, out_usage, OUT_LIGHTS);
     /* (16 bytes more: a buffer of no size is invalid when no output is read back) */
     if (r == ROMA_SUCCESS)
         r = buffer_create(e, readback_offset(e, IMAGE_COUNT, w, h) + 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,

@@ -847,7 +847,6 @@ static int write_stats(const options *o, const roma_scene_view *sv, const roma_c
             roma_json_end_object(&j);
             roma_json_end_object(&j);
         }
-        roma_json_string(&j, "route", "api"); /* the public effect passes (the one route) */
         roma_json_string(&j, "jitter", o->jitter_off ? "off" : "on");
         if (run->api)
             roma_json_string(&j, "pixel_dispatch", run->shared_list ? "shared"

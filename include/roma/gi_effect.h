@@ -30,7 +30,7 @@
  * hit (where set_scene put them: call it again when they move). Its vertex normals shade the
  * hits while no build has given the map new positions; after that the hit triangle's face
  * normal does. Point and spot lights are lit by shadow rays; the reflective shadow maps of
- * the ROMA paper (libroma's offline renderer) need a rasterization of the light's view,
+ * the ROMA paper (the accuracy study's `--gi-punctual rsm`) need a rasterization of the light's view,
  * which is the engine's to make. Those shadow rays walk the map's rotated arrays with
  * bounded steps from each end (from the light's end past the empty cells in front of it,
  * up to 48 at RES 128, as far in metres at higher RES), and what lies beyond both walks
@@ -141,8 +141,9 @@ ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
  * Replaces the previous scene (NULL removes it); a failure keeps it. Call it between
  * frames, when no submitted work of this effect is still running. The data goes to
  * device-local memory: written directly where the host can map it (CPU and integrated
- * devices, GPUs with a resizable BAR), else by a copy submitted to the context's queue and
- * waited for, as roma_map_create's upload.
+ * devices, GPUs with a resizable BAR), else the materials by a copy submitted to the
+ * context's queue and waited for, as roma_map_create's upload, and the area lights by a copy
+ * the next record records ahead of the pass.
  *
  * @param effect  the effect.
  * @param scene   the scene, or NULL; nothing of it is kept.

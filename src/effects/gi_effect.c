@@ -155,7 +155,7 @@ roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
     if (r == ROMA_SUCCESS)
         r = roma_scene_buffers_create(ctx, scene, &s.materials);
     if (r == ROMA_SUCCESS)
-        r = roma_light_data_create(ctx, scene, &s.emitters);
+        r = roma_light_data_create(ctx, scene, log, &s.emitters);
     if (r != ROMA_SUCCESS) {
         surfaces_free(ctx, &s);
         return roma_fail(log, r, "roma_gi_effect_set_scene: cannot upload the scene's surfaces");
@@ -234,7 +234,7 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
         roma_gi_scene gs = {
             .cells = c->cells.address, .indices = map->indices.address, .positions = map->positions.address,
             .normals = sf->materials.normals.address, .albedo = sf->materials.albedo.address,
-            .emitters = sf->emitters.emitters.address, .cdf = sf->emitters.cdf.address,
+            .emitters = sf->emitters.emitters.device.address, .cdf = sf->emitters.cdf.device.address,
             .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
             .config = {c->resolution, sf->emitters.emitter_count, packed,
                        variant && variant->rsm_views ? ROMA_GI_PUNCTUAL_RSM : ROMA_GI_PUNCTUAL_RAYS},
@@ -247,6 +247,7 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_upload_record(&e->scene[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_light_data_record(&sf->emitters, cmd); /* area lights set since the last record */
     roma_gi_images_push push = {
         .scene = have_scene ? e->scene[slot].device.address : 0, .lights = e->lights[slot].device.address,
         .bom = info.bom_address,
@@ -284,6 +285,7 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
     if (r == ROMA_SUCCESS) {
         roma_upload_done(&e->lights[slot]);
         roma_upload_done(&e->scene[slot]);
+        roma_light_data_done(&e->surfaces.emitters);
     }
     if (r != ROMA_SUCCESS)
         e->grid_version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */

@@ -1,22 +1,13 @@
 #include "effects/light_data.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "roma_shared.h"
 #include "scene/emitters.h"
-#include "vulkan/upload.h"
+#include "util/log.h"
 
 #define PI_F 3.14159265358979323846f
-
-/* Read by the passes at every light sample: device-local memory (vulkan/upload.h). */
-static roma_result upload(roma_context *ctx, const void *data, size_t size, roma_buffer *out)
-{
-    return roma_buffer_create_filled(ctx, size,
-                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                                     data, out);
-}
 
 int roma_light_valid(const roma_light *l)
 {
@@ -64,7 +55,8 @@ int roma_light_pack(const roma_light *l, roma_gpu_light *out)
     return 1;
 }
 
-roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, roma_light_data *out)
+roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const roma_logger *log,
+                                   roma_light_data *out)
 {
     memset(out, 0, sizeof *out);
     roma_scene_view v;
@@ -72,40 +64,58 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, r
     if (r != ROMA_SUCCESS)
         return r;
     roma_emitter_table table;
-    r = roma_emitter_table_build(&v, &ctx->logger, &table);
-    if (r != ROMA_SUCCESS)
+    r = roma_emitter_table_build(&v, log, &table);
+    if (r != ROMA_SUCCESS || table.count == 0) {
+        roma_emitter_table_free(&table);
         return r;
-    roma_gpu_emitter *emitters = calloc(table.count ? table.count : 1, sizeof *emitters);
-    if (!emitters)
-        r = roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "light data: out of memory");
-    for (uint32_t i = 0; emitters && i < table.count; ++i) {
-        const roma_emitter *e = &table.emitters[i];
-        roma_gpu_emitter *g = &emitters[i];
-        for (int k = 0; k < 3; ++k) {
-            g->v0_pdf[k] = e->v0[k];
-            g->e1[k] = e->e1[k];
-            g->e2[k] = e->e2[k];
-            g->normal[k] = e->normal[k];
-            g->emission[k] = e->emission[k];
+    }
+    /* Read at every light sample: device-local memory (vulkan/upload.h). */
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    const VkDeviceSize emitter_bytes = sizeof(roma_gpu_emitter) * (VkDeviceSize)table.count;
+    const VkDeviceSize cdf_bytes = sizeof(float) * (VkDeviceSize)table.count;
+    r = roma_upload_create(ctx, emitter_bytes, usage, &out->emitters);
+    if (r == ROMA_SUCCESS)
+        r = roma_upload_create(ctx, cdf_bytes, usage, &out->cdf);
+    if (r == ROMA_SUCCESS) {
+        roma_gpu_emitter *g = roma_upload_write(&out->emitters, emitter_bytes);
+        memset(g, 0, (size_t)emitter_bytes);
+        for (uint32_t i = 0; i < table.count; ++i) {
+            const roma_emitter *e = &table.emitters[i];
+            for (int k = 0; k < 3; ++k) {
+                g[i].v0_pdf[k] = e->v0[k];
+                g[i].e1[k] = e->e1[k];
+                g[i].e2[k] = e->e2[k];
+                g[i].normal[k] = e->normal[k];
+                g[i].emission[k] = e->emission[k];
+            }
+            g[i].v0_pdf[3] = e->pdf_area;
         }
-        g->v0_pdf[3] = e->pdf_area;
-    }
-    if (r == ROMA_SUCCESS && table.count) {
-        r = upload(ctx, emitters, sizeof *emitters * table.count, &out->emitters);
-        if (r == ROMA_SUCCESS)
-            r = upload(ctx, table.cdf, sizeof(float) * table.count, &out->cdf);
+        memcpy(roma_upload_write(&out->cdf, cdf_bytes), table.cdf, (size_t)cdf_bytes);
         out->emitter_count = table.count;
-    }
-    if (r != ROMA_SUCCESS)
+    } else {
+        r = roma_fail(log, r, "light data: cannot make the buffers of %u area-light triangles", table.count);
         roma_light_data_destroy(ctx, out);
-    free(emitters);
+    }
     roma_emitter_table_free(&table);
     return r;
 }
 
+void roma_light_data_record(const roma_light_data *data, VkCommandBuffer cmd)
+{
+    roma_upload_record(&data->emitters, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_upload_record(&data->cdf, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+void roma_light_data_done(roma_light_data *data)
+{
+    roma_upload_done(&data->emitters);
+    roma_upload_done(&data->cdf);
+}
+
 void roma_light_data_destroy(roma_context *ctx, roma_light_data *data)
 {
-    roma_buffer_destroy(ctx, &data->emitters);
-    roma_buffer_destroy(ctx, &data->cdf);
+    roma_upload_destroy(ctx, &data->emitters);
+    roma_upload_destroy(ctx, &data->cdf);
     memset(data, 0, sizeof *data);
 }

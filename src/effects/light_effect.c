@@ -1,7 +1,7 @@
 /* roma_light_effect: shadowed irradiance from punctual lights and area lights on the
- * engine's G-buffer images (shaders/effects/lights_images.comp); punctual lights in a
- * host-visible buffer per slot, area lights (a scene's emissive triangles and their
- * sampling CDF) in two buffers set between frames. */
+ * engine's G-buffer images (shaders/effects/lights_images.comp); punctual lights in an
+ * upload buffer per slot, area lights (a scene's emissive triangles and their sampling CDF,
+ * effects/light_data.h) set between frames. */
 #include "roma/light_effect.h"
 
 #include <math.h>
@@ -13,7 +13,6 @@
 #include "effects/lit_record.h"
 #include "effects/light_data.h"
 #include "roma_shared.h"
-#include "scene/emitters.h"
 #include "trace/loop_costs.h"
 #include "util/log.h"
 #include "vulkan/loop_budget.h"
@@ -22,8 +21,7 @@
 struct roma_light_effect {
     roma_image_effect base;
     roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
-    roma_upload emitters, cdf; /* area lights; absent when emitter_count is 0 */
-    uint32_t emitter_count;
+    roma_light_data area; /* absent when its emitter_count is 0 */
     int exact; /* the module walks every segment through the BOM (the study's; its loop costs) */
 };
 
@@ -101,8 +99,7 @@ void roma_light_effect_destroy(roma_light_effect *e)
     roma_context *ctx = e->base.ctx;
     for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
         roma_upload_destroy(ctx, &e->lights[s]);
-    roma_upload_destroy(ctx, &e->emitters);
-    roma_upload_destroy(ctx, &e->cdf);
+    roma_light_data_destroy(ctx, &e->area);
     roma_image_effect_free(&e->base);
     free(e);
 }
@@ -113,55 +110,15 @@ roma_result roma_light_effect_set_area_lights(roma_light_effect *e, const roma_s
     if (!e)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_light_effect_set_area_lights: effect is NULL");
     roma_context *ctx = e->base.ctx;
-    roma_emitter_table table = {0};
-    roma_scene_view v;
-    roma_result r = ROMA_SUCCESS;
-    if (scene) {
-        r = roma_scene_get_view(scene, &v);
-        if (r == ROMA_SUCCESS)
-            r = roma_emitter_table_build(&v, log, &table);
-        if (r != ROMA_SUCCESS)
-            return roma_fail(log, r, "roma_light_effect_set_area_lights: cannot read the scene's emitters");
-    }
     /* Built aside, swapped in only when complete: a failure keeps the previous set. */
-    /* Device memory the next record uploads to (vulkan/upload.h). */
-    roma_upload emitters = {0}, cdf = {0};
-    if (table.count) {
-        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-        const VkDeviceSize emitter_bytes = sizeof(roma_gpu_emitter) * (VkDeviceSize)table.count;
-        const VkDeviceSize cdf_bytes = sizeof(float) * (VkDeviceSize)table.count;
-        r = roma_upload_create(ctx, emitter_bytes, usage, &emitters);
-        if (r == ROMA_SUCCESS)
-            r = roma_upload_create(ctx, cdf_bytes, usage, &cdf);
-        if (r == ROMA_SUCCESS) {
-            roma_gpu_emitter *g = roma_upload_write(&emitters, emitter_bytes);
-            for (uint32_t i = 0; i < table.count; ++i) {
-                const roma_emitter *em = &table.emitters[i];
-                memset(&g[i], 0, sizeof g[i]);
-                for (int k = 0; k < 3; ++k) {
-                    g[i].v0_pdf[k] = em->v0[k];
-                    g[i].e1[k] = em->e1[k];
-                    g[i].e2[k] = em->e2[k];
-                    g[i].normal[k] = em->normal[k];
-                    g[i].emission[k] = em->emission[k];
-                }
-                g[i].v0_pdf[3] = em->pdf_area;
-            }
-            memcpy(roma_upload_write(&cdf, cdf_bytes), table.cdf, cdf_bytes);
-        }
+    roma_light_data area = {0};
+    if (scene) {
+        roma_result r = roma_light_data_create(ctx, scene, log, &area);
+        if (r != ROMA_SUCCESS)
+            return roma_fail(log, r, "roma_light_effect_set_area_lights: cannot set the scene's area lights");
     }
-    uint32_t count = table.count;
-    roma_emitter_table_free(&table);
-    if (r != ROMA_SUCCESS) {
-        roma_upload_destroy(ctx, &emitters);
-        roma_upload_destroy(ctx, &cdf);
-        return roma_fail(log, r, "roma_light_effect_set_area_lights: out of memory for %u emitters", count);
-    }
-    roma_upload_destroy(ctx, &e->emitters);
-    roma_upload_destroy(ctx, &e->cdf);
-    e->emitters = emitters;
-    e->cdf = cdf;
-    e->emitter_count = count;
+    roma_light_data_destroy(ctx, &e->area);
+    e->area = area;
     return ROMA_SUCCESS;
 }
 
@@ -199,15 +156,14 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
     /* The slot's lights, and area lights set since the last record, into device memory. */
     const VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     roma_upload_record(buf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    roma_upload_record(&e->emitters, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    roma_upload_record(&e->cdf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_light_data_record(&e->area, cmd);
     /* Counting visible lights takes the punctual lights only. */
     const uint32_t area_samples = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 0 : s.area_samples;
     roma_light_images_push push = {.lights = buf->device.address, .bom = info.bom_address,
-                                   .emitters = e->emitter_count ? e->emitters.device.address : 0,
-                                   .cdf = e->emitter_count ? e->cdf.device.address : 0,
+                                   .emitters = e->area.emitters.device.address,
+                                   .cdf = e->area.cdf.device.address,
                                    .config = {im->width, im->height, packed, s.max_steps},
-                                   .config2 = {s.seed, e->emitter_count, area_samples, s.frame},
+                                   .config2 = {s.seed, e->area.emitter_count, area_samples, s.frame},
                                    .config3 = {s.lights_per_frame, exact_packed, (uint32_t)s.output, 0},
                                    .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
     if (variant && variant->blind_start)
@@ -219,14 +175,14 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
     const uint32_t exact = s.lights_per_frame == 0 ? packed : (exact_packed < packed ? exact_packed : packed);
     const uint32_t rest = packed - exact;
     const uint32_t sampled = s.lights_per_frame == 0 || s.lights_per_frame > rest ? rest : s.lights_per_frame;
-    const uint32_t items = exact + sampled + (e->emitter_count ? area_samples : 0);
+    const uint32_t items = exact + sampled + (e->area.emitter_count ? area_samples : 0);
     /* Counting lights walks one skip length of each start (lights_images.comp). */
     const float walk = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 1.0f : ROMA_START_WALK;
     const roma_shadow_cost shadow = {{info.resolution, info.grid_cell, info.levels}, push.ray[1], walk, s.max_steps,
                                      ROMA_BACK_SKIP_POINT, e->exact};
     uint32_t per_item = roma_loop_cost_punctual_light(&shadow);
-    if (e->emitter_count) {
-        const uint32_t area = roma_loop_cost_area_sample(&shadow, e->emitter_count);
+    if (e->area.emitter_count) {
+        const uint32_t area = roma_loop_cost_area_sample(&shadow, e->area.emitter_count);
         per_item = area > per_item ? area : per_item;
     }
     const roma_loop_parts parts = roma_loop_parts_plan(e->base.ctx, 0, items, per_item, 0, 0);
@@ -239,8 +195,7 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
         roma_image_effect_finish(&e->base, cmd, im->width, im->height);
     if (r == ROMA_SUCCESS) {
         roma_upload_done(buf);
-        roma_upload_done(&e->emitters);
-        roma_upload_done(&e->cdf);
+        roma_light_data_done(&e->area);
     }
     return r;
 }

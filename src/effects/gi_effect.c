@@ -4,7 +4,8 @@
  * the surface grid the bounce hits look up (effects/surface_cells.h) is rebuilt from the
  * map's positions whenever they or its box have changed, so animation and instances are
  * followed. The punctual lights and the roma_gi_scene record that points at all of it
- * live in host-visible buffers per frame slot. */
+ * live in upload buffers per frame slot (vulkan/upload.h: device-local, staged where the
+ * host cannot map it). */
 #include "roma/gi_effect.h"
 
 #include <math.h>

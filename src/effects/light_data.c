@@ -5,7 +5,6 @@
 
 #include "roma_shared.h"
 #include "scene/emitters.h"
-#include "util/log.h"
 
 #define PI_F 3.14159265358979323846f
 
@@ -93,8 +92,7 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, c
         memcpy(roma_upload_write(&out->cdf, cdf_bytes), table.cdf, (size_t)cdf_bytes);
         out->emitter_count = table.count;
     } else {
-        r = roma_fail(log, r, "light data: cannot make the buffers of %u area-light triangles", table.count);
-        roma_light_data_destroy(ctx, out);
+        roma_light_data_destroy(ctx, out); /* the caller says what failed */
     }
     roma_emitter_table_free(&table);
     return r;

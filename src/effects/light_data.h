@@ -22,7 +22,8 @@ int roma_light_pack(const roma_light *light, roma_gpu_light *out);
 int roma_light_valid(const roma_light *light);
 
 /* The scene's area lights, written for the next roma_light_data_record; nothing is submitted.
- * On failure nothing stays allocated and *out is zeroed (the failure logged to log). */
+ * On failure nothing stays allocated and *out is zeroed; log takes the emitter table's
+ * messages, the caller reports the failure. */
 roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, const roma_logger *log,
                                    roma_light_data *out);
 /* Records the copies still waiting (none where the device memory is mapped) ahead of the

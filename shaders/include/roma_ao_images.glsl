@@ -18,39 +18,34 @@
 #include "roma/trace_descriptors.glsl"
 #include "roma/ray_start.glsl"
 #include "roma_sampling.glsl"
-#include "roma_image_list.glsl"
+#include "roma_effect_surface.glsl"
 
 // Whether the ray origin + dir * [skip, tmax] is open (meets no occupied cell); dir is
 // unit and above the geometric surface. Defined by the includer.
 bool roma_ao_ray_open(vec3 origin, vec3 dir, float skip, float tmax);
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-layout(set = 1, binding = 0) uniform sampler2D roma_ao_position;
-layout(set = 1, binding = 1) uniform sampler2D roma_ao_normal;
-layout(set = 1, binding = 2) uniform sampler2D roma_ao_geometric_normal;
 layout(set = 1, binding = 3, r32f) uniform image2D roma_ao_output; // read back by later parts
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
 
 void main()
 {
-    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w, pixel;
-    if (!roma_image_pixel(width, height, pixel))
+    uint width = pc.config.x, height = pc.config.y, spp = pc.config.z, frame = pc.config.w;
+    roma_effect_surface surface;
+    if (!roma_effect_surface_read(width, height, surface))
         return;
-    ivec2 at = ivec2(pixel % width, pixel / width);
-    vec4 position = texelFetch(roma_ao_position, at, 0);
+    ivec2 at = surface.at;
     // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
-    if (!(position.w > 0.0)) {
+    if (!surface.covered) {
         imageStore(roma_ao_output, at, vec4(1.0));
         return;
     }
-    vec3 n = normalize(texelFetch(roma_ao_normal, at, 0).xyz);
-    vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
+    uint pixel = surface.pixel;
+    vec3 n = surface.n, ng = surface.ng;
     uint seed = pc.config2.x, open = 0u;
     // Offset and skip in the trace cells of the cascade level that holds the point.
-    float scale = roma_level_scale(position.xyz), skip = pc.ray.z * scale;
-    precise vec3 origin = position.xyz + ng * (pc.ray.x * scale);
+    float scale = surface.scale, skip = pc.ray.z * scale;
+    precise vec3 origin = surface.p + ng * (pc.ray.x * scale);
     roma_use_ray_start(pc.bom);
     // This dispatch's part of the samples; a later part adds to what the earlier ones wrote.
     for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) {

@@ -17,17 +17,12 @@
 #include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
-#include "roma_image_list.glsl"
 #include "roma_gi_bounce.glsl"
 #ifdef ROMA_GI_RSM_LOOKUP
 #include "roma_rsm_lookup.glsl"
 #endif
+#include "roma_effect_surface.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-layout(set = 1, binding = 0) uniform sampler2D roma_gi_position;
-layout(set = 1, binding = 1) uniform sampler2D roma_gi_normal;
-layout(set = 1, binding = 2) uniform sampler2D roma_gi_geometric_normal;
 layout(set = 1, binding = 3, rgba32f) uniform image2D roma_gi_output; // read back by later parts
 
 layout(push_constant) uniform Push { roma_gi_images_push pc; };
@@ -39,22 +34,22 @@ void main()
     // time: compiled with the switch fixed, lavapipe (Mesa 22.3) leaks its JIT's memory.
     roma_shadow_exact = pc.config2.w != 0u;
 #endif
-    uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w, pixel;
-    if (!roma_image_pixel(width, height, pixel))
+    uint width = pc.config.x, height = pc.config.y, samples = pc.config.z, frame = pc.config.w;
+    roma_effect_surface surface;
+    if (!roma_effect_surface_read(width, height, surface))
         return;
-    ivec2 at = ivec2(pixel % width, pixel / width);
-    vec4 position = texelFetch(roma_gi_position, at, 0);
+    ivec2 at = surface.at;
     // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
-    if (!(position.w > 0.0) || pc.scene == uvec2(0u)) {
+    if (!surface.covered || pc.scene == uvec2(0u)) {
         imageStore(roma_gi_output, at, vec4(0.0));
         return;
     }
-    vec3 n = normalize(texelFetch(roma_gi_normal, at, 0).xyz);
-    vec3 ng = normalize(texelFetch(roma_gi_geometric_normal, at, 0).xyz);
+    uint pixel = surface.pixel;
+    vec3 n = surface.n, ng = surface.ng;
     // Offset and skip in the trace cells of the cascade level that holds the point (the
     // shadow rays at a bounce hit: in the hit's, roma_gi_hit_radiance).
-    float scale = roma_level_scale(position.xyz);
-    vec3 origin = position.xyz + ng * (pc.ray.x * scale);
+    float scale = surface.scale;
+    vec3 origin = surface.p + ng * (pc.ray.x * scale);
     roma_use_ray_start(pc.bom);
     roma_gi_scene S = RomaGiScene(pc.scene).s;
     uint seed = pc.config2.x;

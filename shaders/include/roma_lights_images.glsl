@@ -16,15 +16,9 @@
 #include "roma_bound_bom.glsl"
 #include "roma_lights.glsl"
 #include "roma_sampling.glsl"
-#include "roma_image_list.glsl"
+#include "roma_effect_surface.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-layout(set = 1, binding = 0) uniform sampler2D roma_light_position;
-layout(set = 1, binding = 1) uniform sampler2D roma_light_normal;
-layout(set = 1, binding = 2) uniform sampler2D roma_light_geometric_normal;
 layout(set = 1, binding = 3, rgba32f) uniform image2D roma_light_output; // read back by later parts
-
 
 layout(push_constant) uniform Push { roma_light_images_push pc; };
 
@@ -33,21 +27,20 @@ const uint DIM_MANY_LIGHTS = 10u; // the random run of lights tested a frame (li
 
 void main()
 {
-    uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w, pixel;
-    if (!roma_image_pixel(width, height, pixel))
+    uint width = pc.config.x, height = pc.config.y, light_count = pc.config.z, max_steps = pc.config.w;
+    roma_effect_surface surface;
+    if (!roma_effect_surface_read(width, height, surface))
         return;
-    ivec2 at = ivec2(pixel % width, pixel / width);
-    vec4 position = texelFetch(roma_light_position, at, 0);
+    ivec2 at = surface.at;
     // Over every pixel the uncovered ones get the background here (listed, the list pass wrote it).
-    if (!(position.w > 0.0)) {
+    if (!surface.covered) {
         imageStore(roma_light_output, at, vec4(0.0));
         return;
     }
-    vec3 p = position.xyz;
-    vec3 n = normalize(texelFetch(roma_light_normal, at, 0).xyz);
-    vec3 ng = normalize(texelFetch(roma_light_geometric_normal, at, 0).xyz);
+    uint pixel = surface.pixel;
+    vec3 p = surface.p, n = surface.n, ng = surface.ng;
     // Offset and skip in the trace cells of the cascade level that holds the point.
-    float scale = roma_level_scale(p), offset = pc.ray.x * scale, tmin = pc.ray.y * scale;
+    float offset = pc.ray.x * surface.scale, tmin = pc.ray.y * surface.scale;
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
     vec3 E = vec3(0.0);

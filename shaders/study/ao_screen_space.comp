@@ -11,9 +11,9 @@
 roma_gbuffer_pixel roma_gbuffer_fetch(uint pixel)
 {
     ivec2 at = ivec2(pixel % pc.config.x, pixel / pc.config.x);
-    vec4 p = texelFetch(roma_ao_position, at, 0);
+    vec4 p = texelFetch(roma_effect_position, at, 0);
     float t = p.w > 0.0 ? distance(p.xyz, pc.eye.xyz) : 1.0 / 0.0;
-    vec3 ng = normalize(texelFetch(roma_ao_geometric_normal, at, 0).xyz);
+    vec3 ng = normalize(texelFetch(roma_effect_geometric_normal, at, 0).xyz);
     return roma_gbuffer_pixel(vec4(p.xyz, t), vec4(0.0), vec4(ng, 0.0), vec4(0.0));
 }
 #include "roma_ssao.glsl"

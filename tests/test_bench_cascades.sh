@@ -21,6 +21,8 @@ ok = len(rows) == 5 and one[1] == "1" and float(one[3]) == 1.0 and float(one[2])
 ok = ok and all(r[1] == "3" for r in (jittered, moving, still, obj))
 ok = ok and float(jittered[3]) == 3.0 and 0.0 < float(moving[3]) < 3.0 and float(still[3]) == 0.0
 ok = ok and float(jittered[2]) > 0 and float(moving[2]) > 0
+# triangles voxelized a build: the room (one chunk) in each level rebuilt, none while still
+ok = ok and float(one[4]) > 0 and float(jittered[4]) == 3 * float(one[4]) and float(still[4]) == 0.0
 # the object is in every level's cube: each redoes it, from its static part
 ok = ok and float(obj[3]) == 3.0 and float(obj[2]) > 0
 sys.exit(0 if ok else 1)

@@ -44,11 +44,11 @@ void roma_bench_object_transform(const roma_bench_cascades_desc *d, const roma_s
     }
 }
 
-/* One run: frames builds of the case, the mean host-observed milliseconds a build and the mean
- * levels a build redid. */
+/* One run: frames builds of the case, the mean host-observed milliseconds a build, the mean
+ * levels a build redid and the mean triangles it voxelized (its levels' summed). */
 static int run_case(roma_context *ctx, roma_map *map, const roma_bench_cascades_desc *d, const cascade_case *c,
                     const roma_scene *object, uint32_t instance, float finest, uint32_t first_frame, double *ms,
-                    double *rebuilt)
+                    double *rebuilt, double *voxelized)
 {
     float eye[3], way[3], length = 0.0f;
     for (int a = 0; a < 3; ++a) {
@@ -58,7 +58,7 @@ static int run_case(roma_context *ctx, roma_map *map, const roma_bench_cascades_
     }
     length = sqrtf(length);
     const float step = finest / (float)d->resolution; /* one finest cell a frame */
-    double total = 0.0, levels = 0.0;
+    double total = 0.0, levels = 0.0, triangles = 0.0;
     for (uint32_t f = 0; f < d->frames; ++f) {
         float focus[3];
         for (int a = 0; a < 3; ++a)
@@ -85,9 +85,11 @@ static int run_case(roma_context *ctx, roma_map *map, const roma_bench_cascades_
         roma_map_get_info(map, &info);
         total += t;
         levels += info.levels_rebuilt;
+        triangles += (double)info.triangles_voxelized;
     }
     *ms = total / d->frames;
     *rebuilt = levels / d->frames;
+    *voxelized = triangles / d->frames;
     return 1;
 }
 
@@ -139,7 +141,8 @@ int roma_bench_cascades(roma_context *ctx, const roma_scene *scene, const roma_b
            "by one finest cell (%.3g) a frame; milliseconds a build, host-observed (one submission, submit\n"
            "to fence), the mean of %u frames, medians of %u runs. The object: the built-in room shrunk to\n"
            "%.3g, %.3g in front of the camera, a dynamic instance moving sideways by a finest cell a frame.\n\n"
-           "| build | levels | ms a build | levels rebuilt a build | ratio to one grid |\n|---|---|---|---|---|\n",
+           "| build | levels | ms a build | levels rebuilt a build | triangles voxelized a build | ratio to one grid |\n"
+           "|---|---|---|---|---|---|\n",
            d->levels, d->resolution, (double)finest, (double)d->radius, (double)(finest / (float)d->resolution),
            d->frames, runs, (double)(finest / 6.0f), (double)(finest / 4.0f));
     int status = 0;
@@ -148,16 +151,16 @@ int roma_bench_cascades(roma_context *ctx, const roma_scene *scene, const roma_b
         roma_map *map = maps[cases[c].object ? 2 : cases[c].levels > 1];
         /* A first build of the case's start, not timed: the levels then hold what the case
          * starts from (pipelines made, a still camera's levels built). */
-        double warm_ms, warm_levels;
+        double warm_ms, warm_levels, warm_triangles;
         roma_bench_cascades_desc one = *d;
         one.frames = 1;
-        if (!run_case(ctx, map, &one, &cases[c], object, instance, finest, 0, &warm_ms, &warm_levels)) {
+        if (!run_case(ctx, map, &one, &cases[c], object, instance, finest, 0, &warm_ms, &warm_levels, &warm_triangles)) {
             status = 1;
             break;
         }
         for (uint32_t k = 0; k < runs; ++k)
             if (!run_case(ctx, map, d, &cases[c], object, instance, finest, 1 + k * d->frames, &samples[k],
-                          &samples[runs + k])) {
+                          &samples[runs + k], &samples[2 * runs + k])) {
                 status = 1;
                 break;
             }
@@ -165,9 +168,11 @@ int roma_bench_cascades(roma_context *ctx, const roma_scene *scene, const roma_b
             break;
         const double ms = roma_app_median(samples, (int)runs);
         const double levels = roma_app_median(samples + runs, (int)runs);
+        const double triangles = roma_app_median(samples + 2 * runs, (int)runs);
         if (c == 0)
             one_grid = ms;
-        printf("| %s | %u | %.2f | %.2f | %.2fx |\n", cases[c].name, cases[c].levels, ms, levels, ms / one_grid);
+        printf("| %s | %u | %.2f | %.2f | %.0f | %.2fx |\n", cases[c].name, cases[c].levels, ms, levels, triangles,
+               ms / one_grid);
         if (csv)
             fprintf(csv, "cascades,%s,%u,4,%.6f,ms\n", cases[c].name, d->resolution, ms);
     }

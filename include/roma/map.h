@@ -386,6 +386,12 @@ typedef struct roma_map_info {
     /** Device memory of those copies of the static part (each level's BOM and maps), made by
      * the first build with a dynamic instance; 0 before. */
     uint64_t static_copy_bytes;
+    /** Triangles the last build voxelized, summed over the levels it rebuilt: each level takes
+     * those whose bounds touch its cube (the scene's in chunks of 256 with their boxes at the
+     * last host positions, every chunk after GPU positions; an instance by its mesh's box
+     * where it is), so that a level's cost follows what lies in it. Dynamic instances added to
+     * a level's static part are not counted. */
+    uint64_t triangles_voxelized;
 } roma_map_info;
 
 /** The map's sizes, grid and trace handles, as of the last recorded build.

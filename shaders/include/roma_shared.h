@@ -92,10 +92,14 @@ ROMA_STRUCT_END(roma_bom_push)
 #define ROMA_VOXELIZE_BINDING_BOM 2
 #define ROMA_VOXELIZE_BINDING_QUEUE 3
 #define ROMA_VOXELIZE_BINDINGS 4
+/* voxelize.comp's triangles: up to this many runs of consecutive ones, in one dispatch (a
+ * cascade level takes the runs whose bounds touch its cube, src/map/level_runs.c). */
+#define ROMA_VOXELIZE_RUNS 6u
 ROMA_STRUCT_BEGIN(roma_voxelize_push)
     roma_grid_params grid; /* this frame's placement (dims.x = RES, dims.y = words) */
-    ROMA_UVEC4(config);    /* x: triangle count, y: queue capacity (items), z: the first triangle
-                              (voxelize.comp: triangles z .. z + x - 1) */
+    ROMA_UVEC4(config);    /* x: triangle count (the runs' counts summed), y: queue capacity (items) */
+    ROMA_UVEC4(runs[3]);   /* voxelize.comp: run i is (first, count) = runs[i / 2].xy or .zw;
+                              invocation k takes the k-th triangle of the runs in order */
 ROMA_STRUCT_END(roma_voxelize_push)
 /* Header of the tile queue; dispatch is the VkDispatchIndirectCommand of voxelize_tiles. */
 ROMA_STRUCT_BEGIN(roma_voxelize_queue)

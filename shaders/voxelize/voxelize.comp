@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "roma_loop_guard.glsl"
-// BOM voxelization, one invocation per triangle: small triangles mark their cells
-// here; large ones are split into tiles and queued for voxelize_tiles.comp.
+// BOM voxelization, one invocation per triangle of the push's runs: small triangles mark
+// their cells here; large ones are split into tiles and queued for voxelize_tiles.comp.
 #include "roma_voxelize.glsl"
 
 layout(local_size_x = ROMA_VOXELIZE_WORKGROUP_SIZE) in;
@@ -13,7 +13,17 @@ void main()
               + gl_LocalInvocationID.x;
     if (id >= pc.config.x)
         return;
-    uint tri = pc.config.z + id;
+    // The id-th triangle of the runs.
+    uint tri = id;
+    for (uint r = 0u; r < ROMA_VOXELIZE_RUNS; ++r) {
+        ROMA_LOOP_TICK();
+        uvec2 run = (r & 1u) == 0u ? pc.runs[r >> 1u].xy : pc.runs[r >> 1u].zw;
+        if (tri < run.y) {
+            tri += run.x;
+            break;
+        }
+        tri -= run.y;
+    }
     int res = int(pc.grid.dims.x);
     uint words = pc.grid.dims.y;
     roma_vox_triangle t = roma_vox_load(tri, res);

@@ -10,9 +10,24 @@
 
 static const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
-static int is_dynamic(const roma_map_instance *in)
+int roma_map_instance_is_dynamic(const roma_map_instance *in)
 {
     return (in->flags & ROMA_INSTANCE_DYNAMIC) != 0;
+}
+
+void roma_map_instance_box(const roma_map *map, const roma_map_instance *in, float bmin[3], float bmax[3])
+{
+    const roma_map_mesh *m = &map->meshes[in->mesh];
+    for (int c = 0; c < 8; ++c) {
+        float p[3] = {c & 1 ? m->bmax[0] : m->bmin[0], c & 2 ? m->bmax[1] : m->bmin[1],
+                      c & 4 ? m->bmax[2] : m->bmin[2]};
+        for (int a = 0; a < 3; ++a) {
+            const float *row = in->transform + 4 * a;
+            float w = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
+            bmin[a] = fminf(bmin[a], w);
+            bmax[a] = fmaxf(bmax[a], w);
+        }
+    }
 }
 
 static int grow(void **items, uint32_t *capacity, uint32_t count, size_t size)
@@ -272,7 +287,7 @@ roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out)
     out->static_triangles = map->triangle_count;
     for (int dynamic = 0; dynamic < 2; ++dynamic)
         for (uint32_t i = 0; i < map->instance_count; ++i) {
-            if (!map->instances[i].live || is_dynamic(&map->instances[i]) != dynamic)
+            if (!map->instances[i].live || roma_map_instance_is_dynamic(&map->instances[i]) != dynamic)
                 continue;
             const roma_map_mesh *m = &map->meshes[map->instances[i].mesh];
             for (size_t k = 0; k < 3ull * m->triangle_count; ++k)
@@ -322,7 +337,7 @@ void roma_map_instances_record_copies(roma_map *map, VkCommandBuffer cmd, roma_m
     uint32_t v_at = map->vertex_count; /* the order of roma_map_instances_prepare */
     for (int dynamic = 0; dynamic < 2; ++dynamic)
         for (uint32_t i = 0; i < map->instance_count; ++i)
-            if (map->instances[i].live && is_dynamic(&map->instances[i]) == dynamic) {
+            if (map->instances[i].live && roma_map_instance_is_dynamic(&map->instances[i]) == dynamic) {
                 map->instances[i].first_vertex = v_at;
                 v_at += map->meshes[map->instances[i].mesh].vertex_count;
             }
@@ -357,20 +372,10 @@ int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[
     int found = 0;
     for (uint32_t i = 0; i < map->instance_count; ++i) {
         const roma_map_instance *in = &map->instances[i];
-        if (!in->live || (dynamic_only && !is_dynamic(in)))
+        if (!in->live || (dynamic_only && !roma_map_instance_is_dynamic(in)))
             continue;
         found = 1;
-        const roma_map_mesh *m = &map->meshes[in->mesh];
-        for (int c = 0; c < 8; ++c) {
-            float p[3] = {c & 1 ? m->bmax[0] : m->bmin[0], c & 2 ? m->bmax[1] : m->bmin[1],
-                          c & 4 ? m->bmax[2] : m->bmin[2]};
-            for (int a = 0; a < 3; ++a) {
-                const float *row = in->transform + 4 * a;
-                float w = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
-                bmin[a] = fminf(bmin[a], w);
-                bmax[a] = fmaxf(bmax[a], w);
-            }
-        }
+        roma_map_instance_box(map, in, bmin, bmax);
     }
     return found;
 }
@@ -378,7 +383,7 @@ int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[
 int roma_map_instances_dynamic(const roma_map *map)
 {
     for (uint32_t i = 0; i < map->instance_count; ++i)
-        if (map->instances[i].live && is_dynamic(&map->instances[i]))
+        if (map->instances[i].live && roma_map_instance_is_dynamic(&map->instances[i]))
             return 1;
     return 0;
 }

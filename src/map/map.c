@@ -10,6 +10,7 @@
 #include "voxelize/bom_raster.h"
 #include "voxelize/bom_voxelize.h"
 #include "rotate/directions.h"
+#include "map/level_runs.h"
 #include "map/map_internal.h"
 #include "rotate/map_params.h"
 #include "roma/sampling.h"
@@ -331,6 +332,8 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                12ull * sv.triangle_count);
         r = upload_initial_positions(map, sv.positions);
     }
+    if (r == ROMA_SUCCESS)
+        r = roma_map_chunks_create(map, sv.positions);
     if (r != ROMA_SUCCESS) {
         roma_map_destroy(map);
         return r;
@@ -383,6 +386,7 @@ void roma_map_destroy(roma_map *map)
     roma_buffer_destroy(ctx, &map->ray_device);
     roma_buffer_destroy(ctx, &map->hit_device);
     free(map->indices_host);
+    free(map->chunk_boxes);
     free(map->frames);
     free(map);
 }
@@ -573,6 +577,16 @@ static void record_rotation(roma_map *map, VkCommandBuffer cmd, uint32_t level, 
     vkCmdDispatchIndirect(cmd, map->cells.buffer, offsetof(roma_rotate_cells, gather));
 }
 
+/* Level l's BOM cleared and voxelized from those of triangles 0 .. end - 1 that touch its cube. */
+static roma_result voxelize_level(roma_map *map, VkCommandBuffer cmd, uint32_t l, uint32_t end)
+{
+    roma_triangle_run runs[ROMA_VOXELIZE_RUNS];
+    const uint32_t n = roma_map_level_runs(map, l, end, runs);
+    for (uint32_t i = 0; i < n; ++i)
+        map->triangles_voxelized += runs[i].count;
+    return roma_bom_voxelize_record_runs(map->voxelizer, cmd, &map->grids[l], runs, n, 1);
+}
+
 /* The BOM of the levels in the mask: exact compute voxelization (each level's part of the
  * buffer) or one of the raster modes (one level). */
 static roma_result record_bom(roma_map *map, VkCommandBuffer cmd, uint32_t levels)
@@ -581,7 +595,7 @@ static roma_result record_bom(roma_map *map, VkCommandBuffer cmd, uint32_t level
     if (map->voxelizer) {
         for (uint32_t l = 0; l < map->levels && r == ROMA_SUCCESS; ++l)
             if (levels & (1u << l))
-                r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->total_triangles, 1);
+                r = voxelize_level(map, cmd, l, map->total_triangles);
         return r;
     }
     if (!(levels & 1u))
@@ -594,6 +608,7 @@ static roma_result record_bom(roma_map *map, VkCommandBuffer cmd, uint32_t level
         .config = {0, map->bom_mode == ROMA_BOM_UNION3 ? ROMA_BOM_MODE_UNION3 : ROMA_BOM_MODE_DOMINANT,
                    map->total_triangles, map->bom_mode == ROMA_BOM_CONSERVATIVE ? ROMA_BOM_FLAG_CONSERVATIVE : 0u},
     };
+    map->triangles_voxelized = map->total_triangles;
     return roma_bom_raster_record(map->raster, cmd, &bom_push, map->bom.buffer, map->bom.size, map->res);
 }
 
@@ -711,17 +726,6 @@ static roma_result add_dynamic(roma_map *map, VkCommandBuffer cmd, uint32_t l, c
 }
 
 /* Whether the box [bmin, bmax] (world) comes within a cell of level l's cube. */
-static int touches_level(const roma_map *map, uint32_t l, const float bmin[3], const float bmax[3])
-{
-    const roma_grid_params *g = &map->grids[l];
-    for (int a = 0; a < 3; ++a) {
-        const float lo = g->origin[a] - g->origin[3], hi = g->origin[a] + (float)(map->res + 1) * g->origin[3];
-        if (!(bmax[a] >= lo && bmin[a] <= hi))
-            return 0;
-    }
-    return 1;
-}
-
 /* A whole build over dynamic instances (the exact BOM, no new positions). A level that moved or
  * has new directions is built from every triangle, as without dynamic instances (a static copy
  * would not outlive the frame: a jittered map pays nothing for them). A level placed as last
@@ -741,18 +745,18 @@ static roma_result record_layered(roma_map *map, VkCommandBuffer cmd, uint32_t *
                                   level_frames) == 0;
         const int static_same = placed && map->static_current[l] &&
                                 map->built_static_versions[l] == map->static_version;
-        const int touches = touches_level(map, l, dmin, dmax);
+        const int touches = roma_map_touches_level(map, l, dmin, dmax);
         if (static_same && (map->built_versions[l] == map->geometry_version || (!touches && !map->dynamic_in[l]))) {
             map->built_versions[l] = map->geometry_version;
             continue;
         }
         roma_result r = ROMA_SUCCESS;
         if (!placed) {
-            r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->total_triangles, 1);
+            r = voxelize_level(map, cmd, l, map->total_triangles);
             if (r == ROMA_SUCCESS)
                 record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
         } else if (!static_same) {
-            r = roma_bom_voxelize_record_level(map->voxelizer, cmd, &map->grids[l], 0, map->static_triangles, 1);
+            r = voxelize_level(map, cmd, l, map->static_triangles);
             if (r == ROMA_SUCCESS) {
                 record_rotation(map, cmd, l, l, 1, 0, map->res * map->res * map->words);
                 save_static(map, cmd, l);
@@ -833,6 +837,10 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     if (frame.positions) /* later frames without a volume fit these bounds */
         for (int a = 0; a < 3; ++a)
             map->scene_min[a] = pmin[a], map->scene_max[a] = pmax[a];
+    if (frame.positions) /* the levels' runs follow them; positions the host cannot see: every chunk */
+        roma_map_chunks_update(map, frame.positions);
+    else if (frame.gpu_positions)
+        map->chunks_known = 0;
 
     /* Everything earlier on the queue (traces of the previous frame from any stage,
      * downloads, the caller's writes of gpu_positions) before this build writes. */
@@ -858,6 +866,7 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_UNIFORM_READ_BIT);
     roma_map_instances_record_transforms(map, cmd, layout.changed);
     ++map->builds;
+    map->triangles_voxelized = 0;
 
     if (layered) {
         uint32_t scope = roma_gpu_timer_begin(timer, cmd, "bom_and_rotate");
@@ -985,6 +994,7 @@ roma_result roma_map_get_info(const roma_map *map, roma_map_info *out)
     out->levels = map->levels;
     out->levels_rebuilt = map->levels_rebuilt;
     out->static_copy_bytes = map->static_bom.size + map->static_maps.size;
+    out->triangles_voxelized = map->triangles_voxelized;
     return ROMA_SUCCESS;
 }
 

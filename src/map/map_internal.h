@@ -44,6 +44,11 @@ struct roma_map {
     uint32_t frames_in_flight;
     uint32_t vertex_count, triangle_count;
     uint32_t *indices_host;
+    /* The scene's triangles in chunks, the box of each at the last host positions (6 floats:
+     * min, max); chunks_known 0 after GPU positions (src/map/level_runs.h). */
+    float *chunk_boxes;
+    uint32_t chunk_count;
+    int chunks_known;
     float scene_min[3], scene_max[3]; /* bounds of the last host positions */
     roma_buffer positions;          /* float4 per vertex (device-local; written by copies and gathers) */
     /* uint3 per triangle, read by every build: device-local, written once by the host where it
@@ -110,6 +115,7 @@ struct roma_map {
     roma_map_frame *built_frames; /* levels x map_count, in the frames' allocation */
     uint8_t bom_current[ROMA_MAX_LEVELS], maps_current[ROMA_MAX_LEVELS];
     uint32_t levels_rebuilt;      /* by the last build */
+    uint64_t triangles_voxelized; /* by the last build, its levels' runs summed (level_runs.h) */
     /* Dynamic instances over static geometry (the exact BOM; record_layered in map.c): each level's BOM and
      * maps of the static triangles alone, in static_bom / static_maps (made by the first build
      * that has a dynamic instance). A build that finds a level's static part current copies it
@@ -153,12 +159,15 @@ typedef struct roma_map_layout {
 roma_result roma_map_instances_prepare(roma_map *map, roma_map_layout *out);
 void roma_map_instances_record_copies(roma_map *map, VkCommandBuffer cmd, roma_map_layout *layout);
 void roma_map_instances_record_transforms(roma_map *map, VkCommandBuffer cmd, int all);
-/* Grows bmin/bmax by every live instance's world bounds. */
 /* Grows bmin/bmax by the live instances' boxes where they are now (the dynamic ones alone when
  * dynamic_only); 0 when there were none. */
 int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[3], float bmax[3]);
 /* 1 when a live instance is dynamic (ROMA_INSTANCE_DYNAMIC). */
 int roma_map_instances_dynamic(const roma_map *map);
+/* Whether the instance is dynamic; grows bmin/bmax by its box where it is now (its mesh's box
+ * through its transform). */
+int roma_map_instance_is_dynamic(const roma_map_instance *in);
+void roma_map_instance_box(const roma_map *map, const roma_map_instance *in, float bmin[3], float bmax[3]);
 /* Releases what the builds recorded so far no longer use; at map destruction, everything. */
 void roma_map_instances_release(roma_map *map, int all);
 

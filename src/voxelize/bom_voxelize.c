@@ -89,11 +89,19 @@ roma_result roma_bom_voxelize_record(roma_bom_voxelizer *v, VkCommandBuffer cmd,
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
                                            uint32_t first, uint32_t triangles, int clear)
 {
+    const roma_triangle_run run = {first, triangles};
+    return roma_bom_voxelize_record_runs(v, cmd, grid, &run, triangles ? 1u : 0u, clear);
+}
+
+roma_result roma_bom_voxelize_record_runs(roma_bom_voxelizer *v, VkCommandBuffer cmd, const roma_grid_params *grid,
+                                          const roma_triangle_run *runs, uint32_t run_count, int clear)
+{
     if (!v)
         return ROMA_ERROR_INVALID_ARGUMENT;
     roma_context *ctx = v->ctx;
-    if (!cmd || !grid)
-        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "roma_bom_voxelize_record: cmd and grid are required");
+    if (!cmd || !grid || (run_count && !runs))
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: cmd, grid and the runs are required");
     if (grid->dims[0] != v->resolution || grid->dims[1] != v->resolution / 32)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_bom_voxelize_record: grid of RES %u (%u words), the voxelizer was made for %u",
@@ -102,7 +110,17 @@ roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffe
     if ((VkDeviceSize)grid->level[0] * level_bytes + level_bytes > v->bom_bytes)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_bom_voxelize_record: level %u is outside the BOM buffer", grid->level[0]);
-    roma_voxelize_push push = {.grid = *grid, .config = {triangles, v->queue.capacity, first, 0}};
+    if (run_count > ROMA_VOXELIZE_RUNS)
+        return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_bom_voxelize_record: %u runs of triangles, at most %u", run_count,
+                         (unsigned)ROMA_VOXELIZE_RUNS);
+    roma_voxelize_push push = {.grid = *grid, .config = {0, v->queue.capacity, 0, 0}};
+    for (uint32_t i = 0; i < run_count; ++i) {
+        push.runs[i / 2][2 * (i % 2)] = runs[i].first;
+        push.runs[i / 2][2 * (i % 2) + 1] = runs[i].count;
+        push.config[0] += runs[i].count;
+    }
+    const uint32_t triangles = push.config[0];
 
     /* WAR/WAW against the previous build (voxelization, rotation, downloads, the
      * indirect read of the queue) and geometry written by transfers or compute. */
@@ -121,7 +139,9 @@ roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *v, VkCommandBuffe
     if (triangles) {
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.layout, 0, 1, &v->set.set, 0, NULL);
         vkCmdPushConstants(cmd, v->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        roma_tile_queue_record_passes(&v->queue, cmd, v->triangles.pipeline, v->tiles.pipeline, triangles);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.pipeline);
+        roma_cmd_dispatch_linear(cmd, triangles, ROMA_VOXELIZE_WORKGROUP_SIZE);
+        roma_tile_queue_record_tiles(&v->queue, cmd, v->tiles.pipeline);
     }
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,

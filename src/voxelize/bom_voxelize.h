@@ -45,9 +45,18 @@ void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
  * grid is this frame's placement (dims.x must be the voxelizer's RES, dims.y RES / 32);
  * it travels in push constants. triangle_count 0 clears only. Indices must be in range
  * for positions (not checked on the GPU). */
+/* A run of consecutive triangles: first .. first + count - 1. */
+typedef struct roma_triangle_run {
+    uint32_t first, count;
+} roma_triangle_run;
+
 /* One cascade level of a map (grid->level.x: its BOM slot in the buffer; the other slots are
- * kept): triangles first .. first + count - 1, into the slot cleared first when clear is set,
- * else added to what it holds. */
+ * kept): the triangles of at most ROMA_VOXELIZE_RUNS runs (one dispatch over them all), into
+ * the slot cleared first when clear is set, else added to what it holds. No runs: the clear
+ * alone. */
+roma_result roma_bom_voxelize_record_runs(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
+                                          const roma_triangle_run *runs, uint32_t run_count, int clear);
+/* One run. */
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
                                            uint32_t first, uint32_t count, int clear);
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,

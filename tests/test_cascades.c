@@ -162,7 +162,7 @@ static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int t
     make_rays(grids, 17, rays);
     for (int m = 0; m < 4; ++m) {
         CHECK_RESULT(roma_map_trace(map, (roma_trace_mode)m, 8, rays, N, gpu, NULL), ROMA_SUCCESS);
-        uint32_t mismatch = 0, selection = 0, hits = 0, crossed = 0;
+        uint32_t mismatch = 0, selection = 0, off_edge = 0, hits = 0, crossed = 0;
         for (uint32_t i = 0; i < N; ++i) {
             const roma_hit cpu_hit = roma_cpu_trace_levels(LEVELS, grids, frames, maps, &rays[i], (roma_trace_mode)m, 8);
             int folded;
@@ -176,9 +176,11 @@ static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int t
             hits += gpu[i].info & 1u;
             crossed += ROMA_HIT_LEVEL(gpu[i].info) > start;
             if (!same_hit(cpu_hit, gpu[i])) {
-                /* Map selection may round apart on a stratum edge (atan): then the mirror is off too. */
+                /* Map selection may round apart on a stratum edge, within what Vulkan lets atan
+                 * and sqrt round (ROMA_CPU_SELECTION_TOLERANCE): then the mirror is off too. */
                 if (k != ROMA_HIT_MAP(gpu[i].info)) {
                     ++selection;
+                    off_edge += !roma_cpu_selection_may_differ(rays[i].dir, ANGULAR, ROMA_HIT_MAP(gpu[i].info), NULL);
                     continue;
                 }
                 if (mismatch < 3)
@@ -188,9 +190,9 @@ static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int t
             }
         }
         printf("  mode %d: %u/%u hits, %u ended in a coarser level than they began, %u mismatches, %u selection "
-               "differences\n", m, hits, N, crossed, mismatch, selection);
+               "differences (%u off a stratum edge)\n", m, hits, N, crossed, mismatch, selection, off_edge);
         CHECK(mismatch == 0);
-        CHECK(selection <= N / 1000);
+        CHECK(off_edge == 0);
         CHECK(hits > N / 10 && crossed > N / 10);
     }
     /* One level: the levels' walk is the single grid's trace. */

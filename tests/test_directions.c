@@ -5,6 +5,7 @@
 #include "harness.h"
 #include "rotate/directions.h"
 #include "roma/sampling.h"
+#include "trace/cpu_mirror.h"
 
 static float angle_between(const float a[3], const float b[3])
 {
@@ -117,6 +118,22 @@ int main(void)
         uint32_t k = roma_direction_to_map(d, A, &folded);
         uint32_t sx = k % A, sy = k / A;
         CHECK(sx == 0 || sy == 0 || sx == A - 1 || sy == A - 1);
+    }
+    /* The tests' tolerance for a device's map selection (ROMA_CPU_SELECTION_TOLERANCE): the
+     * neighbour across the edge u = 1/4 (A = 4) is accepted within the tolerance of it, not
+     * beyond it, and a stratum two away or another row never. */
+    for (int side = -1; side <= 1; side += 2) {
+        float near[3], far[3];
+        roma_square_to_hemisphere(0.25f + (float)side * 0.5f * ROMA_CPU_SELECTION_TOLERANCE, 0.6f, near);
+        roma_square_to_hemisphere(0.25f + (float)side * 2.0f * ROMA_CPU_SELECTION_TOLERANCE, 0.6f, far);
+        const uint32_t mine = roma_direction_to_map(near, A, &folded), other = side < 0 ? mine + 1 : mine - 1;
+        CHECK(mine == 2 * A + (side < 0 ? 0u : 1u));
+        CHECK(roma_cpu_selection_may_differ(near, A, mine, NULL));
+        CHECK(roma_cpu_selection_may_differ(near, A, other, NULL));
+        CHECK(!roma_cpu_selection_may_differ(far, A, side < 0 ? roma_direction_to_map(far, A, &folded) + 1
+                                                               : roma_direction_to_map(far, A, &folded) - 1, NULL));
+        CHECK(!roma_cpu_selection_may_differ(near, A, mine + 2, NULL));
+        CHECK(!roma_cpu_selection_may_differ(near, A, mine + A, NULL));
     }
     return roma_test_finish("test_directions");
 }

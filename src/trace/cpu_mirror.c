@@ -43,6 +43,31 @@ uint32_t roma_cpu_select_map(const float dir[3], uint32_t angular, int *folded)
     return roma_direction_to_map(dir, angular, folded);
 }
 
+int roma_cpu_selection_may_differ(const float dir[3], uint32_t angular, uint32_t gpu_map, float *distance)
+{
+    float unit[3], u = 0.0f, v = 0.0f, far = 0.0f;
+    if (distance)
+        *distance = INFINITY;
+    if (angular == 0 || gpu_map >= angular * angular || !roma_unit_direction(dir, unit))
+        return 0;
+    const float s = unit[2] < 0.0f ? -1.0f : 1.0f, up[3] = {unit[0] * s, unit[1] * s, unit[2] * s};
+    roma_hemisphere_to_square(up, &u, &v);
+    const float uv[2] = {u, v};
+    const uint32_t gpu[2] = {gpu_map % angular, gpu_map / angular};
+    for (int a = 0; a < 2; ++a) {
+        const uint32_t mine = (uint32_t)fminf(uv[a] * (float)angular, (float)(angular - 1));
+        if (mine == gpu[a])
+            continue;
+        if (mine + 1 != gpu[a] && gpu[a] + 1 != mine)
+            return 0;
+        const uint32_t edge = mine > gpu[a] ? mine : gpu[a]; /* the edge between them */
+        far = fmaxf(far, fabsf(uv[a] - (float)edge / (float)angular));
+    }
+    if (distance)
+        *distance = far;
+    return far <= ROMA_CPU_SELECTION_TOLERANCE;
+}
+
 static void to_map(const roma_grid_params *grid, const roma_map_frame *f, const float p[3], float m[3])
 {
     const float *rows[3] = {f->to_map_0, f->to_map_1, f->to_map_2};

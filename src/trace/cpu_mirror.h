@@ -17,6 +17,19 @@ void roma_cpu_rotate(const roma_grid_params *grid, const roma_map_frame *frames,
 /* Map selection exactly as roma_select_map in GLSL (C float functions). */
 uint32_t roma_cpu_select_map(const float dir[3], uint32_t angular, int *folded);
 
+/* How far a device's map selection may stray from the mirror's, in the square's units (u, v
+ * in [0, 1]), from what Vulkan requires of the GLSL it runs (roma_hemisphere_to_square):
+ * atan's 4096 ULP of an angle of at most pi (9.77e-4 rad) move the square's coordinate by
+ * 4 / pi of that in [-1, 1], half of it in [0, 1] (6.22e-4); sqrt (1 / inversesqrt, 2 ULP)
+ * and the divisions (2.5 ULP) a few ULP of r <= 1 more (about 1e-6). */
+#define ROMA_CPU_SELECTION_TOLERANCE 6.3e-4f
+
+/* Whether map gpu_map (the same fold) may be a device's selection for dir where the mirror
+ * selects another: a neighbouring stratum across an edge within ROMA_CPU_SELECTION_TOLERANCE
+ * of the mirror's (u, v); *distance (may be NULL): that distance in the square's units (the
+ * largest of the axes that differ; 0 where the maps are equal, +INF where not neighbours). */
+int roma_cpu_selection_may_differ(const float dir[3], uint32_t angular, uint32_t gpu_map, float *distance);
+
 /* Trace one ray. map_override < 0: select the map from the direction; otherwise use
  * that map and fold flag (lets tests compare traces when float atan2 differs at a
  * stratum boundary). */

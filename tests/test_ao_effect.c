@@ -475,9 +475,10 @@ int main(void)
                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     CHECK_RESULT(roma_ao_effect_record(ao, cmd, 1, map, &images, &settings), ROMA_SUCCESS);
     CHECK(ao_values_differing(ctx, output.image, cmd, staging, &back, out, single_record) == 0);
-    /* Images wider than 65,535 groups of 8 are refused before anything is recorded. */
+    /* Images wider than 65,536 pixels (the list packs x and y in 16 bits each) are refused before
+     * anything is recorded. */
     roma_ao_images huge = images;
-    huge.width = 65535u * 8u + 1u;
+    huge.width = 65536u + 1u;
     CHECK_RESULT(roma_ao_effect_record(ao, cmd, 0, map, &huge, &settings), ROMA_ERROR_INVALID_ARGUMENT);
     /* A dispatch over every pixel (a GPU's default) writes the same bits as the list. */
     roma_ao_effect *every = NULL;

@@ -154,9 +154,9 @@ typedef struct roma_ao_images {
  * @param settings  NULL = the zero value (defaults, roma_ao_settings_resolve).
  * @return ROMA_SUCCESS;
  *   ROMA_ERROR_INVALID_ARGUMENT: a NULL effect, cmd, map or images, a zero width or height,
- *   a width or height above 524,280 (65,535 groups of 8), a listed record whose list of
- *   width x height pixels exceeds the device's maxStorageBufferRange, no position, normal or
- *   output view, settings roma_ao_settings_resolve rejects, a slot not below
+ *   a width or height above 65,536 (the list packs x and y in 16 bits each), a listed record
+ *   whose list of width x height pixels exceeds the device's maxStorageBufferRange, no
+ *   position, normal or output view, settings roma_ao_settings_resolve rejects, a slot not below
  *   frames_in_flight, more than 16 records in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
  *   a Vulkan failure code (roma_result) when the descriptor set or the slot's list cannot be

@@ -88,8 +88,9 @@ typedef struct roma_pixel_list_images {
  * @param slot    the engine's frame slot, below the list's frames_in_flight.
  * @param images  the image; copied. It must outlive the recorded work.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL argument, a slot out of range,
- *         a zero size or position, images whose list would exceed the device's storage-buffer
- *         range or more than 4 records in a slot's frame; ROMA_ERROR_OUT_OF_DEVICE_MEMORY or
+ *         a zero size or position, a width or height above 65,536 (the list packs x and y in
+ *         16 bits each), images whose list would exceed the device's storage-buffer range or
+ *         more than 4 records in a slot's frame; ROMA_ERROR_OUT_OF_DEVICE_MEMORY or
  *         another Vulkan failure code when the slot's list must grow. Nothing is recorded on
  *         failure.
  * @par Threads

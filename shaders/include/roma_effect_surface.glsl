@@ -30,9 +30,8 @@ bool roma_effect_surface_read(uint width, uint height, out roma_effect_surface s
     s.covered = false;
     s.p = s.n = s.ng = vec3(0.0);
     s.scale = 1.0;
-    if (!roma_image_pixel(width, height, s.pixel))
+    if (!roma_image_pixel(width, height, s.pixel, s.at))
         return false;
-    s.at = ivec2(s.pixel % width, s.pixel / width);
     vec4 position = texelFetch(roma_effect_position, s.at, 0);
     s.covered = position.w > 0.0;
     if (!s.covered)

@@ -43,7 +43,7 @@ void main()
     base = subgroupBroadcastFirst(base);
     // After the subgroup operations, so that they see the lanes the branch would have split.
     if (covered)
-        roma_image_list.pixels[base + before] = xy.y * width + xy.x;
+        roma_image_list.pixels[base + before] = (xy.y << 16u) | xy.x;
 #ifdef ROMA_IMAGE_LIST_OUTPUT_FORMAT
     else if (scale == 1u)
         imageStore(roma_list_output, ivec2(xy), pc.background);

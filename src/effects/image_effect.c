@@ -183,7 +183,7 @@ roma_result roma_image_effect_begin(roma_image_effect *e, uint32_t slot, uint32_
 roma_result roma_image_effect_check_size(const roma_image_effect *e, const char *name, uint32_t width,
                                          uint32_t height)
 {
-    const uint32_t most = 65535u * 8u; /* 8 x 8 workgroups, at most 65535 along each axis */
+    const uint32_t most = 65536u; /* the list holds (y << 16) | x (roma_image_list.glsl) */
     if (width > most || height > most)
         return roma_fail(&e->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: images of %ux%u, at most %u along each axis",
                          name, width, height, most);

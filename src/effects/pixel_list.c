@@ -103,7 +103,7 @@ roma_result roma_pixel_list_record(roma_pixel_list *l, VkCommandBuffer cmd, uint
     if (!im->width || !im->height || !im->position)
         return roma_fail(&l->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_pixel_list_record: width, height and position are required");
-    const uint32_t most = 65535u * 8u; /* 8 x 8 workgroups, at most 65535 along each axis */
+    const uint32_t most = 65536u; /* the list holds (y << 16) | x (roma_image_list.glsl) */
     const uint64_t bytes = sizeof(roma_pixel_list_header) + 4ull * im->width * im->height;
     if (im->width > most || im->height > most || bytes > l->ctx->properties.limits.maxStorageBufferRange)
         return roma_fail(&l->logger, ROMA_ERROR_INVALID_ARGUMENT,

@@ -1,7 +1,7 @@
 /* The covered-pixel list of the public effects (an effect's own, image_effect.c, and the
  * frame's shared one, pixel_list.c): per frame slot a device buffer of a
- * roma_pixel_list_header (the indirect dispatch's arguments) and the pixel indices, grown with
- * the images, and the recording of its two passes (roma_image_list_build.glsl). */
+ * roma_pixel_list_header (the indirect dispatch's arguments) and the pixels ((y << 16) | x),
+ * grown with the images, and the recording of its two passes (roma_image_list_build.glsl). */
 #ifndef ROMA_EFFECTS_COVERED_LIST_H
 #define ROMA_EFFECTS_COVERED_LIST_H
 

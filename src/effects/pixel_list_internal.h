@@ -1,5 +1,6 @@
 /* What the effects read of a roma_pixel_list (roma/pixel_list.h): the buffer of a slot's
- * list, a roma_pixel_list_header (the indirect dispatch's arguments) and the pixel indices. */
+ * list, a roma_pixel_list_header (the indirect dispatch's arguments) and the pixels
+ * ((y << 16) | x). */
 #ifndef ROMA_EFFECTS_PIXEL_LIST_INTERNAL_H
 #define ROMA_EFFECTS_PIXEL_LIST_INTERNAL_H
 

@@ -1,8 +1,8 @@
 // The covered-pixel list of a public effect's images (image_effect.c), bound in set 1
 // after the map's BOM: a roma_pixel_list_header (dispatch.w: the pixels listed), then the
 // pixels, each (y << 16) | x: an effect needs both its coordinates and its index, and a CPU
-// device divides (index / width) lane by lane. ROMA_IMAGE_LIST_WRITER: the pass that builds it (else read-only, and the
-// effect's pixel from the list or the grid).
+// device divides (index / width) lane by lane. ROMA_IMAGE_LIST_WRITER: the pass that builds
+// it (else read-only, and the effect's pixel from the list or the grid).
 #ifndef ROMA_IMAGE_LIST_GLSL
 #define ROMA_IMAGE_LIST_GLSL
 

@@ -725,7 +725,6 @@ static roma_result add_dynamic(roma_map *map, VkCommandBuffer cmd, uint32_t l, c
     return r;
 }
 
-/* Whether the box [bmin, bmax] (world) comes within a cell of level l's cube. */
 /* A whole build over dynamic instances (the exact BOM, no new positions). A level that moved or
  * has new directions is built from every triangle, as without dynamic instances (a static copy
  * would not outlive the frame: a jittered map pays nothing for them). A level placed as last

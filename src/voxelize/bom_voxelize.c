@@ -139,9 +139,7 @@ roma_result roma_bom_voxelize_record_runs(roma_bom_voxelizer *v, VkCommandBuffer
     if (triangles) {
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.layout, 0, 1, &v->set.set, 0, NULL);
         vkCmdPushConstants(cmd, v->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, v->triangles.pipeline);
-        roma_cmd_dispatch_linear(cmd, triangles, ROMA_VOXELIZE_WORKGROUP_SIZE);
-        roma_tile_queue_record_tiles(&v->queue, cmd, v->tiles.pipeline);
+        roma_tile_queue_record_passes(&v->queue, cmd, v->triangles.pipeline, v->tiles.pipeline, triangles);
     }
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,

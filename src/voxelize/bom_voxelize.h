@@ -34,31 +34,31 @@ roma_result roma_bom_voxelizer_create(roma_context *ctx, uint32_t resolution, Vk
 /* Accepts NULL. The caller makes sure no recorded use is still executing. */
 void roma_bom_voxelizer_destroy(roma_bom_voxelizer *vox);
 
-/* Records into cmd (outside any render pass):
- *  1. a barrier: earlier shader/transfer/indirect accesses of the BOM and the queue
- *     complete before they are cleared, and earlier transfer/compute writes
- *     (geometry uploads, skinning) are visible to the compute reads;
- *  2. the BOM cleared (vkCmdFillBuffer) and the queue header reset (vkCmdUpdateBuffer);
- *  3. voxelize.comp over triangle_count triangles, a barrier, voxelize_tiles.comp
- *     (vkCmdDispatchIndirect from the queue);
- *  4. a barrier making the BOM visible to compute-shader reads/writes and transfer reads.
- * grid is this frame's placement (dims.x must be the voxelizer's RES, dims.y RES / 32);
- * it travels in push constants. triangle_count 0 clears only. Indices must be in range
- * for positions (not checked on the GPU). */
 /* A run of consecutive triangles: first .. first + count - 1. */
 typedef struct roma_triangle_run {
     uint32_t first, count;
 } roma_triangle_run;
 
-/* One cascade level of a map (grid->level.x: its BOM slot in the buffer; the other slots are
+/* Records into cmd (outside any render pass):
+ *  1. a barrier: earlier shader/transfer/indirect accesses of the BOM and the queue
+ *     complete before they are cleared, and earlier transfer/compute writes
+ *     (geometry uploads, skinning) are visible to the compute reads;
+ *  2. the BOM cleared (vkCmdFillBuffer) and the queue header reset (vkCmdUpdateBuffer);
+ *  3. voxelize.comp over the triangles, a barrier, voxelize_tiles.comp
+ *     (vkCmdDispatchIndirect from the queue);
+ *  4. a barrier making the BOM visible to compute-shader reads/writes and transfer reads.
+ * grid is this frame's placement (dims.x must be the voxelizer's RES, dims.y RES / 32);
+ * it travels in push constants. No triangles: the clear alone. Indices must be in range
+ * for positions (not checked on the GPU).
+ * One cascade level of a map (grid->level.x: its BOM slot in the buffer; the other slots are
  * kept): the triangles of at most ROMA_VOXELIZE_RUNS runs (one dispatch over them all), into
- * the slot cleared first when clear is set, else added to what it holds. No runs: the clear
- * alone. */
+ * the slot cleared first when clear is set, else added to what it holds. */
 roma_result roma_bom_voxelize_record_runs(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
                                           const roma_triangle_run *runs, uint32_t run_count, int clear);
-/* One run. */
+/* One run: triangles first .. first + count - 1. */
 roma_result roma_bom_voxelize_record_level(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
                                            uint32_t first, uint32_t count, int clear);
+/* The grid's slot cleared and voxelized from triangles 0 .. triangle_count - 1. */
 roma_result roma_bom_voxelize_record(roma_bom_voxelizer *vox, VkCommandBuffer cmd, const roma_grid_params *grid,
                                      uint32_t triangle_count);
 

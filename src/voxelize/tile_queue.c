@@ -34,11 +34,6 @@ void roma_tile_queue_record_passes(const roma_tile_queue *queue, VkCommandBuffer
 {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, triangles);
     roma_cmd_dispatch_linear(cmd, triangle_count, ROMA_VOXELIZE_WORKGROUP_SIZE);
-    roma_tile_queue_record_tiles(queue, cmd, tiles);
-}
-
-void roma_tile_queue_record_tiles(const roma_tile_queue *queue, VkCommandBuffer cmd, VkPipeline tiles)
-{
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |

@@ -37,8 +37,5 @@ void roma_tile_queue_record_reset(const roma_tile_queue *queue, VkCommandBuffer 
  * orders what follows after the second pass's writes. */
 void roma_tile_queue_record_passes(const roma_tile_queue *queue, VkCommandBuffer cmd, VkPipeline triangles,
                                    VkPipeline tiles, uint32_t triangle_count);
-/* The second pass alone, after first passes the caller dispatched itself (runs of triangles):
- * the barrier, then the tiles over the queue. */
-void roma_tile_queue_record_tiles(const roma_tile_queue *queue, VkCommandBuffer cmd, VkPipeline tiles);
 
 #endif /* ROMA_VOXELIZE_TILE_QUEUE_H */

@@ -6,6 +6,9 @@
 #   make test-sanitize   the same suite, Debug build with ASan + UBSan and the shaders' loop guard
 #                        (src/vulkan/loop_guard.h) in build-asan (CI runs it too)
 #   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
+#   make fuzz-trace      differential fuzzing of the trace against its C mirror (tests/fuzz_trace.c):
+#                        FUZZ_TRACE_RAYS (1e8) random rays over random scenes and maps, seed
+#                        FUZZ_TRACE_SEED (1); about 20 minutes on 2 cores; ctest runs a 60-second slice
 #   make test-consumers  build the core library alone (Vulkan and glslang only); install into a temporary prefix and build two out-of-tree consumers
 #                        against it (CMake package, pkg-config); then the same with the Debian
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)
@@ -30,8 +33,10 @@ ASAN_BUILD ?= build-asan
 STUDY_SCENES = scenes/bunny.glb scenes/dragon_res3.glb scenes/tabletop.gltf scenes/spot.glb scenes/CesiumMan.glb \
                scenes/Fox.glb
 FUZZ_BUILD ?= build-fuzz
+FUZZ_TRACE_RAYS ?= 100000000
+FUZZ_TRACE_SEED ?= 1
 
-.PHONY: deps configure build run test test-sanitize test-fuzz test-consumers docs study study-small clean
+.PHONY: deps configure build run test test-sanitize test-fuzz fuzz-trace test-consumers docs study study-small clean
 
 deps:
 	./install-deps.sh
@@ -73,6 +78,10 @@ test-fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_scene
 	cd $(FUZZ_BUILD) && ctest --output-on-failure -L fuzz || \
 	    { grep -E 'ERROR: libFuzzer|SUMMARY|Test unit written|^Base64' Testing/Temporary/LastTest.log; exit 1; }
+
+fuzz-trace: build
+	ROMA_VALIDATION=1 $(BUILD)/tests/fuzz_trace --seconds 0 --rays $(FUZZ_TRACE_RAYS) --seed $(FUZZ_TRACE_SEED) \
+	    --rays-per-case 1048576
 
 test-consumers: build
 	bash tests/consumers/run.sh core . $(BUILD)/consumers/core

@@ -164,7 +164,8 @@ static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int t
         CHECK_RESULT(roma_map_trace(map, (roma_trace_mode)m, 8, rays, N, gpu, NULL), ROMA_SUCCESS);
         uint32_t mismatch = 0, selection = 0, off_edge = 0, hits = 0, crossed = 0;
         for (uint32_t i = 0; i < N; ++i) {
-            const roma_hit cpu_hit = roma_cpu_trace_levels(LEVELS, grids, frames, maps, &rays[i], (roma_trace_mode)m, 8);
+            const roma_hit cpu_hit = roma_cpu_trace_levels(LEVELS, grids, frames, maps, &rays[i], (roma_trace_mode)m, 8,
+                                                           -1, 0);
             int folded;
             const uint32_t k = roma_cpu_select_map(rays[i].dir, ANGULAR, &folded);
             uint32_t start = LEVELS - 1;
@@ -201,10 +202,37 @@ static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int t
         for (int m = 0; m < 4; ++m) {
             roma_grid_params g0 = grids[0];
             g0.level[1] = 1;
-            single_diff += !same_hit(roma_cpu_trace_levels(1, &g0, frames, maps, &rays[i], (roma_trace_mode)m, 8),
-                                     roma_cpu_trace(&g0, frames, maps, &rays[i], (roma_trace_mode)m, 8, -1, 0));
+            const roma_hit walked = roma_cpu_trace_levels(1, &g0, frames, maps, &rays[i], (roma_trace_mode)m, 8, -1, 0);
+            single_diff += !same_hit(walked, roma_cpu_trace(&g0, frames, maps, &rays[i], (roma_trace_mode)m, 8, -1, 0));
         }
     CHECK(single_diff == 0);
+
+    /* Rays that are not traced are the plain miss (t = INFINITY, info 0) across levels too, on
+     * the device and in the mirror: a NaN tmax in a coarser level's cube found hits (the levels'
+     * min() dropped the NaN; fuzz_trace), and the level bits must not say where the origin was. */
+    {
+        const roma_grid_params *outer = &grids[LEVELS - 1];
+        float p[3];
+        for (int a = 0; a < 3; ++a)
+            p[a] = outer->origin[a] + 0.3f * outer->origin[3] * (float)outer->dims[0];
+        const roma_ray bad[5] = {{{p[0], p[1], p[2]}, 0.0f, {0.0f, 0.0f, 1.0f}, NAN},
+                                 {{p[0], p[1], p[2]}, NAN, {1.0f, 0.0f, 0.0f}, INFINITY},
+                                 {{p[0], p[1], p[2]}, 2.0f, {0.0f, -1.0f, 0.0f}, 1.0f},
+                                 {{p[0], NAN, p[2]}, 0.0f, {0.6f, 0.8f, 0.0f}, INFINITY},
+                                 {{p[0], p[1], p[2]}, 0.0f, {0.0f, 0.0f, 0.0f}, INFINITY}};
+        roma_hit out[5];
+        uint32_t not_plain = 0;
+        for (int m = 0; m < 4; ++m) {
+            CHECK_RESULT(roma_map_trace(map, (roma_trace_mode)m, 8, bad, 5, out, NULL), ROMA_SUCCESS);
+            for (int i = 0; i < 5; ++i) {
+                const roma_hit cpu_hit = roma_cpu_trace_levels(LEVELS, grids, frames, maps, &bad[i], (roma_trace_mode)m,
+                                                               8, -1, 0);
+                not_plain += !(out[i].t == INFINITY && out[i].info == 0u) + !(cpu_hit.t == INFINITY && cpu_hit.info == 0u);
+            }
+        }
+        printf("untraced rays across levels: %u of 40 answers not the plain miss\n", not_plain);
+        CHECK(not_plain == 0);
+    }
 done:
     free(bom);
     free(maps);

@@ -7,6 +7,7 @@
 #include "harness.h"
 #include "roma/builtin_scenes.h"
 #include "roma/map.h"
+#include "vulkan/vk_internal.h"
 
 static uint64_t popcount_words(const uint32_t *w, uint64_t n)
 {
@@ -47,6 +48,18 @@ int main(void)
     CHECK_RESULT(roma_map_create(ctx, NULL, NULL, &map), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK_RESULT(roma_map_create(ctx, NULL, scene, NULL), ROMA_ERROR_INVALID_ARGUMENT);
     roma_map_destroy(NULL);
+
+    /* Maps that the rotation cannot write as one storage buffer are refused by name, where the
+     * device's maxStorageBufferRange is below them (lavapipe: 128 MiB, RES 256 with more than 64
+     * maps; before, a validation error at the first build). */
+    const uint64_t a16_bytes = 256ull * 256 * 8 * 4 * 256;
+    if (a16_bytes > ctx->properties.limits.maxStorageBufferRange) {
+        map = (roma_map *)1;
+        CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = 256, .angular = 16,
+                                                           .logger = roma_test_logger(&log)}, scene, &map),
+                     ROMA_ERROR_UNSUPPORTED);
+        CHECK(map == NULL && log.errors == 1 && strstr(log.last, "maxStorageBufferRange") != NULL);
+    }
 
     /* A preset sets RES and A where the desc leaves them 0. */
     roma_map *preset_map = NULL;

@@ -1017,9 +1017,9 @@ static void check_frames(roma_context *ctx, const roma_scene *scene)
 
 /* Closest hits of rays whose origins lie exactly on BOM cell faces next to plates (the map
  * axis-aligned: A 1, no jitter, so the faces are the maps' texel faces too), along the axes
- * and nearly so, with [tmin, tmax] of [0, inf), [-10, -10] and [0, 0]: the GPU and the mirror
- * agree bit for bit (a zero distance is +0 on both: C's fmaxf and GLSL's max pick different
- * zeros of -0 and +0) and every distance lies in [tmin, tmax] exactly (an origin on a plate's
+ * and nearly so, with [tmin, tmax] of [0, inf), [-10, -10], [0, 0] and [-0, inf): the GPU and
+ * the mirror agree bit for bit (a zero distance is +0 on both: C's fmaxf and GLSL's max pick
+ * different zeros of -0 and +0, and a tmin of -0 came back as -0 from the device) and every distance lies in [tmin, tmax] exactly (an origin on a plate's
  * face with tmin = tmax = -10 gave 0). */
 static void check_face_origins(roma_context *ctx)
 {
@@ -1044,10 +1044,10 @@ static void check_face_origins(roma_context *ctx)
             hits[k] = calloc(N, sizeof(roma_hit));
         static const float dirs[8][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
                                          {1, 0, 3e-38f}, {-1, 1e-7f, 0}};
-        static const float ranges[3][2] = {{0.0f, INFINITY}, {-10.0f, -10.0f}, {0.0f, 0.0f}};
+        static const float ranges[4][2] = {{0.0f, INFINITY}, {-10.0f, -10.0f}, {0.0f, 0.0f}, {-0.0f, INFINITY}};
         uint32_t n = 0;
         for (uint32_t i = 0; n < N; ++i) {
-            const uint32_t c = i % 64, d = (i / 64) % 8, r = (i / 512) % 3;
+            const uint32_t c = i % 64, d = (i / 64) % 8, r = (i / 512) % 4;
             /* integer BOM coordinates near the plates: on cell faces in every axis */
             const float g[3] = {(float)(12 + c % 8), (float)(10 + (c / 8) % 8), (float)(13 + (i / 1536) % 6)};
             grid_point(&f, g[0], g[1], g[2], rays[n].origin);

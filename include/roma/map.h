@@ -131,7 +131,8 @@ typedef struct roma_map_desc {
  *   32/64/128/256, A above 16, an unknown preset or bom_mode, frames_in_flight above 8, margin_cells
  *   outside [0.5, RES/8];
  *   ROMA_ERROR_INVALID_SCENE: scene bounds empty, not finite or outside the supported range;
- *   ROMA_ERROR_UNSUPPORTED: the A x A maps exceed the device's maxTexelBufferElements;
+ *   ROMA_ERROR_UNSUPPORTED: the maps of all levels exceed the device's maxTexelBufferElements
+ *   (words) or maxStorageBufferRange (bytes; 128 MiB on lavapipe: RES 256 with at most 64 maps);
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
  * The context's thread; no other thread may submit to the context's queue meanwhile. */

@@ -332,11 +332,12 @@ int roma_run_end(uint base, int c, bool upward, uint res, uint word)
 
 // A closest hit's distance: within [tmin, tmax] (rounding could leave it a little outside, and
 // a ray starting on a cell face with tmin = tmax < 0 gave 0), and +0 rather than -0 (GLSL's
-// max and C's fmaxf pick different zeros; adding +0 makes both +0).
+// max and C's fmaxf pick different zeros). The zero is made +0 on its bits: a compiler may
+// drop "+ 0.0" where signed zeros need not be kept (lavapipe did, for tmin = -0).
 float roma_hit_distance(float t, float tmin, float tmax)
 {
-    precise float d = min(max(t, tmin), tmax) + 0.0;
-    return d;
+    uint bits = floatBitsToUint(min(max(t, tmin), tmax));
+    return uintBitsToFloat(bits == 0x80000000u ? 0u : bits);
 }
 
 // A ray is traced only with a finite origin and tmin <= tmax (NaN bounds miss).
@@ -606,12 +607,17 @@ const float ROMA_LEVEL_OVERLAP_CELLS = 1.7320508;
 roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float tmax, bool snapped)
 {
     roma_level_walk w;
-    w.level = roma_level_of(origin);
-    w.grid = roma_fetch_grid(w.level);
+    w.grid = roma_fetch_grid(0u);
     w.count = max(w.grid.level.y, 1u);
+    w.d = roma_ray_dir_of(dir, w.grid.dims.z); // A is the same in every level
+    // A ray that is not traced (roma_trace_begin) is the finest level's plain miss, info 0: a
+    // NaN bound must not reach the levels' min() below, which would drop it.
+    bool traced = w.d.unit && roma_ray_range_valid(origin, tmin, tmax);
+    w.level = traced ? roma_level_of(origin) : 0u;
+    if (w.level != 0u)
+        w.grid = roma_fetch_grid(w.level);
     w.t0 = tmin;
-    w.last = w.level + 1u >= w.count;
-    w.d = roma_ray_dir_of(dir, w.grid.dims.z);
+    w.last = !traced || w.level + 1u >= w.count;
     w.along = w.d.dn;
     if (snapped && w.d.unit) { // every level's map k has the same candidate: the finest level's frame k
         vec3 c = roma_fetch_frame(w.d.k).dir.xyz;
@@ -620,7 +626,7 @@ roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float t
     vec3 a = w.along;
     w.inv = vec3(a.x != 0.0 ? roma_div(1.0, a.x) : 0.0, a.y != 0.0 ? roma_div(1.0, a.y) : 0.0,
                  a.z != 0.0 ? roma_div(1.0, a.z) : 0.0);
-    w.t1 = !w.last && w.d.unit ? min(roma_level_exit(w.grid, origin, a, w.inv), tmax) : tmax;
+    w.t1 = !w.last ? min(roma_level_exit(w.grid, origin, a, w.inv), tmax) : tmax;
     return w;
 }
 

@@ -206,6 +206,13 @@ roma_result roma_map_create(roma_context *ctx, const roma_map_desc *desc_in, con
                          "roma_map_create: RES %u with %u x %u maps in %u levels needs %llu words, more than this "
                          "device's maxTexelBufferElements (%u)", desc.resolution, desc.angular, desc.angular,
                          desc.cascades, (unsigned long long)map_words, ctx->properties.limits.maxTexelBufferElements);
+    /* ...and the rotation writes them as one storage buffer (128 MiB at most on lavapipe). */
+    if (map_words * 4 > ctx->properties.limits.maxStorageBufferRange)
+        return roma_fail(log, ROMA_ERROR_UNSUPPORTED,
+                         "roma_map_create: RES %u with %u x %u maps in %u levels needs %llu bytes, more than this "
+                         "device's maxStorageBufferRange (%u)", desc.resolution, desc.angular, desc.angular,
+                         desc.cascades, (unsigned long long)(map_words * 4),
+                         ctx->properties.limits.maxStorageBufferRange);
     roma_map *map = calloc(1, sizeof *map);
     uint32_t *indices = malloc(sizeof(uint32_t) * 3 * (size_t)sv.triangle_count);
     /* This frame's frames, then those the maps were last built from. */

@@ -339,30 +339,38 @@ static float level_exit(const roma_grid_params *g, const float origin[3], const 
 }
 
 roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, const roma_map_frame *frames,
-                               const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode, uint32_t max_steps)
+                               const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode, uint32_t max_steps,
+                               int map_override, int folded_override)
 {
     /* roma_level_walk in GLSL: each level over its part of [tmin, tmax]. */
-    uint32_t l = level_of(levels, grids, ray->origin);
-    const roma_grid_params *g = &grids[l];
-    int last = l + 1 >= levels;
     float dn[3] = {0.0f, 0.0f, 0.0f}, along[3], inv[3];
     const int unit = roma_unit_direction(ray->dir, dn);
+    const float *o = ray->origin;
+    /* A ray that is not traced is the finest level's plain miss (info 0). */
+    const int traced = unit && isfinite(o[0]) && isfinite(o[1]) && isfinite(o[2]) && ray->tmin <= ray->tmax;
+    uint32_t l = traced ? level_of(levels, grids, ray->origin) : 0u;
+    const roma_grid_params *g = &grids[l];
+    int last = !traced || l + 1 >= levels;
     const int unsnapped = mode == ROMA_TRACE_UNSNAPPED_ANY || mode == ROMA_TRACE_UNSNAPPED_CLOSEST;
     /* The traced line: the ray, or a snapped query's candidate (roma_level_walk in GLSL). */
     int folded = 0;
-    const uint32_t k = unit ? roma_unit_direction_to_map(dn, g->dims[2], &folded) : 0;
+    uint32_t k = unit ? roma_unit_direction_to_map(dn, g->dims[2], &folded) : 0;
+    if (map_override >= 0) {
+        k = (uint32_t)map_override;
+        folded = folded_override;
+    }
     for (int a = 0; a < 3; ++a) {
         along[a] = !unsnapped && unit ? (folded ? -frames[k].dir[a] : frames[k].dir[a]) : dn[a];
         inv[a] = along[a] != 0.0f ? 1.0f / along[a] : 0.0f;
     }
-    float t0 = ray->tmin, t1 = !last && unit ? fminf(level_exit(g, ray->origin, along, inv), ray->tmax) : ray->tmax;
+    float t0 = ray->tmin, t1 = !last ? fminf(level_exit(g, ray->origin, along, inv), ray->tmax) : ray->tmax;
     for (;;) {
         roma_ray part = *ray;
         part.tmin = t0;
         part.tmax = t1;
         int gave_up = 0;
-        roma_hit h = trace_level(g, frames + g->level[2], maps + g->level[3], &part, mode, max_steps, -1, 0, NULL,
-                                 &gave_up);
+        roma_hit h = trace_level(g, frames + g->level[2], maps + g->level[3], &part, mode, max_steps, map_override,
+                                 folded_override, NULL, &gave_up);
         h.info |= l << ROMA_HIT_LEVEL_SHIFT;
         if ((unsnapped && gave_up) || last || (h.info & ROMA_HIT_FLAG) || !(t1 < ray->tmax))
             return h;

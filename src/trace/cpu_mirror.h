@@ -52,8 +52,10 @@ roma_hit roma_cpu_trace_counted(const roma_grid_params *grid, const roma_map_fra
                                 roma_cpu_walk_counts *counts);
 
 /* A map of several cascade levels (roma_trace_snapped and roma_trace_unsnapped in GLSL): the
- * levels' grids, every level's frames and maps (level after level, as the map holds them). */
+ * levels' grids, every level's frames and maps (level after level, as the map holds them).
+ * map_override, folded_override: as for roma_cpu_trace (the same map in every level). */
 roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, const roma_map_frame *frames,
-                               const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode, uint32_t max_steps);
+                               const uint32_t *maps, const roma_ray *ray, roma_trace_mode mode, uint32_t max_steps,
+                               int map_override, int folded_override);
 
 #endif /* ROMA_CPU_MIRROR_H */

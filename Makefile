@@ -5,6 +5,8 @@
 #   make test   install missing packages, build, run the test suite (ctest, lavapipe, validation on)
 #   make test-sanitize   the same suite, Debug build with ASan + UBSan and the shaders' loop guard
 #                        (src/vulkan/loop_guard.h) in build-asan (CI runs it too)
+#   make test-tsan       the thread tests (ctest label threads: test_threads) built with ThreadSanitizer
+#                        in build-tsan (CI runs it too)
 #   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
 #   make fuzz-trace      differential fuzzing of the trace against its C mirror (tests/fuzz_trace.c):
 #                        FUZZ_TRACE_RAYS (1e8) random rays over random scenes and maps, seed
@@ -33,10 +35,11 @@ ASAN_BUILD ?= build-asan
 STUDY_SCENES = scenes/bunny.glb scenes/dragon_res3.glb scenes/tabletop.gltf scenes/spot.glb scenes/CesiumMan.glb \
                scenes/Fox.glb
 FUZZ_BUILD ?= build-fuzz
+TSAN_BUILD ?= build-tsan
 FUZZ_TRACE_RAYS ?= 100000000
 FUZZ_TRACE_SEED ?= 1
 
-.PHONY: deps configure build run test test-sanitize test-fuzz fuzz-trace test-consumers docs study study-small clean
+.PHONY: deps configure build run test test-sanitize test-tsan test-fuzz fuzz-trace test-consumers docs study study-small clean
 
 deps:
 	./install-deps.sh
@@ -69,6 +72,14 @@ test-sanitize: deps
 	cmake -S . -B $(ASAN_BUILD) -DROMA_SANITIZE=ON -DROMA_LOOP_GUARD=ON -DCMAKE_BUILD_TYPE=Debug
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The thread tests with ThreadSanitizer (a report fails the test: halt_on_error); only their
+# targets are built. They run without the validation layer there: its locks would hide races
+# (tests/test_threads.c); make test runs them with it.
+test-tsan: deps
+	cmake -S . -B $(TSAN_BUILD) -DROMA_TSAN=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake --build $(TSAN_BUILD) -j $(JOBS) --target test_threads
+	cd $(TSAN_BUILD) && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -L threads
 
 # The libFuzzer target for the glTF loader and the scene builder, built with clang
 # (ASan + UBSan) and run for ROMA_FUZZ_SECONDS (60) from the seeds in tests/fuzz.

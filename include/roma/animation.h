@@ -14,8 +14,8 @@
  * vertex is world(its node) * p_rest. Clips loop over their duration (the last key).
  * Morph targets are not played (the loader keeps the base mesh).
  *
- * Threads and queues as for the context: one thread at a time; record calls never
- * submit or wait. The slot rules are those of roma_map_frame_desc.slot.
+ * Threads and queues (roma/context.h): an animator is externally synchronised, used by one
+ * thread at a time; record calls never submit or wait. The slot rules are those of roma_map_frame_desc.slot.
  *
  * Lifetimes: an animator reads the scene's animation arrays while it lives: the scene must
  * outlive it (and keep its animation data: no roma_scene_set_animation_data meanwhile). */
@@ -36,7 +36,7 @@ extern "C" {
 #endif
 
 /** Plays a scene's glTF skins and node animations on the GPU (opaque). Used by one thread at a
- * time, like its context. */
+ * time (roma/context.h). */
 typedef struct roma_animator roma_animator;
 
 /** Settings of roma_animator_create; the zero value is the default. */
@@ -59,7 +59,7 @@ typedef struct roma_animator_desc {
  *         scene, frames_in_flight above 8, a scene without animation data;
  *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread; submits to the context's queue (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_animator_create(roma_context *context, const roma_scene *scene, const roma_animator_desc *desc,
                                           roma_animator **out_animator);
 /** Destroys the animator and its buffers (roma_animator_output handles become invalid).
@@ -67,7 +67,7 @@ ROMA_API roma_result roma_animator_create(roma_context *context, const roma_scen
  * @param animator  the animator, or NULL (nothing is done). The caller makes sure no
  *                  submitted work still uses it or its position buffers.
  * @par Threads
- * The context's thread. */
+ * Any thread, the animator externally synchronised. */
 ROMA_API void roma_animator_destroy(roma_animator *animator);
 
 /** A clip and a time in it. */
@@ -107,7 +107,8 @@ typedef struct roma_animator_output {
  *         clip out of range, a non-finite time, a slot not below frames_in_flight; a Vulkan
  *         failure code (roma_result) for the slot's storage, made on its first use.
  * @par Threads
- * The context's thread; cmd externally synchronised. Never submits or waits. */
+ * Any thread, the animator externally synchronised; cmd externally synchronised. Never submits or
+ * waits. */
 ROMA_API roma_result roma_animator_record(roma_animator *animator, VkCommandBuffer cmd, uint32_t slot,
                                           const roma_animator_pose *pose, roma_animator_output *out);
 
@@ -121,7 +122,7 @@ ROMA_API roma_result roma_animator_record(roma_animator *animator, VkCommandBuff
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL animator, pose or out_positions,
  *         a clip out of range or a non-finite time.
  * @par Threads
- * The context's thread (it uses the animator's host state). */
+ * Any thread, the animator externally synchronised. */
 ROMA_API roma_result roma_animator_pose_cpu(roma_animator *animator, const roma_animator_pose *pose, float *out_positions,
                                             roma_box *out_bounds);
 
@@ -139,7 +140,7 @@ typedef struct roma_animator_info {
  * @param[out] out_info  the counts; zeroed on failure.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments (out_info zeroed).
  * @par Threads
- * The context's thread. */
+ * Any thread, the animator externally synchronised. */
 ROMA_API roma_result roma_animator_get_info(const roma_animator *animator, roma_animator_info *out_info);
 /** Seconds of clip `clip` (its last key time).
  *
@@ -148,7 +149,7 @@ ROMA_API roma_result roma_animator_get_info(const roma_animator *animator, roma_
  * @param[out] out_seconds  the duration; 0 on failure.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or a clip out of range.
  * @par Threads
- * The context's thread. */
+ * Any thread, the animator externally synchronised. */
 ROMA_API roma_result roma_animator_clip_duration(const roma_animator *animator, uint32_t clip, float *out_seconds);
 
 /** A copy of `scene` posed at `pose` on the host, no GPU involved: positions skinned as the
@@ -181,7 +182,8 @@ ROMA_API roma_result roma_scene_pose(const roma_scene *scene, const roma_animato
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or another
  *         vertex_count; a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread, the animator externally synchronised; submits to the context's queue
+ * (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_animator_download_positions(roma_animator *animator, float *out_positions, uint32_t vertex_count);
 
 #ifdef __cplusplus

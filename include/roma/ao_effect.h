@@ -23,7 +23,8 @@
  * several images) keep the same frame. A record binds its own compute pipeline, descriptor
  * sets and push constants (as every effect's does): bind yours again afterwards.
  *
- * Threads: an effect is used by one thread at a time, like its context; records write only
+ * Threads (roma/context.h): an effect is externally synchronised, used by one thread at a time;
+ * records write only
  * into the command buffer they are given and never submit or wait. */
 #ifndef ROMA_AO_EFFECT_H
 #define ROMA_AO_EFFECT_H
@@ -103,14 +104,14 @@ typedef struct roma_ao_effect_desc {
  *         roma_pixel_dispatch; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
  *         (roma_result).
  * @par Threads
- * The context's thread. */
+ * Any thread. */
 ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
 /** Destroys the effect.
  *
  * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
  *                work still uses it.
  * @par Threads
- * The context's thread. */
+ * Any thread, the effect externally synchronised. */
 ROMA_API void roma_ao_effect_destroy(roma_ao_effect *effect);
 
 /** The engine's images the AO effect reads and writes (views it owns, valid while recorded work
@@ -162,7 +163,8 @@ typedef struct roma_ao_images {
  *   a Vulkan failure code (roma_result) when the descriptor set or the slot's list cannot be
  *   allocated.
  * @par Threads
- * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
+ * Any thread, the effect externally synchronised; the map it reads is not changed meanwhile (other
+ * calls may read it); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_ao_effect_record(roma_ao_effect *effect, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                            const roma_ao_images *images, const roma_ao_settings *settings);
 

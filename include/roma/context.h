@@ -18,20 +18,34 @@
  * geometryShader is optional: libroma enables it on its own device when offered; no pass
  * needs it (the raster BOM modes use a vertex and a fragment shader).
  *
- * Threads and queues: a context and everything made from it (maps, timers) is used
- * by one thread at a time (lock around it otherwise); objects of different contexts
- * are independent. Record calls only write into the command buffer they are given
- * (externally synchronised by the caller, as Vulkan requires). libroma submits to the
- * context's queue only in object creation and in the blocking convenience calls
- * (roma_map_build, roma_map_trace, downloads, the self-test): on the caller's queue,
- * the caller must not submit to it from another thread during those calls.
+ * Threads, in Vulkan's terms (each function's "@par Threads" says which applies):
+ *  - The context is thread-safe: its functions and the creation of objects on it may be
+ *    called from any number of threads at once (a loader thread creating maps and effects
+ *    while the render thread records frames).
+ *  - Each object made from it (map, effect, pixel list, animator, timer) is externally
+ *    synchronised: one thread at a time calls functions on it, its destruction included.
+ *    Different objects may be used from different threads at once: worker threads may record
+ *    different objects' passes into their own (secondary) command buffers.
+ *  - A call that reads another object (an effect's record reads its map and pixel list) may
+ *    run beside other calls that only read it, never beside one that changes it (a build,
+ *    mesh and instance edits, a destroy).
+ *  - Command buffers given to record calls are externally synchronised, as Vulkan requires;
+ *    record calls never submit or wait.
+ *  - libroma submits to the context's queue only in object creation and in the blocking
+ *    convenience calls (roma_map_build, roma_map_trace, downloads, the self-test), waiting on
+ *    its own fence. A queue is externally synchronised in Vulkan: an engine that submits to it
+ *    from other threads passes roma_context_desc.queue_lock, which libroma takes around each
+ *    of its submissions; without it, no other thread submits to the queue during those calls.
+ *  - The logger and the allocation callbacks are called from whichever thread calls libroma:
+ *    with several threads they must be thread-safe.
+ *  - The context is destroyed by one thread, after every object, with no call on it running.
+ *  `tests/test_threads.c` holds libroma to this, under ThreadSanitizer too (make test-tsan).
  *
  * Environment (read once in roma_context_create, only where the desc is silent):
  *   ROMA_DEVICE=NAME          choose the physical device whose name contains NAME
  *   ROMA_VALIDATION=1         enable VK_LAYER_KHRONOS_validation (own device only)
  *
- * No global state: several contexts may coexist. A context is not thread-safe;
- * use one per thread or lock around it. */
+ * No global state: several contexts may coexist, independent of each other. */
 #ifndef ROMA_CONTEXT_H
 #define ROMA_CONTEXT_H
 
@@ -47,7 +61,7 @@ extern "C" {
 #endif
 
 /** A Vulkan device and queue libroma works on, and the pipelines and caches its objects share
- * (opaque). Not thread-safe: one thread at a time.
+ * (opaque). Thread-safe (see the file comment).
  */
 typedef struct roma_context roma_context;
 
@@ -106,6 +120,15 @@ typedef struct roma_device_requirements {
  * Any thread (no state). */
 ROMA_API void roma_get_device_requirements(roma_device_requirements *out);
 
+/** The engine's lock of a queue it shares with libroma (roma_context_desc.queue_lock). */
+typedef struct roma_queue_lock {
+    /** Called with locked = 1 right before, and with 0 right after, each vkQueueSubmit libroma
+     * makes on the context's queue (object creation and the blocking convenience calls), from
+     * the thread making that call. */
+    void (*fn)(int locked, void *user_data);
+    void *user_data; /**< passed to fn */
+} roma_queue_lock;
+
 /** Settings of roma_context_create; the zero value gives libroma's own headless device. */
 typedef struct roma_context_desc {
     uint32_t flags;                       /**< roma_context_flags; unknown bits are rejected */
@@ -123,6 +146,11 @@ typedef struct roma_context_desc {
      * staging buffers) fails with ROMA_ERROR_OUT_OF_DEVICE_MEMORY and keeps nothing
      * it allocated (a failed trace also drops its staging buffers, a cache). */
     uint64_t device_memory_budget;
+    /** For an engine that submits to the context's queue (its own, or roma_context_queue) from
+     * other threads than the ones calling libroma's creation and blocking calls: libroma takes
+     * this lock around its submissions, as Vulkan requires of a queue. Zero: the engine makes
+     * sure no other thread submits to the queue during those calls. */
+    roma_queue_lock queue_lock;
 } roma_context_desc;
 
 /** Creates a context: on libroma's own instance and device (external NULL) or on the engine's.
@@ -145,7 +173,7 @@ typedef struct roma_context_desc {
  *   lacks or was created without a required feature;
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
- * Any thread; the new context is then used by one thread at a time. */
+ * Any thread. */
 ROMA_API roma_result roma_context_create(const roma_context_desc *desc, roma_context **out_context);
 /** Waits for libroma's work, then destroys what libroma created: own device, vkDeviceWaitIdle
  * and the device and instance; external device, no wait (libroma's own submissions, in
@@ -155,8 +183,8 @@ ROMA_API roma_result roma_context_create(const roma_context_desc *desc, roma_con
  * @param context  the context, or NULL (nothing is done). Every object made from it (maps,
  *                 effects, animators, timers) must have been destroyed before.
  * @par Threads
- * The context's thread. On an external device it touches neither the queue nor the
- * engine's work, so it may run while other threads submit. */
+ * One thread, with no other call on the context running. On an external device it touches
+ * neither the queue nor the engine's work, so it may run while other threads submit. */
 ROMA_API void roma_context_destroy(roma_context *context);
 
 /** The device a context runs on and what libroma did with it (roma_context_get_info). */
@@ -184,6 +212,12 @@ typedef struct roma_context_info {
      * ROMA_CONTEXT_CORRECTED_DIVISION). An engine tracing from
      * its own shaders specializes them with it to trace as libroma does. */
     VkBool32 corrected_division;
+    /** VK_TRUE where libroma's pipelines declare RoundingModeRTE for 32-bit floats (the device
+     * supports it: VkPhysicalDeviceFloatControlsProperties::shaderRoundingModeRTEFloat32). The
+     * trace rounds products and sums to nearest only under it, as Vulkan guarantees nothing
+     * else; an engine tracing from its own shaders declares it too (GLSL:
+     * GL_EXT_spirv_intrinsics, spirv_capability(4467) and spirv_execution_mode(4462, 32)). */
+    VkBool32 rounding_mode_rte;
 } roma_context_info;
 
 /** The device and counters of a context.
@@ -192,7 +226,7 @@ typedef struct roma_context_info {
  * @param[out] out_info  the device and counters now; zeroed on failure.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL argument.
  * @par Threads
- * The context's thread (the counters change in its calls). */
+ * Any thread (the counters may change meanwhile, in other threads' calls). */
 ROMA_API roma_result roma_context_get_info(const roma_context *context, roma_context_info *out_info);
 
 /** Errors reported by the validation layer since creation.
@@ -254,7 +288,7 @@ ROMA_API uint32_t roma_context_queue_family(const roma_context *context);
  *         available after the wait; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
  *         (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread; submits to the context's queue (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_context_self_test(roma_context *context, double *out_gpu_ms);
 
 /* --- GPU timers: timestamp queries around named passes --- */
@@ -266,7 +300,8 @@ ROMA_API roma_result roma_context_self_test(roma_context *context, double *out_g
  * lavapipe 22.3: its timestamps cover rasterization but not compute dispatches
  * (they are written before the dispatch runs), so on that device compute passes
  * read as near zero; roma-bench reports host-observed times beside them.
- * A timer is used by one thread at a time, like its context. */
+ * A timer is externally synchronised: used by one thread at a time (and by one record call:
+ * two maps recording into one timer on two threads at once would race). */
 typedef struct roma_gpu_timer roma_gpu_timer;
 
 /** One scope's measured time (roma_gpu_timer_read). */
@@ -284,7 +319,7 @@ typedef struct roma_gpu_timing {
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or a count outside
  *         that range; ROMA_ERROR_OUT_OF_HOST_MEMORY; a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread. */
+ * Any thread. */
 ROMA_API roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_scopes,
                                            roma_gpu_timer **out_timer);
 /** Destroys a timer and its query pool.
@@ -292,7 +327,7 @@ ROMA_API roma_result roma_gpu_timer_create(roma_context *context, uint32_t max_s
  * @param timer  the timer, or NULL (nothing is done). No submitted work may still write its
  *               queries.
  * @par Threads
- * The context's thread. */
+ * Any thread, the timer externally synchronised. */
 ROMA_API void roma_gpu_timer_destroy(roma_gpu_timer *timer);
 /** Records the query reset into cmd and forgets the scopes begun so far (on the host, now);
  * call once per use, before the first begin.
@@ -301,7 +336,7 @@ ROMA_API void roma_gpu_timer_destroy(roma_gpu_timer *timer);
  * @param cmd    a command buffer of the context's queue family in the recording state, outside
  *               a render pass; VK_NULL_HANDLE: nothing is done.
  * @par Threads
- * The context's thread; cmd externally synchronised. */
+ * Any thread, the timer externally synchronised; cmd externally synchronised. */
 ROMA_API void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
 /** Opens a scope: records its begin timestamp (ALL_COMMANDS stage) into cmd.
  *
@@ -311,7 +346,7 @@ ROMA_API void roma_gpu_timer_reset(roma_gpu_timer *timer, VkCommandBuffer cmd);
  * @return the scope index for roma_gpu_timer_end, or UINT32_MAX when max_scopes is exhausted
  *         or timer or cmd is NULL (nothing recorded).
  * @par Threads
- * The context's thread; cmd externally synchronised. */
+ * Any thread, the timer externally synchronised; cmd externally synchronised. */
 ROMA_API uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cmd, const char *name);
 /** Records the end timestamp of scope (from roma_gpu_timer_begin) into cmd.
  *
@@ -320,7 +355,7 @@ ROMA_API uint32_t roma_gpu_timer_begin(roma_gpu_timer *timer, VkCommandBuffer cm
  * @param scope  from roma_gpu_timer_begin since the last reset; UINT32_MAX, an unknown scope or
  *               one already ended is ignored.
  * @par Threads
- * The context's thread; cmd externally synchronised. */
+ * Any thread, the timer externally synchronised; cmd externally synchronised. */
 ROMA_API void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uint32_t scope);
 /** Copies up to *count timings, in the order the scopes were begun; *count becomes the
  * number of scopes recorded. Does not wait.
@@ -333,7 +368,7 @@ ROMA_API void roma_gpu_timer_end(roma_gpu_timer *timer, VkCommandBuffer cmd, uin
  *         ROMA_ERROR_INVALID_ARGUMENT for a NULL timer or count, or NULL out_timings with
  *         *count > 0; ROMA_ERROR_OUT_OF_HOST_MEMORY; a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread. */
+ * Any thread, the timer externally synchronised. */
 ROMA_API roma_result roma_gpu_timer_read(roma_gpu_timer *timer, roma_gpu_timing *out_timings,
                                          uint32_t *count);
 

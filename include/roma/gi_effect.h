@@ -39,7 +39,8 @@
  * docs/accuracy.md); keep such lights out of the record where that matters. Lights within
  * about two occupancy cells of a wall's far side pass it as roma_light_effect's do.
  *
- * Threads: an effect is used by one thread at a time, like its context; records write only
+ * Threads (roma/context.h): an effect is externally synchronised, used by one thread at a time;
+ * records write only
  * into the command buffer they are given and never submit or wait. Frame slots: as
  * roma_ao_effect. */
 #ifndef ROMA_GI_EFFECT_H
@@ -123,7 +124,7 @@ typedef struct roma_gi_effect_desc {
  *         pixel_dispatch that is not a roma_pixel_dispatch;
  *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread. */
+ * Any thread. */
 ROMA_API roma_result roma_gi_effect_create(roma_context *context, const roma_gi_effect_desc *desc,
                                            roma_gi_effect **out);
 
@@ -132,7 +133,7 @@ ROMA_API roma_result roma_gi_effect_create(roma_context *context, const roma_gi_
  * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
  *                work still uses it.
  * @par Threads
- * The context's thread. */
+ * Any thread, the effect externally synchronised. */
 ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
 
 /** The materials of the surfaces bounce rays light: the scene the map was made from (each
@@ -151,7 +152,8 @@ ROMA_API void roma_gi_effect_destroy(roma_gi_effect *effect);
  *         for a scene without triangles; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure
  *         code (roma_result).
  * @par Threads
- * The context's thread (no other thread may submit to its queue meanwhile); the scene may be
+ * Any thread, the effect externally synchronised; submits to the context's queue
+ * (roma_context_desc.queue_lock); the scene may be
  * read by other threads meanwhile. */
 ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma_scene *scene);
 
@@ -187,7 +189,8 @@ ROMA_API roma_result roma_gi_effect_set_scene(roma_gi_effect *effect, const roma
  *   surface grid's first allocation (RES^3 x 4 bytes, and RES^2 x 32 bytes for its build's queue of
  *   tiles).
  * @par Threads
- * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
+ * Any thread, the effect externally synchronised; the map it reads is not changed meanwhile (other
+ * calls may read it); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_gi_effect_record(roma_gi_effect *effect, VkCommandBuffer cmd, uint32_t slot,
                                            const roma_map *map, const roma_light_images *images,
                                            const roma_light *lights, uint32_t light_count,

@@ -25,7 +25,8 @@
  * lights cost per frame what a few do and the engine's accumulation over frames converges to
  * the all-lights image; key lights can stay exact (exact_light_count).
  *
- * Threads: an effect is used by one thread at a time, like its context; records write only
+ * Threads (roma/context.h): an effect is externally synchronised, used by one thread at a time;
+ * records write only
  * into the command buffer they are given and never submit or wait. */
 #ifndef ROMA_LIGHT_EFFECT_H
 #define ROMA_LIGHT_EFFECT_H
@@ -111,7 +112,7 @@ typedef struct roma_light_settings {
 ROMA_API roma_result roma_light_settings_resolve(const roma_light_settings *in, roma_light_settings *out);
 
 /** Direct light with ROMA shadows on the engine's G-buffer images (opaque). Used by one thread at a
- * time, like its context. */
+ * time (roma/context.h). */
 typedef struct roma_light_effect roma_light_effect;
 
 /** Area lights: the emissive triangles of `scene` (materials with emission), sampled in
@@ -128,7 +129,8 @@ typedef struct roma_light_effect roma_light_effect;
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL effect;
  *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) for the buffers.
  * @par Threads
- * The context's thread; the scene may be read by other threads meanwhile. */
+ * Any thread, the effect externally synchronised; the scene may be read by other threads
+ * meanwhile. */
 ROMA_API roma_result roma_light_effect_set_area_lights(roma_light_effect *effect, const roma_scene *scene);
 
 /** Settings of roma_light_effect_create; the zero value is the default. */
@@ -148,7 +150,7 @@ typedef struct roma_light_effect_desc {
  *         roma_pixel_dispatch; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
  *         (roma_result).
  * @par Threads
- * The context's thread. */
+ * Any thread. */
 ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_light_effect_desc *desc,
                                               roma_light_effect **out);
 /** Destroys the effect and its light buffers.
@@ -156,7 +158,7 @@ ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_
  * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
  *                work still uses it.
  * @par Threads
- * The context's thread. */
+ * Any thread, the effect externally synchronised. */
 ROMA_API void roma_light_effect_destroy(roma_light_effect *effect);
 
 /** The engine's images the light effect reads and writes: usage and barriers as
@@ -203,7 +205,8 @@ typedef struct roma_light_images {
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
  *   a Vulkan failure code (roma_result) for the slot's light buffer, pixel list or descriptor set.
  * @par Threads
- * The context's thread (the map's too); cmd externally synchronised. Never submits or waits. */
+ * Any thread, the effect externally synchronised; the map it reads is not changed meanwhile (other
+ * calls may read it); cmd externally synchronised. Never submits or waits. */
 ROMA_API roma_result roma_light_effect_record(roma_light_effect *effect, VkCommandBuffer cmd, uint32_t slot,
                                               const roma_map *map, const roma_light_images *images, const roma_light *lights,
                                               uint32_t light_count, const roma_light_settings *settings);

@@ -37,8 +37,9 @@
  * (ROMA_ROTATE_SAMPLES) so that rays rarely step over one-cell-thick walls
  * (docs/accuracy.md: 0.1% of rays in a closed room, against 8.8% with one sample).
  *
- * Threads: a map is used by one thread at a time, like its context (its calls share the
- * context's state); record calls write only into the command buffer they are given. */
+ * Threads (roma/context.h): a map is externally synchronised, used by one thread at a time;
+ * different maps may be used from different threads at once; record calls write only into the
+ * command buffer they are given. */
 #ifndef ROMA_MAP_H
 #define ROMA_MAP_H
 
@@ -60,7 +61,7 @@ extern "C" {
 #endif
 
 /** A ray-aligned occupancy map array and the scene geometry it is built from (opaque). Used by one
- * thread at a time, like its context. */
+ * thread at a time (roma/context.h). */
 typedef struct roma_map roma_map;
 
 /** How the base occupancy map is voxelized. */
@@ -135,7 +136,7 @@ typedef struct roma_map_desc {
  *   (words) or maxStorageBufferRange (bytes; 128 MiB on lavapipe: RES 256 with at most 64 maps);
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread; submits to the context's queue (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_map_create(roma_context *context, const roma_map_desc *desc,
                                      const roma_scene *scene, roma_map **out_map);
 /** Destroys a map, its meshes and instances, and every buffer and set it handed out
@@ -144,7 +145,7 @@ ROMA_API roma_result roma_map_create(roma_context *context, const roma_map_desc 
  * @param map  the map, or NULL (nothing is done). The caller makes sure no submitted work
  *             still uses the map (the blocking convenience calls below always finish theirs).
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API void roma_map_destroy(roma_map *map);
 
 /** An axis-aligned box in world space. */
@@ -229,7 +230,8 @@ typedef struct roma_map_frame_desc {
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) from the
  *   buffers made on first use of a slot or after instances changed.
  * @par Threads
- * The context's thread; cmd externally synchronised. Never submits or waits. Binds its own
+ * Any thread, the map externally synchronised; cmd externally synchronised. Never submits or
+ * waits. Binds its own
  * pipelines, descriptor sets and push constants: bind yours again afterwards. */
 ROMA_API roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
                                            const roma_map_frame_desc *frame, roma_gpu_timer *timer);
@@ -243,7 +245,8 @@ ROMA_API roma_result roma_map_record_build(roma_map *map, VkCommandBuffer cmd,
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map; otherwise the codes of
  *         roma_map_record_build, or a Vulkan failure code (roma_result) of the submission.
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread, the map externally synchronised; submits to the context's queue
+ * (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *frame,
                                     roma_gpu_timer *timer);
 
@@ -280,7 +283,7 @@ ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *fr
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL argument;
  *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) for its buffers.
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, uint32_t *out_mesh);
 /** Removes a mesh; its buffers are freed once frames_in_flight later builds were recorded.
  *
@@ -289,7 +292,7 @@ ROMA_API roma_result roma_map_add_mesh(roma_map *map, const roma_scene *mesh, ui
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map, an unknown or removed
  *         mesh, or while instances of it remain; ROMA_ERROR_OUT_OF_HOST_MEMORY.
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_remove_mesh(roma_map *map, uint32_t mesh);
 
 /** An instance of a mesh added to a map. */
@@ -309,7 +312,7 @@ typedef struct roma_instance_desc {
  *         flag bits, a non-finite transform, more geometry than a map holds);
  *         ROMA_ERROR_OUT_OF_HOST_MEMORY.
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_add_instance(roma_map *map, const roma_instance_desc *desc, uint32_t *out_instance);
 /** Removes an instance from the next build on (its storage is freed once frames_in_flight later
  * builds have been recorded).
@@ -319,7 +322,7 @@ ROMA_API roma_result roma_map_add_instance(roma_map *map, const roma_instance_de
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL map or an unknown or removed
  *         instance.
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
 /** Moves a dynamic instance; takes effect at the next build.
  *
@@ -330,7 +333,7 @@ ROMA_API roma_result roma_map_remove_instance(roma_map *map, uint32_t instance);
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments, an unknown or static
  *         instance, or a non-finite transform (the old one stays).
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_set_instance_transform(roma_map *map, uint32_t instance, const float transform[12]);
 
 /** Sizes, grid placement and the handles for tracing from the caller's shaders (roma_map_get_info). */
@@ -407,7 +410,7 @@ typedef struct roma_map_info {
  *                       stay valid until roma_map_destroy.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments.
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_info);
 
 /** Candidate direction of map k as of the last recorded build.
@@ -418,7 +421,7 @@ ROMA_API roma_result roma_map_get_info(const roma_map *map, roma_map_info *out_i
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or k >= A x A;
  *         ROMA_ERROR_NOT_READY before the first build was recorded.
  * @par Threads
- * The context's thread. */
+ * Any thread, the map externally synchronised. */
 ROMA_API roma_result roma_map_candidate(const roma_map *map, uint32_t k, float out_dir[3]);
 
 /* --- Queries --- */
@@ -479,7 +482,8 @@ typedef struct roma_trace_desc {
  *         ROMA_ERROR_NOT_READY when no build was recorded yet (ray_count > 0); a Vulkan failure
  *         code (roma_result) when a mode's pipeline is made, on its first use.
  * @par Threads
- * The context's thread; cmd externally synchronised. Never submits or waits. */
+ * Any thread, the map externally synchronised; cmd externally synchronised. Never submits or
+ * waits. */
 ROMA_API roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, const roma_trace_desc *desc,
                                            roma_gpu_timer *timer);
 
@@ -498,7 +502,8 @@ ROMA_API roma_result roma_map_record_trace(roma_map *map, VkCommandBuffer cmd, c
  *         device's maxTexelBufferElements (2^26 on lavapipe and NVIDIA: split the batch);
  *         ROMA_ERROR_NOT_READY before the first build; a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread, the map externally synchronised; submits to the context's queue
+ * (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_t max_steps,
                                     const roma_ray *rays, uint32_t ray_count, roma_hit *out_hits,
                                     roma_gpu_timer *timer);
@@ -512,7 +517,8 @@ ROMA_API roma_result roma_map_trace(roma_map *map, roma_trace_mode mode, uint32_
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or another word_count;
  *         ROMA_ERROR_NOT_READY before the first build; a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread, the map externally synchronised; submits to the context's queue
+ * (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, uint64_t word_count);
 /** Downloads all maps (map_count*RES*RES*RES/32 words, map after map), like
  * roma_map_download_bom.
@@ -523,7 +529,8 @@ ROMA_API roma_result roma_map_download_bom(roma_map *map, uint32_t *out_words, u
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for NULL arguments or another word_count;
  *         ROMA_ERROR_NOT_READY before the first build; a Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread; no other thread may submit to the context's queue meanwhile. */
+ * Any thread, the map externally synchronised; submits to the context's queue
+ * (roma_context_desc.queue_lock). */
 ROMA_API roma_result roma_map_download_maps(roma_map *map, uint32_t *out_words, uint64_t word_count);
 
 #ifdef __cplusplus

@@ -22,7 +22,8 @@
  * compute shaders and indirect dispatches; it starts with one after earlier readers of the
  * list. Before it: the position image's writes made visible to compute-shader sampled reads.
  *
- * Threads: a list is used by one thread at a time, like its context; records write only into
+ * Threads (roma/context.h): a list is externally synchronised, used by one thread at a time;
+ * records write only into
  * the command buffer they are given and never submit or wait. */
 #ifndef ROMA_PIXEL_LIST_H
 #define ROMA_PIXEL_LIST_H
@@ -57,7 +58,7 @@ typedef struct roma_pixel_list roma_pixel_list;
  *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a
  *         Vulkan failure code.
  * @par Threads
- * The context's thread. */
+ * Any thread. */
 ROMA_API roma_result roma_pixel_list_create(roma_context *context, const roma_pixel_list_desc *desc,
                                             roma_pixel_list **out);
 
@@ -66,7 +67,7 @@ ROMA_API roma_result roma_pixel_list_create(roma_context *context, const roma_pi
  * @param list  the list, or NULL (nothing is done). The caller makes sure no submitted work
  *              still uses it.
  * @par Threads
- * The context's thread. */
+ * Any thread, the list externally synchronised. */
 ROMA_API void roma_pixel_list_destroy(roma_pixel_list *list);
 
 /** The G-buffer image a record lists. */
@@ -94,7 +95,7 @@ typedef struct roma_pixel_list_images {
  *         another Vulkan failure code when the slot's list must grow. Nothing is recorded on
  *         failure.
  * @par Threads
- * The context's thread, or one thread at a time. */
+ * Any thread, the list externally synchronised; cmd externally synchronised. */
 ROMA_API roma_result roma_pixel_list_record(roma_pixel_list *list, VkCommandBuffer cmd, uint32_t slot,
                                             const roma_pixel_list_images *images);
 

@@ -25,9 +25,10 @@
  *  - roma/camera.h, roma/sampling.h: camera and sample sequences shared with the reference;
  *  - roma/image.h, roma/builtin_scenes.h: images, metrics and test scenes (roma_tools).
  *
- * Threads: a context and every object made from it are used by one thread at a time (lock
- * around them otherwise); objects of different contexts are independent. Scenes are
- * immutable and may be read from any number of threads. */
+ * Threads (roma/context.h): a context may be used from any number of threads; each object made
+ * from it (map, effect, pixel list, animator, timer) by one thread at a time, different objects
+ * from different threads at once. Scenes are immutable and may be read from any number of
+ * threads. */
 #ifndef ROMA_ROMA_H
 #define ROMA_ROMA_H
 

@@ -36,7 +36,8 @@
  * call of libroma, it binds its own compute pipeline, descriptor sets and push constants:
  * bind yours again after it.
  *
- * Threads: an effect is used by one thread at a time, like its context; records write only
+ * Threads (roma/context.h): an effect is externally synchronised, used by one thread at a time;
+ * records write only
  * into the command buffer they are given and never submit or wait. */
 #ifndef ROMA_TEMPORAL_EFFECT_H
 #define ROMA_TEMPORAL_EFFECT_H
@@ -88,7 +89,7 @@ typedef struct roma_temporal_settings {
 ROMA_API roma_result roma_temporal_settings_resolve(const roma_temporal_settings *in, roma_temporal_settings *out);
 
 /** Temporal accumulation and spatial filter on the engine's images (opaque). Used by one
- * thread at a time, like its context. */
+ * thread at a time (roma/context.h). */
 typedef struct roma_temporal_effect roma_temporal_effect;
 
 /** Settings of roma_temporal_effect_create; the zero value is the default. */
@@ -106,7 +107,7 @@ typedef struct roma_temporal_effect_desc {
  *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a
  *         Vulkan failure code (roma_result).
  * @par Threads
- * The context's thread. */
+ * Any thread. */
 ROMA_API roma_result roma_temporal_effect_create(roma_context *context, const roma_temporal_effect_desc *desc,
                                                  roma_temporal_effect **out);
 
@@ -115,7 +116,7 @@ ROMA_API roma_result roma_temporal_effect_create(roma_context *context, const ro
  * @param effect  the effect, or NULL (nothing is done). The caller makes sure no submitted
  *                work still uses it.
  * @par Threads
- * The context's thread. */
+ * Any thread, the effect externally synchronised. */
 ROMA_API void roma_temporal_effect_destroy(roma_temporal_effect *effect);
 
 /** The engine's images the temporal effect reads and writes (all width x height). */
@@ -158,7 +159,8 @@ typedef struct roma_temporal_images {
  *   records in one frame of a slot;
  *   a Vulkan failure code (roma_result) for a descriptor set.
  * @par Threads
- * The context's thread; cmd externally synchronised. Never submits or waits. */
+ * Any thread, the effect externally synchronised; cmd externally synchronised. Never submits or
+ * waits. */
 ROMA_API roma_result roma_temporal_effect_record(roma_temporal_effect *effect, VkCommandBuffer cmd, uint32_t slot,
                                                  const roma_temporal_images *images,
                                                  const roma_temporal_settings *settings);

@@ -166,10 +166,13 @@ roma_result roma_compute_pipeline_create_flags(roma_context *ctx, const char *mo
     if (binding_count > MAX_STORAGE_BUFFERS || constant_count > ROMA_MAX_SPEC_CONSTANTS)
         return roma_fail(&ctx->logger, ROMA_ERROR_INVALID_ARGUMENT, "too many descriptors or constants for %s",
                          module_name);
+    /* Held while a missing pipeline compiles, so that two threads asking for it make it once. */
+    roma_mutex_lock(&ctx->lock);
     const roma_shared_pipeline *known =
         find_shared(ctx, module_name, types, binding_count, push_size, constants, constant_count, flags);
     if (known) {
         *out = known->pipeline;
+        roma_mutex_unlock(&ctx->lock);
         return ROMA_SUCCESS;
     }
     roma_result r = roma_descriptor_layout_create(ctx, types, binding_count, &out->set_layout);
@@ -192,6 +195,7 @@ roma_result roma_compute_pipeline_create_flags(roma_context *ctx, const char *mo
         r = share(ctx, module_name, types, binding_count, push_size, constants, constant_count, flags, out);
     if (r != ROMA_SUCCESS)
         destroy_handles(ctx, out);
+    roma_mutex_unlock(&ctx->lock);
     return r;
 }
 

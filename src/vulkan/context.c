@@ -337,13 +337,27 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         return roma_fail(&desc->logger, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_context_create: unknown flags 0x%x", desc->flags & ~known_flags);
     roma_context *ctx = calloc(1, sizeof *ctx);
+    if (ctx && !roma_mutex_init(&ctx->lock, 0)) {
+        free(ctx);
+        ctx = NULL;
+    }
+    if (ctx && !roma_mutex_init(&ctx->submit_lock, 1)) {
+        roma_mutex_destroy(&ctx->lock);
+        free(ctx);
+        ctx = NULL;
+    }
     if (!ctx)
         return roma_fail(&desc->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_context_create: out of memory");
+    ctx->queue_lock = desc->queue_lock;
     ctx->logger = desc->logger;
     ctx->flags = desc->flags;
     ctx->allocator = desc->allocation_callbacks;
     ctx->memory_budget = desc->device_memory_budget;
     atomic_init(&ctx->validation_errors, 0u);
+    atomic_init(&ctx->queue_submits, 0u);
+    atomic_init(&ctx->queue_waits, 0u);
+    atomic_init(&ctx->geometry_versions, 0u);
+    atomic_init(&ctx->study_modules, NULL);
 
     roma_result r;
     if (desc->external) {
@@ -369,11 +383,14 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
         ctx->corrected_division = ctx->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU ||
                                   (ctx->flags & ROMA_CONTEXT_CORRECTED_DIVISION) != 0;
+        VkPhysicalDeviceFloatControlsProperties float_controls = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
         VkPhysicalDeviceMaintenance3Properties m3 = {
-            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES, .pNext = &float_controls};
         VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};
         vkGetPhysicalDeviceProperties2(ctx->physical_device, &p2);
         ctx->max_allocation_size = m3.maxMemoryAllocationSize;
+        ctx->rounding_rte = float_controls.shaderRoundingModeRTEFloat32 && !env_flag("ROMA_NO_ROUNDING_MODE");
         vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
         r = create_submit_objects(ctx);
     }
@@ -426,6 +443,8 @@ void roma_context_destroy(roma_context *ctx)
         if (ctx->instance)
             vkDestroyInstance(ctx->instance, ctx->allocator);
     }
+    roma_mutex_destroy(&ctx->lock);
+    roma_mutex_destroy(&ctx->submit_lock);
     free(ctx);
 }
 
@@ -439,17 +458,20 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
     memcpy(out->device_name, ctx->properties.deviceName, sizeof out->device_name);
     out->device_type = ctx->properties.deviceType;
     out->corrected_division = ctx->corrected_division ? VK_TRUE : VK_FALSE;
+    out->rounding_mode_rte = ctx->rounding_rte ? VK_TRUE : VK_FALSE;
     out->api_version = ctx->properties.apiVersion;
     out->driver_version = ctx->properties.driverVersion;
     out->timestamp_period_ns = ctx->properties.limits.timestampPeriod;
+    roma_mutex_lock(&((roma_context *)ctx)->lock);
     out->device_memory_in_use = ctx->memory_in_use;
+    out->pipelines_compiled = ctx->pipeline_count;
+    roma_mutex_unlock(&((roma_context *)ctx)->lock);
     out->device_memory_budget = ctx->memory_budget;
     out->max_allocation_size = ctx->max_allocation_size;
     out->validation_enabled = ctx->validation_enabled;
     out->owns_device = ctx->owns_device;
     out->queue_submits = ctx->queue_submits;
     out->queue_waits = ctx->queue_waits;
-    out->pipelines_compiled = ctx->pipeline_count;
     return ROMA_SUCCESS;
 }
 

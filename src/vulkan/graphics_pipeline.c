@@ -2,7 +2,10 @@
  * address (no vertex input), draw two-sided triangle lists with dynamic viewport
  * and scissor, single-sampled, and write no colour attachment: their outputs are
  * storage buffers, plus an optional depth attachment. */
+#include <stdlib.h>
+
 #include "vulkan/shader_table.h"
+#include "vulkan/spirv_rounding.h"
 #include "vulkan/vk_internal.h"
 
 roma_result roma_shader_module_create(roma_context *ctx, const char *name, VkShaderModule *out)
@@ -16,7 +19,19 @@ roma_result roma_shader_module_create(roma_context *ctx, const char *name, VkSha
         .codeSize = m->size,
         .pCode = m->code,
     };
-    return roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &info, ctx->allocator, out), "vkCreateShaderModule");
+    uint32_t *rte = NULL;
+    size_t rte_words = 0;
+    if (ctx->rounding_rte) { /* round to nearest even, as the trace's mirror assumes (spirv_rounding.h) */
+        if (!roma_spirv_declare_rte(m->code, m->size / 4, &rte, &rte_words))
+            return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY,
+                             "shader %s: could not declare RoundingModeRTE (out of memory)", name);
+        info.codeSize = 4 * rte_words;
+        info.pCode = rte;
+    }
+    roma_result r = roma_vk_check(ctx, vkCreateShaderModule(ctx->device, &info, ctx->allocator, out),
+                                  "vkCreateShaderModule");
+    free(rte);
+    return r;
 }
 
 roma_result roma_push_layout_create(roma_context *ctx, VkShaderStageFlags stages, uint32_t push_size,

@@ -4,11 +4,18 @@
 #define ROMA_VULKAN_VK_INTERNAL_H
 
 #include <stdatomic.h>
+#include "util/mutex.h"
 
 #include "roma/context.h"
 #include "util/log.h"
 
+/* Threads (roma/context.h): every field written after creation is an atomic or is guarded
+ * by `lock` (memory_in_use, the pipeline table); the command pool and fence of the blocking
+ * submissions by `submit_lock`, held from roma_begin_one_shot to roma_submit_one_shot. */
 struct roma_context {
+    roma_mutex lock;        /* plain */
+    roma_mutex submit_lock; /* recursive: a blocking call may make a one-shot inside another */
+    roma_queue_lock queue_lock; /* desc.queue_lock: the engine's lock of a queue it shares */
     roma_logger logger;
     uint32_t flags;
     int owns_device;
@@ -31,8 +38,12 @@ struct roma_context {
      * on every device but CPU implementations, whose division is IEEE's already, and on
      * those too with ROMA_CONTEXT_CORRECTED_DIVISION. */
     int corrected_division;
-    uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
-    uint64_t geometry_versions;       /* handed out by the maps' builds (roma_map.geometry_version) */
+    /* libroma's modules declare RoundingModeRTE for 32-bit floats (spirv_rounding.h): where the
+     * device supports it (shaderRoundingModeRTEFloat32), unless ROMA_NO_ROUNDING_MODE is set
+     * (the benchmark's measure of its cost). */
+    int rounding_rte;
+    _Atomic uint64_t queue_submits, queue_waits; /* made by libroma on `queue` (roma_context_info) */
+    _Atomic uint64_t geometry_versions; /* handed out by the maps' builds (roma_map.geometry_version) */
     /* Compute pipelines shared by every object of the context (compute_pipeline.c): made
      * on first use, kept until the context is destroyed, so a map of another RES or A
      * compiles nothing. The VkPipelineCache serves every pipeline libroma creates. */
@@ -45,7 +56,7 @@ struct roma_context {
     struct roma_loop_guard *loop_guard; /* ROMA_LOOP_GUARD builds (loop_guard.h) */
     /* The accuracy study's shaders (src/study/study_shaders.h), set by their
      * objects' creation; NULL in an engine's context: the installed library has none of them. */
-    const struct roma_spirv_module *study_modules;
+    const struct roma_spirv_module *_Atomic study_modules;
     /* Host data reaches the shaders through staging copies even where device memory is
      * host-visible, as on a discrete GPU (ROMA_FORCE_STAGING=1: tests those paths anywhere). */
     int force_staging;

@@ -56,18 +56,25 @@ roma_result roma_device_memory_reserve(roma_context *ctx, VkDeviceSize bytes, co
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
                          "%s: %llu bytes in one allocation, the device allows at most %llu", what,
                          (unsigned long long)bytes, (unsigned long long)ctx->max_allocation_size);
-    if (ctx->memory_budget && bytes > ctx->memory_budget - ctx->memory_in_use)
+    roma_mutex_lock(&ctx->lock);
+    const uint64_t in_use = ctx->memory_in_use;
+    const int over = ctx->memory_budget && bytes > ctx->memory_budget - in_use;
+    if (!over)
+        ctx->memory_in_use += bytes;
+    roma_mutex_unlock(&ctx->lock);
+    if (over)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
                          "%s: %llu more bytes of device memory would exceed the context's budget of %llu "
                          "(%llu in use)", what, (unsigned long long)bytes,
-                         (unsigned long long)ctx->memory_budget, (unsigned long long)ctx->memory_in_use);
-    ctx->memory_in_use += bytes;
+                         (unsigned long long)ctx->memory_budget, (unsigned long long)in_use);
     return ROMA_SUCCESS;
 }
 
 void roma_device_memory_release(roma_context *ctx, VkDeviceSize bytes)
 {
+    roma_mutex_lock(&ctx->lock);
     ctx->memory_in_use -= bytes < ctx->memory_in_use ? bytes : ctx->memory_in_use;
+    roma_mutex_unlock(&ctx->lock);
 }
 
 roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
@@ -197,6 +204,7 @@ void roma_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stag
 roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd)
 {
     *out_cmd = VK_NULL_HANDLE;
+    roma_mutex_lock(&ctx->submit_lock); /* the pool until roma_submit_one_shot */
     VkCommandBufferAllocateInfo alloc = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
         .commandPool = ctx->command_pool,
@@ -205,8 +213,10 @@ roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd)
     };
     roma_result r = roma_vk_check(ctx, vkAllocateCommandBuffers(ctx->device, &alloc, out_cmd),
                                   "vkAllocateCommandBuffers");
-    if (r != ROMA_SUCCESS)
+    if (r != ROMA_SUCCESS) {
+        roma_mutex_unlock(&ctx->submit_lock);
         return r;
+    }
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
@@ -215,6 +225,7 @@ roma_result roma_begin_one_shot(roma_context *ctx, VkCommandBuffer *out_cmd)
     if (r != ROMA_SUCCESS) {
         vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, out_cmd);
         *out_cmd = VK_NULL_HANDLE;
+        roma_mutex_unlock(&ctx->submit_lock);
     }
     return r;
 }
@@ -228,7 +239,11 @@ roma_result roma_submit_one_shot(roma_context *ctx, VkCommandBuffer cmd)
             .commandBufferCount = 1,
             .pCommandBuffers = &cmd,
         };
+        if (ctx->queue_lock.fn)
+            ctx->queue_lock.fn(1, ctx->queue_lock.user_data);
         r = roma_vk_check(ctx, vkQueueSubmit(ctx->queue, 1, &submit, ctx->fence), "vkQueueSubmit");
+        if (ctx->queue_lock.fn)
+            ctx->queue_lock.fn(0, ctx->queue_lock.user_data);
         ++ctx->queue_submits;
         if (r == ROMA_SUCCESS) {
             ++ctx->queue_waits;
@@ -238,6 +253,7 @@ roma_result roma_submit_one_shot(roma_context *ctx, VkCommandBuffer cmd)
         }
     }
     vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &cmd);
+    roma_mutex_unlock(&ctx->submit_lock);
     return r;
 }
 

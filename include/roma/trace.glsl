@@ -591,6 +591,7 @@ float roma_level_exit(roma_grid_params grid, vec3 origin, vec3 dn, vec3 inv)
 // there let rays out of a closed room).
 struct roma_level_walk {
     uint level, count;
+    bool traced; // roma_trace_begin's answer: false gives the plain miss
     bool last;
     float t0, t1;
     roma_ray_dir d; // resolved once: the same in every level
@@ -607,17 +608,15 @@ const float ROMA_LEVEL_OVERLAP_CELLS = 1.7320508;
 roma_level_walk roma_level_walk_begin(vec3 origin, vec3 dir, float tmin, float tmax, bool snapped)
 {
     roma_level_walk w;
-    w.grid = roma_fetch_grid(0u);
+    w.level = roma_level_of(origin);
+    w.grid = roma_fetch_grid(w.level);
     w.count = max(w.grid.level.y, 1u);
-    w.d = roma_ray_dir_of(dir, w.grid.dims.z); // A is the same in every level
-    // A ray that is not traced (roma_trace_begin) is the finest level's plain miss, info 0: a
-    // NaN bound must not reach the levels' min() below, which would drop it.
-    bool traced = w.d.unit && roma_ray_range_valid(origin, tmin, tmax);
-    w.level = traced ? roma_level_of(origin) : 0u;
-    if (w.level != 0u)
-        w.grid = roma_fetch_grid(w.level);
     w.t0 = tmin;
-    w.last = !traced || w.level + 1u >= w.count;
+    w.d = roma_ray_dir_of(dir, w.grid.dims.z);
+    // A ray that is not traced (roma_trace_begin) is the plain miss, info 0: one part and no
+    // level bits; a NaN bound must not reach the levels' min() below, which would drop it.
+    w.traced = w.d.unit && roma_ray_range_valid(origin, tmin, tmax);
+    w.last = !w.traced || w.level + 1u >= w.count;
     w.along = w.d.dn;
     if (snapped && w.d.unit) { // every level's map k has the same candidate: the finest level's frame k
         vec3 c = roma_fetch_frame(w.d.k).dir.xyz;
@@ -654,7 +653,7 @@ roma_hit roma_trace_snapped(vec3 origin, vec3 dir, float tmin, float tmax, bool 
     do {
         ROMA_LOOP_TICK();
         h = roma_trace_snapped_dir(w.grid, origin, w.d, w.t0, w.t1, closest);
-        h.info |= w.level << ROMA_HIT_LEVEL_SHIFT;
+        h.info |= (w.traced ? w.level : 0u) << ROMA_HIT_LEVEL_SHIFT;
     } while (roma_level_walk_next(w, origin, tmax, h));
     return h;
 }
@@ -670,7 +669,7 @@ roma_hit roma_trace_unsnapped(vec3 origin, vec3 dir, float tmin, float tmax, boo
     do {
         ROMA_LOOP_TICK();
         h = roma_trace_unsnapped_dir(w.grid, origin, w.d, w.t0, w.t1, closest, max_steps);
-        h.info |= w.level << ROMA_HIT_LEVEL_SHIFT;
+        h.info |= (w.traced ? w.level : 0u) << ROMA_HIT_LEVEL_SHIFT;
     } while (!roma_unsnapped_gave_up && roma_level_walk_next(w, origin, tmax, h));
     return h;
 }

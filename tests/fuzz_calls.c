@@ -2,9 +2,10 @@
  * frame loop over 2 or 3 frames in flight (its own command buffers and fences) around one map,
  * with random calls between frames: meshes and instances added and removed while frames are in
  * flight, dynamic instances moved, the scene's own positions moved from the host, builds with
- * and without jitter, a clipping volume, cascade levels, traces recorded after builds, the map
- * destroyed (after waiting for its frames, as the contract asks) and created again with other
- * settings, and calls that must fail (unknown ids, static instances moved, non-finite
+ * and without jitter, a clipping volume, cascade levels, traces recorded after builds, an AO
+ * effect recorded on the engine's images, created and dropped mid-run, the images resized
+ * between frames, the map destroyed (after waiting for its frames, as the contract asks) and
+ * created again with other settings, and calls that must fail (unknown ids, static instances moved, non-finite
  * transforms, slots out of range, unknown modes), each with its documented code and one error
  * message, leaving the map as it was.
  *
@@ -23,12 +24,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "roma/ao_effect.h"
 #include "roma/context.h"
 #include "roma/map.h"
 #include "roma/scene.h"
 #include "gpu_images.h"
+#include "fuzz_random.h"
 #include "harness.h"
 
 #define MAX_SLOTS 3
@@ -37,34 +39,7 @@
 #define STEPS 40
 #define RAYS 512
 
-typedef struct rng {
-    uint64_t s;
-} rng;
 
-static uint64_t next_u64(rng *r)
-{
-    uint64_t z = (r->s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-static uint32_t below(rng *r, uint32_t n)
-{
-    return (uint32_t)(next_u64(r) % n);
-}
-
-static float unit(rng *r)
-{
-    return (float)(next_u64(r) >> 40) * 0x1p-24f;
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The base scene: a floor (y = 0, [0, 4]^2) and a box whose x the host moves. */
 #define BASE_VERTICES 12
@@ -133,6 +108,7 @@ typedef struct engine {
     VkFence fences[MAX_SLOTS];
     roma_test_host_buffer rays[MAX_SLOTS], hits[MAX_SLOTS];
     roma_test_log log;
+    uint64_t frames, ao_records, resizes, maps_replaced, bad_calls; /* what the sequences did */
 } engine;
 
 typedef struct sequence {
@@ -145,23 +121,13 @@ typedef struct sequence {
     roma_box volume;
     mesh_slot meshes[MAX_MESHES];
     instance_slot instances[MAX_INSTANCES];
+    /* The AO effect and the engine's G-buffer images it reads (position, normal) and writes. */
+    roma_ao_effect *ao;
+    roma_test_image gbuffer[2], ao_out;
+    uint32_t width, height; /* 0: no images */
+    int images_fresh;       /* created since the last frame: cleared and laid out by the next */
     uint32_t calls, expected_errors, frames;
 } sequence;
-
-/* The context's logger: counts errors (each deliberate bad call logs one); prints them only
- * with FUZZ_CALLS_VERBOSE set (validation messages always), so that a failure's own lines
- * are not buried. */
-static void count_messages(roma_log_level level, roma_result code, const char *message, void *user)
-{
-    roma_test_log *log = user;
-    if (level == ROMA_LOG_ERROR)
-        ++log->errors, log->last_code = code;
-    if (level == ROMA_LOG_WARNING)
-        ++log->warnings;
-    snprintf(log->last, sizeof log->last, "%s", message);
-    if (code == ROMA_ERROR_VALIDATION || (level != ROMA_LOG_DEBUG && getenv("FUZZ_CALLS_VERBOSE")))
-        fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);
-}
 
 static void wait_all(engine *e, uint32_t slots)
 {
@@ -200,8 +166,48 @@ static roma_map *map_rebuild(engine *e, sequence *q, roma_logger logger)
     return map;
 }
 
-/* One frame in slot s: wait for it, record a build (new host positions sometimes) and a
- * trace, submit with the slot's fence. */
+/* The engine's images at a new random size (after waiting for every frame that used them). */
+static void images_resize(engine *e, sequence *q)
+{
+    wait_all(e, q->slots);
+    for (int i = 0; i < 2; ++i)
+        roma_test_image_destroy(e->dev, &q->gbuffer[i]);
+    roma_test_image_destroy(e->dev, &q->ao_out);
+    q->width = 8u + below(&q->r, 57);
+    q->height = 8u + below(&q->r, 41);
+    for (int i = 0; i < 2; ++i)
+        roma_test_image_create(e->ctx, q->width, q->height, VK_FORMAT_R32G32B32A32_SFLOAT,
+                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &q->gbuffer[i]);
+    roma_test_image_create(e->ctx, q->width, q->height, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
+                           &q->ao_out);
+    q->images_fresh = 1;
+    ++e->resizes;
+}
+
+/* New images: the G-buffer cleared to one surface point (on the floor, facing up) and laid out
+ * for sampling, the output for storage writes. */
+static void images_prepare(VkCommandBuffer cmd, sequence *q)
+{
+    const VkClearColorValue values[2] = {{.float32 = {2.0f, 0.01f, 2.0f, 1.0f}}, {.float32 = {0.0f, 1.0f, 0.0f, 0.0f}}};
+    const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    for (int i = 0; i < 2; ++i) {
+        roma_test_layout_barrier(cmd, q->gbuffer[i].image, VK_IMAGE_LAYOUT_UNDEFINED,
+                                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                                 VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdClearColorImage(cmd, q->gbuffer[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &values[i], 1, &all);
+        roma_test_layout_barrier(cmd, q->gbuffer[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
+    roma_test_layout_barrier(cmd, q->ao_out.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                             VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    q->images_fresh = 0;
+}
+
+/* One frame in slot s: wait for it, record a build (new host positions sometimes), a trace and
+ * the AO effect where there is one, submit with the slot's fence. */
 static void frame(engine *e, sequence *q)
 {
     const uint32_t s = q->frame % q->slots;
@@ -222,16 +228,37 @@ static void frame(engine *e, sequence *q)
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                    .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     CHECK(vkBeginCommandBuffer(e->cmds[s], &bi) == VK_SUCCESS);
+    if (q->images_fresh)
+        images_prepare(e->cmds[s], q);
     CHECK_RESULT(roma_map_record_build(q->map, e->cmds[s], &fd, NULL), ROMA_SUCCESS);
     roma_trace_desc td = {.mode = (roma_trace_mode)below(&q->r, 4), .max_steps = 8, .rays = e->rays[s].address,
                           .hits = e->hits[s].address, .ray_count = RAYS};
     CHECK_RESULT(roma_map_record_trace(q->map, e->cmds[s], &td, NULL), ROMA_SUCCESS);
+    if (q->ao && q->width) {
+        /* The engine's order: the last frame's writes of the output (an earlier submission)
+         * before this frame's. */
+        VkMemoryBarrier2 mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                               .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                               .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                               .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                               .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_READ_BIT};
+        VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                                .pMemoryBarriers = &mb};
+        vkCmdPipelineBarrier2(e->cmds[s], &dep);
+        roma_ao_images images = {.width = q->width, .height = q->height, .position = q->gbuffer[0].view,
+                                 .normal = q->gbuffer[1].view, .output = q->ao_out.view};
+        roma_ao_settings settings = {.samples = 1u + below(&q->r, 8), .radius = below(&q->r, 2) ? 0.5f : 0.0f,
+                                     .seed = q->frame};
+        CHECK_RESULT(roma_ao_effect_record(q->ao, e->cmds[s], s, q->map, &images, &settings), ROMA_SUCCESS);
+        ++e->ao_records;
+    }
     CHECK(vkEndCommandBuffer(e->cmds[s]) == VK_SUCCESS);
     VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                            .pCommandBuffers = &e->cmds[s]};
     CHECK(vkQueueSubmit(roma_context_queue(e->ctx), 1, &submit, e->fences[s]) == VK_SUCCESS);
     ++q->frame;
     ++q->frames;
+    ++e->frames;
 }
 
 /* A call that must fail with `want` and one error message, leaving the map as it was. */
@@ -247,6 +274,7 @@ static void expect_error(engine *e, sequence *q, roma_result got, roma_result wa
 
 static void bad_call(engine *e, sequence *q)
 {
+    ++e->bad_calls;
     const float finite[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     float bad[12];
     memcpy(bad, finite, sizeof bad);
@@ -304,7 +332,20 @@ static void bad_call(engine *e, sequence *q)
 static void step(engine *e, sequence *q, roma_logger logger)
 {
     ++q->calls;
-    switch (below(&q->r, 12)) {
+    switch (below(&q->r, 14)) {
+    case 12: /* create the AO effect, or drop it (after waiting for the frames that used it) */
+        if (!q->ao) {
+            CHECK_RESULT(roma_ao_effect_create(e->ctx, &(roma_ao_effect_desc){.frames_in_flight = q->slots}, &q->ao),
+                         ROMA_SUCCESS);
+        } else {
+            wait_all(e, q->slots);
+            roma_ao_effect_destroy(q->ao);
+            q->ao = NULL;
+        }
+        break;
+    case 13: /* the engine's images resized between frames */
+        images_resize(e, q);
+        break;
     case 0: case 1: case 2: case 3:
         frame(e, q);
         break;
@@ -372,6 +413,7 @@ static void step(engine *e, sequence *q, roma_logger logger)
     default: /* destroy the map with frames pending (after waiting for them) and make another */
         if (below(&q->r, 3) == 0) {
             wait_all(e, q->slots);
+            ++e->maps_replaced;
             roma_map_destroy(q->map);
             q->resolution = below(&q->r, 2) ? 32u : 64u;
             q->angular = 1u + below(&q->r, 3);
@@ -423,7 +465,7 @@ static int run_sequence(engine *e, uint64_t seed, uint64_t index)
 {
     sequence q;
     memset(&q, 0, sizeof q);
-    q.r.s = seed * 0x632be59bd9b4e019ull ^ (index + 1) * 0x9e3779b97f4a7c15ull;
+    q.r = rng_of(seed, index);
     q.slots = 2u + below(&q.r, 2);
     q.resolution = below(&q.r, 2) ? 32u : 64u;
     q.angular = 1u + below(&q.r, 3);
@@ -450,6 +492,10 @@ static int run_sequence(engine *e, uint64_t seed, uint64_t index)
         ++roma_test_failures;
     }
     wait_all(e, q.slots);
+    roma_ao_effect_destroy(q.ao);
+    for (int i = 0; i < 2; ++i)
+        roma_test_image_destroy(e->dev, &q.gbuffer[i]);
+    roma_test_image_destroy(e->dev, &q.ao_out);
     roma_map_destroy(q.map);
     roma_scene_destroy(q.base);
     for (uint32_t m = 0; m < MAX_MESHES; ++m)
@@ -475,7 +521,7 @@ int main(int argc, char **argv)
     }
     engine e;
     memset(&e, 0, sizeof e);
-    roma_context_desc cd = {.flags = roma_test_sync_validation_flags(), .logger = {count_messages, &e.log}};
+    roma_context_desc cd = {.flags = roma_test_sync_validation_flags(), .logger = roma_test_logger_quiet(&e.log)};
     if (roma_context_create(&cd, &e.ctx) != ROMA_SUCCESS) { /* a failure, not a skip */
         fprintf(stderr, "no Vulkan context with validation layers\n");
         return 1;
@@ -513,10 +559,12 @@ int main(int argc, char **argv)
     }
     vkDestroyCommandPool(e.dev, e.pool, NULL);
     const uint32_t validation = roma_context_validation_error_count(e.ctx);
-    printf("fuzz_calls seed %" PRIu64 ": %.1f s, %" PRIu64 " sequences of %u calls, %" PRIu64
-           " ended equal to a fresh map; %u validation messages\n", seed, now_seconds() - start, sequences, STEPS,
-           matched, validation);
+    printf("fuzz_calls seed %" PRIu64 ": %.1f s, %" PRIu64 " sequences of %u calls (%" PRIu64 " frames, %" PRIu64
+           " AO records, %" PRIu64 " image resizes, %" PRIu64 " maps replaced, %" PRIu64 " calls that must fail), %"
+           PRIu64 " ended equal to a fresh map; %u validation messages\n", seed, now_seconds() - start, sequences, STEPS,
+           e.frames, e.ao_records, e.resizes, e.maps_replaced, e.bad_calls, matched, validation);
     CHECK(sequences > 0 && matched == sequences && validation == 0);
+    CHECK(e.frames > 0 && e.ao_records > 0 && e.resizes > 0 && e.maps_replaced > 0 && e.bad_calls > 0);
     roma_context_destroy(e.ctx);
     return roma_test_finish("fuzz_calls");
 }

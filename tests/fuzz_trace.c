@@ -27,37 +27,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "fuzz_random.h"
 #include "harness.h"
 #include "map/map_internal.h"
 #include "roma/map.h"
 #include "rotate/directions.h"
 #include "trace/cpu_mirror.h"
 #include "voxelize_cpu.h"
-
-/* splitmix64: a case's whole content follows from (seed, case). */
-typedef struct rng {
-    uint64_t s;
-} rng;
-
-static uint64_t next_u64(rng *r)
-{
-    uint64_t z = (r->s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-static uint32_t below(rng *r, uint32_t n)
-{
-    return (uint32_t)(next_u64(r) % n);
-}
-
-static float unit(rng *r) /* [0, 1) */
-{
-    return (float)(next_u64(r) >> 40) * 0x1p-24f;
-}
 
 static float between(rng *r, float lo, float hi)
 {
@@ -69,12 +46,6 @@ static float pow10f_between(rng *r, float lo, float hi)
     return powf(10.0f, between(r, lo, hi));
 }
 
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* --- scenes --- */
 
@@ -389,7 +360,7 @@ static int same_hit(roma_hit a, roma_hit b)
 
 static void run_case(roma_context *ctx, uint64_t seed, uint64_t index, uint32_t rays_per_case, totals *tot)
 {
-    rng r = {seed * 0x632be59bd9b4e019ull ^ (index + 1) * 0x9e3779b97f4a7c15ull};
+    rng r = rng_of(seed, index);
     case_desc c;
     case_random(&r, rays_per_case, &c);
     mesh_data scene_mesh = {0}, instance_mesh = {0};

@@ -7,15 +7,34 @@
 
 int roma_test_failures = 0;
 
-static void record(roma_log_level level, roma_result code, const char *message, void *user)
+static void count(roma_test_log *log, roma_log_level level, roma_result code, const char *message)
 {
-    roma_test_log *log = user;
     if (level == ROMA_LOG_ERROR)
         ++log->errors, log->last_code = code;
     if (level == ROMA_LOG_WARNING)
         ++log->warnings;
     snprintf(log->last, sizeof log->last, "%s", message);
+}
+
+static void record(roma_log_level level, roma_result code, const char *message, void *user)
+{
+    count(user, level, code, message);
     fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);
+}
+
+/* record, printing only validation messages (or everything with ROMA_TEST_VERBOSE set). */
+static void record_quietly(roma_log_level level, roma_result code, const char *message, void *user)
+{
+    count(user, level, code, message);
+    if (code == ROMA_ERROR_VALIDATION || getenv("ROMA_TEST_VERBOSE"))
+        fprintf(stderr, "  [%s] %s\n", roma_log_level_string(level), message);
+}
+
+roma_logger roma_test_logger_quiet(roma_test_log *log)
+{
+    memset(log, 0, sizeof *log);
+    roma_logger logger = {record_quietly, log};
+    return logger;
 }
 
 roma_logger roma_test_logger(roma_test_log *log)

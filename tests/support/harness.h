@@ -49,6 +49,9 @@ typedef struct roma_test_log {
 } roma_test_log;
 
 roma_logger roma_test_logger(roma_test_log *log);
+/* The same, printing only validation messages (ROMA_TEST_VERBOSE: everything), for tests that
+ * make many calls fail on purpose. */
+roma_logger roma_test_logger_quiet(roma_test_log *log);
 
 /* ROMA_CONTEXT_SYNC_VALIDATION for tests that record frames in flight, except in the
  * sanitizer suite (ROMA_TEST_PLAIN_VALIDATION set): there Mesa 22.3's LLVM leaks under the

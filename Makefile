@@ -10,7 +10,7 @@
 #   make test-fuzz       libFuzzer on the glTF loader and the scene builder, 60 s (CI runs it too)
 #   make fuzz-trace      differential fuzzing of the trace against its C mirror (tests/fuzz_trace.c):
 #                        FUZZ_TRACE_RAYS (1e8) random rays over random scenes and maps, seed
-#                        FUZZ_TRACE_SEED (1); about 20 minutes on 2 cores; ctest runs a 60-second slice
+#                        FUZZ_TRACE_SEED (1); about 4 minutes on 2 cores; ctest runs a 60-second slice
 #   make test-consumers  build the core library alone (Vulkan and glslang only); install into a temporary prefix and build two out-of-tree consumers
 #                        against it (CMake package, pkg-config); then the same with the Debian
 #                        packages, installed with dpkg and removed again (root or sudo; CI runs it)

@@ -62,7 +62,7 @@ int main(void)
         uint32_t *patched = NULL, *again = NULL;
         size_t words = 0, again_words = 0;
         const counts before = count(m->code, m->size / 4);
-        if (!roma_spirv_declare_rte(m->code, m->size / 4, &patched, &words)) {
+        if (roma_spirv_declare_rte(m->code, m->size / 4, &patched, &words) != 1) {
             fprintf(stderr, "%s: not patched\n", m->name);
             ++wrong;
             continue;
@@ -75,7 +75,7 @@ int main(void)
             ++wrong;
         }
         /* Patching a patched module changes nothing. */
-        if (!roma_spirv_declare_rte(patched, words, &again, &again_words) || again_words != words ||
+        if (roma_spirv_declare_rte(patched, words, &again, &again_words) != 1 || again_words != words ||
             memcmp(again, patched, 4 * words) != 0)
             ++wrong;
         const int v = spirv_val(patched, words);
@@ -97,16 +97,26 @@ int main(void)
     size_t words = 0;
     memcpy(old, first->code, first->size);
     old[1] = 0x00010300u;
-    CHECK(roma_spirv_declare_rte(old, first->size / 4, &patched, &words));
+    CHECK(roma_spirv_declare_rte(old, first->size / 4, &patched, &words) == 1);
     CHECK(patched && count(patched, words).float_controls_extensions == 1);
     free(patched);
-    /* Malformed: a wrong magic number, an instruction cut short, no entry point, too short. */
+    /* Malformed: a wrong magic number, an instruction cut short, no entry point, too short,
+     * sections out of order (the first capability moved behind the last instruction). */
     old[0] = 0x12345678u;
-    CHECK(!roma_spirv_declare_rte(old, first->size / 4, &patched, &words) && patched == NULL);
+    CHECK(roma_spirv_declare_rte(old, first->size / 4, &patched, &words) == 0 && patched == NULL);
     old[0] = first->code[0];
-    CHECK(!roma_spirv_declare_rte(old, 6, &patched, &words));
-    CHECK(!roma_spirv_declare_rte(old, 7, &patched, &words));
-    CHECK(!roma_spirv_declare_rte(old, 3, &patched, &words));
+    CHECK(roma_spirv_declare_rte(old, 6, &patched, &words) == 0);
+    CHECK(roma_spirv_declare_rte(old, 7, &patched, &words) == 0);
+    CHECK(roma_spirv_declare_rte(old, 3, &patched, &words) == 0);
+    {
+        const size_t n = first->size / 4;
+        uint32_t *moved = malloc(first->size);
+        memcpy(moved, first->code, 5 * 4);
+        memcpy(moved + 5, first->code + 7, (n - 7) * 4); /* everything after the first capability... */
+        memcpy(moved + n - 2, first->code + 5, 2 * 4);   /* ...then that capability (2 words) last */
+        CHECK((first->code[5] >> 16) == 2 && roma_spirv_declare_rte(moved, n, &patched, &words) == 0);
+        free(moved);
+    }
     free(old);
 
     /* The context says whether its pipelines declare it: where the device supports it. */
@@ -120,7 +130,10 @@ int main(void)
     vkGetPhysicalDeviceProperties2(ctx->physical_device, &p2);
     printf("%s: shaderRoundingModeRTEFloat32 %u, libroma's pipelines declare RoundingModeRTE: %u\n", info.device_name,
            fc.shaderRoundingModeRTEFloat32, info.rounding_mode_rte);
-    CHECK(info.rounding_mode_rte == (fc.shaderRoundingModeRTEFloat32 && !getenv("ROMA_NO_ROUNDING_MODE")));
+    /* ROMA_NO_ROUNDING_MODE as the context reads it: set, not empty and not "0". */
+    const char *off = getenv("ROMA_NO_ROUNDING_MODE");
+    const int disabled = off && off[0] && strcmp(off, "0") != 0;
+    CHECK(info.rounding_mode_rte == (fc.shaderRoundingModeRTEFloat32 && !disabled));
     roma_test_context_finish(ctx);
     return roma_test_finish("test_spirv_rounding");
 }

@@ -82,8 +82,8 @@ typedef struct roma_ao_settings {
  * Any thread (pure). */
 ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
 
-/** Ambient occlusion on the engine's G-buffer images (opaque). Used by one thread at a time, like
- * its context. */
+/** Ambient occlusion on the engine's G-buffer images (opaque). Used by one thread at a time
+ * (roma/context.h). */
 typedef struct roma_ao_effect roma_ao_effect;
 
 /** Settings of roma_ao_effect_create; the zero value is the default. */

@@ -37,7 +37,8 @@
  *    from other threads passes roma_context_desc.queue_lock, which libroma takes around each
  *    of its submissions; without it, no other thread submits to the queue during those calls.
  *  - The logger and the allocation callbacks are called from whichever thread calls libroma:
- *    with several threads they must be thread-safe.
+ *    with several threads they must be thread-safe. They may be called while libroma holds
+ *    the context's locks, so they must not call libroma.
  *  - The context is destroyed by one thread, after every object, with no call on it running.
  *  `tests/test_threads.c` holds libroma to this, under ThreadSanitizer too (make test-tsan).
  *

@@ -100,8 +100,8 @@ typedef struct roma_gi_settings {
  * Any thread (pure). */
 ROMA_API roma_result roma_gi_settings_resolve(const roma_gi_settings *in, roma_gi_settings *out);
 
-/** One-bounce GI on the engine's G-buffer images (opaque). Used by one thread at a time, like
- * its context. */
+/** One-bounce GI on the engine's G-buffer images (opaque). Used by one thread at a time
+ * (roma/context.h). */
 typedef struct roma_gi_effect roma_gi_effect;
 
 /** Settings of roma_gi_effect_create; the zero value is the default. */

@@ -341,8 +341,14 @@ roma_result roma_context_create(const roma_context_desc *desc, roma_context **ou
         free(ctx);
         ctx = NULL;
     }
+    if (ctx && !roma_mutex_init(&ctx->memory_lock, 0)) {
+        roma_mutex_destroy(&ctx->lock);
+        free(ctx);
+        ctx = NULL;
+    }
     if (ctx && !roma_mutex_init(&ctx->submit_lock, 1)) {
         roma_mutex_destroy(&ctx->lock);
+        roma_mutex_destroy(&ctx->memory_lock);
         free(ctx);
         ctx = NULL;
     }
@@ -444,6 +450,7 @@ void roma_context_destroy(roma_context *ctx)
             vkDestroyInstance(ctx->instance, ctx->allocator);
     }
     roma_mutex_destroy(&ctx->lock);
+    roma_mutex_destroy(&ctx->memory_lock);
     roma_mutex_destroy(&ctx->submit_lock);
     free(ctx);
 }
@@ -462,8 +469,10 @@ roma_result roma_context_get_info(const roma_context *ctx, roma_context_info *ou
     out->api_version = ctx->properties.apiVersion;
     out->driver_version = ctx->properties.driverVersion;
     out->timestamp_period_ns = ctx->properties.limits.timestampPeriod;
-    roma_mutex_lock(&((roma_context *)ctx)->lock);
+    roma_mutex_lock(&((roma_context *)ctx)->memory_lock);
     out->device_memory_in_use = ctx->memory_in_use;
+    roma_mutex_unlock(&((roma_context *)ctx)->memory_lock);
+    roma_mutex_lock(&((roma_context *)ctx)->lock);
     out->pipelines_compiled = ctx->pipeline_count;
     roma_mutex_unlock(&((roma_context *)ctx)->lock);
     out->device_memory_budget = ctx->memory_budget;

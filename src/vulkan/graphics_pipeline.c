@@ -22,9 +22,11 @@ roma_result roma_shader_module_create(roma_context *ctx, const char *name, VkSha
     uint32_t *rte = NULL;
     size_t rte_words = 0;
     if (ctx->rounding_rte) { /* round to nearest even, as the trace's mirror assumes (spirv_rounding.h) */
-        if (!roma_spirv_declare_rte(m->code, m->size / 4, &rte, &rte_words))
-            return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_HOST_MEMORY,
-                             "shader %s: could not declare RoundingModeRTE (out of memory)", name);
+        const int patched = roma_spirv_declare_rte(m->code, m->size / 4, &rte, &rte_words);
+        if (patched <= 0)
+            return roma_fail(&ctx->logger, patched < 0 ? ROMA_ERROR_OUT_OF_HOST_MEMORY : ROMA_ERROR_UNSUPPORTED,
+                             "shader %s: could not declare RoundingModeRTE (%s)", name,
+                             patched < 0 ? "out of memory" : "a module it cannot patch");
         info.codeSize = 4 * rte_words;
         info.pCode = rte;
     }

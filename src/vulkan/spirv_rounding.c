@@ -51,12 +51,15 @@ int roma_spirv_declare_rte(const uint32_t *code, size_t words, uint32_t **out, s
     }
     if (!entry_count || caps_end == SPV_HEADER_WORDS)
         return 0;
+    /* The logical layout's order: capabilities, extensions, ..., entry points and modes. */
+    if ((ext_end && ext_end < caps_end) || modes_end < (ext_end ? ext_end : caps_end))
+        return 0;
     const int extension = !declared && code[1] < 0x00010400u; /* float controls are core from SPIR-V 1.4 */
     const size_t ext_words = 1 + (sizeof float_controls + 3) / 4;
     const size_t added = declared ? 0 : 2 + (extension ? ext_words : 0) + 4 * (size_t)entry_count;
     uint32_t *patched = malloc(sizeof(uint32_t) * (words + added));
     if (!patched)
-        return 0;
+        return -1;
     if (declared) {
         memcpy(patched, code, sizeof(uint32_t) * words);
         *out = patched;

@@ -11,8 +11,10 @@
 /* A copy of the module (words 32-bit words) with the RoundingModeRTE capability, the
  * SPV_KHR_float_controls extension where the module's SPIR-V version predates 1.4, and the
  * RoundingModeRTE 32 execution mode on every entry point, into *out (malloc'ed; the caller
- * frees it) and *out_words. Returns 0 on malformed input or no memory (*out NULL). A module
- * that declares the capability already is copied as it is. */
+ * frees it) and *out_words. A module that declares the capability already is copied as it is.
+ * Returns 1; 0 for input that is not a module it can patch (bad header, a cut instruction,
+ * sections out of order, no capability or entry point, more than 16 entry points); -1 when
+ * out of memory (*out NULL on failure). */
 int roma_spirv_declare_rte(const uint32_t *code, size_t words, uint32_t **out, size_t *out_words);
 
 #endif /* ROMA_VULKAN_SPIRV_ROUNDING_H */

@@ -9,11 +9,15 @@
 #include "roma/context.h"
 #include "util/log.h"
 
-/* Threads (roma/context.h): every field written after creation is an atomic or is guarded
- * by `lock` (memory_in_use, the pipeline table); the command pool and fence of the blocking
- * submissions by `submit_lock`, held from roma_begin_one_shot to roma_submit_one_shot. */
+/* Threads (roma/context.h): every field written after creation is an atomic or is guarded:
+ * the pipeline table by `lock` (held while a missing pipeline compiles), memory_in_use by
+ * `memory_lock` (so that buffers come and go during a compile), the command pool and fence of
+ * the blocking submissions by `submit_lock`, held from roma_begin_one_shot to
+ * roma_submit_one_shot. Order: submit_lock before the others; none is held while another is
+ * taken but that one. */
 struct roma_context {
-    roma_mutex lock;        /* plain */
+    roma_mutex lock;        /* plain: the pipeline table */
+    roma_mutex memory_lock; /* plain: memory_in_use */
     roma_mutex submit_lock; /* recursive: a blocking call may make a one-shot inside another */
     roma_queue_lock queue_lock; /* desc.queue_lock: the engine's lock of a queue it shares */
     roma_logger logger;

@@ -56,12 +56,12 @@ roma_result roma_device_memory_reserve(roma_context *ctx, VkDeviceSize bytes, co
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
                          "%s: %llu bytes in one allocation, the device allows at most %llu", what,
                          (unsigned long long)bytes, (unsigned long long)ctx->max_allocation_size);
-    roma_mutex_lock(&ctx->lock);
+    roma_mutex_lock(&ctx->memory_lock);
     const uint64_t in_use = ctx->memory_in_use;
     const int over = ctx->memory_budget && bytes > ctx->memory_budget - in_use;
     if (!over)
         ctx->memory_in_use += bytes;
-    roma_mutex_unlock(&ctx->lock);
+    roma_mutex_unlock(&ctx->memory_lock);
     if (over)
         return roma_fail(&ctx->logger, ROMA_ERROR_OUT_OF_DEVICE_MEMORY,
                          "%s: %llu more bytes of device memory would exceed the context's budget of %llu "
@@ -72,9 +72,9 @@ roma_result roma_device_memory_reserve(roma_context *ctx, VkDeviceSize bytes, co
 
 void roma_device_memory_release(roma_context *ctx, VkDeviceSize bytes)
 {
-    roma_mutex_lock(&ctx->lock);
+    roma_mutex_lock(&ctx->memory_lock);
     ctx->memory_in_use -= bytes < ctx->memory_in_use ? bytes : ctx->memory_in_use;
-    roma_mutex_unlock(&ctx->lock);
+    roma_mutex_unlock(&ctx->memory_lock);
 }
 
 roma_result roma_buffer_create(roma_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,

@@ -346,7 +346,8 @@ roma_hit roma_cpu_trace_levels(uint32_t levels, const roma_grid_params *grids, c
     float dn[3] = {0.0f, 0.0f, 0.0f}, along[3], inv[3];
     const int unit = roma_unit_direction(ray->dir, dn);
     const float *o = ray->origin;
-    /* A ray that is not traced is the finest level's plain miss (info 0). */
+    /* A ray that is not traced is the plain miss (info 0); walked in level 0 here and in its
+     * origin's level in GLSL, alike: the trace returns before it reads a grid. */
     const int traced = unit && isfinite(o[0]) && isfinite(o[1]) && isfinite(o[2]) && ray->tmin <= ray->tmax;
     uint32_t l = traced ? level_of(levels, grids, ray->origin) : 0u;
     const roma_grid_params *g = &grids[l];

@@ -110,6 +110,8 @@ assert len(s["passes"]) > 0, s["passes"]
 for p in s["passes"]:
     assert p["name"] and p["ms"] >= 0, p
 EOF
+else
+  fail "roma-render wrote no stats file ($out/stats.json)"
 fi
 
 # --- roma-compare ---

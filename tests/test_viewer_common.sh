@@ -19,6 +19,15 @@ fail() {
   echo "FAIL: $*" >&2
   failures=$((failures + 1))
 }
+# outputs FILE...: true when every file is there; each missing one is a failure, so that a tool
+# that exits 0 without writing its output cannot skip the checks that read it.
+outputs() {
+  local missing=0 f
+  for f in "$@"; do
+    [ -f "$f" ] || { fail "missing output $f"; missing=1; }
+  done
+  return $missing
+}
 metric() {
   awk -v k="$2" '$1 == k { print $2; found = 1 } END { exit !found }' "$1"
 }
@@ -49,6 +58,7 @@ below "" 0.5 && fail "below passes an empty value"
 below "none" 0.5 && fail "below passes a word"
 below 0.4 "" && fail "below passes an empty bound"
 numbers 0.1 "" && fail "numbers passes an empty value"
+(outputs "$dir/no such file" 2>/dev/null) && fail "outputs passes a missing file"
 # compare_checked ARGS...: roma-compare, a failure when it does not exit 0
 compare_checked() {
   "$compare" "$@" || fail "roma-compare $* exited $?"

@@ -25,8 +25,7 @@ else
     >/dev/null 2>&1 || fail "roma-render --tracer roma on the level failed"
   [ "$(json "$dir/level_auto.json" levels) $(json "$dir/level_one.json" levels)" = "4 1" ] ||
     fail "the viewer did not pick 4 cascade levels for the level (or 1 with --cascades 1)"
-  if [ -f "$dir/level_auto.pfm" ] && [ -f "$dir/level_one.pfm" ] && [ -f "$dir/level_reference/ao.pfm" ] &&
-    [ -f "$dir/level_roma/ao.pfm" ]; then
+  if outputs "$dir/level_auto.pfm" "$dir/level_one.pfm" "$dir/level_reference/ao.pfm" "$dir/level_roma/ao.pfm"; then
     mask=(--mask "$dir/level_reference/coverage.pfm")
     compare_checked "$dir/level_auto.pfm" "$dir/level_reference/ao.pfm" "${mask[@]}" >"$dir/level_auto.txt"
     compare_checked "$dir/level_one.pfm" "$dir/level_reference/ao.pfm" "${mask[@]}" >"$dir/level_one.txt"

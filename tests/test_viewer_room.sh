@@ -17,7 +17,7 @@ source "$(dirname "$0")/test_viewer_common.sh" "$@"
   --out "$dir/reference" >/dev/null 2>&1 || fail "roma-render --tracer embree failed"
 "$render" --tracer roma --effects ao --spp 8 --frames 32 --ao-radius 0.5 --camera "$cam" \
   --size 160x120 --quiet --out "$dir/roma" >/dev/null 2>&1 || fail "roma-render --tracer roma failed"
-if [ -f "$dir/viewer_ao.pfm" ] && [ -f "$dir/reference/ao.pfm" ] && [ -f "$dir/roma/ao.pfm" ]; then
+if outputs "$dir/viewer_ao.pfm" "$dir/reference/ao.pfm" "$dir/roma/ao.pfm"; then
   compare_checked "$dir/viewer_ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_reference.txt"
   compare_checked "$dir/viewer_ao.pfm" "$dir/roma/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/vs_roma.txt"
   compare_checked "$dir/roma/ao.pfm" "$dir/reference/ao.pfm" --mask "$dir/reference/coverage.pfm" >"$dir/roma_vs_reference.txt"
@@ -74,7 +74,7 @@ echo "direct light MAE (viewer vs Embree): ${direct:-none}"
   --size 160x120 --quiet --out "$dir/roma_gi" >/dev/null 2>&1 || fail "roma-render --effects gi failed"
 "$render" --tracer embree --effects gi --spp 256 --camera "$cam" --size 160x120 --quiet \
   --out "$dir/reference_gi" >/dev/null 2>&1 || fail "roma-render --tracer embree --effects gi failed"
-if [ -f "$dir/viewer_gi.pfm" ] && [ -f "$dir/roma_gi/gi.pfm" ] && [ -f "$dir/reference_gi/gi.pfm" ]; then
+if outputs "$dir/viewer_gi.pfm" "$dir/roma_gi/gi.pfm" "$dir/reference_gi/gi.pfm"; then
   compare_checked "$dir/viewer_gi.pfm" "$dir/roma_gi/gi.pfm" --mask "$dir/reference_gi/coverage.pfm" >"$dir/gi_vs_roma.txt"
   compare_checked "$dir/viewer_gi.pfm" "$dir/reference_gi/gi.pfm" --mask "$dir/reference_gi/coverage.pfm" \
     >"$dir/gi_vs_reference.txt"
@@ -105,7 +105,7 @@ wall_cam="0,3,4,0,0.3,0,50"
 "$render" --scene "$wall" --time 0.9 --tracer roma --effects gi --gi-punctual rays --spp 1 \
   --frames 32 --camera "$wall_cam" --size 160x120 --quiet --out "$dir/wall_roma" >/dev/null 2>&1 \
   || fail "roma-render --effects gi on the moving wall failed"
-if [ -f "$dir/wall_gi.pfm" ] && [ -f "$dir/wall_roma/gi.pfm" ]; then
+if outputs "$dir/wall_gi.pfm" "$dir/wall_roma/gi.pfm"; then
   compare_checked "$dir/wall_gi.pfm" "$dir/wall_roma/gi.pfm" --mask "$dir/wall_roma/coverage.pfm" >"$dir/wall_gi.txt"
   wg=$(metric "$dir/wall_gi.txt" mean_abs)
   echo "GI with the wall moved (time 0.9): viewer vs roma-render of the posed scene, MAE $wg"

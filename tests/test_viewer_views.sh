@@ -19,7 +19,7 @@ for steps in 8 64; do
   headless "steps_$steps" "--view steps" --view steps --max-steps $steps --frames 1 --camera "$cam" --size 160x120 \
     --linear "$dir/steps_$steps.pfm"
 done
-if [ -f "$dir/steps_8.pfm" ] && [ -f "$dir/steps_64.pfm" ]; then
+if outputs "$dir/steps_8.pfm" "$dir/steps_64.pfm"; then
   g8=$(magenta "$dir/steps_8.pfm"); g64=$(magenta "$dir/steps_64.pfm")
   echo "steps view: shadow rays to the spot that gave up: $g8 of the pixels with 8 steps, $g64 with 64"
   # Measured: 0.859 with 8 steps, 0.0013 with 64 (19,200 pixels).
@@ -43,7 +43,7 @@ for k in 0 9; do
   headless "rotated_$k" "--view rotated-map --map $k" --view rotated-map --map $k --frames 1 --size 160x120 \
     --linear "$dir/rotated_$k.pfm"
 done
-if [ -f "$dir/rotated_0.pfm" ] && [ -f "$dir/rotated_9.pfm" ]; then
+if outputs "$dir/rotated_0.pfm" "$dir/rotated_9.pfm"; then
   r0=$(occupied_share "$dir/rotated_0.pfm"); r9=$(occupied_share "$dir/rotated_9.pfm")
   echo "rotated-map view: occupied columns: $r0 of map 0's texels, $r9 of map 9's"
   # Measured: 0.348 (map 0) and 0.490 (map 9) of 14,400 texels.
@@ -65,7 +65,7 @@ for skip in 1.6 3.2; do
   headless "ray_start_$skip" "--view ray-start" --view ray-start --ao-skip $skip --frames 1 --camera "$cam" \
     --size 160x120 --linear "$dir/ray_start_$skip.pfm"
 done
-if [ -f "$dir/ray_start_1.6.pfm" ] && [ -f "$dir/ray_start_3.2.pfm" ]; then
+if outputs "$dir/ray_start_1.6.pfm" "$dir/ray_start_3.2.pfm"; then
   s1=$(blocked_share "$dir/ray_start_1.6.pfm"); s2=$(blocked_share "$dir/ray_start_3.2.pfm")
   echo "ray-start view: pixels with a blocked start: $s1 with the default skip (1.6 cells), $s2 with 3.2"
   # Measured: 0.0918 and 0.169 of 19,200 pixels.
@@ -83,7 +83,7 @@ for run in "8 16" "8 64" "256 16"; do
 done
 headless many_none "(spot only)" --scene builtin:cornell_spot --view direct --frames 16 --camera "$cam" --size 80x60 \
   --linear "$dir/many_none.pfm"
-if [ -f "$dir/many_8_16.pfm" ] && [ -f "$dir/many_8_64.pfm" ] && [ -f "$dir/many_256_16.pfm" ] && [ -f "$dir/many_none.pfm" ]; then
+if outputs "$dir/many_8_16.pfm" "$dir/many_8_64.pfm" "$dir/many_256_16.pfm" "$dir/many_none.pfm"; then
   for a in 8_16 8_64 none; do compare_checked "$dir/many_$a.pfm" "$dir/many_256_16.pfm" >"$dir/many_$a.txt"; done
   r16=$(metric "$dir/many_8_16.txt" relative); r64=$(metric "$dir/many_8_64.txt" relative)
   b16=$(metric "$dir/many_8_16.txt" bias); b64=$(metric "$dir/many_8_64.txt" bias)

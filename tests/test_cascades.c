@@ -24,6 +24,7 @@
 #include "roma/sampling.h"
 #include "trace/cpu_mirror.h"
 #include "voxelize_cpu.h"
+#include "vulkan/upload.h"
 
 #define RES 64u
 #define ANGULAR 4u
@@ -372,22 +373,32 @@ done:
 
 /* A new map of the scene with the mesh as a static instance at `transform`, built from frame:
  * what a map with it dynamic must hold word for word. */
-static int fresh_equal(roma_context *ctx, const roma_scene *scene, const roma_map_desc *desc,
-                       const roma_map_frame_desc *frame, const float transform[12], const uint32_t *bom,
-                       const uint32_t *maps, uint32_t *bom2, uint32_t *maps2)
+static int fresh_equal_mesh(roma_context *ctx, const roma_scene *scene, const roma_scene *mesh_scene,
+                            const roma_map_desc *desc, const roma_map_frame_desc *frame, const float transform[12],
+                            const uint32_t *bom, const uint32_t *maps, uint32_t *bom2, uint32_t *maps2)
 {
     const uint64_t texel_words = (uint64_t)RES * RES * (RES / 32), map_words = texel_words * ANGULAR * ANGULAR;
     roma_map *fresh = NULL;
     uint32_t mesh = 0, instance = 0;
+    roma_map_frame_desc plain = *frame; /* the fresh map's mesh holds the positions from its start */
+    plain.mesh_positions = NULL;
+    plain.mesh_position_count = 0;
     int same = roma_map_create(ctx, desc, scene, &fresh) == ROMA_SUCCESS &&
-               roma_map_add_mesh(fresh, scene, &mesh) == ROMA_SUCCESS;
+               roma_map_add_mesh(fresh, mesh_scene, &mesh) == ROMA_SUCCESS;
     roma_instance_desc d = {.mesh = mesh};
     memcpy(d.transform, transform, sizeof d.transform);
     same = same && roma_map_add_instance(fresh, &d, &instance) == ROMA_SUCCESS &&
-           roma_map_build(fresh, frame, NULL) == ROMA_SUCCESS && download_all(fresh, bom2, maps2) &&
+           roma_map_build(fresh, &plain, NULL) == ROMA_SUCCESS && download_all(fresh, bom2, maps2) &&
            memcmp(bom, bom2, 4 * texel_words * LEVELS) == 0 && memcmp(maps, maps2, 4 * map_words * LEVELS) == 0;
     roma_map_destroy(fresh);
     return same;
+}
+
+static int fresh_equal(roma_context *ctx, const roma_scene *scene, const roma_map_desc *desc,
+                       const roma_map_frame_desc *frame, const float transform[12], const uint32_t *bom,
+                       const uint32_t *maps, uint32_t *bom2, uint32_t *maps2)
+{
+    return fresh_equal_mesh(ctx, scene, scene, desc, frame, transform, bom, maps, bom2, maps2);
 }
 
 /* A dynamic instance over static geometry: a build keeps each level's static part and adds the
@@ -472,6 +483,172 @@ done:
     roma_map_destroy(map);
 }
 
+/* The room's positions bent as a skinned character's would be, at step k: a shear growing
+ * with height and a bulge, different at every step. */
+static void bend(const roma_scene_view *v, int k, float *out, float bmin[3], float bmax[3])
+{
+    for (int a = 0; a < 3; ++a)
+        bmin[a] = INFINITY, bmax[a] = -INFINITY;
+    for (uint32_t i = 0; i < v->vertex_count; ++i) {
+        const float *p = v->positions + 3 * (size_t)i;
+        const float h = (p[1] - v->bounds_min[1]) / (v->bounds_max[1] - v->bounds_min[1]);
+        float q[3] = {p[0] + 0.15f * (float)k * h * (v->bounds_max[0] - v->bounds_min[0]),
+                      p[1] * (1.0f + 0.1f * (float)k), p[2] * (1.0f - 0.05f * (float)k * h)};
+        for (int a = 0; a < 3; ++a) {
+            out[3 * (size_t)i + a] = q[a];
+            bmin[a] = fminf(bmin[a], q[a]);
+            bmax[a] = fmaxf(bmax[a], q[a]);
+        }
+    }
+}
+
+/* A mesh whose positions the caller writes on the GPU (roma_mesh_positions: a skinned character
+ * in a level), as a dynamic instance over the static room in cascade levels: every build is
+ * word for word a new map's with the bent mesh static at the same place; bending it redoes the
+ * levels it is in from their static copies (once they are kept, no static triangle is
+ * voxelized again); a build
+ * without new positions keeps everything. Refused: a static instance of such a mesh, a mesh
+ * listed twice, unknown meshes, NULL arrays, bad bounds and addresses (nothing changes). */
+static void check_mesh_positions(roma_context *ctx, const roma_scene *scene)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    const roma_map_desc desc = {.resolution = RES, .angular = ANGULAR, .cascades = LEVELS};
+    const uint64_t texel_words = (uint64_t)RES * RES * (RES / 32), map_words = texel_words * ANGULAR * ANGULAR;
+    const uint32_t stride = 20; /* 5 floats a vertex: a stride other than 12 */
+    uint32_t *bom = malloc(4 * texel_words * LEVELS), *maps = malloc(4 * map_words * LEVELS);
+    uint32_t *bom2 = malloc(4 * texel_words * LEVELS), *maps2 = malloc(4 * map_words * LEVELS);
+    float *bent = malloc(12ull * v.vertex_count), *strided = calloc(v.vertex_count, stride);
+    roma_buffer gpu[3] = {{0}};
+    roma_map *map = NULL;
+    uint32_t mesh = 0, instance = 0, other = 0;
+    CHECK_RESULT(roma_map_create(ctx, &desc, scene, &map), ROMA_SUCCESS);
+    if (!map || !bom || !maps || !bom2 || !maps2 || !bent || !strided ||
+        roma_map_add_mesh(map, scene, &mesh) != ROMA_SUCCESS || roma_map_add_mesh(map, scene, &other) != ROMA_SUCCESS) {
+        CHECK(map && "out of memory");
+        goto done;
+    }
+    float focus[3], longest = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        focus[a] = v.bounds_min[a] + (v.bounds_max[a] - v.bounds_min[a]) * (a == 2 ? 0.4f : 0.3f);
+        longest = fmaxf(longest, v.bounds_max[a] - v.bounds_min[a]);
+    }
+    const float s = 0.06f;
+    const float t[12] = {s, 0, 0, focus[0], 0, s, 0, focus[1], 0, 0, s, focus[2]};
+    roma_instance_desc d = {.mesh = mesh, .flags = ROMA_INSTANCE_DYNAMIC};
+    memcpy(d.transform, t, sizeof t);
+    CHECK_RESULT(roma_map_add_instance(map, &d, &instance), ROMA_SUCCESS);
+    /* Three poses in the caller's device-local buffers (as an animator's). */
+    roma_box boxes[3];
+    for (int k = 0; k < 3; ++k) {
+        bend(&v, k + 1, bent, boxes[k].min, boxes[k].max);
+        for (uint32_t i = 0; i < v.vertex_count; ++i)
+            memcpy((char *)strided + (size_t)i * stride, bent + 3 * (size_t)i, 12);
+        CHECK_RESULT(roma_buffer_create_filled(ctx, (VkDeviceSize)v.vertex_count * stride,
+                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                   VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                               strided, &gpu[k]),
+                     ROMA_SUCCESS);
+    }
+    roma_map_frame_desc frame = {.frame = 1, .seed = 9, .focus = focus, .finest_extent = longest / 6.0f};
+    roma_map_info info;
+    uint32_t rebuilt[4];
+    uint64_t voxelized[4];
+    /* Posed at the first build, bent again, bent again, then still. */
+    for (int k = 0; k < 4; ++k) {
+        const int pose = k < 3 ? k : 2;
+        roma_mesh_positions given = {.mesh = mesh, .gpu_positions = gpu[pose].address,
+                                     .gpu_position_stride = stride, .bounds = boxes[pose]};
+        frame.mesh_positions = k < 3 ? &given : NULL;
+        frame.mesh_position_count = k < 3 ? 1 : 0;
+        CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+        roma_map_get_info(map, &info);
+        rebuilt[k] = info.levels_rebuilt;
+        voxelized[k] = info.triangles_voxelized;
+        bend(&v, pose + 1, bent, boxes[pose].min, boxes[pose].max);
+        roma_scene *posed = NULL;
+        CHECK_RESULT(roma_scene_create(&(roma_scene_desc){.positions = bent, .vertex_count = v.vertex_count,
+                                                          .indices = v.indices, .triangle_count = v.triangle_count},
+                                       &posed),
+                     ROMA_SUCCESS);
+        const int same = posed && download_all(map, bom, maps) &&
+                         fresh_equal_mesh(ctx, scene, posed, &desc, &frame, t, bom, maps, bom2, maps2);
+        CHECK(same);
+        if (!same)
+            printf("mesh positions: build %d differs from a new map's with the posed mesh\n", k);
+        roma_scene_destroy(posed);
+    }
+    printf("mesh positions: levels redone %u, %u, %u, still %u (of %u); triangles voxelized %llu, %llu, %llu, %llu\n",
+           rebuilt[0], rebuilt[1], rebuilt[2], rebuilt[3], LEVELS, (unsigned long long)voxelized[0],
+           (unsigned long long)voxelized[1], (unsigned long long)voxelized[2], (unsigned long long)voxelized[3]);
+    CHECK(rebuilt[0] == LEVELS && voxelized[0] > 0);
+    /* At the focus, in every level. The second build voxelizes the static part alone once, to
+     * keep it (the first built every triangle together); from the third on it is kept. */
+    CHECK(rebuilt[1] == LEVELS && voxelized[1] > 0);
+    CHECK(rebuilt[2] == LEVELS && voxelized[2] == 0);
+    CHECK(rebuilt[3] == 0);
+
+    /* Refused, and the map as it was: a build after them keeps everything. */
+    const roma_mesh_positions good = {.mesh = mesh, .gpu_positions = gpu[0].address, .bounds = boxes[0]};
+    roma_mesh_positions bad[2] = {good, good};
+    const struct {
+        const char *what;
+        roma_mesh_positions first;
+        uint32_t count;
+    } refusals[] = {
+        {"no mesh 99", {.mesh = 99, .gpu_positions = good.gpu_positions, .bounds = good.bounds}, 1},
+        {"address 0", {.mesh = mesh, .bounds = good.bounds}, 1},
+        {"unaligned", {.mesh = mesh, .gpu_positions = good.gpu_positions + 2, .bounds = good.bounds}, 1},
+        {"stride 8", {.mesh = mesh, .gpu_positions = good.gpu_positions, .gpu_position_stride = 8, .bounds = good.bounds}, 1},
+        {"min above max", {.mesh = mesh, .gpu_positions = good.gpu_positions, .bounds = {{1, 0, 0}, {0, 1, 1}}}, 1},
+        {"NaN bounds", {.mesh = mesh, .gpu_positions = good.gpu_positions, .bounds = {{NAN, 0, 0}, {1, 1, 1}}}, 1},
+        {"twice", good, 2},
+    };
+    for (size_t i = 0; i < sizeof refusals / sizeof refusals[0]; ++i) {
+        bad[0] = refusals[i].first;
+        frame.mesh_positions = bad;
+        frame.mesh_position_count = refusals[i].count;
+        const roma_result r = roma_map_build(map, &frame, NULL);
+        CHECK(r == ROMA_ERROR_INVALID_ARGUMENT);
+        if (r != ROMA_ERROR_INVALID_ARGUMENT)
+            printf("mesh positions: '%s' not refused (%d)\n", refusals[i].what, (int)r);
+    }
+    frame.mesh_positions = NULL;
+    frame.mesh_position_count = 1;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    /* A static instance of a mesh given positions would stay in the static part as it was. */
+    uint32_t fixed = 0;
+    CHECK_RESULT(roma_map_add_instance(map, &(roma_instance_desc){.mesh = other}, &fixed), ROMA_SUCCESS);
+    const roma_mesh_positions of_other = {.mesh = other, .gpu_positions = gpu[0].address, .bounds = boxes[0]};
+    frame.mesh_positions = &of_other;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_map_remove_instance(map, fixed), ROMA_SUCCESS);
+    frame.mesh_positions = NULL;
+    frame.mesh_position_count = 0;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS); /* the instance removed: a new layout */
+    CHECK(download_all(map, bom, maps) && fresh_equal_mesh(ctx, scene, scene, &desc, &frame, t, bom, maps, bom2, maps2) == 0);
+    {
+        roma_scene *posed = NULL;
+        bend(&v, 3, bent, boxes[2].min, boxes[2].max);
+        CHECK_RESULT(roma_scene_create(&(roma_scene_desc){.positions = bent, .vertex_count = v.vertex_count,
+                                                          .indices = v.indices, .triangle_count = v.triangle_count},
+                                       &posed),
+                     ROMA_SUCCESS);
+        CHECK(posed && fresh_equal_mesh(ctx, scene, posed, &desc, &frame, t, bom, maps, bom2, maps2));
+        roma_scene_destroy(posed);
+    }
+done:
+    for (int k = 0; k < 3; ++k)
+        roma_buffer_destroy(ctx, &gpu[k]);
+    free(bent);
+    free(strided);
+    free(bom);
+    free(maps);
+    free(bom2);
+    free(maps2);
+    roma_map_destroy(map);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -486,6 +663,7 @@ int main(void)
         CHECK(check_cascades(ctx, scene, 1) == (uint64_t)LEVELS * v.triangle_count);
         check_reuse(ctx, scene);
         check_dynamic(ctx, scene);
+        check_mesh_positions(ctx, scene);
     }
     /* Levels over part of a larger scene voxelize the chunks that touch them, and their BOM is
      * still the CPU voxelizer's of every triangle. */

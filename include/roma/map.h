@@ -154,6 +154,22 @@ typedef struct roma_box {
     float max[3]; /**< highest corner */
 } roma_box;
 
+/** This frame's positions of a mesh added to the map (roma_map_add_mesh), written on the GPU by
+ * the caller: a skinned character or a deforming object among static geometry. Every instance of
+ * the mesh takes them, in its own place; the rest of the map is not rebuilt for them, as for a
+ * dynamic instance that moved. */
+typedef struct roma_mesh_positions {
+    uint32_t mesh; /**< from roma_map_add_mesh; its instances must all be ROMA_INSTANCE_DYNAMIC */
+    /** The mesh's vertex_count positions in its local frame: 3 floats at
+     * gpu_positions + i * gpu_position_stride, read by a compute pass of the build. */
+    VkDeviceAddress gpu_positions;
+    uint32_t gpu_position_stride; /**< bytes between vertices, a multiple of 4; 0 = 12 */
+    /** A box (local frame) holding every position: the host cannot see them, and a level
+     * voxelizes and restores only what the instances' boxes touch (roma_animator_output.bounds
+     * for an animator's positions). Kept for later builds that give no new positions. */
+    roma_box bounds;
+} roma_mesh_positions;
+
 /** What one build uses: its slot, jitter, volume and new positions; the zero value builds from
  * the last positions in slot 0 (levels already built from the same are kept:
  * roma_map_info.levels_rebuilt).
@@ -183,6 +199,10 @@ typedef struct roma_map_frame_desc {
     VkDeviceAddress gpu_positions; /**< the caller's positions by address (0: none) */
     uint32_t gpu_position_stride; /**< bytes between vertices, a multiple of 4; 0 = 12 */
     uint32_t vertex_count; /**< with positions or gpu_positions: the map's vertex count */
+    /** New positions of added meshes (mesh_position_count entries, one per mesh at most),
+     * gathered before the instances are placed; meshes not listed keep theirs. NULL: none. */
+    const roma_mesh_positions *mesh_positions;
+    uint32_t mesh_position_count; /**< entries in mesh_positions */
     /** A map of several cascade levels: the point they centre on this frame (3 floats: the
      * camera's position); each level's centre snaps to its own cells, so that static
      * geometry does not shimmer as the point moves. NULL: the traced volume's centre. */
@@ -224,7 +244,9 @@ typedef struct roma_map_frame_desc {
  *   not below frames_in_flight, both positions and gpu_positions, a vertex_count other than
  *   the map's, a gpu_position_stride not a multiple of 4 or below 12, gpu_positions not
  *   4-byte aligned or without volume, more than 16 GiB of gpu_positions (vertex_count x
- *   stride), a volume with min above max (or NaN);
+ *   stride), a volume with min above max (or NaN); in mesh_positions (NULL with a count, an
+ *   unknown or removed mesh, a mesh listed twice or with a static instance, a zero, unaligned
+ *   or oversized gpu_positions, a bad stride, bounds with min above max or not finite);
  *   ROMA_ERROR_INVALID_SCENE: non-finite host positions, or the volume (or bounds) outside
  *   the range roma_map_create supports;
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) from the
@@ -268,7 +290,10 @@ ROMA_API roma_result roma_map_build(roma_map *map, const roma_map_frame_desc *fr
  * each level's static BOM and maps, roma_map_info.static_copy_bytes, made for a level that stays
  * where it was): when only dynamic instances moved, it restores a level's static part where they
  * were and voxelizes and rotates their triangles alone, in the levels they were or are in. A
- * level that moved or has new directions (jitter) is built whole, as without them. */
+ * level that moved or has new directions (jitter) is built whole, as without them. A mesh whose
+ * vertices move on the GPU (a skinned character in a level) is added the same way, with dynamic
+ * instances, and given its positions in the builds that change them
+ * (roma_map_frame_desc.mesh_positions): only the levels its instances touch are redone. */
 
 #define ROMA_INSTANCE_DYNAMIC 1u /**< roma_instance_desc.flags: its transform may change */
 
@@ -384,8 +409,9 @@ typedef struct roma_map_info {
      * jitter_grid and jitter_directions off, static geometry (no new positions, instances
      * unchanged, the same volume) and a focus that leaves the level's snapped cube where it
      * was, a build rebuilds nothing. Dynamic instances moving over static geometry (the exact
-     * BOM, no new positions) redo only the levels whose cube they were or are in, and those
-     * from a copy of the level's static part plus the dynamic triangles alone. */
+     * BOM, no new positions) or deforming (roma_mesh_positions) redo only the levels whose cube
+     * they were or are in, and those from a copy of the level's static part plus the dynamic
+     * triangles alone. */
     uint32_t levels_rebuilt;
     /** Device memory of those copies of the static part (each level's BOM and maps), made by
      * the first build with a dynamic instance; 0 before. */

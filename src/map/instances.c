@@ -387,3 +387,82 @@ int roma_map_instances_dynamic(const roma_map *map)
             return 1;
     return 0;
 }
+
+roma_result roma_map_mesh_positions_check(const roma_map *map, const roma_map_frame_desc *f, const char *fn)
+{
+    if (f->mesh_position_count && !f->mesh_positions)
+        return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: mesh_positions is NULL with a count of %u", fn,
+                         f->mesh_position_count);
+    for (uint32_t e = 0; e < f->mesh_position_count; ++e) {
+        const roma_mesh_positions *p = &f->mesh_positions[e];
+        if (p->mesh >= map->mesh_count || !map->meshes[p->mesh].live)
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT, "%s: mesh_positions[%u]: no mesh %u", fn, e,
+                             p->mesh);
+        for (uint32_t o = 0; o < e; ++o)
+            if (f->mesh_positions[o].mesh == p->mesh)
+                return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                                 "%s: mesh_positions[%u] and [%u] both give mesh %u", fn, o, e, p->mesh);
+        /* A static instance is voxelized into the static part once: it would not follow. */
+        for (uint32_t i = 0; i < map->instance_count; ++i)
+            if (map->instances[i].live && map->instances[i].mesh == p->mesh &&
+                !roma_map_instance_is_dynamic(&map->instances[i]))
+                return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                                 "%s: mesh_positions[%u]: mesh %u has a static instance (%u); give its instances "
+                                 "ROMA_INSTANCE_DYNAMIC", fn, e, p->mesh, i);
+        const uint32_t stride = p->gpu_position_stride ? p->gpu_position_stride : 12u;
+        if (stride < 12u || stride % 4u)
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                             "%s: mesh_positions[%u]: gpu_position_stride %u must be a multiple of 4 and at least 12",
+                             fn, e, stride);
+        if (!p->gpu_positions || p->gpu_positions % 4u)
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                             "%s: mesh_positions[%u]: gpu_positions is %s", fn, e, p->gpu_positions ? "not 4-byte aligned" : "0");
+        /* The gather addresses 32-bit words with a 32-bit index (gather_positions.comp). */
+        if ((uint64_t)map->meshes[p->mesh].vertex_count * stride > ((uint64_t)1 << 34))
+            return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                             "%s: mesh_positions[%u]: %u vertices of %u bytes span more than 16 GiB", fn, e,
+                             map->meshes[p->mesh].vertex_count, stride);
+        for (int a = 0; a < 3; ++a)
+            if (!isfinite(p->bounds.min[a]) || !isfinite(p->bounds.max[a]) || !(p->bounds.min[a] <= p->bounds.max[a]))
+                return roma_fail(&map->logger, ROMA_ERROR_INVALID_ARGUMENT,
+                                 "%s: mesh_positions[%u]: bounds min (%g, %g, %g), max (%g, %g, %g): not a finite box",
+                                 fn, e, (double)p->bounds.min[0], (double)p->bounds.min[1], (double)p->bounds.min[2],
+                                 (double)p->bounds.max[0], (double)p->bounds.max[1], (double)p->bounds.max[2]);
+    }
+    return ROMA_SUCCESS;
+}
+
+void roma_map_mesh_positions_take_bounds(roma_map *map, const roma_map_frame_desc *f, int restore)
+{
+    for (uint32_t e = 0; e < f->mesh_position_count; ++e) {
+        roma_map_mesh *m = &map->meshes[f->mesh_positions[e].mesh];
+        if (restore) {
+            memcpy(m->bmin, m->kept_bmin, sizeof m->bmin);
+            memcpy(m->bmax, m->kept_bmax, sizeof m->bmax);
+        } else {
+            memcpy(m->kept_bmin, m->bmin, sizeof m->bmin);
+            memcpy(m->kept_bmax, m->bmax, sizeof m->bmax);
+            memcpy(m->bmin, f->mesh_positions[e].bounds.min, sizeof m->bmin);
+            memcpy(m->bmax, f->mesh_positions[e].bounds.max, sizeof m->bmax);
+        }
+    }
+}
+
+void roma_map_mesh_positions_record(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *f)
+{
+    if (!f->mesh_position_count)
+        return;
+    /* A mesh added since the last build was uploaded into the same buffer just before. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map->gather_positions.pipeline);
+    for (uint32_t e = 0; e < f->mesh_position_count; ++e) {
+        const roma_mesh_positions *p = &f->mesh_positions[e];
+        const roma_map_mesh *m = &map->meshes[p->mesh];
+        const uint32_t stride = p->gpu_position_stride ? p->gpu_position_stride : 12u;
+        roma_gather_positions_push push = {
+            .src = p->gpu_positions, .dst = m->local.address, .config = {m->vertex_count, stride / 4u, 0, 0}};
+        vkCmdPushConstants(cmd, map->gather_positions.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        roma_cmd_dispatch_linear(cmd, m->vertex_count, ROMA_GATHER_WORKGROUP_SIZE);
+    }
+}

@@ -806,6 +806,8 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
      * else those of the last ones. */
     float pmin[3], pmax[3];
     r = check_frame(map, &frame);
+    if (r == ROMA_SUCCESS)
+        r = roma_map_mesh_positions_check(map, &frame, "roma_map_record_build");
     if (r == ROMA_SUCCESS && frame.positions)
         r = stage_positions(map, frame.slot, frame.positions, pmin, pmax);
     if (r != ROMA_SUCCESS)
@@ -813,6 +815,7 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     float bmin[3], bmax[3];
     memcpy(bmin, frame.volume ? frame.volume->min : frame.positions ? pmin : map->scene_min, sizeof bmin);
     memcpy(bmax, frame.volume ? frame.volume->max : frame.positions ? pmax : map->scene_max, sizeof bmax);
+    roma_map_mesh_positions_take_bounds(map, &frame, 0); /* given back below if the build fails */
     if (!frame.volume) /* and the instances, where they are this frame */
         roma_map_instances_bounds(map, 0, bmin, bmax);
     r = check_bounds(&map->logger, bmin, bmax, map->res, map->margin_cells, "roma_map_record_build");
@@ -825,14 +828,17 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
     roma_map_layout layout = {0};
     if (r == ROMA_SUCCESS)
         r = roma_map_instances_prepare(map, &layout);
-    if (r != ROMA_SUCCESS)
+    if (r != ROMA_SUCCESS) {
+        roma_map_mesh_positions_take_bounds(map, &frame, 1);
         return r;
+    }
     roma_map_instances_release(map, 0); /* what the build slots' earlier builds used */
     compute_frame_params(map, &frame, bmin, bmax);
     const int static_moved = frame.positions || frame.gpu_positions || layout.changed || map->builds == 0 ||
                              memcmp(bmin, map->volume_min, sizeof bmin) != 0 ||
                              memcmp(bmax, map->volume_max, sizeof bmax) != 0;
-    if (static_moved || map->transforms_dirty)
+    /* New mesh positions move dynamic instances alone (roma_map_mesh_positions_check). */
+    if (static_moved || map->transforms_dirty || frame.mesh_position_count)
         map->geometry_version = ++map->ctx->geometry_versions;
     if (static_moved)
         map->static_version = map->geometry_version;
@@ -865,6 +871,7 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
                                 VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                 VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     record_positions(map, cmd, &frame);
+    roma_map_mesh_positions_record(map, cmd, &frame);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |

@@ -14,7 +14,8 @@ typedef struct roma_map_mesh {
     int live;
     uint32_t vertex_count, triangle_count, users;
     uint32_t *indices;            /* host copy, local vertex numbers */
-    float bmin[3], bmax[3];       /* local bounds */
+    float bmin[3], bmax[3];       /* local bounds (the last roma_mesh_positions.bounds given) */
+    float kept_bmin[3], kept_bmax[3]; /* the bounds before a build's, until the build cannot fail */
     roma_buffer local;            /* float4 per vertex (device) */
     roma_buffer staging;          /* its upload, until the next build records the copy */
 } roma_map_mesh;
@@ -162,6 +163,13 @@ void roma_map_instances_record_transforms(roma_map *map, VkCommandBuffer cmd, in
 /* Grows bmin/bmax by the live instances' boxes where they are now (the dynamic ones alone when
  * dynamic_only); 0 when there were none. */
 int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[3], float bmax[3]);
+/* A frame's roma_mesh_positions (src/map/instances.c). check: before anything changes.
+ * take_bounds: the meshes' new boxes used from now on (restore = 1: the previous ones back,
+ * for a build that failed later). record: the gathers into the meshes' local positions, after
+ * the build's uploads and before the instances are placed. */
+roma_result roma_map_mesh_positions_check(const roma_map *map, const roma_map_frame_desc *f, const char *fn);
+void roma_map_mesh_positions_take_bounds(roma_map *map, const roma_map_frame_desc *f, int restore);
+void roma_map_mesh_positions_record(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *f);
 /* 1 when a live instance is dynamic (ROMA_INSTANCE_DYNAMIC). */
 int roma_map_instances_dynamic(const roma_map *map);
 /* Whether the instance is dynamic; grows bmin/bmax by its box where it is now (its mesh's box

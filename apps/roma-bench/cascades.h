@@ -32,4 +32,8 @@ int roma_bench_cascades(roma_context *ctx, const roma_scene *scene, const roma_b
 void roma_bench_object_transform(const roma_bench_cascades_desc *d, const roma_scene *object, float finest,
                                  uint32_t f, float t[12]);
 
+/* The level with the object baked in at transform t (one scene): what Embree's BVH is built
+ * from, and the map of a level whose moving vertices are the whole scene's. NULL on failure. */
+roma_scene *roma_bench_level_with_object(const roma_scene *level, const roma_scene *object, const float t[12]);
+
 #endif /* ROMA_BENCH_CASCADES_H */

@@ -153,36 +153,6 @@ static double roma_ms(const level_side *s, uint32_t f, uint32_t spp, int what, i
     return roma_bench_submit_ms(s->ctx, cmd, r);
 }
 
-/* The level with the object baked in where frame f puts it: what Embree's BVH is built from. */
-static roma_scene *level_with_object(const roma_scene *level, const roma_scene *object, const float t[12])
-{
-    roma_scene_view lv, ov;
-    roma_scene_get_view(level, &lv);
-    roma_scene_get_view(object, &ov);
-    const uint32_t vertices = lv.vertex_count + ov.vertex_count, triangles = lv.triangle_count + ov.triangle_count;
-    float *positions = malloc(sizeof(float) * 3 * vertices);
-    uint32_t *indices = malloc(sizeof(uint32_t) * 3 * triangles);
-    roma_scene *out = NULL;
-    if (positions && indices) {
-        memcpy(positions, lv.positions, sizeof(float) * 3 * lv.vertex_count);
-        memcpy(indices, lv.indices, sizeof(uint32_t) * 3 * lv.triangle_count);
-        for (uint32_t v = 0; v < ov.vertex_count; ++v)
-            for (int a = 0; a < 3; ++a) {
-                const float *p = ov.positions + 3 * v, *row = t + 4 * a;
-                positions[3 * (lv.vertex_count + v) + a] = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
-            }
-        for (uint32_t i = 0; i < 3 * ov.triangle_count; ++i)
-            indices[3 * lv.triangle_count + i] = ov.indices[i] + lv.vertex_count;
-        const roma_scene_desc sd = {.positions = positions, .vertex_count = vertices, .indices = indices,
-                                    .triangle_count = triangles};
-        if (roma_scene_create(&sd, &out) != ROMA_SUCCESS)
-            out = NULL;
-    }
-    free(positions);
-    free(indices);
-    return out;
-}
-
 int roma_bench_level_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_cascades_desc *d, FILE *csv)
 {
     const uint32_t runs = d->runs ? d->runs : 5, frames = d->frames;
@@ -232,7 +202,7 @@ int roma_bench_level_frame(roma_context *ctx, const roma_scene *scene, const rom
                 sum[2] += roma_ms(&s, frame + 2, spp, 3, f + 1 == frames);
                 float t[12];
                 roma_bench_object_transform(d, object, s.finest, frame + 2, t);
-                roma_scene *with = level_with_object(scene, object, t);
+                roma_scene *with = roma_bench_level_with_object(scene, object, t);
                 roma_ref *ref = NULL;
                 const double t0 = roma_app_now_ms();
                 ok = with && roma_ref_create(with, NULL, &ref) == ROMA_SUCCESS;

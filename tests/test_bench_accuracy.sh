@@ -163,6 +163,38 @@ LIGHTS
 "${bench_run[@]}" --small --effect direct >/dev/null 2>&1
 [ $? -eq 2 ] || fail "--effect without --accuracy should exit 2"
 
+# Cascade levels (--cascades auto): the built-in room with an AO radius of 5 cm, so small beside
+# the room that roma-render would pick levels: beside the one grid, ROMA with its levels for
+# each A (K >= 2), the equal-time and equal-error tables anchored on A 4 with its levels, and
+# the levels closer to Embree than the one grid, whose cells (3 cm at RES 64) are as wide as
+# the radius; --no-baselines leaves out the voxel baselines over one grid. Refused: another
+# effect, no radius, auto without --accuracy, --no-baselines without --accuracy.
+"${bench_run[@]}" --small --accuracy --ao-radius 0.05 --cascades auto --no-baselines --csv "$dir/levels.csv" \
+  >"$dir/levels.txt" \
+  2>"$dir/levels_progress.txt" ||
+  { cat "$dir/levels.txt" "$dir/levels_progress.txt" >&2; fail "roma-bench --accuracy --cascades auto failed"; }
+cat "$dir/levels.txt"
+python3 - "$dir/levels.txt" "$dir/levels.csv" <<'LEVELS' || fail "the cascade levels' rows"
+import csv, re, sys
+text = open(sys.argv[1]).read()
+v = {(r["name"], r["res"], r["angular"]): float(r["value"]) for r in csv.DictReader(open(sys.argv[2]))}
+rows = re.findall(r"^\| ROMA, (\d+) levels \| 64 \| (\d) \|", text, re.M)
+levels = {a: float(x) for (n, _, a), x in v.items() if re.fullmatch(r"ao-levels-\d+ mae", n)}
+grid = {a: x for (n, _, a), x in v.items() if n == "ao mae"}
+print("level rows:", rows, "MAE with levels:", levels, "one grid:", grid)
+ok = [a for _, a in rows] == ["2", "4"] and all(int(k) >= 2 for k, _ in rows)
+ok = ok and sorted(levels) == ["2", "4"] and all(0 < levels[a] < grid[a] for a in levels)
+ok = ok and "Against ROMA A 4, levels at 64" in text
+ok = ok and not re.search(r"^\| (voxel traversal|distance field|NAADF) \|", text, re.M)
+sys.exit(0 if ok else 1)
+LEVELS
+for bad in "--accuracy --effect direct --ao-radius 0.05 --cascades auto" "--accuracy --cascades auto" \
+           "--cascades auto --ao-radius 0.05" "--no-baselines --ao-radius 0.05"; do
+  # shellcheck disable=SC2086
+  "${bench_run[@]}" --small $bad >/dev/null 2>&1
+  [ $? -eq 2 ] || fail "$bad: should exit 2"
+done
+
 # Bad use: --plot without --accuracy; a PNG or CSV that cannot be written (refused before
 # anything is measured, with a message, and no crash).
 "${bench_run[@]}" --small --plot "$dir/x.png" >/dev/null 2>&1

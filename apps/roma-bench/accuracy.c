@@ -185,19 +185,38 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
     if (lights && roma_ms > 0.0)
         printf("\nROMA at RES 128, A %u takes %.0f ms for its %u frames (MAE %.4f of the lights' share); Embree's\n"
                "exact count %.0f ms.\n", anchor_a, roma_ms, ROMA_BENCH_LIGHTS_FRAMES, roma_mae, ms);
-    else if (roma_ms > 0.0 && best_spp == total)
-        printf("\nIn less than ROMA's time for its %u samples at RES 128, A %u (%.0f ms; MAE %.4f against Embree's\n"
-               "%u-sample image), Embree renders that image itself.\n", total, anchor_a, roma_ms, roma_mae, total);
-    else if (roma_ms > 0.0 && best_spp)
-        printf("\nIn ROMA's time for its %u samples at RES 128, A %u (%.0f ms; MAE %.4f against Embree's %u-sample\n"
-               "image), Embree traces %u samples per pixel: MAE %.4f against its own converged image.\n",
-               total, anchor_a, roma_ms, roma_mae, total, best_spp, best_mae);
-    else if (roma_ms > 0.0)
-        printf("\nIn ROMA's time for its %u samples at RES 128, A %u (%.0f ms) Embree traces less than one sample.\n",
-               total, anchor_a, roma_ms);
+    const char *levels = d->with_cascades ? " with its cascade levels" : "";
+    if (!lights && roma_ms > 0.0 && best_spp == total)
+        printf("\nIn less than ROMA's time for its %u samples at RES 128, A %u%s (%.0f ms; MAE %.4f against\n"
+               "Embree's %u-sample image), Embree renders that image itself.\n", total, anchor_a, levels, roma_ms,
+               roma_mae, total);
+    else if (!lights && roma_ms > 0.0 && best_spp)
+        printf("\nIn ROMA's time for its %u samples at RES 128, A %u%s (%.0f ms; MAE %.4f against Embree's\n"
+               "%u-sample image), Embree traces %u samples per pixel: MAE %.4f against its own converged image.\n",
+               total, anchor_a, levels, roma_ms, roma_mae, total, best_spp, best_mae);
+    else if (!lights && roma_ms > 0.0)
+        printf("\nIn ROMA's time for its %u samples at RES 128, A %u%s (%.0f ms) Embree traces less than one\n"
+               "sample.\n", total, anchor_a, levels, roma_ms);
     roma_image_free(&image);
     free(values);
     return 0;
+}
+
+/* The cascade levels of a row at RES res, A angular: d->cascades, or roma-render's pick for the
+ * scene at that RES (1: the scene is small for the radius, no levels), at most what A allows
+ * (K x A x A <= 256, as effect_api clamps); the finest level's edge in *finest. */
+static uint32_t row_cascades(const roma_scene *scene, const roma_bench_accuracy_desc *d, uint32_t res, uint32_t angular,
+                             uint32_t *wanted, float *finest)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    float longest = 0.0f;
+    for (int a = 0; a < 3; ++a)
+        longest = fmaxf(longest, v.bounds_max[a] - v.bounds_min[a]);
+    *wanted = d->cascades ? d->cascades : roma_app_auto_cascades(longest, res, d->radius, 0.0f, finest);
+    *finest = roma_app_finest_extent(res, d->radius);
+    const uint32_t most = 256u / (angular * angular);
+    return *wanted < most ? *wanted : most;
 }
 
 /* Error against frames accumulated, still camera: ROMA at its defaults (RES 128, A 4, or the
@@ -216,14 +235,20 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_r
     for (int i = 0; i < d->angular_count; ++i)
         angular = d->angular[i] == 4 ? 4 : angular;
     const int embree_first = *count; /* Embree's rows are already in points */
-    printf("\nError against frames accumulated (still camera, %u samples per pixel a frame, RES %u):\n\n"
+    printf("\nError against frames accumulated (still camera, %u samples per pixel a frame, RES %u%s):\n\n"
            "| frames | ROMA A %u MAE | FLIP | voxel traversal MAE | FLIP | Embree, same samples: MAE | FLIP |\n"
            "|---|---|---|---|---|---|---|\n",
-           d->spp, res, angular);
+           d->spp, res, d->with_cascades ? "; ROMA with its cascade levels, the traversal over one grid" : "",
+           angular);
+    uint32_t wanted = 1, levels = 1;
+    float finest = 0.0f;
+    if (d->with_cascades) /* ROMA's defaults on a level: its cascade levels (the traversal: one grid) */
+        levels = row_cascades(scene, d, res, angular, &wanted, &finest);
     for (uint32_t f = 1; f <= d->frames; f *= 2) {
         double mae[2] = {NAN, NAN}, flip[2] = {NAN, NAN};
         for (int m = 0; m < 2; ++m) {
             const effect_api_desc rd = {
+                .cascades = m ? 1u : levels, .finest_extent = m ? 0.0f : finest,
                 .camera = *cam, .width = w, .height = h,
                 .options = {.effects = ROMA_EFFECT_AO, .resolution = res, .ao_angular = m ? 1u : angular},
                 .spp = d->spp, .frames = f, .seed = 1, .ao_radius = d->radius,
@@ -447,14 +472,62 @@ static int device_has_ray_query(const roma_context *ctx)
     return found;
 }
 
-/* AO: ROMA at every RES x A, the voxel baselines at every RES, screen space. Sets the time
- * (all frames) and error of ROMA at RES 128, A 4. */
-static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
+/* AO with cascade levels around the camera's eye (row_cascades) at every RES x A: the rows
+ * roma-render's defaults pick on a scene much larger than the radius (a game level). Sets the
+ * time (all frames) and error of RES 128, A 4 with its levels. */
+static int sweep_ao_cascades(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
     const roma_bench_accuracy_desc *d = s->d;
     int status = 0;
     for (int ri = 0; ri < d->res_count; ++ri)
-        for (int ai = 0; ai <= d->angular_count + 2; ++ai) {
+        for (int ai = 0; ai < d->angular_count; ++ai) {
+            uint32_t wanted;
+            float finest;
+            const uint32_t levels = row_cascades(s->scene, d, d->res[ri], d->angular[ai], &wanted, &finest);
+            if (levels < 2) {
+                fprintf(stderr, "roma-bench: RES %u, A %u: no cascade levels (the scene is small for the radius)\n",
+                        d->res[ri], d->angular[ai]);
+                continue;
+            }
+            const effect_api_desc rd = {
+                .camera = *cam, .width = d->width, .height = d->height,
+                .options = {.effects = ROMA_EFFECT_AO, .resolution = d->res[ri], .ao_angular = d->angular[ai]},
+                .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius,
+                .cascades = levels, .finest_extent = finest,
+            };
+            char name[48], tag[24], series[32], label[16], res_text[16], a_text[12];
+            if (levels < wanted) /* the coarsest level does not reach the scene's far parts */
+                snprintf(name, sizeof name, "ROMA, %u of %u levels", levels, wanted);
+            else
+                snprintf(name, sizeof name, "ROMA, %u levels", levels);
+            snprintf(tag, sizeof tag, "ao-levels-%u", levels);
+            snprintf(series, sizeof series, "ROMA A %u, levels", d->angular[ai]);
+            snprintf(label, sizeof label, "%u", d->res[ri]);
+            snprintf(res_text, sizeof res_text, "%u", d->res[ri]);
+            snprintf(a_text, sizeof a_text, "%u", d->angular[ai]);
+            double ms, mae;
+            if (measure_setting(s, &rd, name, tag, series, label, res_text, a_text, d->res[ri], d->angular[ai], &ms,
+                                &mae)) {
+                status = 1;
+                continue;
+            }
+            if (d->res[ri] == 128 && d->angular[ai] == 4) {
+                *anchor_ms = ms * d->frames;
+                *anchor_mae = mae;
+            }
+        }
+    return status;
+}
+
+/* AO: ROMA at every RES x A, the voxel baselines at every RES, screen space. Sets the time
+ * (all frames) and error of ROMA at RES 128, A 4 (with cascade levels where they are swept). */
+static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    int status = 0;
+    const int methods = d->angular_count + (d->no_baselines ? 0 : 3);
+    for (int ri = 0; ri < d->res_count; ++ri)
+        for (int ai = 0; ai < methods; ++ai) {
             /* After the A list: the baselines, with one map (they read only the BOM; the
              * one-map rotation they do not need stays in their time). */
             const roma_ao_method method = ai < d->angular_count        ? ROMA_AO_METHOD_ROMA
@@ -483,11 +556,13 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
                 status = 1;
                 continue;
             }
-            if (!dda && d->res[ri] == 128 && angular == 4) {
+            if (!dda && !d->with_cascades && d->res[ri] == 128 && angular == 4) {
                 *anchor_ms = ms * d->frames;
                 *anchor_mae = mae;
             }
         }
+    if (d->with_cascades && sweep_ao_cascades(s, cam, anchor_ms, anchor_mae))
+        status = 1;
     /* Screen-space AO against the G-buffer's depth: no map, so no RES (its rays' origin offset
      * and skipped start are ROMA's at RES 128); one row per march length. It marches a bounded
      * radius: unbounded AO has no such rows. */
@@ -672,9 +747,12 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     const int direct = d->effect == ROMA_BENCH_EFFECT_DIRECT, gi = d->effect == ROMA_BENCH_EFFECT_GI,
               lights = d->effect == ROMA_BENCH_EFFECT_LIGHTS;
     roma_camera cam;
-    roma_scene_default_camera(scene, (float)w / (float)h, &cam);
+    if (d->camera)
+        cam = *d->camera;
+    else
+        roma_scene_default_camera(scene, (float)w / (float)h, &cam);
     /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
+    const int max_points = d->res_count * (2 * d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
     roma_scene_view view;
     roma_scene_get_view(scene, &view);
     study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
@@ -702,7 +780,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     s.total = direct   ? per_res + (int)(sizeof shadow_steps / sizeof shadow_steps[0])
               : gi     ? per_res + 1
               : lights ? per_res + (int)(sizeof lights_steps / sizeof lights_steps[0])
-                       : d->res_count * (d->angular_count + 3) +
+                       : d->res_count * ((d->with_cascades ? 2 : 1) * d->angular_count + (d->no_baselines ? 0 : 3)) +
                              (d->radius > 0.0f ? (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
                                                      (int)(sizeof ssao_layers / sizeof ssao_layers[0])
                                                : 0);
@@ -770,8 +848,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     /* Equal time and equal error against ROMA's defaults (RES 128; A 4 for AO and GI, 8 for the
      * shadow arrays); without RES 128 in the run, that A at the first RES listed; without the
      * A, no such tables (said below). */
-    char anchor_series[16];
-    snprintf(anchor_series, sizeof anchor_series, "ROMA A %u", effect_infos[d->effect].anchor_a);
+    char anchor_series[32];
+    snprintf(anchor_series, sizeof anchor_series, "ROMA A %u%s", effect_infos[d->effect].anchor_a,
+             d->with_cascades ? ", levels" : "");
     int anchor = -1;
     for (int i = 0; i < s.point_count; ++i) {
         int defaults = strcmp(s.points[i].series, anchor_series) == 0 && strcmp(s.points[i].label, "128") == 0;

@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "reference.h"
+#include "roma/camera.h"
 #include "roma/context.h"
 
 /* What the sweep renders. */
@@ -26,6 +27,16 @@ typedef struct roma_bench_accuracy_desc {
     float radius;
     const uint32_t *res, *angular;
     int res_count, angular_count;
+    /* AO only: beside the one grid over the scene, ROMA at every RES x A with cascade levels
+     * around the camera's eye (with_cascades), `cascades` of them (0: those roma-render picks at
+     * each RES: roma_app_auto_cascades), the finest 30 cells of RES to the radius. */
+    int with_cascades;
+    uint32_t cascades;
+    const roma_camera *camera; /* NULL: the scene's default camera */
+    /* AO only: no rows of the voxel baselines over one grid (the exact traversal, the distance
+     * field, NAADF): on a game level they cost seconds a frame at RES 256 and their error is the
+     * one grid's, which ROMA's own one-grid rows show. */
+    int no_baselines;
     const char *plot_path; /* NULL, or the PNG of error against time (gnuplot) */
     /* NULL, or a file of finished points (tab-separated, appended to as they finish): a point
      * found there under the same key is not measured again, so an interrupted sweep resumes.

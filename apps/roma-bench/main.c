@@ -24,7 +24,8 @@
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
     "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R]\n"
-    "                  [--accuracy [--effect ao|direct|gi|lights] [--plot FILE.png] [--cache FILE]]\n"
+    "                  [--accuracy [--effect ao|direct|gi|lights] [--plot FILE.png] [--cache FILE]\n"
+    "                   [--cascades auto|K [--camera ex,ey,ez,tx,ty,tz[,fovy]]] [--no-baselines]]\n"
     "                  [--growth LIST [--plot FILE.png]]\n"
     "                  [--cascades K --ao-radius R [--camera ex,ey,ez,tx,ty,tz[,fovy]] [--frames N]]\n"
     "  Generation: BOM rasterization and rotation times for every RES x A in the lists\n"
@@ -53,6 +54,11 @@ static const char *usage =
     "  of the GI array and at RES 128, A 4 with shadow rays instead of reflective shadow maps, the\n"
     "  exact voxel traversal (bounce rays and the shadow rays at their hits) for every RES,\n"
     "  Embree at equal time.\n"
+    "  --accuracy --cascades auto|K (AO with --ao-radius): beside the one grid, ROMA for every RES x A\n"
+    "  with cascade levels around the camera (auto: those roma-render picks at each RES for the scene,\n"
+    "  the finest 30 cells to the radius; at most 256 maps: A 8 takes at most 4 levels); equal time\n"
+    "  and equal error against RES 128, A 4 with its levels; --camera (default: the scene's).\n"
+    "  --no-baselines (AO): without the voxel baselines over one grid (traversal, distance field, NAADF).\n"
     "  --effect lights: the visibility of 256 point lights over 4 frames, ROMA for every RES x A of\n"
     "  the lights' array with 16 steps and at RES 128, A 8 with 8, 32 and 64, the exact voxel\n"
     "  traversal for every RES, against Embree's segments.\n"
@@ -285,6 +291,8 @@ int main(int argc, char **argv)
     const char *scene_arg = "builtin:cornell", *csv_path = NULL, *plot_path = NULL, *cache_path = NULL;
     const char *growth = NULL;
     uint32_t cascades = 0, cascade_frames = 16;
+    int cascades_auto = 0; /* --cascades auto (--accuracy): the levels roma-render picks */
+    int no_baselines = 0;  /* --no-baselines (--accuracy, AO): no voxel baselines over one grid */
     roma_camera camera = {0};
     int camera_set = 0, res_set = 0;
     uint32_t rays_n = 2000000, runs = 5, res_list[4] = {64, 128, 256}, ang_list[4] = {2, 4, 8};
@@ -304,6 +312,8 @@ int main(int argc, char **argv)
             small = 1;
         } else if (strcmp(a, "--accuracy") == 0) {
             accuracy = 1;
+        } else if (strcmp(a, "--no-baselines") == 0) {
+            no_baselines = 1;
         } else if (v && strcmp(a, "--effect") == 0) {
             static const char *const names[] = {"ao", "direct", "gi", "lights"};
             int found = -1;
@@ -336,8 +346,13 @@ int main(int argc, char **argv)
         else if (v && strcmp(a, "--cascades") == 0) {
             char *end = NULL;
             unsigned long k = strtoul(v, &end, 10);
+            if (strcmp(v, "auto") == 0) {
+                cascades_auto = 1, ++i;
+                continue;
+            }
             if (!end || *end || k < 2 || k > ROMA_MAX_LEVELS) {
-                fprintf(stderr, "roma-bench: --cascades %s: expected 2..%u\n", v, ROMA_MAX_LEVELS);
+                fprintf(stderr, "roma-bench: --cascades %s: expected 2..%u (or auto, with --accuracy)\n", v,
+                        ROMA_MAX_LEVELS);
                 return 2;
             }
             cascades = (uint32_t)k, ++i;
@@ -358,10 +373,22 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    const int accuracy_levels = accuracy && (cascades || cascades_auto);
     if ((plot_path && !accuracy && !growth) || ((cache_path || effect_set) && !accuracy) || (growth && accuracy) ||
-        (cascades && (accuracy || growth)) || ((camera_set || cascade_frames != 16) && !cascades)) {
+        (cascades && growth) || (cascades_auto && !accuracy) || (camera_set && !cascades && !accuracy) ||
+        (cascade_frames != 16 && (!cascades || accuracy))) {
         fprintf(stderr, "roma-bench: --plot is for --accuracy or --growth, --cache and --effect for --accuracy, "
-                        "--camera and --frames for --cascades; one of --accuracy, --growth and --cascades\n");
+                        "--camera for --cascades or --accuracy, --frames for --cascades alone, --cascades auto for "
+                        "--accuracy; one of --accuracy, --growth and --cascades\n");
+        return 2;
+    }
+    if (no_baselines && (!accuracy || effect != ROMA_BENCH_EFFECT_AO)) {
+        fprintf(stderr, "roma-bench: --no-baselines is for --accuracy of AO\n");
+        return 2;
+    }
+    if (accuracy_levels && (effect != ROMA_BENCH_EFFECT_AO || !(ao_radius > 0.0f) || !isfinite(ao_radius))) {
+        fprintf(stderr, "roma-bench: --accuracy --cascades sweeps AO of a positive, finite --ao-radius (the finest "
+                        "level is fitted to it)\n");
         return 2;
     }
     if (cascades && (!(ao_radius > 0.0f) || !isfinite(ao_radius) || cascade_frames == 0 || cascade_frames > 1000)) {
@@ -427,6 +454,8 @@ int main(int argc, char **argv)
             .frames = small ? 2 : 16, .runs = small ? 1 : runs, .radius = ao_radius,
             .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
             .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,
+            .with_cascades = accuracy_levels, .cascades = cascades, .camera = camera_set ? &camera : NULL,
+            .no_baselines = no_baselines,
         };
         int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
         if (csv)

@@ -26,11 +26,18 @@
 #                        (roma-bench --growth, under a minute); a run cut short resumes where it stopped (the points
 #                        it finished are kept in build/ until the run completes); make study-small: the
 #                        same at 32x24 (test_bench_accuracy runs that command in ctest)
+#   make study-levels    (part of make study) AO of radius 1.5 m on the three shared game levels from
+#                        their first camera: ROMA over one grid and with the cascade levels roma-render
+#                        picks, screen space, Embree at equal time (about 40 minutes on 2 cores)
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 OUT ?= out
 ASAN_BUILD ?= build-asan
+# The shared game levels make study (study-levels) sweeps with cascade levels around each
+# level's first camera, AO of radius 1.5 m.
+LEVELS_DIR ?= ../shared/scenes/levels
+STUDY_LEVELS = oa_dm4 aggressor ctf_compromise
 # The shared scenes make study sweeps besides the built-in ones and 2CylinderEngine.
 STUDY_SCENES = scenes/bunny.glb scenes/dragon_res3.glb scenes/tabletop.gltf scenes/spot.glb scenes/CesiumMan.glb \
                scenes/Fox.glb
@@ -39,7 +46,7 @@ TSAN_BUILD ?= build-tsan
 FUZZ_TRACE_RAYS ?= 100000000
 FUZZ_TRACE_SEED ?= 1
 
-.PHONY: deps configure build run test test-sanitize test-tsan test-fuzz fuzz-trace test-consumers docs study study-small clean
+.PHONY: deps configure build run test test-sanitize test-tsan test-fuzz fuzz-trace test-consumers docs study study-levels study-small clean
 
 deps:
 	./install-deps.sh
@@ -99,7 +106,15 @@ test-consumers: build
 	bash tests/consumers/run.sh install $(BUILD) $(BUILD)/consumers/install
 	bash tests/consumers/run.sh deb $(BUILD) $(BUILD)/consumers/deb
 
-study: build
+study-levels: build
+	for l in $(STUDY_LEVELS); do \
+	    $(BUILD)/apps/roma-bench --accuracy --scene $(LEVELS_DIR)/$$l.glb \
+	        --camera "$$(sed -n 1p $(LEVELS_DIR)/$$l.cameras)" --ao-radius 1.5 --cascades auto --no-baselines \
+	        --runs 3 --csv docs/bench/$${l}_accuracy.csv --plot docs/images/accuracy_vs_time_$${l}_ao.png \
+	        --cache $(BUILD)/study_$$l.cache > docs/bench/$${l}_accuracy.txt && \
+	        rm -f $(BUILD)/study_$$l.cache || exit 1; done
+
+study: build study-levels
 	$(BUILD)/apps/roma-bench --accuracy --ao-radius 0.5 --runs 3 --csv docs/bench/cornell_accuracy.csv \
 	    --plot docs/images/accuracy_vs_time_cornell_ao.png --cache $(BUILD)/study_cornell.cache \
 	    > docs/bench/cornell_accuracy.txt
@@ -154,7 +169,7 @@ study: build
 	    $(foreach f,$(STUDY_SCENES),docs/bench/$(basename $(notdir $(f)))_accuracy.txt) \
 	    docs/bench/engine_lights_accuracy.txt \
 	    $(foreach f,$(STUDY_SCENES),docs/bench/$(basename $(notdir $(f)))_lights_accuracy.txt) \
-	    docs/bench/growth.txt
+	    docs/bench/growth.txt $(foreach l,$(STUDY_LEVELS),docs/bench/$(l)_accuracy.txt)
 
 study-small: build
 	mkdir -p $(OUT)/study

@@ -626,6 +626,15 @@ static void check_mesh_positions(roma_context *ctx, const roma_scene *scene)
     frame.mesh_positions = NULL;
     frame.mesh_position_count = 0;
     CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS); /* the instance removed: a new layout */
+    /* Positions of a mesh no instance uses change nothing traced: nothing is redone. */
+    frame.mesh_positions = &of_other;
+    frame.mesh_position_count = 1;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+    roma_map_get_info(map, &info);
+    CHECK(info.levels_rebuilt == 0);
+    frame.mesh_positions = NULL;
+    frame.mesh_position_count = 0;
+    CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
     CHECK(download_all(map, bom, maps) && fresh_equal_mesh(ctx, scene, scene, &desc, &frame, t, bom, maps, bom2, maps2) == 0);
     {
         roma_scene *posed = NULL;

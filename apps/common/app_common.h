@@ -53,12 +53,15 @@ const char *roma_app_suggest(const char *typed, const char *const *names);
 #define ROMA_APP_FINEST_CELLS 30
 float roma_app_finest_extent(uint32_t res, float ao_radius);
 
-/* Cascade levels for AO of radius ao_radius in a scene whose longest edge is longest, maps of
- * RES res: the finest level finest_extent wide (0: roma_app_finest_extent; written to
- * *finest), enough levels, each twice the last, to cover the scene, at most ROMA_MAX_LEVELS;
- * 1 (one grid over the scene) where the scene is at most 4 finest levels wide or the radius
- * is not finite and positive. */
-uint32_t roma_app_auto_cascades(float longest, uint32_t res, float ao_radius, float finest_extent, float *finest);
+/* Cascade levels for AO of radius ao_radius in a scene of bounds [bounds_min, bounds_max] seen
+ * from eye (NULL: unknown), maps of RES res: the finest level finest_extent wide (0:
+ * roma_app_finest_extent; written to *finest), enough levels, each twice the last, to cover the
+ * scene's longest edge, at most ROMA_MAX_LEVELS. 1 (one grid over the scene) unless the level
+ * that holds the scene's part nearest the camera (the finest for a camera inside the box) has
+ * cells at least twice as fine as one grid's, or where the radius is not finite and positive;
+ * without an eye, unless the scene is wider than four finest levels. */
+uint32_t roma_app_auto_cascades(const float bounds_min[3], const float bounds_max[3], const float *eye, uint32_t res,
+                                float ao_radius, float finest_extent, float *finest);
 
 /* Creates the folder (and parents) if needed; 0 on failure, with errno set. */
 int roma_app_make_dir(const char *path);

@@ -203,17 +203,15 @@ static int embree_equal_time(const roma_ref *ref, const roma_gbuffer_pixel *px, 
 }
 
 /* The cascade levels of a row at RES res, A angular: d->cascades, or roma-render's pick for the
- * scene at that RES (1: the scene is small for the radius, no levels), at most what A allows
+ * scene seen from cam at that RES (1: the scene is small for the radius, no levels), at most what A allows
  * (K x A x A <= 256, as effect_api clamps); the finest level's edge in *finest. */
-static uint32_t row_cascades(const roma_scene *scene, const roma_bench_accuracy_desc *d, uint32_t res, uint32_t angular,
-                             uint32_t *wanted, float *finest)
+static uint32_t row_cascades(const roma_scene *scene, const roma_camera *cam, const roma_bench_accuracy_desc *d,
+                             uint32_t res, uint32_t angular, uint32_t *wanted, float *finest)
 {
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    float longest = 0.0f;
-    for (int a = 0; a < 3; ++a)
-        longest = fmaxf(longest, v.bounds_max[a] - v.bounds_min[a]);
-    *wanted = d->cascades ? d->cascades : roma_app_auto_cascades(longest, res, d->radius, 0.0f, finest);
+    *wanted = d->cascades ? d->cascades
+                          : roma_app_auto_cascades(v.bounds_min, v.bounds_max, cam->eye, res, d->radius, 0.0f, finest);
     *finest = roma_app_finest_extent(res, d->radius);
     const uint32_t most = 256u / (angular * angular);
     return *wanted < most ? *wanted : most;
@@ -243,7 +241,7 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_r
     uint32_t wanted = 1, levels = 1;
     float finest = 0.0f;
     if (d->with_cascades) /* ROMA's defaults on a level: its cascade levels (the traversal: one grid) */
-        levels = row_cascades(scene, d, res, angular, &wanted, &finest);
+        levels = row_cascades(scene, cam, d, res, angular, &wanted, &finest);
     for (uint32_t f = 1; f <= d->frames; f *= 2) {
         double mae[2] = {NAN, NAN}, flip[2] = {NAN, NAN};
         for (int m = 0; m < 2; ++m) {
@@ -483,7 +481,7 @@ static int sweep_ao_cascades(study *s, const roma_camera *cam, double *anchor_ms
         for (int ai = 0; ai < d->angular_count; ++ai) {
             uint32_t wanted;
             float finest;
-            const uint32_t levels = row_cascades(s->scene, d, d->res[ri], d->angular[ai], &wanted, &finest);
+            const uint32_t levels = row_cascades(s->scene, cam, d, d->res[ri], d->angular[ai], &wanted, &finest);
             if (levels < 2) {
                 fprintf(stderr, "roma-bench: RES %u, A %u: no cascade levels (the scene is small for the radius)\n",
                         d->res[ri], d->angular[ai]);

@@ -1218,7 +1218,7 @@ static roma_result with_lights(const roma_scene *scene, const roma_light *extra,
 }
 
 /* Defaults chosen for the user and effects or options with nothing to do, said once. */
-static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
+static void say_what_happens(options *o, const roma_scene_view *sv, const float eye[3], notes *n)
 {
     int roma = strcmp(o->tracer, "roma") == 0;
     float dx = sv->bounds_max[0] - sv->bounds_min[0], dy = sv->bounds_max[1] - sv->bounds_min[1],
@@ -1245,7 +1245,8 @@ static void say_what_happens(options *o, const roma_scene_view *sv, notes *n)
     const float longest = fmaxf(dx, fmaxf(dy, dz));
     const uint32_t res = o->res ? o->res : o->preset == ROMA_PRESET_HIGH || o->preset == ROMA_PRESET_ULTRA ? 256 : 128;
     float finest = 0.0f;
-    const uint32_t levels = roma_app_auto_cascades(longest, res, o->ao_radius, o->finest_extent, &finest);
+    const uint32_t levels =
+        roma_app_auto_cascades(sv->bounds_min, sv->bounds_max, eye, res, o->ao_radius, o->finest_extent, &finest);
     if (roma && !(o->given & GIVEN_CASCADES) && (o->effects & ROMA_EFFECT_AO) && levels > 1) {
         o->cascades = levels;
         o->cascades_auto = 1;
@@ -1329,16 +1330,16 @@ int main(int argc, char **argv)
     roma_scene_get_view(scene, &sv);
     run_record run = {.device_kind = "cpu", .device_name = "Embree 3 reference (CPU)",
                       .threads = o.threads ? o.threads : (uint32_t)sysconf(_SC_NPROCESSORS_ONLN)};
-    say_what_happens(&o, &sv, &run.notes);
-    if (note_route(&o, &run.notes) < 0) {
-        roma_scene_destroy(scene);
-        return 2;
-    }
     roma_camera cam = o.camera;
     if (!o.has_camera && sv.has_camera)
         cam = sv.camera;
     else if (!o.has_camera)
         cam = frame_tight(&sv, (float)o.width / (float)o.height);
+    say_what_happens(&o, &sv, cam.eye, &run.notes);
+    if (note_route(&o, &run.notes) < 0) {
+        roma_scene_destroy(scene);
+        return 2;
+    }
     struct stat out_stat;
     const int out_existed = stat(o.out, &out_stat) == 0;
     if (!roma_app_make_dir(o.out)) {

@@ -73,13 +73,14 @@ float effective_ao_radius(const viewer &v)
 }
 
 // The cascade levels the settings ask for (0: chosen for the scene and the AO radius, as
-// roma-render chooses), and the finest level's edge; at most 256 maps in all.
+// roma-render chooses, from the camera the scene opens at: the one given or the scene's own,
+// else one framing it from outside; not the moving camera, so that flying does not rebuild
+// the map), and the finest level's edge; at most 256 maps in all.
 uint32_t wanted_levels(const viewer &v, float &finest)
 {
-    const float longest = std::max({v.view.bounds_max[0] - v.view.bounds_min[0],
-                                    v.view.bounds_max[1] - v.view.bounds_min[1],
-                                    v.view.bounds_max[2] - v.view.bounds_min[2]});
-    uint32_t chosen = roma_app_auto_cascades(longest, v.s.res, effective_ao_radius(v), v.s.finest_extent, &finest);
+    const float *eye = v.opt.has_camera ? v.opt.camera.eye : v.view.has_camera ? v.view.camera.eye : nullptr;
+    uint32_t chosen = roma_app_auto_cascades(v.view.bounds_min, v.view.bounds_max, eye, v.s.res, effective_ao_radius(v),
+                                             v.s.finest_extent, &finest);
     uint32_t levels = v.s.cascades ? v.s.cascades : chosen;
     return std::max(1u, std::min(levels, 256u / (v.s.angular * v.s.angular)));
 }

@@ -466,3 +466,11 @@ void roma_map_mesh_positions_record(roma_map *map, VkCommandBuffer cmd, const ro
         roma_cmd_dispatch_linear(cmd, m->vertex_count, ROMA_GATHER_WORKGROUP_SIZE);
     }
 }
+
+int roma_map_mesh_positions_used(const roma_map *map, const roma_map_frame_desc *f)
+{
+    for (uint32_t e = 0; e < f->mesh_position_count; ++e)
+        if (map->meshes[f->mesh_positions[e].mesh].users)
+            return 1;
+    return 0;
+}

@@ -838,7 +838,7 @@ roma_result roma_map_record_steps(roma_map *map, VkCommandBuffer cmd, const roma
                              memcmp(bmin, map->volume_min, sizeof bmin) != 0 ||
                              memcmp(bmax, map->volume_max, sizeof bmax) != 0;
     /* New mesh positions move dynamic instances alone (roma_map_mesh_positions_check). */
-    if (static_moved || map->transforms_dirty || frame.mesh_position_count)
+    if (static_moved || map->transforms_dirty || roma_map_mesh_positions_used(map, &frame))
         map->geometry_version = ++map->ctx->geometry_versions;
     if (static_moved)
         map->static_version = map->geometry_version;

@@ -170,6 +170,8 @@ int roma_map_instances_bounds(const roma_map *map, int dynamic_only, float bmin[
 roma_result roma_map_mesh_positions_check(const roma_map *map, const roma_map_frame_desc *f, const char *fn);
 void roma_map_mesh_positions_take_bounds(roma_map *map, const roma_map_frame_desc *f, int restore);
 void roma_map_mesh_positions_record(roma_map *map, VkCommandBuffer cmd, const roma_map_frame_desc *f);
+/* 1 when a mesh given positions has a live instance (the build's geometry changed). */
+int roma_map_mesh_positions_used(const roma_map *map, const roma_map_frame_desc *f);
 /* 1 when a live instance is dynamic (ROMA_INSTANCE_DYNAMIC). */
 int roma_map_instances_dynamic(const roma_map *map);
 /* Whether the instance is dynamic; grows bmin/bmax by its box where it is now (its mesh's box

@@ -1,7 +1,8 @@
 /* A fuzzer of API call sequences, written against the installed headers only: an engine's
  * frame loop over 2 or 3 frames in flight (its own command buffers and fences) around one map,
  * with random calls between frames: meshes and instances added and removed while frames are in
- * flight, dynamic instances moved, the scene's own positions moved from the host, builds with
+ * flight, dynamic instances moved, meshes given new positions on the GPU (a skinned character's:
+ * roma_mesh_positions), the scene's own positions moved from the host, builds with
  * and without jitter, a clipping volume, cascade levels, traces recorded after builds, an AO
  * effect recorded on the engine's images, created and dropped mid-run, the images resized
  * between frames, the map destroyed (after waiting for its frames, as the contract asks) and
@@ -71,14 +72,14 @@ static roma_scene *scene_from(const float *positions, uint32_t vertices, const u
     return scene;
 }
 
-/* A small random mesh in [0, 1]^3: a tetrahedron's faces, or a quad. */
-static roma_scene *mesh_random(rng *r, roma_logger logger)
+/* A small random mesh in [0, 1]^3: a tetrahedron's faces, or a quad; p: its 4 positions. */
+static const uint32_t tetra[12] = {0, 1, 2, 0, 3, 1, 1, 3, 2, 2, 3, 0};
+static roma_scene *mesh_random(rng *r, roma_logger logger, float p[12], uint32_t *triangles)
 {
-    float p[12];
     for (int i = 0; i < 12; ++i)
         p[i] = unit(r);
-    const uint32_t tetra[12] = {0, 1, 2, 0, 3, 1, 1, 3, 2, 2, 3, 0};
-    return scene_from(p, 4, tetra, below(r, 2) ? 4u : 2u, logger);
+    *triangles = below(r, 2) ? 4u : 2u;
+    return scene_from(p, 4, tetra, *triangles, logger);
 }
 
 static void transform_random(rng *r, float t[12])
@@ -90,8 +91,9 @@ static void transform_random(rng *r, float t[12])
 
 typedef struct mesh_slot {
     int live;
-    uint32_t id;
-    roma_scene *scene; /* kept for the fresh map at the end */
+    uint32_t id, triangles;
+    float p[12];       /* its 4 positions now (the last given on the GPU) */
+    roma_scene *scene; /* of those positions, kept for the fresh map at the end */
 } mesh_slot;
 
 typedef struct instance_slot {
@@ -107,8 +109,9 @@ typedef struct engine {
     VkCommandBuffer cmds[MAX_SLOTS];
     VkFence fences[MAX_SLOTS];
     roma_test_host_buffer rays[MAX_SLOTS], hits[MAX_SLOTS];
+    roma_test_host_buffer poses[MAX_SLOTS]; /* meshes' positions written "on the GPU": 64 bytes a mesh */
     roma_test_log log;
-    uint64_t frames, ao_records, resizes, maps_replaced, bad_calls; /* what the sequences did */
+    uint64_t frames, ao_records, resizes, maps_replaced, bad_calls, mesh_poses; /* what the sequences did */
 } engine;
 
 typedef struct sequence {
@@ -128,6 +131,15 @@ typedef struct sequence {
     int images_fresh;       /* created since the last frame: cleared and laid out by the next */
     uint32_t calls, expected_errors, frames;
 } sequence;
+
+/* Whether a live static instance uses mesh slot m (its positions must not change then). */
+static int has_static_instance(const sequence *q, uint32_t m)
+{
+    for (uint32_t i = 0; i < MAX_INSTANCES; ++i)
+        if (q->instances[i].live && q->instances[i].mesh == m && !(q->instances[i].desc.flags & ROMA_INSTANCE_DYNAMIC))
+            return 1;
+    return 0;
+}
 
 static void wait_all(engine *e, uint32_t slots)
 {
@@ -223,6 +235,37 @@ static void frame(engine *e, sequence *q)
     for (uint32_t i = 0; i < RAYS; ++i)
         rays[i] = (roma_ray){{4.0f * unit(&q->r), 0.05f + 1.5f * unit(&q->r), 4.0f * unit(&q->r)}, 0.0f,
                              {unit(&q->r) - 0.5f, unit(&q->r) - 0.5f, unit(&q->r) - 0.5f}, INFINITY};
+    /* Meshes without static instances bent to new positions, written where the GPU reads them
+     * (this slot's buffer: its last frame is done), 3 floats at a stride of 12 or 16 bytes. */
+    roma_mesh_positions posed[MAX_MESHES];
+    uint32_t posed_count = 0;
+    for (uint32_t m = 0; m < MAX_MESHES && below(&q->r, 2); ++m) {
+        mesh_slot *ms = &q->meshes[m];
+        if (!ms->live || has_static_instance(q, m) || below(&q->r, 2))
+            continue;
+        const uint32_t stride = below(&q->r, 2) ? 12u : 16u;
+        float next[12];
+        roma_box box = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+        for (int v = 0; v < 4; ++v)
+            for (int a = 0; a < 3; ++a) {
+                next[3 * v + a] = ms->p[3 * v + a] + 0.2f * (unit(&q->r) - 0.5f);
+                box.min[a] = fminf(box.min[a], next[3 * v + a]);
+                box.max[a] = fmaxf(box.max[a], next[3 * v + a]);
+            }
+        roma_scene *scene = scene_from(next, 4, tetra, ms->triangles, (roma_logger){0});
+        if (!scene)
+            continue;
+        for (int v = 0; v < 4; ++v)
+            memcpy((char *)e->poses[s].mapped + 64u * m + stride * (uint32_t)v, next + 3 * v, 12);
+        posed[posed_count++] = (roma_mesh_positions){.mesh = ms->id, .gpu_positions = e->poses[s].address + 64u * m,
+                                                     .gpu_position_stride = stride, .bounds = box};
+        memcpy(ms->p, next, sizeof next);
+        roma_scene_destroy(ms->scene); /* the map keeps no pointer to it */
+        ms->scene = scene;
+        ++e->mesh_poses;
+    }
+    fd.mesh_positions = posed_count ? posed : NULL;
+    fd.mesh_position_count = posed_count;
     CHECK(vkResetFences(e->dev, 1, &e->fences[s]) == VK_SUCCESS);
     CHECK(vkResetCommandBuffer(e->cmds[s], 0) == VK_SUCCESS);
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
@@ -280,7 +323,20 @@ static void bad_call(engine *e, sequence *q)
     memcpy(bad, finite, sizeof bad);
     bad[below(&q->r, 12)] = below(&q->r, 2) ? NAN : INFINITY;
     uint32_t out = 0;
-    switch (below(&q->r, 6)) {
+    switch (below(&q->r, 7)) {
+    case 6: { /* new positions for a mesh with a static instance, or for an unknown mesh */
+        roma_map_frame_desc fd = frame_desc(q, 0, NULL);
+        roma_mesh_positions given = {.mesh = 100000u, .gpu_positions = e->poses[0].address,
+                                     .bounds = {{0, 0, 0}, {1, 1, 1}}};
+        for (uint32_t m = 0; m < MAX_MESHES; ++m)
+            if (q->meshes[m].live && has_static_instance(q, m))
+                given.mesh = q->meshes[m].id;
+        fd.mesh_positions = &given;
+        fd.mesh_position_count = 1;
+        expect_error(e, q, roma_map_record_build(q->map, e->cmds[0], &fd, NULL), ROMA_ERROR_INVALID_ARGUMENT,
+                     given.mesh == 100000u ? "positions of an unknown mesh" : "positions of a mesh with a static instance");
+        break;
+    }
     case 0:
         expect_error(e, q, roma_map_remove_instance(q->map, 100000u + below(&q->r, 1000)),
                      ROMA_ERROR_INVALID_ARGUMENT, "remove an unknown instance");
@@ -352,7 +408,7 @@ static void step(engine *e, sequence *q, roma_logger logger)
     case 4: { /* add a mesh */
         for (uint32_t m = 0; m < MAX_MESHES; ++m)
             if (!q->meshes[m].live) {
-                roma_scene *mesh = mesh_random(&q->r, logger);
+                roma_scene *mesh = mesh_random(&q->r, logger, q->meshes[m].p, &q->meshes[m].triangles);
                 if (mesh && roma_map_add_mesh(q->map, mesh, &q->meshes[m].id) == ROMA_SUCCESS) {
                     q->meshes[m].live = 1;
                     q->meshes[m].scene = mesh;
@@ -539,6 +595,7 @@ int main(int argc, char **argv)
         CHECK(vkCreateFence(e.dev, &fi, NULL, &e.fences[s]) == VK_SUCCESS);
         roma_test_host_buffer_create(e.ctx, sizeof(roma_ray) * RAYS, &e.rays[s]);
         roma_test_host_buffer_create(e.ctx, sizeof(roma_hit) * RAYS, &e.hits[s]);
+        roma_test_host_buffer_create(e.ctx, 64u * MAX_MESHES, &e.poses[s]);
     }
     uint64_t sequences = 0, matched = 0;
     const double start = now_seconds();
@@ -556,15 +613,18 @@ int main(int argc, char **argv)
         vkDestroyFence(e.dev, e.fences[s], NULL);
         roma_test_host_buffer_destroy(e.dev, &e.rays[s]);
         roma_test_host_buffer_destroy(e.dev, &e.hits[s]);
+        roma_test_host_buffer_destroy(e.dev, &e.poses[s]);
     }
     vkDestroyCommandPool(e.dev, e.pool, NULL);
     const uint32_t validation = roma_context_validation_error_count(e.ctx);
     printf("fuzz_calls seed %" PRIu64 ": %.1f s, %" PRIu64 " sequences of %u calls (%" PRIu64 " frames, %" PRIu64
-           " AO records, %" PRIu64 " image resizes, %" PRIu64 " maps replaced, %" PRIu64 " calls that must fail), %"
-           PRIu64 " ended equal to a fresh map; %u validation messages\n", seed, now_seconds() - start, sequences, STEPS,
-           e.frames, e.ao_records, e.resizes, e.maps_replaced, e.bad_calls, matched, validation);
+           " AO records, %" PRIu64 " image resizes, %" PRIu64 " maps replaced, %" PRIu64 " meshes posed, %" PRIu64
+           " calls that must fail), %" PRIu64 " ended equal to a fresh map; %u validation messages\n", seed,
+           now_seconds() - start, sequences, STEPS, e.frames, e.ao_records, e.resizes, e.maps_replaced, e.mesh_poses,
+           e.bad_calls, matched, validation);
     CHECK(sequences > 0 && matched == sequences && validation == 0);
-    CHECK(e.frames > 0 && e.ao_records > 0 && e.resizes > 0 && e.maps_replaced > 0 && e.bad_calls > 0);
+    CHECK(e.frames > 0 && e.ao_records > 0 && e.resizes > 0 && e.maps_replaced > 0 && e.mesh_poses > 0 &&
+          e.bad_calls > 0);
     roma_context_destroy(e.ctx);
     return roma_test_finish("fuzz_calls");
 }

@@ -498,6 +498,20 @@ static int sweep_ao_cascades(study *s, const roma_camera *cam, double *anchor_ms
                 snprintf(name, sizeof name, "ROMA, %u of %u levels", levels, wanted);
             else
                 snprintf(name, sizeof name, "ROMA, %u levels", levels);
+            /* Maps one storage buffer cannot hold on this device (roma_map_create refuses them:
+             * lavapipe's 128 MiB holds RES 256 at A 8 in one level, not three): a row that says so. */
+            VkPhysicalDeviceProperties props;
+            vkGetPhysicalDeviceProperties(roma_context_physical_device(s->ctx), &props);
+            const uint64_t map_bytes = (uint64_t)d->res[ri] * d->res[ri] * d->res[ri] / 8u, maps_bytes =
+                                           map_bytes * d->angular[ai] * d->angular[ai] * levels;
+            if (maps_bytes > props.limits.maxStorageBufferRange) {
+                printf("| %s | %u | %u | not on this device: %.0f MiB of maps, over its maxStorageBufferRange (%.0f "
+                       "MiB) | - | - | - | - |\n", name, d->res[ri], d->angular[ai], (double)maps_bytes / 1048576.0,
+                       (double)props.limits.maxStorageBufferRange / 1048576.0);
+                fprintf(stderr, "roma-bench: [-/%d] %s, RES %u, A %u: not on this device (%.0f MiB of maps)\n",
+                        s->total, name, d->res[ri], d->angular[ai], (double)maps_bytes / 1048576.0);
+                continue;
+            }
             snprintf(tag, sizeof tag, "ao-levels-%u", levels);
             snprintf(series, sizeof series, "ROMA A %u, levels", d->angular[ai]);
             snprintf(label, sizeof label, "%u", d->res[ri]);

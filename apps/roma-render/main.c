@@ -43,9 +43,11 @@ static const char *usage =
     "  --shadow-angular A          ROMA A for shadow rays (direct, lights), 1..16 (default 8)\n"
     "  --max-steps N               ROMA un-snapped shadow rays: texels walked at most (default 8)\n"
     "  --cascades K                ROMA: K nested grids around the camera, each twice the last's size\n"
-    "                              (1..8; default: with AO on a scene more than 4 finest grids wide,\n"
-    "                              enough to cover it, else 1: one grid over the scene; at most 4 for\n"
-    "                              the shadow rays' A 8 arrays); the public effect passes only\n"
+    "                              (1..8; default: with AO where the grid holding the scene's part\n"
+    "                              nearest the camera (the finest, for a camera inside the scene) has\n"
+    "                              cells at least twice as fine as one grid over the scene, enough to\n"
+    "                              cover it, else 1: one grid; at most 4 for the shadow rays' A 8\n"
+    "                              arrays); the public effect passes only\n"
     "  --jitter on|off             ROMA: a new grid placement and new candidate directions each frame\n"
     "                              (on, the default), or the first frame's in every frame (off: maps\n"
     "                              that did not move are kept); the public effect passes only\n"
@@ -128,7 +130,7 @@ typedef struct options {
     uint32_t width, height, effects, spp, frames, lights, seed, threads, res, angular;
     uint32_t shadow_angular, max_steps, lights_per_frame;
     uint32_t cascades;    /* --cascades; 0: unset (one grid) */
-    int cascades_auto;    /* 1: cascades chosen for a scene much larger than the AO radius */
+    int cascades_auto;    /* 1: cascades chosen (roma_app_auto_cascades) */
     float finest_extent;  /* --finest-extent; 0: derived */
     int jitter_off;       /* --jitter off: every frame's grids and directions the first's */
     float skip, ao_skip; /* < 0: unset (library default) */
@@ -1240,8 +1242,9 @@ static void say_what_happens(options *o, const roma_scene_view *sv, const float 
         note(n, o->quiet, "AO radius %.4g: 10%% of the scene's diagonal (--ao-radius R to choose, --ao-radius inf "
              "for unbounded rays)", (double)o->ao_radius);
     }
-    /* A scene much larger than the AO radius (a game level): one grid over it has cells too
-     * large for the radius; cascade levels around the camera instead (roma_app_auto_cascades). */
+    /* A scene much larger than the AO radius seen from inside (a game level): one grid over it has
+     * cells too large for the radius; cascade levels around the camera instead
+     * (roma_app_auto_cascades). */
     const float longest = fmaxf(dx, fmaxf(dy, dz));
     const uint32_t res = o->res ? o->res : o->preset == ROMA_PRESET_HIGH || o->preset == ROMA_PRESET_ULTRA ? 256 : 128;
     float finest = 0.0f;

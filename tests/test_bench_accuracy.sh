@@ -167,9 +167,11 @@ LIGHTS
 # the room that roma-render would pick levels: beside the one grid, ROMA with its levels for
 # each A (K >= 2), the equal-time and equal-error tables anchored on A 4 with its levels, and
 # the levels closer to Embree than the one grid, whose cells (3 cm at RES 64) are as wide as
-# the radius; --no-baselines leaves out the voxel baselines over one grid. Refused: another
-# effect, no radius, auto without --accuracy, --no-baselines without --accuracy.
-"${bench_run[@]}" --small --accuracy --ao-radius 0.05 --cascades auto --no-baselines --csv "$dir/levels.csv" \
+# the radius; --no-baselines leaves out the voxel baselines over one grid; --camera keeps its
+# field of view. Refused: another effect, no radius, auto without --accuracy, --no-baselines
+# without --accuracy, a camera of 180 degrees or with its eye on its target.
+"${bench_run[@]}" --small --accuracy --ao-radius 0.05 --cascades auto --no-baselines --camera 0,1,1.9,0,0.8,-1,50 \
+  --csv "$dir/levels.csv" \
   >"$dir/levels.txt" \
   2>"$dir/levels_progress.txt" ||
   { cat "$dir/levels.txt" "$dir/levels_progress.txt" >&2; fail "roma-bench --accuracy --cascades auto failed"; }
@@ -185,11 +187,13 @@ print("level rows:", rows, "MAE with levels:", levels, "one grid:", grid)
 ok = [a for _, a in rows] == ["2", "4"] and all(int(k) >= 2 for k, _ in rows)
 ok = ok and sorted(levels) == ["2", "4"] and all(0 < levels[a] < grid[a] for a in levels)
 ok = ok and "Against ROMA A 4, levels at 64" in text
+ok = ok and "camera: eye 0,1,1.9, target 0,0.8,-1, fovy 50 degrees" in text  # the field of view is kept
 ok = ok and not re.search(r"^\| (voxel traversal|distance field|NAADF) \|", text, re.M)
 sys.exit(0 if ok else 1)
 LEVELS
 for bad in "--accuracy --effect direct --ao-radius 0.05 --cascades auto" "--accuracy --cascades auto" \
-           "--cascades auto --ao-radius 0.05" "--no-baselines --ao-radius 0.05"; do
+           "--cascades auto --ao-radius 0.05" "--no-baselines --ao-radius 0.05" \
+           "--accuracy --camera 0,1,1.9,0,0.8,-1,180" "--accuracy --camera 0,1,1.9,0,1,1.9"; do
   # shellcheck disable=SC2086
   "${bench_run[@]}" --small $bad >/dev/null 2>&1
   [ $? -eq 2 ] || fail "$bad: should exit 2"

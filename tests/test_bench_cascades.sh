@@ -12,6 +12,7 @@ set -u
 "${bench_run[@]}" --cascades 3 --res 128 --ao-radius 0.5 --camera 0,1,1.9,0,0.9,0 --runs 1 --frames 4 \
   --csv "$dir/cascades.csv" >"$dir/out.txt" 2>&1 || { cat "$dir/out.txt" >&2; fail "roma-bench --cascades failed"; }
 cat "$dir/out.txt"
+grep -q "^camera: eye 0,1,1.9, target 0,0.9,0, fovy 45 degrees" "$dir/out.txt" || fail "the camera (six values: 45 degrees) is not the one given"
 python3 - "$dir/out.txt" <<'ROWS' || fail "the cascades table does not have its seven rows as expected"
 import sys
 rows = {r[0]: r for r in ([c.strip() for c in l.strip().strip("|").split("|")] for l in open(sys.argv[1])

@@ -362,8 +362,11 @@ int main(int argc, char **argv)
             float *c = camera.eye, *t = camera.target, fovy;
             char tail;
             int n = sscanf(v, "%f,%f,%f,%f,%f,%f,%f%c", &c[0], &c[1], &c[2], &t[0], &t[1], &t[2], &fovy, &tail);
-            if (n != 6 && n != 7) {
-                fprintf(stderr, "roma-bench: --camera %s: expected ex,ey,ez,tx,ty,tz[,fovy]\n", v);
+            roma_camera_frame check;
+            camera.fovy_deg = n == 7 ? fovy : 0.0f; /* 0: the default 45 degrees */
+            if ((n != 6 && n != 7) || !roma_camera_make_frame(&camera, 1, 1, &check)) {
+                fprintf(stderr, "roma-bench: --camera %s: expected ex,ey,ez,tx,ty,tz[,fovy] (eye apart from the target, "
+                                "fovy in (0, 180))\n", v);
                 return 2;
             }
             camera_set = 1, ++i;
@@ -438,6 +441,10 @@ int main(int argc, char **argv)
     uint32_t shown_runs = accuracy && small ? 1 : runs;
     printf("device: %s | scene: %s (%u triangles) | runs: %u (%s)\n", info.device_name, scene_arg,
            sv.triangle_count, shown_runs, shown_runs == 1 ? "one run: no median" : "medians");
+    if (camera_set)
+        printf("camera: eye %g,%g,%g, target %g,%g,%g, fovy %g degrees\n", (double)camera.eye[0],
+               (double)camera.eye[1], (double)camera.eye[2], (double)camera.target[0], (double)camera.target[1],
+               (double)camera.target[2], camera.fovy_deg > 0.0f ? (double)camera.fovy_deg : 45.0);
     FILE *csv = csv_path ? fopen(csv_path, "w") : NULL;
     if (csv)
         fprintf(csv, "kind,name,res,angular,value,unit\n");

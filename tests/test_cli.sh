@@ -312,6 +312,16 @@ grep -q "note: cascades: 5 grids around the camera, the finest 0.213 wide (30 ce
 grep -q "the finest 0.5 wide (--finest-extent)" "$dir/cascades_finest.err" ||
   fail "roma-render does not say the finest level's edge came from --finest-extent"
 ! grep -q "note: cascades" "$dir/cascades_one.err" || fail "roma-render --cascades 1 still notes cascades"
+# More levels than one storage buffer of the device holds (RES 256, A 4, 7 levels for a 1 cm
+# radius: 224 MiB of maps; lavapipe holds 128 MiB in one): roma-render renders with the levels
+# that fit and says how many (where the device holds them all, with all 7 and no note).
+"$render" --tracer roma --scene builtin:cornell --effects ao --ao-radius 0.01 --res 256 --spp 1 --size 16x12 \
+  --out "$dir/cascades_fit" --stats "$dir/cascades_fit/stats.json" >/dev/null 2>"$dir/cascades_fit.err"
+expect_status 0 $? "roma-render with more levels than a storage buffer holds" || cat "$dir/cascades_fit.err" >&2
+got=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["roma_arrays"][0]["levels"])' \
+  "$dir/cascades_fit/stats.json" 2>/dev/null)
+fit=$(sed -n 's/.*RES 256, A 4: \([0-9]*\) of the 7 cascade levels fit in one storage buffer.*/\1/p' "$dir/cascades_fit.err")
+[ "$got" = "${fit:-7}" ] || fail "roma-render with 7 levels wanted: $got levels made, the note says ${fit:-none}"
 
 # --jitter off: every frame's grid and directions the first's (the stats say so); a bad value is
 # refused.

@@ -34,6 +34,7 @@ typedef struct engine {
     VkDevice device;
     VkPhysicalDeviceMemoryProperties memory;
     VkDeviceSize max_allocation;
+    uint32_t max_storage_range; /* maxStorageBufferRange: the largest maps one buffer holds */
     VkCommandPool pool;
     VkCommandBuffer cmd;
     VkFence fence;
@@ -501,8 +502,19 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
         out->plan.passes &= ~(1u << ROMA_PASS_RSM);
     const roma_effect_plan *plan = &out->plan;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
-        const uint32_t angular = plan->maps[i].angular, most = 256u / (angular * angular);
-        roma_map_desc md = {.resolution = plan->maps[i].resolution, .angular = angular, .frames_in_flight = 1,
+        const uint32_t angular = plan->maps[i].angular, res = plan->maps[i].resolution;
+        uint32_t most = 256u / (angular * angular);
+        /* Levels whose maps one storage buffer of the device holds (roma_map_create refuses more):
+         * fewer levels reach less far around the camera; said once. */
+        const uint64_t level_bytes = (uint64_t)res * res * res / 8u * angular * angular;
+        const uint64_t fit = level_bytes ? e->max_storage_range / level_bytes : most;
+        if (d->cascades > 1 && fit >= 1 && fit < most && fit < d->cascades) {
+            fprintf(stderr, "effect_api: note: RES %u, A %u: %u of the %u cascade levels fit in one storage buffer of "
+                            "this device (maxStorageBufferRange %u MiB); the coarsest reaches less far\n",
+                    res, angular, (unsigned)fit, d->cascades, e->max_storage_range >> 20);
+            most = (uint32_t)fit;
+        }
+        roma_map_desc md = {.resolution = res, .angular = angular, .frames_in_flight = 1,
                             .cascades = d->cascades < most ? d->cascades : most};
         r = roma_map_create(e->ctx, &md, scene, &e->maps[i]);
         if (r == ROMA_SUCCESS)
@@ -682,6 +694,7 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
         e.max_allocation = UINT64_MAX;
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(roma_context_physical_device(ctx), &props);
+    e.max_storage_range = props.limits.maxStorageBufferRange;
     if (d->width > props.limits.maxImageDimension2D || d->height > props.limits.maxImageDimension2D) {
         fprintf(stderr, "effect_api: %ux%u is larger than the device's images (maxImageDimension2D %u)\n", d->width,
                 d->height, props.limits.maxImageDimension2D);

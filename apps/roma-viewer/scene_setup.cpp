@@ -75,13 +75,18 @@ float effective_ao_radius(const viewer &v)
 // The cascade levels the settings ask for (0: chosen for the scene and the AO radius, as
 // roma-render chooses, from the camera the scene opens at: the one given or the scene's own,
 // else one framing it from outside; not the moving camera, so that flying does not rebuild
-// the map), and the finest level's edge; at most 256 maps in all.
+// the map), and the finest level's edge; at most 256 maps in all, and at most what one storage
+// buffer of the device holds.
 uint32_t wanted_levels(const viewer &v, float &finest)
 {
     const float *eye = v.opt.has_camera ? v.opt.camera.eye : v.view.has_camera ? v.view.camera.eye : nullptr;
     uint32_t chosen = roma_app_auto_cascades(v.view.bounds_min, v.view.bounds_max, eye, v.s.res, effective_ao_radius(v),
                                              v.s.finest_extent, &finest);
     uint32_t levels = v.s.cascades ? v.s.cascades : chosen;
+    // As many as one storage buffer of the device holds (roma_map_create refuses more).
+    const uint64_t level_bytes = uint64_t(v.s.res) * v.s.res * v.s.res / 8u * v.s.angular * v.s.angular;
+    const uint64_t fit = level_bytes ? v.base.properties.limits.maxStorageBufferRange / level_bytes : levels;
+    levels = uint32_t(std::min<uint64_t>(levels, std::max<uint64_t>(fit, 1u)));
     return std::max(1u, std::min(levels, 256u / (v.s.angular * v.s.angular)));
 }
 

@@ -63,6 +63,11 @@ float roma_app_finest_extent(uint32_t res, float ao_radius);
 uint32_t roma_app_auto_cascades(const float bounds_min[3], const float bounds_max[3], const float *eye, uint32_t res,
                                 float ao_radius, float finest_extent, float *finest);
 
+/* The most cascade levels a map of RES res and A angular can have on a device whose storage
+ * buffers hold max_storage_range bytes (maxStorageBufferRange: roma_map_create refuses maps
+ * larger than one buffer) and within 256 maps; 0 when not even one level fits. */
+uint32_t roma_app_levels_that_fit(uint32_t res, uint32_t angular, uint64_t max_storage_range);
+
 /* Creates the folder (and parents) if needed; 0 on failure, with errno set. */
 int roma_app_make_dir(const char *path);
 

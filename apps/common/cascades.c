@@ -39,3 +39,11 @@ uint32_t roma_app_auto_cascades(const float bounds_min[3], const float bounds_ma
     uint32_t levels = (uint32_t)ceilf(log2f(longest / edge)) + 1u;
     return levels > ROMA_MAX_LEVELS ? ROMA_MAX_LEVELS : levels;
 }
+
+uint32_t roma_app_levels_that_fit(uint32_t res, uint32_t angular, uint64_t max_storage_range)
+{
+    const uint64_t level_bytes = (uint64_t)res * res * res / 8u * angular * angular;
+    const uint64_t by_maps = angular ? 256u / ((uint64_t)angular * angular) : 0u;
+    const uint64_t by_bytes = level_bytes ? max_storage_range / level_bytes : by_maps;
+    return (uint32_t)(by_bytes < by_maps ? by_bytes : by_maps);
+}

@@ -503,17 +503,14 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     const roma_effect_plan *plan = &out->plan;
     for (uint32_t i = 0; i < plan->map_count && r == ROMA_SUCCESS; ++i) {
         const uint32_t angular = plan->maps[i].angular, res = plan->maps[i].resolution;
-        uint32_t most = 256u / (angular * angular);
-        /* Levels whose maps one storage buffer of the device holds (roma_map_create refuses more):
-         * fewer levels reach less far around the camera; said once. */
-        const uint64_t level_bytes = (uint64_t)res * res * res / 8u * angular * angular;
-        const uint64_t fit = level_bytes ? e->max_storage_range / level_bytes : most;
-        if (d->cascades > 1 && fit >= 1 && fit < most && fit < d->cascades) {
+        const uint32_t fit = roma_app_levels_that_fit(res, angular, e->max_storage_range);
+        /* Fewer levels than asked where one storage buffer of the device holds no more: they
+         * reach less far around the camera; said (not where the 256 maps are the limit). */
+        const uint32_t most = fit ? fit : 1u;
+        if (d->cascades > most && fit && fit < 256u / (angular * angular))
             fprintf(stderr, "effect_api: note: RES %u, A %u: %u of the %u cascade levels fit in one storage buffer of "
                             "this device (maxStorageBufferRange %u MiB); the coarsest reaches less far\n",
-                    res, angular, (unsigned)fit, d->cascades, e->max_storage_range >> 20);
-            most = (uint32_t)fit;
-        }
+                    res, angular, fit, d->cascades, e->max_storage_range >> 20);
         roma_map_desc md = {.resolution = res, .angular = angular, .frames_in_flight = 1,
                             .cascades = d->cascades < most ? d->cascades : most};
         r = roma_map_create(e->ctx, &md, scene, &e->maps[i]);

@@ -210,9 +210,9 @@ static uint32_t row_cascades(const roma_scene *scene, const roma_camera *cam, co
 {
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    *wanted = d->cascades ? d->cascades
-                          : roma_app_auto_cascades(v.bounds_min, v.bounds_max, cam->eye, res, d->radius, 0.0f, finest);
     *finest = roma_app_finest_extent(res, d->radius);
+    *wanted = d->cascades ? d->cascades
+                          : roma_app_auto_cascades(v.bounds_min, v.bounds_max, cam->eye, res, d->radius, 0.0f, NULL);
     const uint32_t most = 256u / (angular * angular);
     return *wanted < most ? *wanted : most;
 }
@@ -293,6 +293,7 @@ static int frames_curve(roma_context *ctx, const roma_scene *scene, const roma_r
  * (made by the first render), the points of the fronts and the CSV. */
 typedef struct study {
     roma_context *ctx;
+    uint64_t max_storage_range; /* the device's maxStorageBufferRange */
     const roma_scene *scene;
     const roma_ref *ref;
     const roma_bench_accuracy_desc *d;
@@ -500,14 +501,12 @@ static int sweep_ao_cascades(study *s, const roma_camera *cam, double *anchor_ms
                 snprintf(name, sizeof name, "ROMA, %u levels", levels);
             /* Maps one storage buffer cannot hold on this device (roma_map_create refuses them:
              * lavapipe's 128 MiB holds RES 256 at A 8 in one level, not three): a row that says so. */
-            VkPhysicalDeviceProperties props;
-            vkGetPhysicalDeviceProperties(roma_context_physical_device(s->ctx), &props);
-            const uint64_t map_bytes = (uint64_t)d->res[ri] * d->res[ri] * d->res[ri] / 8u, maps_bytes =
-                                           map_bytes * d->angular[ai] * d->angular[ai] * levels;
-            if (maps_bytes > props.limits.maxStorageBufferRange) {
+            const uint64_t maps_bytes = (uint64_t)d->res[ri] * d->res[ri] * d->res[ri] / 8u * d->angular[ai] *
+                                        d->angular[ai] * levels;
+            if (roma_app_levels_that_fit(d->res[ri], d->angular[ai], s->max_storage_range) < levels) {
                 printf("| %s | %u | %u | not on this device: %.0f MiB of maps, over its maxStorageBufferRange (%.0f "
                        "MiB) | - | - | - | - |\n", name, d->res[ri], d->angular[ai], (double)maps_bytes / 1048576.0,
-                       (double)props.limits.maxStorageBufferRange / 1048576.0);
+                       (double)s->max_storage_range / 1048576.0);
                 fprintf(stderr, "roma-bench: [-/%d] %s, RES %u, A %u: not on this device (%.0f MiB of maps)\n",
                         s->total, name, d->res[ri], d->angular[ai], (double)maps_bytes / 1048576.0);
                 continue;
@@ -773,6 +772,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                .times = calloc(d->runs, sizeof(double)),
                .points = calloc((size_t)max_points, sizeof(roma_bench_point)),
                .light_count = lights ? ROMA_BENCH_MANY_LIGHTS : 0u};
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(roma_context_physical_device(ctx), &props);
+    s.max_storage_range = props.limits.maxStorageBufferRange;
     if (lights)
         s.light_positions = malloc(sizeof(float) * 3 * s.light_count);
     int status = 0;

@@ -53,16 +53,13 @@ static roma_result skin_poses_create(roma_context *ctx, const roma_scene *level,
     roma_result r = mesh && whole ? ROMA_SUCCESS : ROMA_ERROR_OUT_OF_HOST_MEMORY;
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     for (int k = 0; k < 2 && r == ROMA_SUCCESS; ++k) {
-        for (int a = 0; a < 3; ++a) {
-            p->mesh_box[k].min[a] = p->whole_box[k].min[a] = INFINITY;
-            p->mesh_box[k].max[a] = p->whole_box[k].max[a] = -INFINITY;
+        for (int a = 0; a < 3; ++a) { /* the whole scene's box grows from the level's */
+            p->mesh_box[k].min[a] = INFINITY;
+            p->mesh_box[k].max[a] = -INFINITY;
+            p->whole_box[k].min[a] = lv.bounds_min[a];
+            p->whole_box[k].max[a] = lv.bounds_max[a];
         }
         memcpy(whole, lv.positions, 12ull * lv.vertex_count);
-        for (uint32_t i = 0; i < lv.vertex_count; ++i)
-            for (int a = 0; a < 3; ++a) {
-                p->whole_box[k].min[a] = fminf(p->whole_box[k].min[a], lv.positions[3 * i + a]);
-                p->whole_box[k].max[a] = fmaxf(p->whole_box[k].max[a], lv.positions[3 * i + a]);
-            }
         const float bend = 0.1f * (float)(k + 1);
         for (uint32_t i = 0; i < ov.vertex_count; ++i) {
             const float *q = ov.positions + 3 * i;

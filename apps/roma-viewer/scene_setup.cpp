@@ -82,12 +82,9 @@ uint32_t wanted_levels(const viewer &v, float &finest)
     const float *eye = v.opt.has_camera ? v.opt.camera.eye : v.view.has_camera ? v.view.camera.eye : nullptr;
     uint32_t chosen = roma_app_auto_cascades(v.view.bounds_min, v.view.bounds_max, eye, v.s.res, effective_ao_radius(v),
                                              v.s.finest_extent, &finest);
-    uint32_t levels = v.s.cascades ? v.s.cascades : chosen;
-    // As many as one storage buffer of the device holds (roma_map_create refuses more).
-    const uint64_t level_bytes = uint64_t(v.s.res) * v.s.res * v.s.res / 8u * v.s.angular * v.s.angular;
-    const uint64_t fit = level_bytes ? v.base.properties.limits.maxStorageBufferRange / level_bytes : levels;
-    levels = uint32_t(std::min<uint64_t>(levels, std::max<uint64_t>(fit, 1u)));
-    return std::max(1u, std::min(levels, 256u / (v.s.angular * v.s.angular)));
+    const uint32_t levels = v.s.cascades ? v.s.cascades : chosen;
+    const uint32_t fit = roma_app_levels_that_fit(v.s.res, v.s.angular, v.base.properties.limits.maxStorageBufferRange);
+    return std::max(1u, std::min(levels, fit));
 }
 
 bool create_map(viewer &v)

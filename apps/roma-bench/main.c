@@ -453,8 +453,12 @@ int main(int argc, char **argv)
          * measures again). */
         char cache_key[512];
         struct stat exe;
-        snprintf(cache_key, sizeof cache_key, "%s|%s (%u triangles)|roma-bench of %lld", info.device_name, scene_arg,
-                 sv.triangle_count, stat("/proc/self/exe", &exe) == 0 ? (long long)exe.st_mtime : 0ll);
+        /* The camera too: a point seen from another camera is another point. */
+        snprintf(cache_key, sizeof cache_key, "%s|%s (%u triangles)|roma-bench of %lld|camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g",
+                 info.device_name, scene_arg, sv.triangle_count,
+                 stat("/proc/self/exe", &exe) == 0 ? (long long)exe.st_mtime : 0ll, (double)camera.eye[0],
+                 (double)camera.eye[1], (double)camera.eye[2], (double)camera.target[0], (double)camera.target[1],
+                 (double)camera.target[2], (double)camera.fovy_deg);
         roma_bench_accuracy_desc ad = {
             .effect = effect, .width = size_set ? frame_w : small ? 32 : 160,
             .height = size_set ? frame_h : small ? 24 : 120, .spp = small ? 32 : 64,

@@ -2,7 +2,8 @@
 # roma-bench --small, end to end on the CI device, checked for what it prints: the generation
 # table (a row for RES 64 with A 2 and A 4, every time positive; roma-bench itself fails when a
 # timed build kept its grid), the record-cost table, the rays table (Embree's two rows and
-# ROMA's three, rays a second positive) and the dynamic AO frame (1 and 4 samples; the closed
+# ROMA's three, rays a second positive; the hardware ray-tracing rows or the reason they were
+# skipped) and the dynamic AO frame (1 and 4 samples; the closed
 # room's unbounded AO is 0 on both sides).
 # Usage: test_bench_smoke.sh ROMA_BENCH SCRATCH_DIR
 set -u
@@ -26,6 +27,15 @@ ok = ok and len(cost) == 3 and all(positive(r[1:2]) for r in cost)
 embree = rows("| Embree rtc")
 roma = rows("| roma ")
 ok = ok and len(embree) == 2 and len(roma) == 3 and all(float(r[4]) > 0 for r in embree + roma)
+# The hardware ray-tracing rows: skipped with the reason where the device lacks the extensions
+# (lavapipe), else any hit and closest hit, agreeing with Embree on the same rays.
+hw = rows("| hardware ray tracing")
+if len(hw) == 1:
+    ok = ok and hw[0][1].startswith("skipped: ") and ("offers no VK_KHR_" in hw[0][1] or "lacks" in hw[0][1])
+else:
+    agree = [l for l in lines if l.startswith("hardware ray tracing: both acceleration structures")]
+    pct = [float(w.rstrip("%")) for l in agree for w in l.split() if w.endswith("%")]
+    ok = ok and len(hw) == 2 and all(float(r[4]) > 0 for r in hw) and len(pct) == 2 and min(pct) >= 99.9
 frame = rows("| 1 |") + rows("| 4 |")
 ok = ok and len(frame) == 2 and all(positive(r[1:7]) for r in frame)
 ok = ok and all(r[8].replace(" ", "") == "0.000/0.000" for r in frame)
@@ -38,4 +48,6 @@ grep -v '^| [14] |' "$dir/out.txt" >"$dir/no_frame.txt"
 tables "$dir/no_frame.txt" && fail "the check passes an output without the frame table"
 sed 's/^| 64 | 2 | 4 | [0-9.]* |/| 64 | 2 | 4 |  |/' "$dir/out.txt" >"$dir/empty_cell.txt"
 tables "$dir/empty_cell.txt" 2>/dev/null && fail "the check passes an empty cell"
+grep -v '^| hardware ray tracing' "$dir/out.txt" >"$dir/no_hardware.txt"
+tables "$dir/no_hardware.txt" && fail "the check passes an output without the hardware ray-tracing rows"
 finish test_bench_smoke

@@ -13,6 +13,9 @@
 #include "vulkan/spirv_rounding.h"
 #include "vulkan/vk_internal.h"
 
+/* Generated: the study's table (src/study/study_shaders.c). */
+extern const roma_spirv_module roma_study_spirv_modules[];
+
 enum { OP_EXTENSION = 10, OP_ENTRY_POINT = 15, OP_EXECUTION_MODE = 16, OP_CAPABILITY = 17 };
 
 typedef struct counts {
@@ -58,7 +61,10 @@ static int spirv_val(const uint32_t *code, size_t words)
 int main(void)
 {
     uint32_t modules = 0, wrong = 0, validated = 0, invalid = 0;
-    for (const roma_spirv_module *m = roma_spirv_modules; m->name; ++m, ++modules) {
+    /* libroma's modules, then the study's (its ray-tracing stages among them). */
+    const roma_spirv_module *const tables[2] = {roma_spirv_modules, roma_study_spirv_modules};
+    for (int t = 0; t < 2; ++t)
+    for (const roma_spirv_module *m = tables[t]; m->name; ++m, ++modules) {
         uint32_t *patched = NULL, *again = NULL;
         size_t words = 0, again_words = 0;
         const counts before = count(m->code, m->size / 4);

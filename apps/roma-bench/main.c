@@ -12,6 +12,7 @@
 #include "cascades.h"
 #include "level_frame.h"
 #include "frame.h"
+#include "hw_ray_tracing.h"
 #include "plot.h"
 #include "record_cost.h"
 #include "app_common.h"
@@ -418,8 +419,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "roma-bench: cannot load %s: %s\n", scene_arg, roma_result_string(r));
         return 1;
     }
+    /* The trace table's hardware rows need a device with the ray-tracing extensions: where one
+     * is offered, libroma runs on it as on an engine's device, so both trace the same buffers. */
+    roma_hwrt_device *hwrt_device = NULL;
+    char hwrt_why[256] = "";
     roma_context *ctx = NULL;
     roma_context_desc cdesc = {0};
+    if (!accuracy && !cascades && !growth) {
+        const char *validation = getenv("ROMA_VALIDATION"), *device = getenv("ROMA_DEVICE");
+        if (roma_hwrt_device_create(device, validation && *validation && strcmp(validation, "0") != 0,
+                                    &hwrt_device, hwrt_why, sizeof hwrt_why) == ROMA_SUCCESS)
+            cdesc.external = roma_hwrt_device_external(hwrt_device);
+    }
     r = roma_context_create(&cdesc, &ctx);
     roma_ref *ref = NULL;
     if (r == ROMA_SUCCESS)
@@ -430,7 +441,10 @@ int main(int argc, char **argv)
     if (r != ROMA_SUCCESS) {
         fprintf(stderr, "roma-bench: setup failed: %s\n", roma_result_string(r));
         roma_scene_destroy(scene);
+        roma_ref_destroy(ref);
+        roma_gpu_timer_destroy(timer);
         roma_context_destroy(ctx);
+        roma_hwrt_device_destroy(hwrt_device);
         return 1;
     }
     roma_context_info info;
@@ -617,7 +631,9 @@ int main(int argc, char **argv)
     memcpy(ray_staging.mapped, rays, (size_t)ray_bytes);
     vkCmdCopyBuffer(upload, ray_staging.buffer, ray_buf.buffer, 1, &(VkBufferCopy){0, 0, ray_bytes});
     roma_cmd_memory_barrier(upload, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                                (hwrt_device ? VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR : 0),
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     const roma_result uploaded = roma_submit_one_shot(ctx, upload);
     roma_buffer_destroy(ctx, &ray_staging);
     if (uploaded != ROMA_SUCCESS) {
@@ -660,6 +676,14 @@ int main(int argc, char **argv)
             fprintf(csv, "trace,%s host by address,128,%u,%.6f,ms\n", gpu_cases[c].name, c == 2 ? 8u : 4u, host_addr);
         }
     }
+    if (status == 0) {
+        roma_bench_hwrt_desc hd = {.device = hwrt_device, .why = hwrt_why, .rays = ray_buf.address,
+                                   .hits = hit_buf.address, .hits_buffer = hit_buf.buffer, .count = n, .runs = runs,
+                                   .embree_occluded = occ, .embree_t = t_out,
+                                   .embree_ms = {embree_ms[0], embree_ms[1]}, .cpu_device = cpu_device};
+        if (roma_bench_hwrt(ctx, scene, timer, &hd, csv) != 0)
+            status = 1;
+    }
     roma_buffer_destroy(ctx, &ray_buf);
     roma_buffer_destroy(ctx, &hit_buf);
     {
@@ -680,5 +704,12 @@ done:
     free(occ);
     roma_map_destroy(map);
     roma_map_destroy(map8);
-    return finish(ctx, scene, ref, timer, status);
+    status = finish(ctx, scene, ref, timer, status);
+    if (roma_hwrt_device_validation_messages(hwrt_device)) {
+        fprintf(stderr, "roma-bench: %u Vulkan validation message(s) on the ray-tracing device\n",
+                roma_hwrt_device_validation_messages(hwrt_device));
+        status = 1;
+    }
+    roma_hwrt_device_destroy(hwrt_device);
+    return status;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every GPU check in one command, for a machine with a GPU lent for minutes (start-up included):
-# the C test programs with validation on, roma-bench on dragon_res2 (generation, the trace ladder,
+# the C test programs with validation on (test_hw_ray_tracing among them), roma-bench on dragon_res2
+# (generation, the trace ladder with the hardware ray-tracing rows,
 # the frame), the cascade levels' build and dynamic frame on ctf_compromise, the accuracy study
 # on aggressor (one grid against cascade levels, 640 x 480), and the issue-41 passes through
 # roma-render (AO at 1920 x 1080 on dragon_res2, many lights on the room) with GPU timestamps.

@@ -27,11 +27,10 @@
 
 /* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
  * and the pipeline's slot in it as specialization constants, set on every pipeline of a
- * ROMA_LOOP_GUARD build; a tick in 64 raises the slot's peak. */
+ * ROMA_LOOP_GUARD build; the invocation's count raises the slot's peak when it ends. */
 #define ROMA_LOOP_GUARD_ADDRESS_LO_ID 201
 #define ROMA_LOOP_GUARD_ADDRESS_HI_ID 202
 #define ROMA_LOOP_GUARD_SLOT_ID 203
-#define ROMA_LOOP_GUARD_STRIDE 64u
 
 /* util/fill_u32.comp: writes value + index * stride into a storage buffer. */
 #define ROMA_FILL_WORKGROUP_SIZE 64

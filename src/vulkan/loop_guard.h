@@ -8,8 +8,8 @@
  *
  * It counts per shader lane; llvmpipe counts per SIMD vector, an iteration whenever any of its
  * lanes is still in the loop, which can be more where lanes diverge: the half-budget bound
- * leaves room for that. Peaks are raised every ROMA_LOOP_GUARD_STRIDE iterations, so they read
- * up to that many low. Without ROMA_LOOP_GUARD every function here does nothing. */
+ * leaves room for that. An invocation raises its peak when its main returns (a fragment that
+ * discards reports nothing). Without ROMA_LOOP_GUARD every function here does nothing. */
 #ifndef ROMA_VULKAN_LOOP_GUARD_H
 #define ROMA_VULKAN_LOOP_GUARD_H
 

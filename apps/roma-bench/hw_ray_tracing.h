@@ -1,0 +1,34 @@
+/* roma-bench's hardware ray-tracing rows: the trace table's rays through the driver's
+ * ray-tracing pipeline (src/study/hw_ray_tracing.h), beside ROMA and Embree. */
+#ifndef ROMA_BENCH_HW_RAY_TRACING_H
+#define ROMA_BENCH_HW_RAY_TRACING_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "roma/context.h"
+#include "roma/map.h"
+#include "roma/scene.h"
+#include "study/hw_ray_tracing.h"
+
+typedef struct roma_bench_hwrt_desc {
+    const roma_hwrt_device *device; /* NULL: the rows are skipped, and why says why */
+    const char *why;
+    VkDeviceAddress rays, hits;     /* the trace table's rays and hits on the device */
+    VkBuffer hits_buffer;           /* the buffer at hits */
+    uint32_t count;
+    uint32_t runs;
+    const uint8_t *embree_occluded; /* Embree's answers for the same rays */
+    const float *embree_t;          /* Embree's closest distances (INFINITY: a miss) */
+    double embree_ms[2];            /* rtcOccluded, rtcIntersect */
+    int cpu_device;                 /* the ratios use host-observed times */
+} roma_bench_hwrt_desc;
+
+/* Prints the rows of the trace table (any hit, closest hit: timestamps, host-observed, Mrays/s,
+ * against Embree) and, after the table, the acceleration structures' build and how often the
+ * hardware agrees with Embree; or one line saying why they were skipped. Returns 0 unless a
+ * step failed. */
+int roma_bench_hwrt(roma_context *ctx, const roma_scene *scene, roma_gpu_timer *timer, const roma_bench_hwrt_desc *d,
+                    FILE *csv);
+
+#endif /* ROMA_BENCH_HW_RAY_TRACING_H */

@@ -1,0 +1,682 @@
+#include "study/hw_ray_tracing.h"
+#include "study/study_shaders.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "util/log.h"
+#include "vulkan/upload.h"
+#include "vulkan/vk_internal.h"
+
+static const char *const rt_extensions[3] = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                             VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME,
+                                             VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+struct roma_hwrt_device {
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+    roma_device_requirements req; /* its chain, extended, is what the device was created with */
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as_features;
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt_features;
+    roma_external_device external;
+    unsigned validation_messages;
+};
+
+struct roma_hwrt {
+    roma_context *ctx;
+    const roma_hwrt_device *dev;
+    PFN_vkCreateAccelerationStructureKHR create_as;
+    PFN_vkDestroyAccelerationStructureKHR destroy_as;
+    PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes;
+    PFN_vkGetAccelerationStructureDeviceAddressKHR as_address;
+    PFN_vkCmdBuildAccelerationStructuresKHR cmd_build;
+    PFN_vkCreateRayTracingPipelinesKHR create_pipelines;
+    PFN_vkGetRayTracingShaderGroupHandlesKHR group_handles;
+    PFN_vkCmdTraceRaysKHR cmd_trace;
+    roma_buffer positions, indices, instance, blas_buffer, tlas_buffer, scratch, sbt;
+    VkAccelerationStructureKHR blas, tlas;
+    VkDeviceAddress scratch_address; /* aligned to minAccelerationStructureScratchOffsetAlignment */
+    uint32_t vertex_count, triangle_count;
+    VkDescriptorSetLayout set_layout;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    VkStridedDeviceAddressRegionKHR raygen, miss, hit, callable;
+    uint32_t max_launch_width;
+};
+
+typedef struct hwrt_push {
+    VkDeviceAddress rays, hits; /* uvec2 in the shader */
+    uint32_t count, closest;
+} hwrt_push;
+
+static void say(char *why, size_t size, const char *fmt, ...)
+{
+    if (!why || !size)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, size, fmt, ap);
+    va_end(ap);
+}
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                 VkDebugUtilsMessageTypeFlagsEXT type,
+                                                 const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)type;
+    roma_hwrt_device *d = user;
+    if (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)) {
+        ++d->validation_messages;
+        fprintf(stderr, "hardware ray tracing, validation: %s\n", data && data->pMessage ? data->pMessage : "?");
+    }
+    return VK_FALSE;
+}
+
+static int has_extensions(VkPhysicalDevice pd, const char **missing)
+{
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL);
+    VkExtensionProperties *props = calloc(n ? n : 1, sizeof *props);
+    if (!props) {
+        *missing = "memory for the extension list";
+        return 0;
+    }
+    vkEnumerateDeviceExtensionProperties(pd, NULL, &n, props);
+    int all = 1;
+    for (int e = 0; e < 3 && all; ++e) {
+        int found = 0;
+        for (uint32_t i = 0; i < n && !found; ++i)
+            found = strcmp(props[i].extensionName, rt_extensions[e]) == 0;
+        if (!found)
+            *missing = rt_extensions[e], all = 0;
+    }
+    free(props);
+    return all;
+}
+
+/* A queue family with graphics, compute and timestamps, or UINT32_MAX. */
+static uint32_t pick_queue_family(VkPhysicalDevice pd)
+{
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, NULL);
+    VkQueueFamilyProperties props[16];
+    n = n > 16 ? 16 : n;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, props);
+    for (uint32_t i = 0; i < n; ++i)
+        if ((props[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+                (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT) &&
+            props[i].timestampValidBits > 0)
+            return i;
+    return UINT32_MAX;
+}
+
+static int name_matches(const char *name, const char *filter)
+{
+    if (!filter || !*filter)
+        return 1;
+    const size_t fl = strlen(filter);
+    for (const char *p = name; *p; ++p)
+        if (strncasecmp(p, filter, fl) == 0)
+            return 1;
+    return 0;
+}
+
+/* The device to use: GPUs first, each with the extensions, the features and a queue. */
+static roma_result pick_device(roma_hwrt_device *d, const char *device_name, char *why, size_t why_size)
+{
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(d->instance, &n, NULL);
+    VkPhysicalDevice list[16];
+    n = n > 16 ? 16 : n;
+    if (n == 0 || vkEnumeratePhysicalDevices(d->instance, &n, list) < 0) {
+        say(why, why_size, "no Vulkan device");
+        return ROMA_ERROR_NO_VULKAN;
+    }
+    say(why, why_size, "no device matches \"%s\"", device_name ? device_name : "");
+    for (int pass = 0; pass < 2; ++pass)
+        for (uint32_t i = 0; i < n; ++i) {
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(list[i], &p);
+            const int gpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU ||
+                            p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU;
+            if ((pass == 0) != gpu || !name_matches(p.deviceName, device_name))
+                continue;
+            const char *missing = NULL;
+            if (p.apiVersion < VK_API_VERSION_1_3) {
+                say(why, why_size, "%s offers Vulkan %u.%u, not 1.3", p.deviceName, VK_API_VERSION_MAJOR(p.apiVersion),
+                    VK_API_VERSION_MINOR(p.apiVersion));
+                continue;
+            }
+            if (!has_extensions(list[i], &missing)) {
+                say(why, why_size, "%s offers no %s", p.deviceName, missing);
+                continue;
+            }
+            VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt = {
+                .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+            VkPhysicalDeviceAccelerationStructureFeaturesKHR as = {
+                .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &rt};
+            VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+                                                    .pNext = &as};
+            VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                                    .pNext = &f13};
+            VkPhysicalDeviceFeatures2 f = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f12};
+            vkGetPhysicalDeviceFeatures2(list[i], &f);
+            const uint32_t family = pick_queue_family(list[i]);
+            if (!as.accelerationStructure || !rt.rayTracingPipeline || !f12.bufferDeviceAddress ||
+                !f12.hostQueryReset || !f13.dynamicRendering || !f13.synchronization2 ||
+                !f.features.fragmentStoresAndAtomics || family == UINT32_MAX) {
+                say(why, why_size, "%s lacks a feature or queue libroma or the ray-tracing pipeline needs",
+                    p.deviceName);
+                continue;
+            }
+            d->physical_device = list[i];
+            d->queue_family = family;
+            d->req.features.features.geometryShader = f.features.geometryShader;
+            return ROMA_SUCCESS;
+        }
+    return ROMA_ERROR_MISSING_FEATURE;
+}
+
+static roma_result create_instance(roma_hwrt_device *d, int validation, char *why, size_t why_size)
+{
+    const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
+    const char *extensions[1] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                             .pApplicationName = "libroma hardware ray-tracing baseline",
+                             .apiVersion = VK_API_VERSION_1_3};
+    VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                                 .pApplicationInfo = &app,
+                                 .enabledLayerCount = validation ? 1u : 0u,
+                                 .ppEnabledLayerNames = layers,
+                                 .enabledExtensionCount = validation ? 1u : 0u,
+                                 .ppEnabledExtensionNames = extensions};
+    VkResult vr = vkCreateInstance(&info, NULL, &d->instance);
+    if (vr != VK_SUCCESS) {
+        say(why, why_size, "vkCreateInstance: %s%s", roma_vk_result_string(vr),
+            validation ? " (with the validation layer)" : "");
+        return vr == VK_ERROR_LAYER_NOT_PRESENT ? ROMA_ERROR_MISSING_FEATURE : ROMA_ERROR_NO_VULKAN;
+    }
+    if (validation) {
+        PFN_vkCreateDebugUtilsMessengerEXT create_messenger =
+            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkCreateDebugUtilsMessengerEXT");
+        VkDebugUtilsMessengerCreateInfoEXT m = {
+            .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+            .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+            .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+            .pfnUserCallback = on_message,
+            .pUserData = d};
+        if (!create_messenger || create_messenger(d->instance, &m, NULL, &d->messenger) != VK_SUCCESS) {
+            say(why, why_size, "vkCreateDebugUtilsMessengerEXT failed");
+            return ROMA_ERROR_MISSING_FEATURE;
+        }
+    }
+    return ROMA_SUCCESS;
+}
+
+roma_result roma_hwrt_device_create(const char *device_name, int validation, roma_hwrt_device **out, char *why,
+                                    size_t why_size)
+{
+    say(why, why_size, "");
+    if (!out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    *out = NULL;
+    roma_hwrt_device *d = calloc(1, sizeof *d);
+    if (!d) {
+        say(why, why_size, "out of host memory");
+        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    }
+    roma_get_device_requirements(&d->req);
+    roma_result r = create_instance(d, validation, why, why_size);
+    if (r == ROMA_SUCCESS)
+        r = pick_device(d, device_name, why, why_size);
+    if (r == ROMA_SUCCESS) {
+        /* libroma's chain (features -> 1.2 -> 1.3), then the ray-tracing features. */
+        d->rt_features = (VkPhysicalDeviceRayTracingPipelineFeaturesKHR){
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR,
+            .rayTracingPipeline = VK_TRUE};
+        d->as_features = (VkPhysicalDeviceAccelerationStructureFeaturesKHR){
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
+            .pNext = &d->rt_features,
+            .accelerationStructure = VK_TRUE};
+        d->req.features13.pNext = &d->as_features;
+        const char *extensions[8];
+        uint32_t count = 0;
+        for (uint32_t i = 0; i < d->req.extension_count && count < 5; ++i)
+            extensions[count++] = d->req.extensions[i];
+        for (int i = 0; i < 3; ++i)
+            extensions[count++] = rt_extensions[i];
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                         .queueFamilyIndex = d->queue_family,
+                                         .queueCount = 1,
+                                         .pQueuePriorities = &priority};
+        VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                                   .pNext = &d->req.features,
+                                   .queueCreateInfoCount = 1,
+                                   .pQueueCreateInfos = &queue,
+                                   .enabledExtensionCount = count,
+                                   .ppEnabledExtensionNames = extensions};
+        VkResult vr = vkCreateDevice(d->physical_device, &info, NULL, &d->device);
+        if (vr != VK_SUCCESS) {
+            say(why, why_size, "vkCreateDevice with the ray-tracing extensions: %s", roma_vk_result_string(vr));
+            r = ROMA_ERROR_MISSING_FEATURE;
+        }
+    }
+    if (r != ROMA_SUCCESS) {
+        roma_hwrt_device_destroy(d);
+        return r;
+    }
+    vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
+    d->external = (roma_external_device){.instance = d->instance,
+                                         .physical_device = d->physical_device,
+                                         .device = d->device,
+                                         .queue_family_index = d->queue_family,
+                                         .queue = d->queue,
+                                         .enabled_features = &d->req.features};
+    *out = d;
+    return ROMA_SUCCESS;
+}
+
+void roma_hwrt_device_destroy(roma_hwrt_device *d)
+{
+    if (!d)
+        return;
+    if (d->device) {
+        vkDeviceWaitIdle(d->device);
+        vkDestroyDevice(d->device, NULL);
+    }
+    if (d->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy_messenger)
+            destroy_messenger(d->instance, d->messenger, NULL);
+    }
+    if (d->instance)
+        vkDestroyInstance(d->instance, NULL);
+    free(d);
+}
+
+const roma_external_device *roma_hwrt_device_external(const roma_hwrt_device *d)
+{
+    return d ? &d->external : NULL;
+}
+
+uint32_t roma_hwrt_device_validation_messages(const roma_hwrt_device *d)
+{
+    return d ? d->validation_messages : 0u;
+}
+
+static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a)
+{
+    return a > 1 ? (v + a - 1) / a * a : v;
+}
+
+/* The geometry of the bottom level (the scene's indexed triangles) or the top level (one
+ * instance), and its build info. */
+static VkAccelerationStructureGeometryKHR level_geometry(const roma_hwrt *h, int top)
+{
+    VkAccelerationStructureGeometryKHR g = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+                                            .flags = VK_GEOMETRY_OPAQUE_BIT_KHR};
+    if (top) {
+        g.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
+        g.geometry.instances = (VkAccelerationStructureGeometryInstancesDataKHR){
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR,
+            .data.deviceAddress = h->instance.address};
+    } else {
+        g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+        g.geometry.triangles = (VkAccelerationStructureGeometryTrianglesDataKHR){
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
+            .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
+            .vertexData.deviceAddress = h->positions.address,
+            .vertexStride = 12,
+            .maxVertex = h->vertex_count ? h->vertex_count - 1 : 0,
+            .indexType = VK_INDEX_TYPE_UINT32,
+            .indexData.deviceAddress = h->indices.address};
+    }
+    return g;
+}
+
+static VkAccelerationStructureBuildGeometryInfoKHR level_build(const roma_hwrt *h, int top,
+                                                               const VkAccelerationStructureGeometryKHR *g)
+{
+    return (VkAccelerationStructureBuildGeometryInfoKHR){
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+        .type = top ? VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR : VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+        /* Rebuilt every frame, as a dynamic scene's is: a fast build. */
+        .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_BUILD_BIT_KHR,
+        .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR,
+        .dstAccelerationStructure = top ? h->tlas : h->blas,
+        .geometryCount = 1,
+        .pGeometries = g,
+        .scratchData.deviceAddress = h->scratch_address};
+}
+
+static roma_result create_level(roma_hwrt *h, int top, VkDeviceSize *scratch_size)
+{
+    VkAccelerationStructureGeometryKHR g = level_geometry(h, top);
+    VkAccelerationStructureBuildGeometryInfoKHR b = level_build(h, top, &g);
+    const uint32_t primitives = top ? 1u : h->triangle_count;
+    VkAccelerationStructureBuildSizesInfoKHR sizes = {.sType =
+                                                          VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    h->build_sizes(h->ctx->device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &b, &primitives, &sizes);
+    roma_buffer *buf = top ? &h->tlas_buffer : &h->blas_buffer;
+    roma_result r = roma_buffer_create(h->ctx, sizes.accelerationStructureSize,
+                                       VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR |
+                                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                       ROMA_MEMORY_DEVICE, buf);
+    if (r != ROMA_SUCCESS)
+        return r;
+    VkAccelerationStructureCreateInfoKHR info = {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR,
+        .buffer = buf->buffer,
+        .size = sizes.accelerationStructureSize,
+        .type = b.type};
+    r = roma_vk_check(h->ctx, h->create_as(h->ctx->device, &info, h->ctx->allocator, top ? &h->tlas : &h->blas),
+                      "vkCreateAccelerationStructureKHR");
+    if (*scratch_size < sizes.buildScratchSize)
+        *scratch_size = sizes.buildScratchSize;
+    return r;
+}
+
+void roma_hwrt_record_build(roma_hwrt *h, VkCommandBuffer cmd)
+{
+    for (int top = 0; top < 2; ++top) {
+        VkAccelerationStructureGeometryKHR g = level_geometry(h, top);
+        VkAccelerationStructureBuildGeometryInfoKHR b = level_build(h, top, &g);
+        VkAccelerationStructureBuildRangeInfoKHR range = {.primitiveCount = top ? 1u : h->triangle_count};
+        const VkAccelerationStructureBuildRangeInfoKHR *ranges = &range;
+        h->cmd_build(cmd, 1, &b, &ranges);
+        /* The top level reads the bottom one, and both share the scratch buffer. */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                                VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+                                top ? VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR |
+                                          VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR
+                                    : VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                                VK_ACCESS_2_ACCELERATION_STRUCTURE_READ_BIT_KHR |
+                                    VK_ACCESS_2_ACCELERATION_STRUCTURE_WRITE_BIT_KHR);
+    }
+}
+
+static roma_result create_pipeline(roma_hwrt *h)
+{
+    roma_context *ctx = h->ctx;
+    VkDescriptorSetLayoutBinding binding = {.binding = 0,
+                                            .descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR,
+                                            .descriptorCount = 1,
+                                            .stageFlags = VK_SHADER_STAGE_RAYGEN_BIT_KHR};
+    VkDescriptorSetLayoutCreateInfo set_info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                                .bindingCount = 1,
+                                                .pBindings = &binding};
+    roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &set_info, ctx->allocator, &h->set_layout),
+                                  "vkCreateDescriptorSetLayout");
+    VkPushConstantRange push = {.stageFlags = VK_SHADER_STAGE_RAYGEN_BIT_KHR, .size = sizeof(hwrt_push)};
+    VkPipelineLayoutCreateInfo layout_info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                              .setLayoutCount = 1,
+                                              .pSetLayouts = &h->set_layout,
+                                              .pushConstantRangeCount = 1,
+                                              .pPushConstantRanges = &push};
+    if (r == ROMA_SUCCESS)
+        r = roma_vk_check(ctx, vkCreatePipelineLayout(ctx->device, &layout_info, ctx->allocator, &h->layout),
+                          "vkCreatePipelineLayout");
+    VkDescriptorPoolSize size = {.type = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, .descriptorCount = 1};
+    VkDescriptorPoolCreateInfo pool_info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                            .maxSets = 1,
+                                            .poolSizeCount = 1,
+                                            .pPoolSizes = &size};
+    if (r == ROMA_SUCCESS)
+        r = roma_vk_check(ctx, vkCreateDescriptorPool(ctx->device, &pool_info, ctx->allocator, &h->pool),
+                          "vkCreateDescriptorPool");
+    VkDescriptorSetAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                         .descriptorPool = h->pool,
+                                         .descriptorSetCount = 1,
+                                         .pSetLayouts = &h->set_layout};
+    if (r == ROMA_SUCCESS)
+        r = roma_vk_check(ctx, vkAllocateDescriptorSets(ctx->device, &alloc, &h->set), "vkAllocateDescriptorSets");
+    if (r != ROMA_SUCCESS)
+        return r;
+    VkWriteDescriptorSetAccelerationStructureKHR as_write = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR,
+        .accelerationStructureCount = 1,
+        .pAccelerationStructures = &h->tlas};
+    VkWriteDescriptorSet write = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .pNext = &as_write,
+                                  .dstSet = h->set,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR};
+    vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
+
+    static const char *const names[3] = {"hwrt_rays.rgen", "hwrt_miss.rmiss", "hwrt_hit.rchit"};
+    static const VkShaderStageFlagBits stages[3] = {VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
+                                                     VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
+    VkShaderModule modules[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
+    VkPipelineShaderStageCreateInfo stage_info[3];
+    for (int i = 0; i < 3 && r == ROMA_SUCCESS; ++i) {
+        r = roma_shader_module_create(ctx, names[i], &modules[i]);
+        stage_info[i] = (VkPipelineShaderStageCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                                          .stage = stages[i],
+                                                          .module = modules[i],
+                                                          .pName = "main"};
+    }
+    VkRayTracingShaderGroupCreateInfoKHR groups[3];
+    for (uint32_t i = 0; i < 3; ++i)
+        groups[i] = (VkRayTracingShaderGroupCreateInfoKHR){
+            .sType = VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR,
+            .type = i < 2 ? VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR
+                          : VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR,
+            .generalShader = i < 2 ? i : VK_SHADER_UNUSED_KHR,
+            .closestHitShader = i == 2 ? i : VK_SHADER_UNUSED_KHR,
+            .anyHitShader = VK_SHADER_UNUSED_KHR,
+            .intersectionShader = VK_SHADER_UNUSED_KHR};
+    VkRayTracingPipelineCreateInfoKHR info = {.sType = VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR,
+                                              .stageCount = 3,
+                                              .pStages = stage_info,
+                                              .groupCount = 3,
+                                              .pGroups = groups,
+                                              .maxPipelineRayRecursionDepth = 1,
+                                              .layout = h->layout};
+    if (r == ROMA_SUCCESS)
+        r = roma_vk_check(ctx, h->create_pipelines(ctx->device, VK_NULL_HANDLE, ctx->pipeline_cache, 1, &info,
+                                                   ctx->allocator, &h->pipeline),
+                          "vkCreateRayTracingPipelinesKHR");
+    for (int i = 0; i < 3; ++i)
+        if (modules[i])
+            vkDestroyShaderModule(ctx->device, modules[i], ctx->allocator);
+    if (r != ROMA_SUCCESS)
+        return r;
+
+    /* The shader binding table: ray generation, miss and hit group, each region at the
+     * base alignment (the ray generation region's stride equals its size). */
+    VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &rt};
+    vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    const VkDeviceSize handle = rt.shaderGroupHandleSize;
+    const VkDeviceSize stride = align_up(handle, rt.shaderGroupHandleAlignment);
+    const VkDeviceSize region = align_up(stride, rt.shaderGroupBaseAlignment);
+    uint8_t handles[3 * 64];
+    if (handle == 0 || handle > 64)
+        return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE, "shaderGroupHandleSize %u unexpected",
+                         rt.shaderGroupHandleSize);
+    r = roma_vk_check(ctx, h->group_handles(ctx->device, h->pipeline, 0, 3, (size_t)(3 * handle), handles),
+                      "vkGetRayTracingShaderGroupHandlesKHR");
+    if (r != ROMA_SUCCESS)
+        return r;
+    const VkDeviceSize base = rt.shaderGroupBaseAlignment ? rt.shaderGroupBaseAlignment : 1;
+    uint8_t *table = calloc(1, (size_t)(3 * region + base));
+    if (!table)
+        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    /* The buffer's address is aligned to its memory's alignment, which need not reach the base
+     * alignment: the table starts at the first aligned byte of a buffer one alignment larger. */
+    r = roma_buffer_create(ctx, 3 * region + base,
+                           VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           ROMA_MEMORY_DEVICE, &h->sbt);
+    if (r == ROMA_SUCCESS) {
+        const VkDeviceAddress start = align_up(h->sbt.address, base);
+        const size_t offset = (size_t)(start - h->sbt.address);
+        for (int i = 0; i < 3; ++i)
+            memcpy(table + offset + i * region, handles + i * handle, (size_t)handle);
+        VkCommandBuffer cmd;
+        roma_buffer staging = {0};
+        r = roma_buffer_create(ctx, 3 * region + base, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_UPLOAD, &staging);
+        if (r == ROMA_SUCCESS) {
+            memcpy(staging.mapped, table, (size_t)(3 * region + base));
+            r = roma_begin_one_shot(ctx, &cmd);
+            if (r == ROMA_SUCCESS) {
+                vkCmdCopyBuffer(cmd, staging.buffer, h->sbt.buffer, 1, &(VkBufferCopy){0, 0, 3 * region + base});
+                roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                        VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+                                        VK_ACCESS_2_SHADER_READ_BIT);
+                r = roma_submit_one_shot(ctx, cmd);
+            }
+            roma_buffer_destroy(ctx, &staging);
+        }
+        h->raygen = (VkStridedDeviceAddressRegionKHR){start, region, region};
+        h->miss = (VkStridedDeviceAddressRegionKHR){start + region, stride, stride};
+        h->hit = (VkStridedDeviceAddressRegionKHR){start + 2 * region, stride, stride};
+        h->callable = (VkStridedDeviceAddressRegionKHR){0, 0, 0};
+    }
+    free(table);
+    /* One launch per ray, in rows no wider than the device launches along x. */
+    h->max_launch_width = rt.maxRayDispatchInvocationCount < 65536u ? rt.maxRayDispatchInvocationCount : 65536u;
+    if (h->max_launch_width > ctx->properties.limits.maxComputeWorkGroupCount[0])
+        h->max_launch_width = ctx->properties.limits.maxComputeWorkGroupCount[0];
+    if (h->max_launch_width == 0)
+        h->max_launch_width = 1;
+    return r;
+}
+
+#define DEVICE_FN(h, field, type, name) ((h)->field = (type)vkGetDeviceProcAddr((h)->ctx->device, name))
+
+roma_result roma_hwrt_create(roma_context *ctx, const roma_hwrt_device *dev, const roma_scene *scene, roma_hwrt **out)
+{
+    roma_study_shaders_use(ctx); /* its shaders are in the study table */
+    if (!out)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    *out = NULL;
+    roma_scene_view view;
+    if (!ctx || !dev || ctx->device != dev->device || roma_scene_get_view(scene, &view) != ROMA_SUCCESS)
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    roma_hwrt *h = calloc(1, sizeof *h);
+    if (!h)
+        return ROMA_ERROR_OUT_OF_HOST_MEMORY;
+    h->ctx = ctx;
+    h->dev = dev;
+    DEVICE_FN(h, create_as, PFN_vkCreateAccelerationStructureKHR, "vkCreateAccelerationStructureKHR");
+    DEVICE_FN(h, destroy_as, PFN_vkDestroyAccelerationStructureKHR, "vkDestroyAccelerationStructureKHR");
+    DEVICE_FN(h, build_sizes, PFN_vkGetAccelerationStructureBuildSizesKHR, "vkGetAccelerationStructureBuildSizesKHR");
+    DEVICE_FN(h, as_address, PFN_vkGetAccelerationStructureDeviceAddressKHR,
+              "vkGetAccelerationStructureDeviceAddressKHR");
+    DEVICE_FN(h, cmd_build, PFN_vkCmdBuildAccelerationStructuresKHR, "vkCmdBuildAccelerationStructuresKHR");
+    DEVICE_FN(h, create_pipelines, PFN_vkCreateRayTracingPipelinesKHR, "vkCreateRayTracingPipelinesKHR");
+    DEVICE_FN(h, group_handles, PFN_vkGetRayTracingShaderGroupHandlesKHR, "vkGetRayTracingShaderGroupHandlesKHR");
+    DEVICE_FN(h, cmd_trace, PFN_vkCmdTraceRaysKHR, "vkCmdTraceRaysKHR");
+    roma_result r = ROMA_SUCCESS;
+    if (!h->create_as || !h->destroy_as || !h->build_sizes || !h->as_address || !h->cmd_build ||
+        !h->create_pipelines || !h->group_handles || !h->cmd_trace)
+        r = roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE, "the device has no ray-tracing entry points");
+    h->vertex_count = view.vertex_count;
+    h->triangle_count = view.triangle_count;
+    const VkBufferUsageFlags input =
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    static const float no_vertex[3] = {0.0f, 0.0f, 0.0f};
+    static const uint32_t no_triangle[3] = {0u, 0u, 0u};
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create_filled(ctx, 12 * (VkDeviceSize)(view.vertex_count ? view.vertex_count : 1), input,
+                                      view.vertex_count ? (const void *)view.positions : no_vertex, &h->positions);
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create_filled(ctx, 12 * (VkDeviceSize)(view.triangle_count ? view.triangle_count : 1), input,
+                                      view.triangle_count ? (const void *)view.indices : no_triangle, &h->indices);
+    VkDeviceSize scratch_size = 0;
+    if (r == ROMA_SUCCESS)
+        r = create_level(h, 0, &scratch_size);
+    if (r == ROMA_SUCCESS) {
+        VkAccelerationStructureDeviceAddressInfoKHR ai = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR, .accelerationStructure = h->blas};
+        VkAccelerationStructureInstanceKHR instance = {
+            .transform.matrix = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}},
+            .mask = 0xff,
+            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,
+            .accelerationStructureReference = h->as_address(ctx->device, &ai)};
+        r = roma_buffer_create_filled(ctx, sizeof instance, input, &instance, &h->instance);
+    }
+    if (r == ROMA_SUCCESS)
+        r = create_level(h, 1, &scratch_size);
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR asp = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &asp};
+    vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    const VkDeviceSize scratch_align =
+        asp.minAccelerationStructureScratchOffsetAlignment ? asp.minAccelerationStructureScratchOffsetAlignment : 1;
+    if (r == ROMA_SUCCESS)
+        r = roma_buffer_create(ctx, scratch_size + scratch_align,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                               ROMA_MEMORY_DEVICE, &h->scratch);
+    if (r == ROMA_SUCCESS) {
+        h->scratch_address = align_up(h->scratch.address, scratch_align);
+        VkCommandBuffer cmd;
+        r = roma_begin_one_shot(ctx, &cmd);
+        if (r == ROMA_SUCCESS) {
+            roma_hwrt_record_build(h, cmd);
+            r = roma_submit_one_shot(ctx, cmd);
+        }
+    }
+    if (r == ROMA_SUCCESS)
+        r = create_pipeline(h);
+    if (r != ROMA_SUCCESS) {
+        roma_hwrt_destroy(h);
+        return r;
+    }
+    *out = h;
+    return ROMA_SUCCESS;
+}
+
+void roma_hwrt_destroy(roma_hwrt *h)
+{
+    if (!h)
+        return;
+    roma_context *ctx = h->ctx;
+    if (h->pipeline)
+        vkDestroyPipeline(ctx->device, h->pipeline, ctx->allocator);
+    if (h->layout)
+        vkDestroyPipelineLayout(ctx->device, h->layout, ctx->allocator);
+    if (h->pool)
+        vkDestroyDescriptorPool(ctx->device, h->pool, ctx->allocator);
+    if (h->set_layout)
+        vkDestroyDescriptorSetLayout(ctx->device, h->set_layout, ctx->allocator);
+    if (h->tlas)
+        h->destroy_as(ctx->device, h->tlas, ctx->allocator);
+    if (h->blas)
+        h->destroy_as(ctx->device, h->blas, ctx->allocator);
+    roma_buffer *buffers[7] = {&h->positions, &h->indices, &h->instance, &h->blas_buffer,
+                               &h->tlas_buffer, &h->scratch, &h->sbt};
+    for (int i = 0; i < 7; ++i)
+        roma_buffer_destroy(ctx, buffers[i]);
+    free(h);
+}
+
+void roma_hwrt_record_trace(roma_hwrt *h, VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits,
+                            uint32_t count, int closest)
+{
+    if (!h || count == 0)
+        return;
+    hwrt_push push = {.rays = rays, .hits = hits, .count = count, .closest = closest ? 1u : 0u};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->layout, 0, 1, &h->set, 0, NULL);
+    vkCmdPushConstants(cmd, h->layout, VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof push, &push);
+    const uint32_t width = count < h->max_launch_width ? count : h->max_launch_width;
+    const uint32_t rows = (count + width - 1) / width;
+    h->cmd_trace(cmd, &h->raygen, &h->miss, &h->hit, &h->callable, width, rows, 1);
+}

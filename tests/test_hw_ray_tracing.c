@@ -1,0 +1,156 @@
+/* The hardware ray-tracing baseline (src/study/hw_ray_tracing.c).
+ * Where no device offers VK_KHR_ray_tracing_pipeline and VK_KHR_acceleration_structure
+ * (lavapipe): the device's creation says which device lacks which extension, leaves nothing
+ * behind (the sanitizer suite checks for leaks) and refuses bad arguments. Where one does: on
+ * the built-in room, rays from random points inside it in random directions, some bounded,
+ * traced by the hardware and by Embree: the any-hit answers agree but for rays that graze an
+ * edge, the closest distances agree to float precision, the validation layer says nothing. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "reference.h"
+#include "roma/builtin_scenes.h"
+#include "roma/map.h"
+#include "roma/roma.h"
+#include "study/hw_ray_tracing.h"
+#include "vulkan/upload.h"
+#include "vulkan/vk_internal.h"
+
+enum { N = 4096 };
+
+static float rnd(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return (float)(*s >> 8) / 16777216.0f;
+}
+
+static void trace_against_embree(roma_hwrt_device *dev)
+{
+    roma_context *ctx = NULL;
+    roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
+    roma_scene *scene = NULL;
+    roma_ref *ref = NULL;
+    CHECK_RESULT(roma_context_create(&cd, &ctx), ROMA_SUCCESS);
+    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
+    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    if (!ctx || !scene || !ref)
+        goto done;
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    static roma_ray rays[N];
+    static float orgs[3 * N], dirs[3 * N], tmaxs[N], t_embree[N];
+    static uint8_t occ_embree[N];
+    uint32_t seed = 7;
+    for (uint32_t i = 0; i < N; ++i) {
+        roma_ray *r = &rays[i];
+        for (int a = 0; a < 3; ++a) {
+            r->origin[a] = v.bounds_min[a] + (0.05f + 0.9f * rnd(&seed)) * (v.bounds_max[a] - v.bounds_min[a]);
+            r->dir[a] = 2.0f * rnd(&seed) - 1.0f;
+        }
+        r->tmin = 0.0f;
+        r->tmax = i % 2 ? 0.3f : INFINITY;
+        const float len = sqrtf(r->dir[0] * r->dir[0] + r->dir[1] * r->dir[1] + r->dir[2] * r->dir[2]);
+        for (int a = 0; a < 3; ++a) {
+            orgs[3 * i + a] = r->origin[a];
+            dirs[3 * i + a] = r->dir[a] / len;
+        }
+        tmaxs[i] = r->tmax;
+    }
+    roma_ref_occluded_batch(ref, N, orgs, dirs, NULL, tmaxs, occ_embree);
+    roma_ref_intersect_batch(ref, N, orgs, dirs, NULL, tmaxs, t_embree);
+
+    roma_hwrt *h = NULL;
+    CHECK_RESULT(roma_hwrt_create(ctx, dev, scene, &h), ROMA_SUCCESS);
+    roma_buffer ray_buf = {0}, hit_buf = {0}, readback = {0};
+    CHECK_RESULT(roma_buffer_create_filled(ctx, sizeof rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, rays, &ray_buf),
+                 ROMA_SUCCESS);
+    CHECK_RESULT(roma_buffer_create(ctx, sizeof(roma_hit) * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                    ROMA_MEMORY_DEVICE, &hit_buf),
+                 ROMA_SUCCESS);
+    CHECK_RESULT(roma_buffer_create(ctx, sizeof(roma_hit) * N, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK,
+                                    &readback),
+                 ROMA_SUCCESS);
+    for (int closest = 0; closest < 2 && h && readback.mapped; ++closest) {
+        VkCommandBuffer cmd;
+        CHECK_RESULT(roma_begin_one_shot(ctx, &cmd), ROMA_SUCCESS);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
+                                VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        roma_hwrt_record_build(h, cmd); /* a dynamic scene's frame builds again */
+        roma_hwrt_record_trace(h, cmd, ray_buf.address, hit_buf.address, N, closest);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                VK_ACCESS_2_TRANSFER_READ_BIT);
+        vkCmdCopyBuffer(cmd, hit_buf.buffer, readback.buffer, 1, &(VkBufferCopy){0, 0, sizeof(roma_hit) * N});
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        CHECK_RESULT(roma_submit_one_shot(ctx, cmd), ROMA_SUCCESS);
+        CHECK_RESULT(roma_buffer_invalidate(ctx, &readback), ROMA_SUCCESS);
+        const roma_hit *hits = readback.mapped;
+        uint32_t disagree = 0, hit_count = 0, far = 0;
+        for (uint32_t i = 0; i < N; ++i) {
+            const int hw = (hits[i].info & ROMA_HIT_FLAG) != 0;
+            const int em = closest ? isfinite(t_embree[i]) : occ_embree[i] != 0;
+            disagree += hw != em;
+            hit_count += hw;
+            if (closest && hw && em && fabsf(hits[i].t - t_embree[i]) > 1e-4f * (1.0f + t_embree[i]))
+                ++far;
+            if (!closest && hw && !isinf(hits[i].t))
+                ++far; /* any-hit reports no distance, as ROMA's */
+        }
+        printf("%s: %u of %u rays hit, %u disagree with Embree, %u distances apart\n",
+               closest ? "closest hit" : "any hit", hit_count, N, disagree, far);
+        CHECK(hit_count > N / 4 && hit_count < N); /* bounded rays miss, unbounded ones hit the closed room */
+        CHECK(disagree <= N / 1000);
+        CHECK(far == 0);
+    }
+    roma_buffer_destroy(ctx, &ray_buf);
+    roma_buffer_destroy(ctx, &hit_buf);
+    roma_buffer_destroy(ctx, &readback);
+    roma_hwrt_destroy(h);
+done:
+    roma_ref_destroy(ref);
+    roma_scene_destroy(scene);
+    roma_context_destroy(ctx);
+}
+
+int main(void)
+{
+    char why[256];
+    roma_hwrt_device *dev = NULL;
+    /* Bad arguments: refused, nothing made. */
+    CHECK_RESULT(roma_hwrt_device_create(NULL, 0, NULL, why, sizeof why), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_hwrt_create(NULL, NULL, NULL, NULL), ROMA_ERROR_INVALID_ARGUMENT);
+    roma_hwrt *h = (roma_hwrt *)&why;
+    CHECK_RESULT(roma_hwrt_create(NULL, NULL, NULL, &h), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(h == NULL);
+    roma_hwrt_destroy(NULL);
+    roma_hwrt_device_destroy(NULL);
+    CHECK(roma_hwrt_device_external(NULL) == NULL);
+
+    const char *validation = getenv("ROMA_VALIDATION");
+    const int validate = validation && *validation && strcmp(validation, "0") != 0;
+    /* A device name no device has: refused with a reason. */
+    CHECK_RESULT(roma_hwrt_device_create("no such device anywhere", validate, &dev, why, sizeof why),
+                 ROMA_ERROR_MISSING_FEATURE);
+    CHECK(dev == NULL && strstr(why, "no device matches") != NULL);
+
+    const roma_result r = roma_hwrt_device_create(getenv("ROMA_DEVICE"), validate, &dev, why, sizeof why);
+    if (r != ROMA_SUCCESS) {
+        /* No device offers the extensions: the reason names the device and what it lacks. */
+        printf("hardware ray tracing skipped: %s\n", why);
+        CHECK(r == ROMA_ERROR_MISSING_FEATURE && dev == NULL);
+        CHECK(strstr(why, "offers no VK_KHR_") != NULL || strstr(why, "lacks") != NULL ||
+              strstr(why, "not 1.3") != NULL);
+        return roma_test_finish("test_hw_ray_tracing");
+    }
+    printf("hardware ray tracing on this device\n");
+    trace_against_embree(dev);
+    CHECK(roma_hwrt_device_validation_messages(dev) == 0);
+    roma_hwrt_device_destroy(dev);
+    return roma_test_finish("test_hw_ray_tracing");
+}

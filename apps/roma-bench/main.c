@@ -618,7 +618,8 @@ int main(int argc, char **argv)
     if (roma_buffer_create(ctx, ray_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                            VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_DEVICE, &ray_buf) != ROMA_SUCCESS ||
         roma_buffer_create(ctx, sizeof(roma_hit) * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, ROMA_MEMORY_DEVICE, &hit_buf) != ROMA_SUCCESS ||
+                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                           ROMA_MEMORY_DEVICE, &hit_buf) != ROMA_SUCCESS ||
         roma_buffer_create(ctx, ray_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, ROMA_MEMORY_UPLOAD, &ray_staging) !=
             ROMA_SUCCESS ||
         roma_begin_one_shot(ctx, &upload) != ROMA_SUCCESS) {

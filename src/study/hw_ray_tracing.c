@@ -50,12 +50,12 @@ struct roma_hwrt {
     VkPipelineLayout layout;
     VkPipeline pipeline;
     VkStridedDeviceAddressRegionKHR raygen, miss, hit, callable;
-    uint32_t max_launch_width;
+    uint32_t max_launch_width, max_launch_invocations;
 };
 
 typedef struct hwrt_push {
     VkDeviceAddress rays, hits; /* uvec2 in the shader */
-    uint32_t count, closest;
+    uint32_t count, closest, base;
 } hwrt_push;
 
 static void say(char *why, size_t size, const char *fmt, ...)
@@ -72,12 +72,13 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
                                                  VkDebugUtilsMessageTypeFlagsEXT type,
                                                  const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
 {
-    (void)type;
     roma_hwrt_device *d = user;
-    if (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)) {
+    /* The layer's findings count; the loader's own notes (a rejected driver manifest) are shown. */
+    if (type & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT))
         ++d->validation_messages;
-        fprintf(stderr, "hardware ray tracing, validation: %s\n", data && data->pMessage ? data->pMessage : "?");
-    }
+    fprintf(stderr, "hardware ray tracing, %s: %s\n",
+            severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning",
+            data && data->pMessage ? data->pMessage : "?");
     return VK_FALSE;
 }
 
@@ -251,11 +252,11 @@ roma_result roma_hwrt_device_create(const char *device_name, int validation, rom
             .pNext = &d->rt_features,
             .accelerationStructure = VK_TRUE};
         d->req.features13.pNext = &d->as_features;
-        const char *extensions[8];
+        const char **extensions = calloc(d->req.extension_count + 3, sizeof *extensions);
         uint32_t count = 0;
-        for (uint32_t i = 0; i < d->req.extension_count && count < 5; ++i)
+        for (uint32_t i = 0; extensions && i < d->req.extension_count; ++i)
             extensions[count++] = d->req.extensions[i];
-        for (int i = 0; i < 3; ++i)
+        for (int i = 0; extensions && i < 3; ++i)
             extensions[count++] = rt_extensions[i];
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -268,7 +269,9 @@ roma_result roma_hwrt_device_create(const char *device_name, int validation, rom
                                    .pQueueCreateInfos = &queue,
                                    .enabledExtensionCount = count,
                                    .ppEnabledExtensionNames = extensions};
-        VkResult vr = vkCreateDevice(d->physical_device, &info, NULL, &d->device);
+        VkResult vr = extensions ? vkCreateDevice(d->physical_device, &info, NULL, &d->device)
+                                 : VK_ERROR_OUT_OF_HOST_MEMORY;
+        free(extensions);
         if (vr != VK_SUCCESS) {
             say(why, why_size, "vkCreateDevice with the ray-tracing extensions: %s", roma_vk_result_string(vr));
             r = ROMA_ERROR_MISSING_FEATURE;
@@ -278,6 +281,7 @@ roma_result roma_hwrt_device_create(const char *device_name, int validation, rom
         roma_hwrt_device_destroy(d);
         return r;
     }
+    say(why, why_size, "");
     vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
     d->external = (roma_external_device){.instance = d->instance,
                                          .physical_device = d->physical_device,
@@ -392,6 +396,10 @@ static roma_result create_level(roma_hwrt *h, int top, VkDeviceSize *scratch_siz
 
 void roma_hwrt_record_build(roma_hwrt *h, VkCommandBuffer cmd)
 {
+    /* After earlier traces that read the structures being rebuilt (a frame's trace, then the
+     * next frame's build). */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, 0,
+                            VK_PIPELINE_STAGE_2_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0);
     for (int top = 0; top < 2; ++top) {
         VkAccelerationStructureGeometryKHR g = level_geometry(h, top);
         VkAccelerationStructureBuildGeometryInfoKHR b = level_build(h, top, &g);
@@ -549,7 +557,8 @@ static roma_result create_pipeline(roma_hwrt *h)
         h->callable = (VkStridedDeviceAddressRegionKHR){0, 0, 0};
     }
     free(table);
-    /* One launch per ray, in rows no wider than the device launches along x. */
+    /* One invocation per ray, in rows no wider than the device launches along x. */
+    h->max_launch_invocations = rt.maxRayDispatchInvocationCount ? rt.maxRayDispatchInvocationCount : 1u;
     h->max_launch_width = rt.maxRayDispatchInvocationCount < 65536u ? rt.maxRayDispatchInvocationCount : 65536u;
     if (h->max_launch_width > ctx->properties.limits.maxComputeWorkGroupCount[0])
         h->max_launch_width = ctx->properties.limits.maxComputeWorkGroupCount[0];
@@ -672,11 +681,18 @@ void roma_hwrt_record_trace(roma_hwrt *h, VkCommandBuffer cmd, VkDeviceAddress r
 {
     if (!h || count == 0)
         return;
-    hwrt_push push = {.rays = rays, .hits = hits, .count = count, .closest = closest ? 1u : 0u};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->layout, 0, 1, &h->set, 0, NULL);
-    vkCmdPushConstants(cmd, h->layout, VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof push, &push);
+    /* Launches of whole rows, each within the device's invocations per launch. */
     const uint32_t width = count < h->max_launch_width ? count : h->max_launch_width;
-    const uint32_t rows = (count + width - 1) / width;
-    h->cmd_trace(cmd, &h->raygen, &h->miss, &h->hit, &h->callable, width, rows, 1);
+    const uint64_t rows_per_launch = h->max_launch_invocations / width ? h->max_launch_invocations / width : 1;
+    for (uint64_t base = 0; base < count; base += rows_per_launch * width) {
+        const uint64_t left = count - base;
+        const uint64_t rows = (left + width - 1) / width;
+        hwrt_push push = {.rays = rays, .hits = hits, .count = count, .closest = closest ? 1u : 0u,
+                          .base = (uint32_t)base};
+        vkCmdPushConstants(cmd, h->layout, VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof push, &push);
+        h->cmd_trace(cmd, &h->raygen, &h->miss, &h->hit, &h->callable, width,
+                     (uint32_t)(rows < rows_per_launch ? rows : rows_per_launch), 1);
+    }
 }

@@ -50,12 +50,14 @@ void roma_hwrt_destroy(roma_hwrt *hwrt);
 
 /* Records the build of both acceleration structures from the uploaded triangles, as a
  * dynamic scene's frame does (the bottom level built for a fast build, then the top level),
- * ending with a barrier to the ray-tracing shaders. */
+ * after earlier traces (a barrier from the ray-tracing shaders) and ending with a barrier to
+ * them. */
 void roma_hwrt_record_build(roma_hwrt *hwrt, VkCommandBuffer cmd);
 
 /* Records a trace of count roma_ray at rays into count roma_hit at hits (both buffers with
  * SHADER_DEVICE_ADDRESS usage, as roma_map_record_trace's): closest = 0 ends each ray at its
- * first hit (t = INFINITY, as ROMA's any-hit), 1 finds the closest (t its distance). The
+ * first hit without a hit shader (t = INFINITY, as ROMA's any-hit), 1 finds the closest (t its
+ * distance). The
  * caller orders its writes of rays before and its reads of hits after (ray-tracing shader
  * stage). Rays start at max(tmin, 0): hardware rays have no negative tmin. */
 void roma_hwrt_record_trace(roma_hwrt *hwrt, VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits,

@@ -3,7 +3,7 @@
 # table (a row for RES 64 with A 2 and A 4, every time positive; roma-bench itself fails when a
 # timed build kept its grid), the record-cost table, the rays table (Embree's two rows and
 # ROMA's three, rays a second positive; the hardware ray-tracing rows or the reason they were
-# skipped) and the dynamic AO frame (1 and 4 samples; the closed
+# skipped; the trace ladder's five rungs) and the dynamic AO frame (1 and 4 samples; the closed
 # room's unbounded AO is 0 on both sides).
 # Usage: test_bench_smoke.sh ROMA_BENCH SCRATCH_DIR
 set -u
@@ -36,6 +36,10 @@ else:
     agree = [l for l in lines if l.startswith("hardware ray tracing: both acceleration structures")]
     pct = [float(w.rstrip("%")) for l in agree for w in l.split() if w.endswith("%")]
     ok = ok and len(hw) == 2 and all(float(r[4]) > 0 for r in hw) and len(pct) == 2 and min(pct) >= 99.9
+# The trace ladder: five rungs, host-observed times positive (lavapipe's timestamps may not cover a dispatch).
+ladder = [r for r in rows("| ") if len(r) == 5 and (r[0].startswith("+ ") or r[0] in
+          ("empty dispatch (launch only)", "whole snapped any-hit trace"))]
+ok = ok and len(ladder) == 5 and all(positive(r[2:4]) for r in ladder)
 frame = rows("| 1 |") + rows("| 4 |")
 ok = ok and len(frame) == 2 and all(positive(r[1:7]) for r in frame)
 ok = ok and all(r[8].replace(" ", "") == "0.000/0.000" for r in frame)
@@ -50,4 +54,6 @@ sed 's/^| 64 | 2 | 4 | [0-9.]* |/| 64 | 2 | 4 |  |/' "$dir/out.txt" >"$dir/empty
 tables "$dir/empty_cell.txt" 2>/dev/null && fail "the check passes an empty cell"
 grep -v '^| hardware ray tracing' "$dir/out.txt" >"$dir/no_hardware.txt"
 tables "$dir/no_hardware.txt" && fail "the check passes an output without the hardware ray-tracing rows"
+grep -v '^| + map the origin' "$dir/out.txt" >"$dir/no_rung.txt"
+tables "$dir/no_rung.txt" && fail "the check passes an output without a rung of the ladder"
 finish test_bench_smoke

@@ -13,6 +13,7 @@
 #include "level_frame.h"
 #include "frame.h"
 #include "hw_ray_tracing.h"
+#include "trace_ladder.h"
 #include "plot.h"
 #include "record_cost.h"
 #include "app_common.h"
@@ -685,6 +686,9 @@ int main(int argc, char **argv)
         if (roma_bench_hwrt(ctx, scene, timer, &hd, csv) != 0)
             status = 1;
     }
+    if (status == 0 && roma_bench_trace_ladder(ctx, map, ray_buf.address, hit_buf.address, n, runs, timer, cpu_device,
+                                               roma_hwrt_device_has_pipeline_statistics(hwrt_device), csv) != 0)
+        status = 1;
     roma_buffer_destroy(ctx, &ray_buf);
     roma_buffer_destroy(ctx, &hit_buf);
     {

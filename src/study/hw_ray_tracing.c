@@ -25,6 +25,8 @@ struct roma_hwrt_device {
     roma_device_requirements req; /* its chain, extended, is what the device was created with */
     VkPhysicalDeviceAccelerationStructureFeaturesKHR as_features;
     VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt_features;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR statistics_features;
+    int statistics; /* VK_KHR_pipeline_executable_properties enabled */
     roma_external_device external;
     unsigned validation_messages;
 };
@@ -82,26 +84,28 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
     return VK_FALSE;
 }
 
-static int has_extensions(VkPhysicalDevice pd, const char **missing)
+/* Whether pd offers the extension `name`. */
+static int has_extension(VkPhysicalDevice pd, const char *name)
 {
     uint32_t n = 0;
     vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL);
     VkExtensionProperties *props = calloc(n ? n : 1, sizeof *props);
-    if (!props) {
-        *missing = "memory for the extension list";
-        return 0;
-    }
-    vkEnumerateDeviceExtensionProperties(pd, NULL, &n, props);
-    int all = 1;
-    for (int e = 0; e < 3 && all; ++e) {
-        int found = 0;
+    int found = 0;
+    if (props && vkEnumerateDeviceExtensionProperties(pd, NULL, &n, props) >= 0)
         for (uint32_t i = 0; i < n && !found; ++i)
-            found = strcmp(props[i].extensionName, rt_extensions[e]) == 0;
-        if (!found)
-            *missing = rt_extensions[e], all = 0;
-    }
+            found = strcmp(props[i].extensionName, name) == 0;
     free(props);
-    return all;
+    return found;
+}
+
+static int has_extensions(VkPhysicalDevice pd, const char **missing)
+{
+    for (int e = 0; e < 3; ++e)
+        if (!has_extension(pd, rt_extensions[e])) {
+            *missing = rt_extensions[e];
+            return 0;
+        }
+    return 1;
 }
 
 /* A queue family with graphics, compute and timestamps, or UINT32_MAX. */
@@ -181,6 +185,14 @@ static roma_result pick_device(roma_hwrt_device *d, const char *device_name, cha
             }
             d->physical_device = list[i];
             d->queue_family = family;
+            /* The trace ladder's pipeline statistics (registers, spills), where offered. */
+            if (has_extension(list[i], VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+                VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR pe = {
+                    .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+                VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &pe};
+                vkGetPhysicalDeviceFeatures2(list[i], &f2);
+                d->statistics = pe.pipelineExecutableInfo != VK_FALSE;
+            }
             d->req.features.features.geometryShader = f.features.geometryShader;
             return ROMA_SUCCESS;
         }
@@ -252,12 +264,19 @@ roma_result roma_hwrt_device_create(const char *device_name, int validation, rom
             .pNext = &d->rt_features,
             .accelerationStructure = VK_TRUE};
         d->req.features13.pNext = &d->as_features;
-        const char **extensions = calloc(d->req.extension_count + 3, sizeof *extensions);
+        d->statistics_features = (VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR){
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
+            .pipelineExecutableInfo = VK_TRUE};
+        if (d->statistics)
+            d->rt_features.pNext = &d->statistics_features;
+        const char **extensions = calloc(d->req.extension_count + 4, sizeof *extensions);
         uint32_t count = 0;
         for (uint32_t i = 0; extensions && i < d->req.extension_count; ++i)
             extensions[count++] = d->req.extensions[i];
         for (int i = 0; extensions && i < 3; ++i)
             extensions[count++] = rt_extensions[i];
+        if (extensions && d->statistics)
+            extensions[count++] = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
                                          .queueFamilyIndex = d->queue_family,
@@ -315,6 +334,11 @@ void roma_hwrt_device_destroy(roma_hwrt_device *d)
 const roma_external_device *roma_hwrt_device_external(const roma_hwrt_device *d)
 {
     return d ? &d->external : NULL;
+}
+
+int roma_hwrt_device_has_pipeline_statistics(const roma_hwrt_device *d)
+{
+    return d && d->statistics;
 }
 
 uint32_t roma_hwrt_device_validation_messages(const roma_hwrt_device *d)

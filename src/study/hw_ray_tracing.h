@@ -22,7 +22,8 @@
 typedef struct roma_hwrt_device roma_hwrt_device;
 
 /* Creates an instance (with the validation layer when validation is non-zero) and a device
- * with what libroma needs and the ray-tracing extensions and features: the first device whose
+ * with what libroma needs and the ray-tracing extensions and features (and, where offered,
+ * VK_KHR_pipeline_executable_properties): the first device whose
  * name contains device_name (NULL or "": any) that offers them, GPUs before others.
  * ROMA_ERROR_MISSING_FEATURE, with why filled (e.g. "llvmpipe (LLVM 15.0.6, 256 bits) offers
  * no VK_KHR_ray_tracing_pipeline"), where none does; ROMA_ERROR_NO_VULKAN without a loader
@@ -33,6 +34,10 @@ roma_result roma_hwrt_device_create(const char *device_name, int validation, rom
 void roma_hwrt_device_destroy(roma_hwrt_device *device);
 /* What roma_context_desc.external takes; valid while the device lives. */
 const roma_external_device *roma_hwrt_device_external(const roma_hwrt_device *device);
+/* Whether the device was created with VK_KHR_pipeline_executable_properties (enabled where
+ * offered: pipelines created with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR report their
+ * registers, spills and the like). */
+int roma_hwrt_device_has_pipeline_statistics(const roma_hwrt_device *device);
 /* Validation messages of warning or error severity so far (0 without validation). */
 uint32_t roma_hwrt_device_validation_messages(const roma_hwrt_device *device);
 

@@ -36,6 +36,15 @@ else:
     agree = [l for l in lines if l.startswith("hardware ray tracing: both acceleration structures")]
     pct = [float(w.rstrip("%")) for l in agree for w in l.split() if w.endswith("%")]
     ok = ok and len(hw) == 2 and all(float(r[4]) > 0 for r in hw) and len(pct) == 2 and min(pct) >= 99.9
+# The same AO frame through the hardware: skipped with its reason, or 1 and 4 samples with
+# times positive and the mean AO within 0.01 of Embree's (the same rays).
+hw_frame = rows("| 1 (hardware) |") + rows("| 4 (hardware) |")
+if len(hw) == 1:
+    ok = ok and any(l.startswith("hardware ray tracing frame: skipped: ") for l in lines) and not hw_frame
+else:
+    embree_means = [float(r[8].split("/")[1]) for r in rows("| 1 |") + rows("| 4 |")]
+    ok = ok and len(hw_frame) == 2 and all(positive(r[2:5]) for r in hw_frame) and \
+        all(abs(float(r[5]) - m) <= 0.01 for r, m in zip(hw_frame, embree_means))
 # The trace ladder: five rungs, host-observed times positive (lavapipe's timestamps may not cover a dispatch).
 ladder = [r for r in rows("| ") if len(r) == 5 and (r[0].startswith("+ ") or r[0] in
           ("empty dispatch (launch only)", "whole snapped any-hit trace"))]

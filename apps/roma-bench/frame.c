@@ -13,6 +13,7 @@
 
 #include "app_common.h"
 #include "app_image.h"
+#include "hw_ray_tracing.h"
 #include "map/map_internal.h" /* roma_map_record_steps: a build step alone (--growth) */
 #include "reference.h"
 #include "roma/ao_effect.h"
@@ -335,6 +336,11 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
             for (int c = 0; c < 5; ++c)
                 fprintf(csv, "frame,%s spp %u,%u,%u,%.6f,ms\n", names[c], spp, d->resolution, d->angular, med[c]);
         }
+    }
+    if (status == 0) {
+        const roma_bench_hwrt_frame_desc hd = {.device = d->hwrt, .why = d->hwrt_why, .px = px, .covered = covered,
+                                               .count = count, .radius = d->radius, .seed = SEED, .runs = runs};
+        status = roma_bench_hwrt_frame(ctx, scene, &hd, csv);
     }
 done:
     roma_map_destroy(map);

@@ -14,6 +14,10 @@ typedef struct roma_bench_frame_desc {
     uint32_t resolution, angular;
     uint32_t runs;
     float radius;              /* AO rays; <= 0: unbounded */
+    /* The ray-tracing device the context runs on (NULL: the hardware rows are skipped and
+     * hwrt_why says why), for the same frame through hardware ray tracing. */
+    const struct roma_hwrt_device *hwrt;
+    const char *hwrt_why;
 } roma_bench_frame_desc;
 
 /* Ends, submits and waits for cmd (recorded by the caller, `recorded` its result): the

@@ -9,6 +9,7 @@
 #include "roma/context.h"
 #include "roma/map.h"
 #include "roma/scene.h"
+#include "roma_shared.h"
 #include "study/hw_ray_tracing.h"
 
 typedef struct roma_bench_hwrt_desc {
@@ -30,5 +31,22 @@ typedef struct roma_bench_hwrt_desc {
  * step failed. */
 int roma_bench_hwrt(roma_context *ctx, const roma_scene *scene, roma_gpu_timer *timer, const roma_bench_hwrt_desc *d,
                     FILE *csv);
+
+/* roma-bench's dynamic AO frame through the hardware: both structures rebuilt, then Embree's
+ * AO rays at the covered G-buffer points (px[covered[i]]) with the same samples. */
+typedef struct roma_bench_hwrt_frame_desc {
+    const roma_hwrt_device *device; /* NULL: one line says why it was skipped */
+    const char *why;
+    const roma_gbuffer_pixel *px;
+    const uint32_t *covered;
+    uint32_t count;
+    float radius; /* <= 0: unbounded */
+    uint32_t seed, runs;
+} roma_bench_hwrt_frame_desc;
+
+/* Prints the frame's table at 1 and 4 samples a pixel (build, AO, frame, mean AO), or the
+ * line saying why it was skipped. Returns 0 unless a step failed. */
+int roma_bench_hwrt_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_hwrt_frame_desc *desc,
+                          FILE *csv);
 
 #endif /* ROMA_BENCH_HW_RAY_TRACING_H */

@@ -693,7 +693,7 @@ int main(int argc, char **argv)
     roma_buffer_destroy(ctx, &hit_buf);
     {
         roma_bench_frame_desc fd = {.width = frame_w, .height = frame_h, .resolution = 128, .angular = 4,
-                                    .runs = runs, .radius = ao_radius};
+                                    .runs = runs, .radius = ao_radius, .hwrt = hwrt_device, .hwrt_why = hwrt_why};
         if (roma_bench_frame(ctx, scene, &fd, csv) != 0)
             status = 1;
     }

@@ -140,6 +140,16 @@ static void cosine_direction(const float n[3], uint32_t seed, uint32_t pixel, ui
     roma_local_to_world(n, local, out);
 }
 
+int roma_ref_ao_ray(const roma_ref *ref, const float p[3], const float gn[3], const float n[3], float radius,
+                    uint32_t seed, uint32_t pixel, uint32_t sample, float origin[3], float dir[3], float *tmax)
+{
+    roma_ref_offset_origin(ref, p, gn, origin);
+    cosine_direction(n, seed, pixel, sample, DIM_AO, dir);
+    *tmax = (radius > 0.0f) ? radius : INFINITY; /* also maps NaN to unbounded */
+    /* Directions below the geometric surface (possible when n != gn) are occluded. */
+    return roma_ref_dot(dir, gn) > 0.0f;
+}
+
 float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
                         float radius, uint32_t spp, uint32_t seed, uint32_t pixel)
 {
@@ -147,17 +157,11 @@ float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3]
         return 1.0f;
     if (spp == 0)
         spp = 1;
-    float tmax = (radius > 0.0f) ? radius : INFINITY; /* also maps NaN to unbounded */
-    float origin[3];
-    roma_ref_offset_origin(ref, p, gn, origin);
     uint32_t open = 0;
     for (uint32_t s = 0; s < spp; ++s) {
-        float w[3];
-        cosine_direction(n, seed, pixel, s, DIM_AO, w);
-        /* Directions below the geometric surface (possible when n != gn) are occluded. */
-        if (roma_ref_dot(w, gn) <= 0.0f)
-            continue;
-        if (!roma_ref_occluded(ref, origin, w, 0.0f, tmax))
+        float origin[3], dir[3], tmax;
+        if (roma_ref_ao_ray(ref, p, gn, n, radius, seed, pixel, s, origin, dir, &tmax) &&
+            !roma_ref_occluded(ref, origin, dir, 0.0f, tmax))
             ++open;
     }
     return (float)((double)open / (double)spp);

@@ -79,6 +79,13 @@ void roma_ref_offset_origin(const roma_ref *ref, const float p[3], const float g
 
 /* --- Point estimators (the building blocks of the images; tests call them directly) --- */
 
+/* Sample `sample` of the AO at p (roma_ref_ao_point's rays, for tracers that trace them
+ * elsewhere): the offset origin, the cosine-weighted unit direction and the ray's end, radius
+ * (<= 0, NaN: INFINITY); the ray starts at t = 0. Returns 0 where the direction lies below the
+ * geometric surface (n != gn): that sample counts as occluded, untraced. */
+int roma_ref_ao_ray(const roma_ref *ref, const float p[3], const float gn[3], const float n[3], float radius,
+                    uint32_t seed, uint32_t pixel, uint32_t sample, float origin[3], float dir[3], float *tmax);
+
 /* AO visibility at p with normal n: cosine-weighted, spp samples, rays of length
  * radius (<= 0 or INFINITY = unbounded). Samples use (seed, pixel, sample index). */
 float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],

@@ -530,7 +530,19 @@ static int sweep_ao_cascades(study *s, const roma_camera *cam, double *anchor_ms
     return status;
 }
 
-/* AO: ROMA at every RES x A, the voxel baselines at every RES, screen space. Sets the time
+/* Whether the AO sweep has the resolution scale's rows: one grid, RES 128 and A 4 among the
+ * swept settings (the rows are theirs with fewer pixels traced). */
+static int divisor_rows(const roma_bench_accuracy_desc *d)
+{
+    int res = 0, angular = 0;
+    for (int i = 0; i < d->res_count; ++i)
+        res |= d->res[i] == 128;
+    for (int i = 0; i < d->angular_count; ++i)
+        angular |= d->angular[i] == 4;
+    return !d->with_cascades && res && angular;
+}
+
+/* AO: ROMA at every RES x A, the voxel baselines at every RES, the resolution scale, screen space. Sets the time
  * (all frames) and error of ROMA at RES 128, A 4 (with cascade levels where they are swept). */
 static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double *anchor_mae)
 {
@@ -574,6 +586,24 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
         }
     if (d->with_cascades && sweep_ao_cascades(s, cam, anchor_ms, anchor_mae))
         status = 1;
+    /* The resolution scale: one pixel of each 2 x 2 or 4 x 4 block traced, the others filled
+     * from it (roma_ao_settings.resolution_divisor), at RES 128, A 4 over one grid. */
+    for (uint32_t divisor = 2; divisor <= 4 && divisor_rows(d); divisor *= 2) {
+        effect_api_desc rd = {
+            .camera = *cam, .width = d->width, .height = d->height,
+            .options = {.effects = ROMA_EFFECT_AO, .resolution = 128, .ao_angular = 4},
+            .spp = d->spp, .frames = d->frames, .seed = 1, .ao_radius = d->radius,
+            .ao_method = ROMA_AO_METHOD_ROMA, .resolution_divisor = divisor,
+        };
+        char name[48], tag[24], label[16];
+        snprintf(name, sizeof name, "ROMA, 1 pixel in %u x %u", divisor, divisor);
+        snprintf(tag, sizeof tag, "ao-divisor-%u", divisor);
+        snprintf(label, sizeof label, "1/%u", divisor * divisor);
+        double ms, mae;
+        if (measure_setting(s, &rd, name, tag, "ROMA A 4, RES 128, traced pixels", label, "128", "4", 128, 4, &ms,
+                            &mae))
+            status = 1;
+    }
     /* Screen-space AO against the G-buffer's depth: no map, so no RES (its rays' origin offset
      * and skipped start are ROMA's at RES 128); one row per march length. It marches a bounded
      * radius: unbounded AO has no such rows. */
@@ -795,6 +825,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
               : gi     ? per_res + 1
               : lights ? per_res + (int)(sizeof lights_steps / sizeof lights_steps[0])
                        : d->res_count * ((d->with_cascades ? 2 : 1) * d->angular_count + (d->no_baselines ? 0 : 3)) +
+                             (divisor_rows(d) ? 2 : 0) +
                              (d->radius > 0.0f ? (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
                                                      (int)(sizeof ssao_layers / sizeof ssao_layers[0])
                                                : 0);

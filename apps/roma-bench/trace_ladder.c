@@ -18,7 +18,7 @@ static const char *const rung_names[RUNGS] = {
 /* The driver's statistics of the whole trace's pipeline (VK_KHR_pipeline_executable_properties:
  * registers, spills, instructions, as the driver names them), made again with
  * VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR on layout. */
-static void print_statistics(roma_context *ctx, VkPipelineLayout layout)
+static void print_statistics(roma_context *ctx, VkPipelineLayout layout, const uint32_t constants[3])
 {
     PFN_vkGetPipelineExecutablePropertiesKHR get_properties =
         (PFN_vkGetPipelineExecutablePropertiesKHR)vkGetDeviceProcAddr(ctx->device, "vkGetPipelineExecutablePropertiesKHR");
@@ -26,9 +26,8 @@ static void print_statistics(roma_context *ctx, VkPipelineLayout layout)
         (PFN_vkGetPipelineExecutableStatisticsKHR)vkGetDeviceProcAddr(ctx->device, "vkGetPipelineExecutableStatisticsKHR");
     VkShaderModule shader = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    const uint32_t constants[2] = {0u, RUNGS - 1};
     roma_specialization spec;
-    roma_specialization_make(ctx, "trace_ladder.comp", constants, 2, 0, &spec);
+    roma_specialization_make(ctx, "trace_ladder.comp", constants, 3, 0, &spec);
     if (!get_properties || !get_statistics || roma_shader_module_create(ctx, "trace_ladder.comp", &shader) != ROMA_SUCCESS)
         return;
     VkComputePipelineCreateInfo info = {
@@ -75,6 +74,45 @@ static void print_statistics(roma_context *ctx, VkPipelineLayout layout)
     vkDestroyShaderModule(ctx->device, shader, ctx->allocator);
 }
 
+/* One rung (step) at a workgroup size (group): medians of runs after a warm-up, timestamps and
+ * host-observed. Prints the pipeline's statistics after it where asked. Returns 0 on success. */
+static int time_rung(roma_context *ctx, const roma_trace_push *push, uint32_t runs, roma_gpu_timer *timer,
+                     uint32_t step, uint32_t group, int statistics, double *samples, double *ts, double *host)
+{
+    const uint32_t constants[3] = {0u, step, group};
+    roma_compute_pipeline p = {0};
+    if (roma_compute_pipeline_create_flags(ctx, "trace_ladder.comp", NULL, 0, sizeof *push, constants, 3, 0, &p) !=
+        ROMA_SUCCESS)
+        return 1;
+    int status = 0;
+    for (uint32_t k = 0; k <= runs && !status; ++k) { /* run 0 warms up */
+        VkCommandBuffer cmd;
+        if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS) {
+            status = 1;
+            break;
+        }
+        roma_gpu_timer_reset(timer, cmd);
+        const uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rung");
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+        vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+        roma_cmd_dispatch_linear(cmd, push->config[2], group);
+        roma_gpu_timer_end(timer, cmd, scope);
+        const double h = roma_bench_submit_ms(ctx, cmd, ROMA_SUCCESS);
+        roma_gpu_timing t;
+        uint32_t count = 1;
+        const double g = roma_gpu_timer_read(timer, &t, &count) == ROMA_SUCCESS && count == 1 ? t.milliseconds : NAN;
+        if (k > 0)
+            samples[k - 1] = g, samples[runs + k - 1] = h;
+        status = !isfinite(h);
+    }
+    if (!status && statistics)
+        print_statistics(ctx, p.layout, constants);
+    roma_compute_pipeline_destroy(ctx, &p);
+    *ts = roma_app_median(samples, (int)runs);
+    *host = roma_app_median(samples + runs, (int)runs);
+    return status;
+}
+
 int roma_bench_trace_ladder(roma_context *ctx, const roma_map *map, VkDeviceAddress rays, VkDeviceAddress hits,
                             uint32_t n, uint32_t runs, roma_gpu_timer *timer, int cpu_device, int statistics, FILE *csv)
 {
@@ -85,55 +123,48 @@ int roma_bench_trace_ladder(roma_context *ctx, const roma_map *map, VkDeviceAddr
     double *samples = malloc(sizeof(double) * 2 * runs);
     if (!samples)
         return 1;
+    const roma_trace_push push = {.rays = rays, .hits = hits, .params = info.params_address,
+                                  .maps = info.maps_address, .config = {0u, 8u, n, 0u}};
     printf("\nThe trace ladder: the snapped any-hit trace of the same %u rays by address, cut after each step "
-           "(each rung adds one; medians of %u runs; the last column: ms the rung adds, %s)\n\n"
+           "(each rung adds one; workgroups of %u; medians of %u runs; the last column: ms the rung adds, %s), then "
+           "the whole trace in other workgroup sizes\n\n"
            "| rung | ms (timestamps) | ms (host-observed) | ns a ray | added |\n|---|---|---|---|---|\n",
-           n, runs, cpu_device ? "host-observed" : "timestamps");
+           n, ROMA_TRACE_WORKGROUP_SIZE, runs, cpu_device ? "host-observed" : "timestamps");
     int status = 0;
-    double rung_ms[RUNGS];
+    double previous = 0.0;
     for (uint32_t step = 0; step < RUNGS && !status; ++step) {
-        const uint32_t constants[2] = {0u, step};
-        roma_compute_pipeline p = {0};
-        if (roma_compute_pipeline_create_flags(ctx, "trace_ladder.comp", NULL, 0, sizeof(roma_trace_push), constants,
-                                               2, 0, &p) != ROMA_SUCCESS) {
-            status = 1;
-            break;
-        }
-        roma_trace_push push = {.rays = rays, .hits = hits, .params = info.params_address,
-                                .maps = info.maps_address, .config = {0u, 8u, n, 0u}};
-        for (uint32_t k = 0; k <= runs && !status; ++k) { /* run 0 warms up */
-            VkCommandBuffer cmd;
-            if (roma_begin_one_shot(ctx, &cmd) != ROMA_SUCCESS) {
-                status = 1;
-                break;
-            }
-            roma_gpu_timer_reset(timer, cmd);
-            const uint32_t scope = roma_gpu_timer_begin(timer, cmd, "rung");
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
-            vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-            roma_cmd_dispatch_linear(cmd, n, ROMA_TRACE_WORKGROUP_SIZE);
-            roma_gpu_timer_end(timer, cmd, scope);
-            const double host = roma_bench_submit_ms(ctx, cmd, ROMA_SUCCESS);
-            roma_gpu_timing t;
-            uint32_t count = 1;
-            const double ts = roma_gpu_timer_read(timer, &t, &count) == ROMA_SUCCESS && count == 1 ? t.milliseconds : NAN;
-            if (k > 0)
-                samples[k - 1] = ts, samples[runs + k - 1] = host;
-            status = !isfinite(host);
-        }
-        if (!status && statistics && step == RUNGS - 1)
-            print_statistics(ctx, p.layout);
-        roma_compute_pipeline_destroy(ctx, &p);
+        double ts, host;
+        /* The driver's statistics of the whole trace, where the device reports them. */
+        status = time_rung(ctx, &push, runs, timer, step, ROMA_TRACE_WORKGROUP_SIZE, statistics && step == RUNGS - 1,
+                           samples, &ts, &host);
         if (status)
             break;
-        const double ts = roma_app_median(samples, (int)runs), host = roma_app_median(samples + runs, (int)runs);
-        rung_ms[step] = cpu_device ? host : ts;
+        const double ms = cpu_device ? host : ts;
         if (csv) {
             fprintf(csv, "ladder,%s timestamp,%u,%u,%.6f,ms\n", rung_names[step], info.resolution, info.angular, ts);
             fprintf(csv, "ladder,%s host,%u,%u,%.6f,ms\n", rung_names[step], info.resolution, info.angular, host);
         }
-        printf("| %s | %.3f | %.2f | %.2f | %+.3f |\n", rung_names[step], ts, host, rung_ms[step] * 1e6 / n,
-               step == 0 ? rung_ms[0] : rung_ms[step] - rung_ms[step - 1]);
+        printf("| %s | %.3f | %.2f | %.2f | %+.3f |\n", rung_names[step], ts, host, ms * 1e6 / n, ms - previous);
+        previous = ms;
+    }
+    /* The workgroup's shape: the whole trace in groups of 32 to 256 invocations (those the
+     * device allows). */
+    static const uint32_t groups[3] = {32u, 128u, 256u};
+    for (int g = 0; g < 3 && !status; ++g) {
+        if (groups[g] > ctx->properties.limits.maxComputeWorkGroupSize[0] ||
+            groups[g] > ctx->properties.limits.maxComputeWorkGroupInvocations)
+            continue;
+        double ts, host;
+        status = time_rung(ctx, &push, runs, timer, RUNGS - 1, groups[g], 0, samples, &ts, &host);
+        if (status)
+            break;
+        const double ms = cpu_device ? host : ts;
+        char name[64];
+        snprintf(name, sizeof name, "whole trace, workgroups of %u", groups[g]);
+        if (csv)
+            fprintf(csv, "ladder,%s timestamp,%u,%u,%.6f,ms\nladder,%s host,%u,%u,%.6f,ms\n", name, info.resolution,
+                    info.angular, ts, name, info.resolution, info.angular, host);
+        printf("| %s | %.3f | %.2f | %.2f | - |\n", name, ts, host, ms * 1e6 / n);
     }
     free(samples);
     return status;

@@ -7,7 +7,13 @@
 #include "roma_shared.h"
 #include "roma/trace.glsl"
 
+// The workgroup: ROMA_TRACE_WORKGROUP_SIZE invocations, or a specialization constant where the
+// includer names one (the trace ladder's sweep of workgroup sizes).
+#ifdef ROMA_BATCH_GROUP_SIZE_ID
+layout(local_size_x_id = ROMA_BATCH_GROUP_SIZE_ID) in;
+#else
 layout(local_size_x = ROMA_TRACE_WORKGROUP_SIZE) in;
+#endif
 
 layout(push_constant) uniform Push { roma_trace_push pc; };
 
@@ -18,7 +24,7 @@ layout(constant_id = 0) const uint ROMA_TRACE_MODE = 0u;
 // The ray this invocation traces, or false past the batch.
 bool roma_batch_index(out uint i)
 {
-    i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * ROMA_TRACE_WORKGROUP_SIZE + gl_LocalInvocationID.x;
+    i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
     return i < pc.config.z;
 }
 

@@ -9,6 +9,8 @@
 // ray and writes a hit; 2 also resolves the direction (normalise, map selection, fold); 3 also
 // maps the origin and fetches the first map word of its column; 4 is the whole snapped any-hit
 // trace (what trace.comp runs). Each rung writes something that depends on its work.
+// The workgroup size is specialization constant 2 (the ladder sweeps it on the whole trace).
+#define ROMA_BATCH_GROUP_SIZE_ID 2
 #include "roma_batch_trace.glsl"
 
 layout(constant_id = 1) const uint LADDER_STEP = 4u;

@@ -60,7 +60,8 @@ static roma_result share(roma_context *ctx, const char *module_name, const VkDes
     roma_shared_pipeline *p = &ctx->pipelines[ctx->pipeline_count++];
     memset(p, 0, sizeof *p);
     p->module_name = roma_find_spirv(ctx, module_name)->name; /* found: the shader module was made from it */
-    memcpy(p->types, types, sizeof *types * binding_count);
+    if (binding_count) /* types may be NULL without bindings */
+        memcpy(p->types, types, sizeof *types * binding_count);
     p->binding_count = binding_count;
     p->push_size = push_size;
     p->constant_count = constant_count;

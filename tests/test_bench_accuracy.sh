@@ -199,6 +199,17 @@ for bad in "--accuracy --effect direct --ao-radius 0.05 --cascades auto" "--accu
   [ $? -eq 2 ] || fail "$bad: should exit 2"
 done
 
+# The hardware ray-tracing rows: skipped with the device's reason (lavapipe), or a row a
+# sample count, doubling to the run's 64, each with its error (a number) and time.
+if grep -q "^Hardware ray tracing: skipped: " "$dir/out.txt"; then
+  grep -q "^Hardware ray tracing: skipped: .*\(offers no VK_KHR_\|lacks\)" "$dir/out.txt" ||
+    fail "the hardware rows were skipped without the device's reason"
+else
+  rows=$(grep -cE '^\| (1|2|4|8|16|32|64) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$' \
+    <(sed -n '/^| hardware spp |/,/^$/p' "$dir/out.txt"))
+  [ "$rows" -eq 7 ] || fail "expected 7 hardware rows (1 to 64 samples), found $rows"
+fi
+
 # Bad use: --plot without --accuracy; a PNG or CSV that cannot be written (refused before
 # anything is measured, with a message, and no crash).
 "${bench_run[@]}" --small --plot "$dir/x.png" >/dev/null 2>&1

@@ -22,6 +22,7 @@
 
 #include "app_common.h"
 #include "effect_api.h"
+#include "hw_ray_tracing.h"
 #include "plot.h"
 #include "reference_internal.h"
 #include "roma/sampling.h"
@@ -647,6 +648,66 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
     return status;
 }
 
+/* AO through hardware ray tracing (issue 41's baseline) at the study's points with Embree's
+ * samples 0 .. spp - 1, spp doubling up to the study's total: a frame is both acceleration
+ * structures rebuilt and the rays traced (host-observed, median of runs); the error against the
+ * reference as every row's. Where no device offers it, one line says why. */
+static int hardware_rows(study *s, uint32_t w, uint32_t h)
+{
+    const roma_bench_accuracy_desc *d = s->d;
+    if (!d->hwrt) {
+        printf("\nHardware ray tracing: skipped: %s.\n", d->hwrt_why && *d->hwrt_why ? d->hwrt_why : "no device offers it");
+        return 0;
+    }
+    const size_t n = (size_t)w * h;
+    const uint32_t total = d->spp * d->frames;
+    uint32_t *covered = malloc(sizeof *covered * n), count = 0;
+    float *ao = malloc(sizeof *ao * n);
+    roma_image image = {0};
+    roma_hwrt *hw = NULL;
+    int status = !covered || !ao || roma_image_alloc(&image, w, h, 1) != ROMA_SUCCESS ||
+                 roma_hwrt_create(s->ctx, d->hwrt, s->scene, &hw) != ROMA_SUCCESS;
+    for (size_t i = 0; i < n && !status; ++i)
+        if (s->coverage.pixels[i] > 0.0f)
+            covered[count++] = (uint32_t)i;
+    if (!status)
+        printf("\nHardware ray tracing (VK_KHR_ray_tracing_pipeline) at the same points and samples: a frame is both\n"
+               "acceleration structures rebuilt and the rays traced, any hit (%s):\n\n"
+               "| hardware spp | ms | MAE | FLIP |\n|---|---|---|---|\n",
+               d->runs == 1 ? "one run" : "median of runs");
+    for (uint32_t spp = 1; spp <= total && !status; spp *= 2) {
+        const roma_bench_hwrt_ao_desc ad = {.px = s->px, .covered = covered, .count = count, .spp = spp,
+                                            .radius = d->radius, .seed = 1, .runs = d->runs};
+        double ms[3], mae, bias, flip = NAN;
+        uint32_t rays;
+        status = roma_bench_hwrt_ao(s->ctx, hw, s->ref, &ad, ao, ms, &rays);
+        if (status)
+            break;
+        for (size_t i = 0; i < n; ++i)
+            image.pixels[i] = 1.0f; /* the background, as ROMA's */
+        for (uint32_t i = 0; i < count; ++i)
+            image.pixels[covered[i]] = ao[i];
+        image_error(&image, &s->ref_image, &s->coverage, &mae, &bias);
+        if (roma_image_flip(&s->ref_image, &image, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
+            flip = NAN;
+        printf("| %u | %.2f | %.4f | %.4f |\n", spp, ms[2], mae, flip);
+        if (s->csv)
+            fprintf(s->csv, "accuracy,hardware ao ms,%u,0,%.6f,ms\naccuracy,hardware ao mae,%u,0,%.6f,\n"
+                            "accuracy,hardware ao flip,%u,0,%.6f,\n", spp, ms[2], spp, mae, spp, flip);
+        roma_bench_point *pt = &s->points[s->point_count++];
+        snprintf(pt->series, sizeof pt->series, "hardware ray tracing (spp)");
+        snprintf(pt->label, sizeof pt->label, "%u", spp);
+        pt->ms = ms[2], pt->mae = mae, pt->flip = flip;
+    }
+    if (status)
+        fprintf(stderr, "roma-bench: the hardware ray-tracing rows failed\n");
+    roma_hwrt_destroy(hw);
+    roma_image_free(&image);
+    free(covered);
+    free(ao);
+    return status;
+}
+
 /* The A of the array a light effect's rays trace (the option of its pass). */
 static void set_angular(roma_effect_options *o, uint32_t angular)
 {
@@ -792,8 +853,9 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         cam = *d->camera;
     else
         roma_scene_default_camera(scene, (float)w / (float)h, &cam);
-    /* Every setting of every method, then Embree's sample counts (doubling up to the total). */
-    const int max_points = d->res_count * (2 * d->angular_count + 3) + 5 + 32 + 3 * 32; /* + the frames curves */
+    /* Every setting of every method (the resolution scale's 2, screen space's 5), then Embree's
+     * and the hardware's sample counts (doubling up to the total), the frames curves. */
+    const int max_points = d->res_count * (2 * d->angular_count + 3) + 2 + 5 + 2 * 32 + 3 * 32;
     roma_scene_view view;
     roma_scene_get_view(scene, &view);
     study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,
@@ -887,6 +949,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
     if (s.have_ref && embree_equal_time(ref, s.px, s.ref_values, w, h, d, s.light_positions, s.light_count, anchor_ms,
                                         anchor_mae, &s.ref_image, &s.coverage, s.times, csv, s.points,
                                         &s.point_count))
+        status = 1;
+    if (s.have_ref && d->effect == ROMA_BENCH_EFFECT_AO && hardware_rows(&s, w, h))
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
     roma_bench_print_fronts(s.points, s.point_count);

@@ -42,6 +42,10 @@ typedef struct roma_bench_accuracy_desc {
      * found there under the same key is not measured again, so an interrupted sweep resumes.
      * The key holds cache_key (the device and the scene) and every setting of the point. */
     const char *cache_path, *cache_key;
+    /* AO only: the ray-tracing device the context runs on, for the hardware's rows at the same
+     * points and samples (NULL: skipped, hwrt_why says why). */
+    const struct roma_hwrt_device *hwrt;
+    const char *hwrt_why;
 } roma_bench_accuracy_desc;
 
 /* Prints the table, the Pareto fronts (and CSV rows, the plot); returns 0 on success. */

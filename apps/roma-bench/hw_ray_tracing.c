@@ -148,87 +148,107 @@ static double frame_ms(roma_context *ctx, roma_hwrt *h, VkDeviceAddress rays, Vk
     return roma_bench_submit_ms(ctx, cmd, ROMA_SUCCESS);
 }
 
+int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_bench_hwrt_ao_desc *d,
+                       float *ao, double ms[3], uint32_t *ray_count)
+{
+    const uint32_t runs = d->runs ? d->runs : 1, spp = d->spp ? d->spp : 1;
+    const size_t max_rays = (size_t)d->count * spp;
+    roma_ray *rays = malloc(sizeof *rays * (max_rays ? max_rays : 1));
+    uint32_t *owner = malloc(sizeof *owner * (max_rays ? max_rays : 1));
+    roma_hit *hits = malloc(sizeof *hits * (max_rays ? max_rays : 1));
+    double *samples = malloc(sizeof(double) * 3 * runs);
+    int status = !rays || !owner || !hits || !samples;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < d->count && !status; ++i) {
+        const uint32_t pixel = d->covered ? d->covered[i] : i;
+        const roma_gbuffer_pixel *p = &d->px[pixel];
+        for (uint32_t s = 0; s < spp; ++s) {
+            roma_ray *r = &rays[n];
+            if (!roma_ref_ao_ray(ref, p->position_t, p->geometric_normal, p->shading_normal, d->radius, d->seed, pixel,
+                                 s, r->origin, r->dir, &r->tmax))
+                continue; /* below the geometric surface: occluded, untraced (as Embree's) */
+            r->tmin = 0.0f;
+            owner[n++] = i;
+        }
+    }
+    roma_buffer ray_buf = {0}, hit_buf = {0};
+    if (!status)
+        status = roma_buffer_create_filled(ctx, sizeof(roma_ray) * (VkDeviceSize)(n ? n : 1),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                           rays, &ray_buf) != ROMA_SUCCESS ||
+                 roma_buffer_create(ctx, sizeof(roma_hit) * (VkDeviceSize)(n ? n : 1),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                    ROMA_MEMORY_DEVICE, &hit_buf) != ROMA_SUCCESS;
+    if (!status)
+        frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 3); /* warm-up */
+    for (uint32_t k = 0; k < runs && !status; ++k) {
+        samples[k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 1);
+        samples[runs + k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 2);
+        samples[2 * runs + k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 3);
+        status = !isfinite(samples[k] + samples[runs + k] + samples[2 * runs + k]);
+    }
+    /* The last frame's hits: a sample is open where its ray missed. */
+    const roma_bench_hwrt_desc rd = {.hits_buffer = hit_buf.buffer, .count = n};
+    if (!status && n)
+        status = read_hits(ctx, &rd, hits) != ROMA_SUCCESS;
+    for (uint32_t i = 0; i < d->count && !status; ++i)
+        ao[i] = 0.0f;
+    for (uint32_t r = 0; r < n && !status; ++r)
+        ao[owner[r]] += (hits[r].info & ROMA_HIT_FLAG) ? 0.0f : 1.0f / (float)spp;
+    for (int c = 0; c < 3 && !status; ++c)
+        ms[c] = roma_app_median(samples + c * runs, (int)runs);
+    *ray_count = n;
+    roma_buffer_destroy(ctx, &ray_buf);
+    roma_buffer_destroy(ctx, &hit_buf);
+    free(rays);
+    free(owner);
+    free(hits);
+    free(samples);
+    return status;
+}
+
 int roma_bench_hwrt_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_hwrt_frame_desc *d, FILE *csv)
 {
     if (!d->device) {
         printf("\nhardware ray tracing frame: skipped: %s\n", d->why && *d->why ? d->why : "no device offers it");
         return 0;
     }
-    const uint32_t runs = d->runs ? d->runs : 5;
     roma_ref *ref = NULL;
     roma_hwrt *h = NULL;
-    roma_ray *rays = malloc(sizeof *rays * (size_t)d->count * 4);
-    roma_hit *hits = malloc(sizeof *hits * (size_t)d->count * 4);
-    double *samples = malloc(sizeof(double) * 3 * runs);
-    int status = !rays || !hits || !samples;
-    if (!status)
-        status = roma_ref_create(scene, NULL, &ref) != ROMA_SUCCESS || roma_hwrt_create(ctx, d->device, scene, &h) != ROMA_SUCCESS;
+    float *ao = malloc(sizeof *ao * (d->count ? d->count : 1));
+    int status = !ao || roma_ref_create(scene, NULL, &ref) != ROMA_SUCCESS ||
+                 roma_hwrt_create(ctx, d->device, scene, &h) != ROMA_SUCCESS;
     if (!status)
         printf("\nThe same frame through hardware ray tracing: both acceleration structures rebuilt, then the AO rays "
                "of Embree's points and samples (made on the host from the reference's sequences and uploaded, "
                "untimed; samples below the geometric surface count as occluded, as Embree's), any hit; "
                "host-observed, medians of %u runs.\n\n| spp, hardware | rays | build ms | AO ms | frame ms | AO mean |\n"
                "|---|---|---|---|---|---|\n",
-               runs);
+               d->runs);
     static const uint32_t spps[2] = {1, 4};
     for (int si = 0; si < 2 && !status; ++si) {
-        const uint32_t spp = spps[si];
+        const roma_bench_hwrt_ao_desc ad = {.px = d->px, .covered = d->covered, .count = d->count, .spp = spps[si],
+                                            .radius = d->radius, .seed = d->seed, .runs = d->runs};
+        double med[3], sum = 0.0;
         uint32_t n = 0;
-        for (uint32_t i = 0; i < d->count; ++i) {
-            const roma_gbuffer_pixel *p = &d->px[d->covered[i]];
-            for (uint32_t s = 0; s < spp; ++s) {
-                roma_ray *r = &rays[n];
-                if (!roma_ref_ao_ray(ref, p->position_t, p->geometric_normal, p->shading_normal, d->radius, d->seed,
-                                     d->covered[i], s, r->origin, r->dir, &r->tmax))
-                    continue;
-                r->tmin = 0.0f;
-                ++n;
-            }
-        }
-        roma_buffer ray_buf = {0}, hit_buf = {0};
-        const VkDeviceSize hit_bytes = sizeof(roma_hit) * (VkDeviceSize)(n ? n : 1);
-        status = roma_buffer_create_filled(ctx, sizeof(roma_ray) * (VkDeviceSize)(n ? n : 1),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                                           rays, &ray_buf) != ROMA_SUCCESS ||
-                 roma_buffer_create(ctx, hit_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                    ROMA_MEMORY_DEVICE, &hit_buf) != ROMA_SUCCESS;
-        frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 3); /* warm-up */
-        for (uint32_t k = 0; k < runs && !status; ++k) {
-            samples[k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 1);
-            samples[runs + k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 2);
-            samples[2 * runs + k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 3);
-            status = !isfinite(samples[k] + samples[runs + k] + samples[2 * runs + k]);
-        }
-        /* The last frame's hits: a sample is open where its ray missed (the mean over pixels of
-         * spp samples each is the open samples' share). */
-        const roma_bench_hwrt_desc rd = {.hits_buffer = hit_buf.buffer, .count = n};
-        if (!status && n)
-            status = read_hits(ctx, &rd, hits) != ROMA_SUCCESS;
-        double open = 0.0;
-        for (uint32_t r = 0; r < n && !status; ++r)
-            open += (hits[r].info & ROMA_HIT_FLAG) == 0;
-        roma_buffer_destroy(ctx, &ray_buf);
-        roma_buffer_destroy(ctx, &hit_buf);
+        status = roma_bench_hwrt_ao(ctx, h, ref, &ad, ao, med, &n);
         if (status)
             break;
-        double med[3];
-        for (int c = 0; c < 3; ++c)
-            med[c] = roma_app_median(samples + c * runs, (int)runs);
-        printf("| %u (hardware) | %u | %.2f | %.2f | %.2f | %.3f |\n", spp, n, med[0], med[1], med[2],
-               d->count ? open / ((double)d->count * spp) : 0.0);
+        for (uint32_t i = 0; i < d->count; ++i)
+            sum += ao[i];
+        printf("| %u (hardware) | %u | %.2f | %.2f | %.2f | %.3f |\n", spps[si], n, med[0], med[1], med[2],
+               d->count ? sum / d->count : 0.0);
         if (csv) {
             static const char *names[3] = {"hwrt_build", "hwrt_ao", "hwrt_frame"};
             for (int c = 0; c < 3; ++c)
-                fprintf(csv, "frame,%s spp %u,0,0,%.6f,ms\n", names[c], spp, med[c]);
+                fprintf(csv, "frame,%s spp %u,0,0,%.6f,ms\n", names[c], spps[si], med[c]);
         }
     }
     if (status)
         fprintf(stderr, "roma-bench: the hardware ray-tracing frame failed\n");
     roma_hwrt_destroy(h);
     roma_ref_destroy(ref);
-    free(rays);
-    free(hits);
-    free(samples);
+    free(ao);
     return status;
 }

@@ -32,6 +32,24 @@ typedef struct roma_bench_hwrt_desc {
 int roma_bench_hwrt(roma_context *ctx, const roma_scene *scene, roma_gpu_timer *timer, const roma_bench_hwrt_desc *d,
                     FILE *csv);
 
+/* AO through the hardware at G-buffer points with the reference's samples. */
+typedef struct roma_bench_hwrt_ao_desc {
+    const roma_gbuffer_pixel *px;
+    const uint32_t *covered; /* the points: px[covered[i]]; NULL: px[i] */
+    uint32_t count;
+    uint32_t spp;
+    float radius; /* <= 0: unbounded */
+    uint32_t seed, runs;
+} roma_bench_hwrt_ao_desc;
+
+/* The AO of d's points (ao[i] for the i-th point, count of them) from spp rays each, Embree's
+ * (roma_ref_ao_ray: made on the host and uploaded, untimed), traced any-hit after both
+ * structures are rebuilt; ms: medians of runs of the build alone, the trace alone and both in
+ * one submission (host-observed); *ray_count: the rays traced. Returns 0 on success. */
+struct roma_ref;
+int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref *ref, const roma_bench_hwrt_ao_desc *desc,
+                       float *ao, double ms[3], uint32_t *ray_count);
+
 /* roma-bench's dynamic AO frame through the hardware: both structures rebuilt, then Embree's
  * AO rays at the covered G-buffer points (px[covered[i]]) with the same samples. */
 typedef struct roma_bench_hwrt_frame_desc {

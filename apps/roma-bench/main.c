@@ -171,8 +171,10 @@ static uint32_t make_ao_rays(const roma_ref *ref, const roma_scene *scene, float
     return count;
 }
 
-/* Releases everything; a validation error fails the run. */
-static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_timer *timer, int status)
+/* Releases everything (the ray-tracing device last: the context runs on it); a validation
+ * error fails the run. */
+static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_timer *timer,
+                  roma_hwrt_device *hwrt_device, int status)
 {
     roma_gpu_timer_destroy(timer);
     roma_ref_destroy(ref);
@@ -182,6 +184,12 @@ static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_
     }
     roma_context_destroy(ctx);
     roma_scene_destroy(scene);
+    if (roma_hwrt_device_validation_messages(hwrt_device)) {
+        fprintf(stderr, "roma-bench: %u Vulkan validation message(s) on the ray-tracing device\n",
+                roma_hwrt_device_validation_messages(hwrt_device));
+        status = 1;
+    }
+    roma_hwrt_device_destroy(hwrt_device);
     return status;
 }
 
@@ -420,13 +428,14 @@ int main(int argc, char **argv)
         fprintf(stderr, "roma-bench: cannot load %s: %s\n", scene_arg, roma_result_string(r));
         return 1;
     }
-    /* The trace table's hardware rows need a device with the ray-tracing extensions: where one
-     * is offered, libroma runs on it as on an engine's device, so both trace the same buffers. */
+    /* The hardware rows (the trace table, the AO frame, the AO study) need a device with the
+     * ray-tracing extensions: where one is offered, libroma runs on it as on an engine's
+     * device, so both trace the same buffers. */
     roma_hwrt_device *hwrt_device = NULL;
     char hwrt_why[256] = "";
     roma_context *ctx = NULL;
     roma_context_desc cdesc = {0};
-    if (!accuracy && !cascades && !growth) {
+    if ((!accuracy && !cascades && !growth) || (accuracy && effect == ROMA_BENCH_EFFECT_AO)) {
         const char *validation = getenv("ROMA_VALIDATION"), *device = getenv("ROMA_DEVICE");
         if (roma_hwrt_device_create(device, validation && *validation && strcmp(validation, "0") != 0,
                                     &hwrt_device, hwrt_why, sizeof hwrt_why) == ROMA_SUCCESS)
@@ -481,12 +490,12 @@ int main(int argc, char **argv)
             .res = res_list, .res_count = res_n, .angular = ang_list, .angular_count = ang_n,
             .plot_path = plot_path, .cache_path = cache_path, .cache_key = cache_key,
             .with_cascades = accuracy_levels, .cascades = cascades, .camera = camera_set ? &camera : NULL,
-            .no_baselines = no_baselines,
+            .no_baselines = no_baselines, .hwrt = hwrt_device, .hwrt_why = hwrt_why,
         };
         int status = roma_bench_accuracy(ctx, scene, ref, &ad, csv);
         if (csv)
             fclose(csv);
-        return finish(ctx, scene, ref, timer, status);
+        return finish(ctx, scene, ref, timer, hwrt_device, status);
     }
 
     if (cascades) {
@@ -501,7 +510,7 @@ int main(int argc, char **argv)
             status = roma_bench_level_frame(ctx, scene, &cd, csv);
         if (csv)
             fclose(csv);
-        return finish(ctx, scene, ref, timer, status);
+        return finish(ctx, scene, ref, timer, hwrt_device, status);
     }
 
     if (growth) {
@@ -510,7 +519,7 @@ int main(int argc, char **argv)
         int status = run_growth(ctx, growth, &fd, res_list, res_n, plot_path, csv);
         if (csv)
             fclose(csv);
-        return finish(ctx, scene, ref, timer, status);
+        return finish(ctx, scene, ref, timer, hwrt_device, status);
     }
 
     /* Generation. */
@@ -709,12 +718,5 @@ done:
     free(occ);
     roma_map_destroy(map);
     roma_map_destroy(map8);
-    status = finish(ctx, scene, ref, timer, status);
-    if (roma_hwrt_device_validation_messages(hwrt_device)) {
-        fprintf(stderr, "roma-bench: %u Vulkan validation message(s) on the ray-tracing device\n",
-                roma_hwrt_device_validation_messages(hwrt_device));
-        status = 1;
-    }
-    roma_hwrt_device_destroy(hwrt_device);
-    return status;
+    return finish(ctx, scene, ref, timer, hwrt_device, status);
 }

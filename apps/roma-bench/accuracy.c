@@ -648,10 +648,11 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
     return status;
 }
 
-/* AO through hardware ray tracing (issue 41's baseline) at the study's points with Embree's
- * samples 0 .. spp - 1, spp doubling up to the study's total: a frame is both acceleration
- * structures rebuilt and the rays traced (host-observed, median of runs); the error against the
- * reference as every row's. Where no device offers it, one line says why. */
+/* Hardware ray tracing (issue 41's baseline) at the study's points, as Embree's rows: AO with
+ * Embree's samples 0 .. spp - 1, spp doubling up to the study's total; many lights, every
+ * segment (the reference's count, exactly). A frame is both acceleration structures rebuilt
+ * and the rays traced (host-observed, median of runs); the error against the reference as
+ * every row's. Where no device offers it, one line says why. */
 static int hardware_rows(study *s, uint32_t w, uint32_t h)
 {
     const roma_bench_accuracy_desc *d = s->d;
@@ -659,41 +660,55 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
         printf("\nHardware ray tracing: skipped: %s.\n", d->hwrt_why && *d->hwrt_why ? d->hwrt_why : "no device offers it");
         return 0;
     }
+    const int lights = d->effect == ROMA_BENCH_EFFECT_LIGHTS;
     const size_t n = (size_t)w * h;
-    const uint32_t total = d->spp * d->frames;
+    const uint32_t total = lights ? 1u : d->spp * d->frames;
     uint32_t *covered = malloc(sizeof *covered * n), count = 0;
-    float *ao = malloc(sizeof *ao * n);
+    float *values = malloc(sizeof *values * n);
     roma_image image = {0};
     roma_hwrt *hw = NULL;
-    int status = !covered || !ao || roma_image_alloc(&image, w, h, 1) != ROMA_SUCCESS ||
+    int status = !covered || !values || roma_image_alloc(&image, w, h, 1) != ROMA_SUCCESS ||
                  roma_hwrt_create(s->ctx, d->hwrt, s->scene, &hw) != ROMA_SUCCESS;
     for (size_t i = 0; i < n && !status; ++i)
         if (s->coverage.pixels[i] > 0.0f)
             covered[count++] = (uint32_t)i;
     if (!status)
-        printf("\nHardware ray tracing (VK_KHR_ray_tracing_pipeline) at the same points and samples: a frame is both\n"
+        printf("\nHardware ray tracing (VK_KHR_ray_tracing_pipeline) at the same points%s: a frame is both\n"
                "acceleration structures rebuilt and the rays traced, any hit (%s):\n\n"
-               "| hardware spp | ms | MAE | FLIP |\n|---|---|---|---|\n",
-               d->runs == 1 ? "one run" : "median of runs");
+               "| hardware %s | rays | ms | MAE | FLIP |\n|---|---|---|---|---|\n",
+               lights ? ", every segment to each light" : " and samples", d->runs == 1 ? "one run" : "median of runs",
+               lights ? "" : "spp");
     for (uint32_t spp = 1; spp <= total && !status; spp *= 2) {
-        const roma_bench_hwrt_ao_desc ad = {.px = s->px, .covered = covered, .count = count, .spp = spp,
-                                            .radius = d->radius, .seed = 1, .runs = d->runs};
         double ms[3], mae, bias, flip = NAN;
         uint32_t rays;
-        status = roma_bench_hwrt_ao(s->ctx, hw, s->ref, &ad, ao, ms, &rays);
+        if (lights) {
+            const roma_bench_hwrt_lights_desc ld = {.px = s->px, .covered = covered, .count = count,
+                                                    .light_positions = s->light_positions,
+                                                    .light_count = s->light_count, .runs = d->runs};
+            status = roma_bench_hwrt_lights(s->ctx, hw, s->ref, &ld, values, ms, &rays);
+        } else {
+            const roma_bench_hwrt_ao_desc ad = {.px = s->px, .covered = covered, .count = count, .spp = spp,
+                                                .radius = d->radius, .seed = 1, .runs = d->runs};
+            status = roma_bench_hwrt_ao(s->ctx, hw, s->ref, &ad, values, ms, &rays);
+        }
         if (status)
             break;
         for (size_t i = 0; i < n; ++i)
-            image.pixels[i] = 1.0f; /* the background, as ROMA's */
+            image.pixels[i] = effect_infos[d->effect].background;
         for (uint32_t i = 0; i < count; ++i)
-            image.pixels[covered[i]] = ao[i];
+            image.pixels[covered[i]] = values[i];
         image_error(&image, &s->ref_image, &s->coverage, &mae, &bias);
         if (roma_image_flip(&s->ref_image, &image, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
-        printf("| %u | %.2f | %.4f | %.4f |\n", spp, ms[2], mae, flip);
+        char label[16];
+        snprintf(label, sizeof label, lights ? "every segment" : "%u", spp);
+        printf("| %s | %u | %.2f | %.4f | %.4f |\n", label, rays, ms[2], mae, flip);
+        const char *tag = effect_tag(d->effect);
         if (s->csv)
-            fprintf(s->csv, "accuracy,hardware ao ms,%u,0,%.6f,ms\naccuracy,hardware ao mae,%u,0,%.6f,\n"
-                            "accuracy,hardware ao flip,%u,0,%.6f,\n", spp, ms[2], spp, mae, spp, flip);
+            fprintf(s->csv, "accuracy,hardware %s ms,%u,0,%.6f,ms\naccuracy,hardware %s mae,%u,0,%.6f,\n"
+                            "accuracy,hardware %s flip,%u,0,%.6f,\n", tag, spp, ms[2], tag, spp, mae, tag, spp, flip);
+        if (lights) /* the reference's own count: no point of a front */
+            continue;
         roma_bench_point *pt = &s->points[s->point_count++];
         snprintf(pt->series, sizeof pt->series, "hardware ray tracing (spp)");
         snprintf(pt->label, sizeof pt->label, "%u", spp);
@@ -704,7 +719,7 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
     roma_hwrt_destroy(hw);
     roma_image_free(&image);
     free(covered);
-    free(ao);
+    free(values);
     return status;
 }
 
@@ -950,7 +965,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                                         anchor_mae, &s.ref_image, &s.coverage, s.times, csv, s.points,
                                         &s.point_count))
         status = 1;
-    if (s.have_ref && d->effect == ROMA_BENCH_EFFECT_AO && hardware_rows(&s, w, h))
+    if (s.have_ref && (d->effect == ROMA_BENCH_EFFECT_AO || lights) && hardware_rows(&s, w, h))
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
     roma_bench_print_fronts(s.points, s.point_count);

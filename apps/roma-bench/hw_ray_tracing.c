@@ -148,32 +148,14 @@ static double frame_ms(roma_context *ctx, roma_hwrt *h, VkDeviceAddress rays, Vk
     return roma_bench_submit_ms(ctx, cmd, ROMA_SUCCESS);
 }
 
-int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_bench_hwrt_ao_desc *d,
-                       float *ao, double ms[3], uint32_t *ray_count)
+int roma_bench_hwrt_rays(roma_context *ctx, roma_hwrt *h, const roma_ray *rays, uint32_t n, uint32_t runs,
+                         roma_hit *hits, double ms[3])
 {
-    const uint32_t runs = d->runs ? d->runs : 1, spp = d->spp ? d->spp : 1;
-    const size_t max_rays = (size_t)d->count * spp;
-    roma_ray *rays = malloc(sizeof *rays * (max_rays ? max_rays : 1));
-    uint32_t *owner = malloc(sizeof *owner * (max_rays ? max_rays : 1));
-    roma_hit *hits = malloc(sizeof *hits * (max_rays ? max_rays : 1));
+    runs = runs ? runs : 1;
     double *samples = malloc(sizeof(double) * 3 * runs);
-    int status = !rays || !owner || !hits || !samples;
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < d->count && !status; ++i) {
-        const uint32_t pixel = d->covered ? d->covered[i] : i;
-        const roma_gbuffer_pixel *p = &d->px[pixel];
-        for (uint32_t s = 0; s < spp; ++s) {
-            roma_ray *r = &rays[n];
-            if (!roma_ref_ao_ray(ref, p->position_t, p->geometric_normal, p->shading_normal, d->radius, d->seed, pixel,
-                                 s, r->origin, r->dir, &r->tmax))
-                continue; /* below the geometric surface: occluded, untraced (as Embree's) */
-            r->tmin = 0.0f;
-            owner[n++] = i;
-        }
-    }
     roma_buffer ray_buf = {0}, hit_buf = {0};
-    if (!status)
-        status = roma_buffer_create_filled(ctx, sizeof(roma_ray) * (VkDeviceSize)(n ? n : 1),
+    int status = !samples ||
+                 roma_buffer_create_filled(ctx, sizeof(roma_ray) * (VkDeviceSize)(n ? n : 1),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                                            rays, &ray_buf) != ROMA_SUCCESS ||
                  roma_buffer_create(ctx, sizeof(roma_hit) * (VkDeviceSize)(n ? n : 1),
@@ -188,24 +170,84 @@ int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, con
         samples[2 * runs + k] = frame_ms(ctx, h, ray_buf.address, hit_buf.address, n, 3);
         status = !isfinite(samples[k] + samples[runs + k] + samples[2 * runs + k]);
     }
-    /* The last frame's hits: a sample is open where its ray missed. */
     const roma_bench_hwrt_desc rd = {.hits_buffer = hit_buf.buffer, .count = n};
     if (!status && n)
         status = read_hits(ctx, &rd, hits) != ROMA_SUCCESS;
-    for (uint32_t i = 0; i < d->count && !status; ++i)
-        ao[i] = 0.0f;
-    for (uint32_t r = 0; r < n && !status; ++r)
-        ao[owner[r]] += (hits[r].info & ROMA_HIT_FLAG) ? 0.0f : 1.0f / (float)spp;
     for (int c = 0; c < 3 && !status; ++c)
         ms[c] = roma_app_median(samples + c * runs, (int)runs);
-    *ray_count = n;
     roma_buffer_destroy(ctx, &ray_buf);
     roma_buffer_destroy(ctx, &hit_buf);
+    free(samples);
+    return status;
+}
+
+/* The rays of d's points, made by `make` (the reference's AO samples or light segments; 0:
+ * none for that one), each with the index of its point. */
+typedef int (*ray_maker)(const roma_ref *ref, const roma_gbuffer_pixel *p, uint32_t pixel, uint32_t k,
+                         const void *user, roma_ray *out);
+
+static int ao_ray(const roma_ref *ref, const roma_gbuffer_pixel *p, uint32_t pixel, uint32_t k, const void *user,
+                  roma_ray *r)
+{
+    const roma_bench_hwrt_ao_desc *d = user;
+    r->tmin = 0.0f;
+    return roma_ref_ao_ray(ref, p->position_t, p->geometric_normal, p->shading_normal, d->radius, d->seed, pixel, k,
+                           r->origin, r->dir, &r->tmax);
+}
+
+static int light_ray(const roma_ref *ref, const roma_gbuffer_pixel *p, uint32_t pixel, uint32_t k, const void *user,
+                     roma_ray *r)
+{
+    (void)pixel;
+    const roma_bench_hwrt_lights_desc *d = user;
+    r->tmin = 0.0f;
+    return roma_ref_light_segment(ref, p->position_t, p->geometric_normal, p->shading_normal,
+                                  &d->light_positions[3 * (size_t)k], r->origin, r->dir, &r->tmax);
+}
+
+/* out[i]: the share of point i's `per_point` rays that miss (rays `make` declines count as
+ * blocked), traced after both structures are rebuilt. */
+static int open_share(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_gbuffer_pixel *px,
+                      const uint32_t *covered, uint32_t count, uint32_t per_point, ray_maker make, const void *user,
+                      uint32_t runs, float *out, double ms[3], uint32_t *ray_count)
+{
+    const size_t wanted = (size_t)count * per_point, max_rays = wanted > 0 ? wanted : 1;
+    roma_ray *rays = malloc(sizeof *rays * max_rays);
+    uint32_t *owner = malloc(sizeof *owner * max_rays);
+    roma_hit *hits = malloc(sizeof *hits * max_rays);
+    int status = !rays || !owner || !hits || max_rays > UINT32_MAX;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < count && !status; ++i) {
+        const uint32_t pixel = covered ? covered[i] : i;
+        for (uint32_t k = 0; k < per_point; ++k)
+            if (make(ref, &px[pixel], pixel, k, user, &rays[n]))
+                owner[n++] = i;
+    }
+    if (!status)
+        status = roma_bench_hwrt_rays(ctx, h, rays, n, runs, hits, ms);
+    for (uint32_t i = 0; i < count && !status; ++i)
+        out[i] = 0.0f;
+    for (uint32_t r = 0; r < n && !status; ++r)
+        out[owner[r]] += (hits[r].info & ROMA_HIT_FLAG) ? 0.0f : 1.0f / (float)per_point;
+    *ray_count = n;
     free(rays);
     free(owner);
     free(hits);
-    free(samples);
     return status;
+}
+
+int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_bench_hwrt_ao_desc *d,
+                       float *ao, double ms[3], uint32_t *ray_count)
+{
+    return open_share(ctx, h, ref, d->px, d->covered, d->count, d->spp ? d->spp : 1, ao_ray, d, d->runs, ao, ms,
+                      ray_count);
+}
+
+int roma_bench_hwrt_lights(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_bench_hwrt_lights_desc *d,
+                           float *share, double ms[3], uint32_t *ray_count)
+{
+    return open_share(ctx, h, ref, d->px, d->covered, d->count, d->light_count, light_ray, d, d->runs, share, ms,
+                      ray_count);
 }
 
 int roma_bench_hwrt_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_hwrt_frame_desc *d, FILE *csv)

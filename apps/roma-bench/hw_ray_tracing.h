@@ -42,6 +42,22 @@ typedef struct roma_bench_hwrt_ao_desc {
     uint32_t seed, runs;
 } roma_bench_hwrt_ao_desc;
 
+/* The shadow segments from G-buffer points to point lights, the reference's. */
+typedef struct roma_bench_hwrt_lights_desc {
+    const roma_gbuffer_pixel *px;
+    const uint32_t *covered; /* the points: px[covered[i]]; NULL: px[i] */
+    uint32_t count;
+    const float *light_positions; /* 3 floats a light */
+    uint32_t light_count;
+    uint32_t runs;
+} roma_bench_hwrt_lights_desc;
+
+/* rays (n of them, host memory) uploaded, then traced any-hit after both structures are rebuilt
+ * (runs times after a warm-up); hits: the last trace's; ms: medians of the build alone, the
+ * trace alone and both in one submission (host-observed). Returns 0 on success. */
+int roma_bench_hwrt_rays(roma_context *ctx, roma_hwrt *hwrt, const roma_ray *rays, uint32_t n, uint32_t runs,
+                         roma_hit *hits, double ms[3]);
+
 /* The AO of d's points (ao[i] for the i-th point, count of them) from spp rays each, Embree's
  * (roma_ref_ao_ray: made on the host and uploaded, untimed), traced any-hit after both
  * structures are rebuilt; ms: medians of runs of the build alone, the trace alone and both in
@@ -49,6 +65,12 @@ typedef struct roma_bench_hwrt_ao_desc {
 struct roma_ref;
 int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref *ref, const roma_bench_hwrt_ao_desc *desc,
                        float *ao, double ms[3], uint32_t *ray_count);
+
+/* The share of the lights each of d's points sees (share[i]), from the reference's segments
+ * (roma_ref_light_segment: lights behind the shading hemisphere count as unseen), traced any hit;
+ * ms and *ray_count as roma_bench_hwrt_ao's. */
+int roma_bench_hwrt_lights(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref *ref,
+                           const roma_bench_hwrt_lights_desc *desc, float *share, double ms[3], uint32_t *ray_count);
 
 /* roma-bench's dynamic AO frame through the hardware: both structures rebuilt, then Embree's
  * AO rays at the covered G-buffer points (px[covered[i]]) with the same samples. */

@@ -435,7 +435,7 @@ int main(int argc, char **argv)
     char hwrt_why[256] = "";
     roma_context *ctx = NULL;
     roma_context_desc cdesc = {0};
-    if ((!accuracy && !cascades && !growth) || (accuracy && effect == ROMA_BENCH_EFFECT_AO)) {
+    if ((!accuracy && !cascades && !growth) || (accuracy && (effect == ROMA_BENCH_EFFECT_AO || effect == ROMA_BENCH_EFFECT_LIGHTS))) {
         const char *validation = getenv("ROMA_VALIDATION"), *device = getenv("ROMA_DEVICE");
         if (roma_hwrt_device_create(device, validation && *validation && strcmp(validation, "0") != 0,
                                     &hwrt_device, hwrt_why, sizeof hwrt_why) == ROMA_SUCCESS)

@@ -219,23 +219,32 @@ void roma_ref_indirect_point(const roma_ref *ref, const float p[3], const float 
         out_rgb[c] = (float)(albedo[c] * acc[c] / (double)spp);
 }
 
+int roma_ref_light_segment(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                           const float light[3], float origin[3], float dir[3], float *tmax)
+{
+    roma_ref_offset_origin(ref, p, gn, origin);
+    float l[3];
+    roma_ref_sub(light, p, l);
+    /* Lights behind the shading hemisphere do not count. */
+    if (roma_ref_dot(n, l) <= 0.0f)
+        return 0;
+    roma_ref_sub(light, origin, dir);
+    const float d = roma_ref_normalize(dir);
+    *tmax = d > 0.0f ? d * (1.0f - SEGMENT_SHORTEN) : 0.0f; /* a light at the origin is seen */
+    return 1;
+}
+
 uint32_t roma_ref_count_visible_lights(const roma_ref *ref, const float p[3], const float gn[3],
                                        const float n[3], const float *light_positions,
                                        uint32_t light_count)
 {
     if (!ref || !p || !gn || !n || !light_positions)
         return 0;
-    float origin[3];
-    roma_ref_offset_origin(ref, p, gn, origin);
     uint32_t visible = 0;
     for (uint32_t i = 0; i < light_count; ++i) {
-        const float *lp = &light_positions[3 * (size_t)i];
-        float l[3];
-        roma_ref_sub(lp, p, l);
-        /* Lights behind the shading hemisphere do not count. */
-        if (roma_ref_dot(n, l) <= 0.0f)
-            continue;
-        if (!segment_occluded(ref, origin, lp))
+        float origin[3], dir[3], tmax;
+        if (roma_ref_light_segment(ref, p, gn, n, &light_positions[3 * (size_t)i], origin, dir, &tmax) &&
+            !(tmax > 0.0f && roma_ref_occluded(ref, origin, dir, 0.0f, tmax)))
             ++visible;
     }
     return visible;

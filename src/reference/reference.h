@@ -108,6 +108,13 @@ void roma_ref_indirect_point(const roma_ref *ref, const float p[3], const float 
                              const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
                              uint32_t pixel, float out_rgb[3]);
 
+/* The shadow segment from p to one point light (roma_ref_count_visible_lights' ray, for tracers
+ * that trace it elsewhere): the offset origin, the unit direction to the light and the
+ * segment's end, shortened as the reference's (0 for a light at the origin: seen). Returns 0
+ * where the light lies behind the shading hemisphere: it does not count, untraced. */
+int roma_ref_light_segment(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                           const float light[3], float origin[3], float dir[3], float *tmax);
+
 /* Number of light positions (3 floats each) visible from p: segment from the
  * offset origin; positions with dot(n, L - p) <= 0 count as not visible. */
 uint32_t roma_ref_count_visible_lights(const roma_ref *ref, const float p[3], const float gn[3],

@@ -679,6 +679,12 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
                lights ? ", every segment to each light" : " and samples", d->runs == 1 ? "one run" : "median of runs",
                lights ? "" : "spp");
     for (uint32_t spp = 1; spp <= total && !status; spp *= 2) {
+        const uint64_t wanted = (uint64_t)count * (lights ? s->light_count : spp);
+        if (wanted > ROMA_BENCH_HWRT_MAX_RAYS) {
+            printf("(the rows stop here: %llu rays, made on the host, are more than a row traces, %u)\n",
+                   (unsigned long long)wanted, ROMA_BENCH_HWRT_MAX_RAYS);
+            break;
+        }
         double ms[3], mae, bias, flip = NAN;
         uint32_t rays;
         if (lights) {

@@ -212,10 +212,15 @@ static int open_share(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, cons
                       uint32_t runs, float *out, double ms[3], uint32_t *ray_count)
 {
     const size_t wanted = (size_t)count * per_point, max_rays = wanted > 0 ? wanted : 1;
+    if (max_rays > ROMA_BENCH_HWRT_MAX_RAYS) {
+        fprintf(stderr, "roma-bench: %zu hardware rays are more than a batch takes (%u)\n", max_rays,
+                ROMA_BENCH_HWRT_MAX_RAYS);
+        return 1;
+    }
     roma_ray *rays = malloc(sizeof *rays * max_rays);
     uint32_t *owner = malloc(sizeof *owner * max_rays);
     roma_hit *hits = malloc(sizeof *hits * max_rays);
-    int status = !rays || !owner || !hits || max_rays > UINT32_MAX;
+    int status = !rays || !owner || !hits;
     uint32_t n = 0;
     for (uint32_t i = 0; i < count && !status; ++i) {
         const uint32_t pixel = covered ? covered[i] : i;

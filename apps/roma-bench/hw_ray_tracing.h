@@ -42,6 +42,10 @@ typedef struct roma_bench_hwrt_ao_desc {
     uint32_t seed, runs;
 } roma_bench_hwrt_ao_desc;
 
+/* The most rays one hardware row traces: they are made on the host and uploaded (32 bytes each,
+ * with their hits and owners 44), so the rows stop before a batch would pass it. */
+#define ROMA_BENCH_HWRT_MAX_RAYS (32u << 20)
+
 /* The shadow segments from G-buffer points to point lights, the reference's. */
 typedef struct roma_bench_hwrt_lights_desc {
     const roma_gbuffer_pixel *px;

@@ -43,7 +43,8 @@ awk -v a="$e1" -v b="$e2" 'BEGIN { exit !(a > 0 && b > 0 && b < a) }' || fail "R
 
 # The fronts, recomputed from the CSV: ROMA and the baselines cost frames x ms per frame
 # (the screen-space rows: steps in the CSV's res column),
-# Embree its ms for the image; its row at the reference's own sample count has error 0.
+# Embree (and hardware ray tracing, where it runs) its ms for the image; Embree's row at the
+# reference's own sample count has error 0.
 python3 - "$dir/out.txt" "$dir/accuracy.csv" <<'EOF' || fail "the printed Pareto fronts are not the fronts of the measured points"
 import csv, re, sys
 text = open(sys.argv[1]).read()
@@ -61,6 +62,9 @@ for (name, res, angular), v in values.items():
         points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
     elif name == "embree ao ms":
         points.append(("Embree (spp)", res, v, values[("embree ao mae", res, angular)], values[("embree ao flip", res, angular)]))
+    elif name == "hardware ao ms":  # where a device has hardware ray tracing: its ms for the image
+        points.append(("hardware ray tracing (spp)", res, v, values[("hardware ao mae", res, angular)],
+                       values[("hardware ao flip", res, angular)]))
 printed = {"MAE": [], "FLIP": [], "MAE, GPU": [], "FLIP, GPU": []}
 for line in text.splitlines():
     cells = [c.strip() for c in line.strip().strip("|").split("|")]

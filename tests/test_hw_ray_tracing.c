@@ -106,7 +106,7 @@ static void trace_against_embree(roma_hwrt_device *dev)
                closest ? "closest hit" : "any hit", hit_count, N, disagree, far);
         CHECK(hit_count > N / 4 && hit_count < N); /* bounded rays miss, unbounded ones hit the closed room */
         CHECK(disagree <= N / 1000);
-        CHECK(far == 0);
+        CHECK(far <= N / 1000); /* a ray grazing an edge may meet another triangle */
     }
     roma_buffer_destroy(ctx, &ray_buf);
     roma_buffer_destroy(ctx, &hit_buf);
@@ -129,7 +129,7 @@ int main(void)
     CHECK_RESULT(roma_hwrt_create(NULL, NULL, NULL, &h), ROMA_ERROR_INVALID_ARGUMENT);
     CHECK(h == NULL);
     roma_hwrt_destroy(NULL);
-    roma_hwrt_device_destroy(NULL);
+    CHECK(roma_hwrt_device_destroy(NULL) == 0);
     CHECK(roma_hwrt_device_external(NULL) == NULL);
 
     const char *validation = getenv("ROMA_VALIDATION");
@@ -150,7 +150,6 @@ int main(void)
     }
     printf("hardware ray tracing on this device\n");
     trace_against_embree(dev);
-    CHECK(roma_hwrt_device_validation_messages(dev) == 0);
-    roma_hwrt_device_destroy(dev);
+    CHECK(roma_hwrt_device_destroy(dev) == 0); /* no validation error in its whole life */
     return roma_test_finish("test_hw_ray_tracing");
 }

@@ -601,7 +601,7 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
         snprintf(tag, sizeof tag, "ao-divisor-%u", divisor);
         snprintf(label, sizeof label, "1/%u", divisor * divisor);
         double ms, mae;
-        if (measure_setting(s, &rd, name, tag, "ROMA A 4, RES 128, traced pixels", label, "128", "4", 128, 4, &ms,
+        if (measure_setting(s, &rd, name, tag, "ROMA A 4, traced pixels", label, "128", "4", 128, 4, &ms,
                             &mae))
             status = 1;
     }

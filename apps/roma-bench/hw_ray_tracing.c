@@ -21,10 +21,15 @@ static double timed(roma_context *ctx, roma_hwrt *h, roma_gpu_timer *timer, cons
         return NAN;
     roma_gpu_timer_reset(timer, cmd);
     const uint32_t scope = roma_gpu_timer_begin(timer, cmd, "hwrt");
-    if (step == 2)
+    if (step == 2) {
         roma_hwrt_record_build(h, cmd);
-    else
+    } else {
+        /* After earlier traces (ROMA's or the hardware's) that wrote the same hits. */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_hwrt_record_trace(h, cmd, d->rays, d->hits, d->count, step);
+    }
     roma_gpu_timer_end(timer, cmd, scope);
     const double ms = roma_bench_submit_ms(ctx, cmd, ROMA_SUCCESS);
     roma_gpu_timing t;
@@ -143,8 +148,12 @@ static double frame_ms(roma_context *ctx, roma_hwrt *h, VkDeviceAddress rays, Vk
         return NAN;
     if (what & 1)
         roma_hwrt_record_build(h, cmd);
-    if (what & 2)
+    if (what & 2) {
+        /* After the last submission's trace, which wrote the same hits. */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         roma_hwrt_record_trace(h, cmd, rays, hits, n, 0);
+    }
     return roma_bench_submit_ms(ctx, cmd, ROMA_SUCCESS);
 }
 
@@ -284,7 +293,7 @@ int roma_bench_hwrt_frame(roma_context *ctx, const roma_scene *scene, const roma
             break;
         for (uint32_t i = 0; i < d->count; ++i)
             sum += ao[i];
-        printf("| %u (hardware) | %u | %.2f | %.2f | %.2f | %.3f |\n", spps[si], n, med[0], med[1], med[2],
+        printf("| %u (hardware) | %u | %.3f | %.3f | %.3f | %.3f |\n", spps[si], n, med[0], med[1], med[2],
                d->count ? sum / d->count : 0.0);
         if (csv) {
             static const char *names[3] = {"hwrt_build", "hwrt_ao", "hwrt_frame"};

@@ -184,12 +184,11 @@ static int finish(roma_context *ctx, roma_scene *scene, roma_ref *ref, roma_gpu_
     }
     roma_context_destroy(ctx);
     roma_scene_destroy(scene);
-    if (roma_hwrt_device_validation_messages(hwrt_device)) {
-        fprintf(stderr, "roma-bench: %u Vulkan validation message(s) on the ray-tracing device\n",
-                roma_hwrt_device_validation_messages(hwrt_device));
+    const uint32_t hwrt_errors = roma_hwrt_device_destroy(hwrt_device);
+    if (hwrt_errors) {
+        fprintf(stderr, "roma-bench: %u Vulkan validation error(s) on the ray-tracing device\n", hwrt_errors);
         status = 1;
     }
-    roma_hwrt_device_destroy(hwrt_device);
     return status;
 }
 
@@ -442,6 +441,14 @@ int main(int argc, char **argv)
             cdesc.external = roma_hwrt_device_external(hwrt_device);
     }
     r = roma_context_create(&cdesc, &ctx);
+    if (r != ROMA_SUCCESS && hwrt_device) { /* libroma on its own device, without the hardware rows */
+        snprintf(hwrt_why, sizeof hwrt_why, "libroma on the ray-tracing device: %s", roma_result_string(r));
+        if (roma_hwrt_device_destroy(hwrt_device))
+            fprintf(stderr, "roma-bench: Vulkan validation errors on the ray-tracing device\n");
+        hwrt_device = NULL;
+        cdesc.external = NULL;
+        r = roma_context_create(&cdesc, &ctx);
+    }
     roma_ref *ref = NULL;
     if (r == ROMA_SUCCESS)
         r = roma_ref_create(scene, NULL, &ref);

@@ -75,9 +75,9 @@ static void print_statistics(roma_context *ctx, VkPipelineLayout layout, const u
 }
 
 /* One rung (step) at a workgroup size (group): medians of runs after a warm-up, timestamps and
- * host-observed. Prints the pipeline's statistics after it where asked. Returns 0 on success. */
+ * host-observed. Returns 0 on success. */
 static int time_rung(roma_context *ctx, const roma_trace_push *push, uint32_t runs, roma_gpu_timer *timer,
-                     uint32_t step, uint32_t group, int statistics, double *samples, double *ts, double *host)
+                     uint32_t step, uint32_t group, double *samples, double *ts, double *host)
 {
     const uint32_t constants[3] = {0u, step, group};
     roma_compute_pipeline p = {0};
@@ -105,8 +105,6 @@ static int time_rung(roma_context *ctx, const roma_trace_push *push, uint32_t ru
             samples[k - 1] = g, samples[runs + k - 1] = h;
         status = !isfinite(h);
     }
-    if (!status && statistics)
-        print_statistics(ctx, p.layout, constants);
     roma_compute_pipeline_destroy(ctx, &p);
     *ts = roma_app_median(samples, (int)runs);
     *host = roma_app_median(samples + runs, (int)runs);
@@ -134,9 +132,7 @@ int roma_bench_trace_ladder(roma_context *ctx, const roma_map *map, VkDeviceAddr
     double previous = 0.0;
     for (uint32_t step = 0; step < RUNGS && !status; ++step) {
         double ts, host;
-        /* The driver's statistics of the whole trace, where the device reports them. */
-        status = time_rung(ctx, &push, runs, timer, step, ROMA_TRACE_WORKGROUP_SIZE, statistics && step == RUNGS - 1,
-                           samples, &ts, &host);
+        status = time_rung(ctx, &push, runs, timer, step, ROMA_TRACE_WORKGROUP_SIZE, samples, &ts, &host);
         if (status)
             break;
         const double ms = cpu_device ? host : ts;
@@ -155,7 +151,7 @@ int roma_bench_trace_ladder(roma_context *ctx, const roma_map *map, VkDeviceAddr
             groups[g] > ctx->properties.limits.maxComputeWorkGroupInvocations)
             continue;
         double ts, host;
-        status = time_rung(ctx, &push, runs, timer, RUNGS - 1, groups[g], 0, samples, &ts, &host);
+        status = time_rung(ctx, &push, runs, timer, RUNGS - 1, groups[g], samples, &ts, &host);
         if (status)
             break;
         const double ms = cpu_device ? host : ts;
@@ -165,6 +161,15 @@ int roma_bench_trace_ladder(roma_context *ctx, const roma_map *map, VkDeviceAddr
             fprintf(csv, "ladder,%s timestamp,%u,%u,%.6f,ms\nladder,%s host,%u,%u,%.6f,ms\n", name, info.resolution,
                     info.angular, ts, name, info.resolution, info.angular, host);
         printf("| %s | %.3f | %.2f | %.2f | - |\n", name, ts, host, ms * 1e6 / n);
+    }
+    /* The driver's statistics of the whole trace (libroma's workgroup), where it reports them. */
+    const uint32_t whole[3] = {0u, RUNGS - 1, ROMA_TRACE_WORKGROUP_SIZE};
+    roma_compute_pipeline p = {0};
+    if (!status && statistics &&
+        roma_compute_pipeline_create_flags(ctx, "trace_ladder.comp", NULL, 0, sizeof push, whole, 3, 0, &p) ==
+            ROMA_SUCCESS) {
+        print_statistics(ctx, p.layout, whole);
+        roma_compute_pipeline_destroy(ctx, &p);
     }
     free(samples);
     return status;

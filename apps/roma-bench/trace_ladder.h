@@ -13,7 +13,7 @@
 /* Prints the ladder's table for n rays at rays (hits written at hits) through map (built, one
  * level); medians of runs. cpu_device: the per-ray column uses host-observed times.
  * statistics: the device has VK_KHR_pipeline_executable_properties enabled, and the whole
- * trace's pipeline statistics (registers, spills) are printed after its row. Returns 0 unless
+ * trace's pipeline statistics (registers, spills) are printed after the table. Returns 0 unless
  * a step failed. */
 int roma_bench_trace_ladder(roma_context *ctx, const roma_map *map, VkDeviceAddress rays, VkDeviceAddress hits,
                             uint32_t n, uint32_t runs, roma_gpu_timer *timer, int cpu_device, int statistics,

@@ -147,7 +147,7 @@ int roma_ref_ao_ray(const roma_ref *ref, const float p[3], const float gn[3], co
     cosine_direction(n, seed, pixel, sample, DIM_AO, dir);
     *tmax = (radius > 0.0f) ? radius : INFINITY; /* also maps NaN to unbounded */
     /* Directions below the geometric surface (possible when n != gn) are occluded. */
-    return roma_ref_dot(dir, gn) > 0.0f;
+    return !(roma_ref_dot(dir, gn) <= 0.0f); /* a NaN product is traced, as before */
 }
 
 float roma_ref_ao_point(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],

@@ -75,8 +75,9 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
                                                  const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
 {
     roma_hwrt_device *d = user;
-    /* The layer's findings count; the loader's own notes (a rejected driver manifest) are shown. */
-    if (type & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT))
+    (void)type;
+    /* Errors count, as libroma's own validation counts them; warnings are shown. */
+    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)
         ++d->validation_messages;
     fprintf(stderr, "hardware ray tracing, %s: %s\n",
             severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning",
@@ -206,7 +207,16 @@ static roma_result create_instance(roma_hwrt_device *d, int validation, char *wh
     VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
                              .pApplicationName = "libroma hardware ray-tracing baseline",
                              .apiVersion = VK_API_VERSION_1_3};
+    /* The same messenger for the instance's creation and destruction. */
+    const VkDebugUtilsMessengerCreateInfoEXT m = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = on_message,
+        .pUserData = d};
     VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                                 .pNext = validation ? &m : NULL,
                                  .pApplicationInfo = &app,
                                  .enabledLayerCount = validation ? 1u : 0u,
                                  .ppEnabledLayerNames = layers,
@@ -221,15 +231,6 @@ static roma_result create_instance(roma_hwrt_device *d, int validation, char *wh
     if (validation) {
         PFN_vkCreateDebugUtilsMessengerEXT create_messenger =
             (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(d->instance, "vkCreateDebugUtilsMessengerEXT");
-        VkDebugUtilsMessengerCreateInfoEXT m = {
-            .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-            .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-            .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-            .pfnUserCallback = on_message,
-            .pUserData = d};
         if (!create_messenger || create_messenger(d->instance, &m, NULL, &d->messenger) != VK_SUCCESS) {
             say(why, why_size, "vkCreateDebugUtilsMessengerEXT failed");
             return ROMA_ERROR_MISSING_FEATURE;
@@ -312,10 +313,10 @@ roma_result roma_hwrt_device_create(const char *device_name, int validation, rom
     return ROMA_SUCCESS;
 }
 
-void roma_hwrt_device_destroy(roma_hwrt_device *d)
+uint32_t roma_hwrt_device_destroy(roma_hwrt_device *d)
 {
     if (!d)
-        return;
+        return 0;
     if (d->device) {
         vkDeviceWaitIdle(d->device);
         vkDestroyDevice(d->device, NULL);
@@ -328,7 +329,9 @@ void roma_hwrt_device_destroy(roma_hwrt_device *d)
     }
     if (d->instance)
         vkDestroyInstance(d->instance, NULL);
+    const uint32_t messages = d->validation_messages;
     free(d);
+    return messages;
 }
 
 const roma_external_device *roma_hwrt_device_external(const roma_hwrt_device *d)
@@ -339,11 +342,6 @@ const roma_external_device *roma_hwrt_device_external(const roma_hwrt_device *d)
 int roma_hwrt_device_has_pipeline_statistics(const roma_hwrt_device *d)
 {
     return d && d->statistics;
-}
-
-uint32_t roma_hwrt_device_validation_messages(const roma_hwrt_device *d)
-{
-    return d ? d->validation_messages : 0u;
 }
 
 static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a)

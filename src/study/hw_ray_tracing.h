@@ -30,16 +30,15 @@ typedef struct roma_hwrt_device roma_hwrt_device;
  * or driver. On failure nothing is left and *out is NULL. */
 roma_result roma_hwrt_device_create(const char *device_name, int validation, roma_hwrt_device **out, char *why,
                                     size_t why_size);
-/* Accepts NULL. Every context and object on the device must have been destroyed before. */
-void roma_hwrt_device_destroy(roma_hwrt_device *device);
+/* Accepts NULL (returns 0). Every context and object on the device must have been destroyed
+ * before. Returns the validation errors of the device's whole life, its destruction included. */
+uint32_t roma_hwrt_device_destroy(roma_hwrt_device *device);
 /* What roma_context_desc.external takes; valid while the device lives. */
 const roma_external_device *roma_hwrt_device_external(const roma_hwrt_device *device);
 /* Whether the device was created with VK_KHR_pipeline_executable_properties (enabled where
  * offered: pipelines created with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR report their
  * registers, spills and the like). */
 int roma_hwrt_device_has_pipeline_statistics(const roma_hwrt_device *device);
-/* Validation messages of warning or error severity so far (0 without validation). */
-uint32_t roma_hwrt_device_validation_messages(const roma_hwrt_device *device);
 
 /* The scene's acceleration structures, the ray-tracing pipeline and its shader binding table
  * (opaque). */

@@ -33,7 +33,6 @@ struct roma_hwrt_device {
 
 struct roma_hwrt {
     roma_context *ctx;
-    const roma_hwrt_device *dev;
     PFN_vkCreateAccelerationStructureKHR create_as;
     PFN_vkDestroyAccelerationStructureKHR destroy_as;
     PFN_vkGetAccelerationStructureBuildSizesKHR build_sizes;
@@ -318,6 +317,7 @@ uint32_t roma_hwrt_device_destroy(roma_hwrt_device *d)
     if (!d)
         return 0;
     if (d->device) {
+        /* Destruction only, never on a frame's path: the device's last work must be done. */
         vkDeviceWaitIdle(d->device);
         vkDestroyDevice(d->device, NULL);
     }
@@ -604,7 +604,6 @@ roma_result roma_hwrt_create(roma_context *ctx, const roma_hwrt_device *dev, con
     if (!h)
         return ROMA_ERROR_OUT_OF_HOST_MEMORY;
     h->ctx = ctx;
-    h->dev = dev;
     DEVICE_FN(h, create_as, PFN_vkCreateAccelerationStructureKHR, "vkCreateAccelerationStructureKHR");
     DEVICE_FN(h, destroy_as, PFN_vkDestroyAccelerationStructureKHR, "vkDestroyAccelerationStructureKHR");
     DEVICE_FN(h, build_sizes, PFN_vkGetAccelerationStructureBuildSizesKHR, "vkGetAccelerationStructureBuildSizesKHR");

@@ -58,6 +58,7 @@ for (name, res, angular), v in values.items():
         tag = name[: -len(" ms per frame")]
         series = {"voxel-dda": "voxel traversal", "distance-field": "distance field", "naadf": "NAADF",
                   "sd-map": "stochastic depth map (layers)",
+                  "sd-map-traced": "stochastic depth map, ray traced (layers)",
                   "screen-space": "screen space (steps)"}.get(tag, "ROMA A " + angular)
         points.append((series, res, v * frames, values[(tag + " mae", res, angular)], values[(tag + " flip", res, angular)]))
     elif name == "embree ao ms":
@@ -221,6 +222,15 @@ else
   rows=$(grep -cE '^\| (1|2|4|8|16|32|64) \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$' \
     <(sed -n '/^| hardware spp |/,/^$/p' "$dir/out.txt"))
   [ "$rows" -eq 7 ] || fail "expected 7 hardware rows (1 to 64 samples), found $rows"
+fi
+# The stochastic depth map ray traced (the seed paper's acquisition): skipped with the same
+# reason, or a row for each of its layer counts.
+if grep -q "^paper's ray-traced acquisition: skipped: " "$dir/out.txt"; then
+  grep -q "^paper's ray-traced acquisition: skipped: .*\(offers no VK_KHR_\|lacks\)" "$dir/out.txt" ||
+    fail "the ray-traced depth map was skipped without the device's reason"
+else
+  rows=$(grep -c '^| stochastic depth map ray traced, [24] layers |' "$dir/out.txt")
+  [ "$rows" -eq 2 ] || fail "expected 2 ray-traced depth map rows, found $rows"
 fi
 
 # Bad use: --plot without --accuracy; a PNG or CSV that cannot be written (refused before

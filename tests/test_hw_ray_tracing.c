@@ -4,7 +4,9 @@
  * behind (the sanitizer suite checks for leaks) and refuses bad arguments. Where one does: on
  * the built-in room, rays from random points inside it in random directions, some bounded,
  * traced by the hardware and by Embree: the any-hit answers agree but for rays that graze an
- * edge, the closest distances agree to float precision, the validation layer says nothing. */
+ * edge, the closest distances agree to float precision; the ray-traced stochastic depth map
+ * keeps, where a view ray passes fewer surfaces than it has layers, exactly the surfaces Embree
+ * finds along that ray; the validation layer says nothing. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +16,7 @@
 #include "roma/builtin_scenes.h"
 #include "roma/map.h"
 #include "roma/roma.h"
+#include "roma_shared.h"
 #include "study/hw_ray_tracing.h"
 #include "vulkan/upload.h"
 #include "vulkan/vk_internal.h"
@@ -118,6 +121,139 @@ done:
     roma_context_destroy(ctx);
 }
 
+enum { W = 64, H = 48, LAYERS = 4 };
+
+/* Every surface along a view ray, by Embree: closest hits, each next one searched from just
+ * past the last (at most max). */
+static uint32_t embree_surfaces(const roma_ref *ref, const float o[3], const float d[3], float tmin, float *t,
+                                uint32_t max)
+{
+    uint32_t n = 0;
+    float from = tmin;
+    while (n < max) {
+        const float inf = INFINITY;
+        float hit;
+        roma_ref_intersect_batch(ref, 1, o, d, &from, &inf, &hit);
+        if (!isfinite(hit))
+            break;
+        t[n++] = hit;
+        from = hit + 1e-4f;
+    }
+    return n;
+}
+
+/* The ray-traced stochastic depth map from inside the built-in room, against Embree. */
+static void depth_layers_against_embree(roma_hwrt_device *dev)
+{
+    roma_context *ctx = NULL;
+    roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
+    roma_scene *scene = NULL;
+    roma_ref *ref = NULL;
+    CHECK_RESULT(roma_context_create(&cd, &ctx), ROMA_SUCCESS);
+    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
+    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    roma_hwrt *h = NULL;
+    if (ctx && scene && ref)
+        CHECK_RESULT(roma_hwrt_create(ctx, dev, scene, &h), ROMA_SUCCESS);
+    if (!h)
+        goto done;
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    roma_camera cam = {.fovy_deg = 60.0f};
+    for (int a = 0; a < 3; ++a) {
+        const float c = 0.5f * (v.bounds_min[a] + v.bounds_max[a]), e = v.bounds_max[a] - v.bounds_min[a];
+        const float eye[3] = {0.0f, 0.1f, 0.3f}, at[3] = {-0.2f, -0.2f, -0.5f};
+        cam.eye[a] = c + eye[a] * e;
+        cam.target[a] = c + at[a] * e;
+    }
+    const float near_plane = 0.01f;
+    const size_t bytes = (size_t)W * H * LAYERS * sizeof(roma_gbuffer_pixel);
+    roma_buffer pixels = {0}, readback = {0};
+    CHECK_RESULT(roma_buffer_create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                    ROMA_MEMORY_DEVICE, &pixels),
+                 ROMA_SUCCESS);
+    CHECK_RESULT(roma_buffer_create(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &readback),
+                 ROMA_SUCCESS);
+    VkCommandBuffer cmd;
+    if (readback.mapped && roma_begin_one_shot(ctx, &cmd) == ROMA_SUCCESS) {
+        /* Bad arguments record nothing. */
+        CHECK_RESULT(roma_hwrt_record_depth_layers(h, cmd, &cam, near_plane, pixels.address, W, H, 0, 1),
+                     ROMA_ERROR_INVALID_ARGUMENT);
+        CHECK_RESULT(roma_hwrt_record_depth_layers(h, cmd, &cam, 0.0f, pixels.address, W, H, LAYERS, 1),
+                     ROMA_ERROR_INVALID_ARGUMENT);
+        CHECK_RESULT(roma_hwrt_record_depth_layers(h, cmd, &cam, near_plane, pixels.address, W, H, LAYERS, 1),
+                     ROMA_SUCCESS);
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_SHADER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        vkCmdCopyBuffer(cmd, pixels.buffer, readback.buffer, 1, &(VkBufferCopy){0, 0, bytes});
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        CHECK_RESULT(roma_submit_one_shot(ctx, cmd), ROMA_SUCCESS);
+        CHECK_RESULT(roma_buffer_invalidate(ctx, &readback), ROMA_SUCCESS);
+        const roma_gbuffer_pixel *px = readback.mapped;
+        roma_camera_frame f;
+        CHECK(roma_camera_make_frame(&cam, W, H, &f));
+        const float sx = 0.5f * (float)W / (f.tan_half_fovy * f.aspect), sy = 0.5f * (float)H / f.tan_half_fovy;
+        uint32_t compared = 0, differ = 0, kept = 0, off_triangle = 0;
+        for (uint32_t y = 0; y < H; ++y)
+            for (uint32_t x = 0; x < W; ++x) {
+                /* The shader's view ray (hwrt_depth_layers.rgen). */
+                const float cx = (float)x + 0.5f - 0.5f * W, cy = (float)y + 0.5f - 0.5f * H;
+                float d[3], len = 0.0f;
+                for (int a = 0; a < 3; ++a) {
+                    d[a] = f.forward[a] + f.right[a] * (cx / sx) - f.up[a] * (cy / sy);
+                    len += d[a] * d[a];
+                }
+                len = sqrtf(len);
+                for (int a = 0; a < 3; ++a)
+                    d[a] /= len;
+                float t[9];
+                const uint32_t n = embree_surfaces(ref, f.origin, d, near_plane * len, t, 9);
+                float got[LAYERS];
+                uint32_t m = 0;
+                for (uint32_t l = 0; l < LAYERS; ++l) {
+                    const roma_gbuffer_pixel *g = &px[(size_t)l * W * H + (size_t)y * W + x];
+                    if (!isfinite(g->position_t[3]))
+                        continue;
+                    got[m++] = g->position_t[3];
+                    /* The point is on the ray at its distance. */
+                    float e = 0.0f;
+                    for (int a = 0; a < 3; ++a)
+                        e += fabsf(g->position_t[a] - (f.origin[a] + d[a] * g->position_t[3]));
+                    off_triangle += e > 1e-3f * (1.0f + g->position_t[3]);
+                }
+                kept += m;
+                if (n > LAYERS)
+                    continue; /* a reservoir's draw: fewer kept than passed */
+                ++compared;
+                /* Every surface Embree passes is kept (order aside), nothing else. */
+                int same = m == n;
+                for (uint32_t i = 0; i < n && same; ++i) {
+                    int found = 0;
+                    for (uint32_t j = 0; j < m; ++j)
+                        found |= fabsf(got[j] - t[i]) <= 1e-4f * (1.0f + t[i]);
+                    same = found;
+                }
+                differ += !same;
+            }
+        printf("depth map: %u surfaces kept in %u layers of %ux%u; %u pixels passing at most %u surfaces, %u of "
+               "them differ from Embree; %u points off their ray\n",
+               kept, LAYERS, W, H, compared, LAYERS, differ, off_triangle);
+        CHECK(compared > W * H / 2);
+        CHECK(kept > W * H); /* more than one surface a pixel in the mean: the layers see behind */
+        CHECK(differ <= W * H / 100); /* a ray grazing an edge may meet a triangle twice or not */
+        CHECK(off_triangle == 0);
+    }
+    roma_buffer_destroy(ctx, &pixels);
+    roma_buffer_destroy(ctx, &readback);
+done:
+    roma_hwrt_destroy(h);
+    roma_ref_destroy(ref);
+    roma_scene_destroy(scene);
+    roma_context_destroy(ctx);
+}
+
 int main(void)
 {
     char why[256];
@@ -150,6 +286,7 @@ int main(void)
     }
     printf("hardware ray tracing on this device\n");
     trace_against_embree(dev);
+    depth_layers_against_embree(dev);
     CHECK(roma_hwrt_device_destroy(dev) == 0); /* no validation error in its whole life */
     return roma_test_finish("test_hw_ray_tracing");
 }

@@ -531,8 +531,8 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_AO) && study_ao)
         r = roma_study_ao_create(e->ctx, d->ao_method, &ao_desc, &e->study_ao);
     if (r == ROMA_SUCCESS && e->study_ao && d->ssao_layers)
-        r = roma_study_depth_layers_create(e->ctx, scene, d->width, d->height, d->ssao_layers, d->ssao_keep,
-                                           &e->layers);
+        r = roma_study_depth_layers_create(e->ctx, scene, d->ssao_traced, d->width, d->height, d->ssao_layers,
+                                           d->ssao_keep, &e->layers);
     if (r == ROMA_SUCCESS && lit)
         r = roma_study_light_effect_create(e->ctx, &light_desc, d->shadow_method, &e->light);
     if (r == ROMA_SUCCESS && lit)

@@ -59,6 +59,9 @@ typedef struct effect_api_desc {
      * ssao_keep (0 = ROMA_AO_SSAO_KEEP). */
     uint32_t ssao_layers;
     float ssao_keep;
+    /* Non-NULL: those layers ray traced through it instead (the seed paper's acquisition,
+     * study/hw_ray_tracing.h; made from the same scene on the render's context). */
+    struct roma_hwrt *ssao_traced;
     /* GI from point and spot lights through their reflective shadow maps (study/study_rsm.h:
      * rsm_size square views, 0 = 256; a hit up to rsm_tolerance_cells trace cells farther from
      * the light than its texel's surface is lit) instead of shadow rays. */
@@ -90,7 +93,7 @@ typedef struct effect_api_result {
     uint64_t baseline_bytes, baseline_build_bytes;
     double rsm_ms;      /* desc.gi_rsm: the views' rasterization (the first frame's) */
     uint64_t rsm_bytes; /* their memory */
-    double depth_layers_ms;      /* desc.ssao_layers: their rasterization, summed over frames (not in ao_ms) */
+    double depth_layers_ms;      /* desc.ssao_layers: their acquisition, summed over frames (not in ao_ms) */
     uint64_t depth_layers_bytes; /* their memory */
 } effect_api_result;
 

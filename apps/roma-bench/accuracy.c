@@ -6,7 +6,8 @@
  * field built from them every frame and sphere-traced (the ROMA paper's comparator) and the
  * NAADF hierarchy built from them every frame (the same voxels, empty space skipped), and
  * by screen-space AO against the G-buffer's depth at three march lengths and against a
- * stochastic depth map of 2 and 4 layers beside it; timed per frame
+ * stochastic depth map of 2 and 4 layers beside it (rasterized, and where a device offers
+ * ray-tracing pipelines also ray traced, the seed paper's acquisition); timed per frame
  * (G-buffer once, then per frame: the array rebuilt with new jitter, none for screen space,
  * and the AO pass, from submit to fence on the host), against the Embree reference on the
  * same surface points and the same samples. Direct light (point, spot and area lights, soft
@@ -455,23 +456,6 @@ report:
 static const uint32_t ssao_steps[] = {8, 16, 32};
 static const uint32_t ssao_layers[] = {2, 4};
 
-/* Whether the device has VK_KHR_ray_query, which the stochastic depth map's ray-traced
- * acquisition (the seed paper's) needs; the study says so beside its rasterized layers. */
-static int device_has_ray_query(const roma_context *ctx)
-{
-    VkPhysicalDevice pd = roma_context_physical_device(ctx);
-    uint32_t n = 0;
-    if (!pd || vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL) != VK_SUCCESS || n == 0)
-        return 0;
-    VkExtensionProperties *ext = malloc(n * sizeof *ext);
-    int found = 0;
-    if (ext && vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) == VK_SUCCESS)
-        for (uint32_t i = 0; i < n && !found; ++i)
-            found = strcmp(ext[i].extensionName, VK_KHR_RAY_QUERY_EXTENSION_NAME) == 0;
-    free(ext);
-    return found;
-}
-
 /* AO with cascade levels around the camera's eye (row_cascades) at every RES x A: the rows
  * roma-render's defaults pick on a scene much larger than the radius (a game level). Sets the
  * time (all frames) and error of RES 128, A 4 with its levels. */
@@ -642,9 +626,35 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
                             ssao_layers[i], 0, &ms, &mae))
             status = 1;
     }
-    printf("\n(The stochastic depth map's layers are rasterized with stochastic discard. The seed paper's\n"
-           "ray-traced acquisition needs VK_KHR_ray_query, which this device %s; it is not implemented.)\n",
-           device_has_ray_query(s->ctx) ? "has" : "does not have");
+    /* The seed paper's acquisition: the same layers ray traced (its any-hit reservoir), the
+     * acceleration structures rebuilt every frame, in the layers' time. */
+    if (!d->hwrt) {
+        printf("\n(The stochastic depth map's layers above are rasterized with stochastic discard. The seed\n"
+               "paper's ray-traced acquisition: skipped: %s.)\n",
+               d->hwrt_why && *d->hwrt_why ? d->hwrt_why : "no device offers ray-tracing pipelines");
+        return status;
+    }
+    roma_hwrt *hw = NULL;
+    if (roma_hwrt_create(s->ctx, d->hwrt, s->scene, &hw) != ROMA_SUCCESS) {
+        fprintf(stderr, "roma-bench: the ray-traced stochastic depth map's acceleration structures failed\n");
+        return 1;
+    }
+    for (size_t i = 0; i < sizeof ssao_layers / sizeof ssao_layers[0]; ++i) {
+        effect_api_desc rd = {
+            .camera = *cam, .width = d->width, .height = d->height,
+            .options = {.effects = ROMA_EFFECT_AO, .resolution = 128}, .spp = d->spp, .frames = d->frames, .seed = 1,
+            .ao_radius = d->radius, .ao_method = ROMA_AO_METHOD_SCREEN_SPACE, .ssao_steps = 16,
+            .ssao_layers = ssao_layers[i], .ssao_traced = hw,
+        };
+        char name[64], label[16];
+        snprintf(name, sizeof name, "stochastic depth map ray traced, %u layers", ssao_layers[i]);
+        snprintf(label, sizeof label, "%u", ssao_layers[i]);
+        double ms, mae;
+        if (measure_setting(s, &rd, name, "sd-map-traced", "stochastic depth map, ray traced (layers)", label, "-",
+                            "-", ssao_layers[i], 0, &ms, &mae))
+            status = 1;
+    }
+    roma_hwrt_destroy(hw);
     return status;
 }
 
@@ -910,7 +920,8 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                        : d->res_count * ((d->with_cascades ? 2 : 1) * d->angular_count + (d->no_baselines ? 0 : 3)) +
                              (divisor_rows(d) ? 2 : 0) +
                              (d->radius > 0.0f ? (int)(sizeof ssao_steps / sizeof ssao_steps[0]) +
-                                                     (int)(sizeof ssao_layers / sizeof ssao_layers[0])
+                                                     (d->hwrt ? 2 : 1) *
+                                                         (int)(sizeof ssao_layers / sizeof ssao_layers[0])
                                                : 0);
     char how[64];
     if (d->runs == 1)

@@ -31,6 +31,14 @@ struct roma_hwrt_device {
     unsigned validation_messages;
 };
 
+/* A ray-tracing pipeline of three groups (ray generation, miss, hit) and its shader binding
+ * table. */
+typedef struct hwrt_program {
+    VkPipeline pipeline;
+    roma_buffer sbt;
+    VkStridedDeviceAddressRegionKHR raygen, miss, hit, callable;
+} hwrt_program;
+
 struct roma_hwrt {
     roma_context *ctx;
     PFN_vkCreateAccelerationStructureKHR create_as;
@@ -41,16 +49,16 @@ struct roma_hwrt {
     PFN_vkCreateRayTracingPipelinesKHR create_pipelines;
     PFN_vkGetRayTracingShaderGroupHandlesKHR group_handles;
     PFN_vkCmdTraceRaysKHR cmd_trace;
-    roma_buffer positions, indices, instance, blas_buffer, tlas_buffer, scratch, sbt;
+    roma_buffer positions, indices, instance, blas_buffer, tlas_buffer, scratch;
     VkAccelerationStructureKHR blas, tlas;
     VkDeviceAddress scratch_address; /* aligned to minAccelerationStructureScratchOffsetAlignment */
     uint32_t vertex_count, triangle_count;
     VkDescriptorSetLayout set_layout;
     VkDescriptorPool pool;
     VkDescriptorSet set;
-    VkPipelineLayout layout;
-    VkPipeline pipeline;
-    VkStridedDeviceAddressRegionKHR raygen, miss, hit, callable;
+    VkPipelineLayout layout; /* both programs': the scene's structure, either push block */
+    hwrt_program rays;       /* batches of roma_ray (hwrt_rays.rgen) */
+    hwrt_program layers;     /* the stochastic depth map (hwrt_depth_layers.*) */
     uint32_t max_launch_width, max_launch_invocations;
 };
 
@@ -58,6 +66,15 @@ typedef struct hwrt_push {
     VkDeviceAddress rays, hits; /* uvec2 in the shader */
     uint32_t count, closest, base;
 } hwrt_push;
+
+/* hwrt_depth_layers.rgen's push block (std430: the vec4s from byte 32). */
+typedef struct hwrt_depth_push {
+    VkDeviceAddress pixels, positions, indices;
+    uint32_t pad[2];
+    float eye[4], forward[4], right[4], up[4];
+    uint32_t config[4];
+} hwrt_depth_push;
+_Static_assert(sizeof(hwrt_depth_push) == 112, "hwrt_depth_layers.rgen's push block");
 
 static void say(char *why, size_t size, const char *fmt, ...)
 {
@@ -350,11 +367,13 @@ static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a)
 }
 
 /* The geometry of the bottom level (the scene's indexed triangles) or the top level (one
- * instance), and its build info. */
+ * instance), and its build info. Opaque (the batch rays run no any-hit shader); the depth
+ * map's rays make it non-opaque, and its reservoir counts each surface once. */
 static VkAccelerationStructureGeometryKHR level_geometry(const roma_hwrt *h, int top)
 {
-    VkAccelerationStructureGeometryKHR g = {.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
-                                            .flags = VK_GEOMETRY_OPAQUE_BIT_KHR};
+    VkAccelerationStructureGeometryKHR g = {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR | VK_GEOMETRY_NO_DUPLICATE_ANY_HIT_INVOCATION_BIT_KHR};
     if (top) {
         g.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
         g.geometry.instances = (VkAccelerationStructureGeometryInstancesDataKHR){
@@ -439,7 +458,9 @@ void roma_hwrt_record_build(roma_hwrt *h, VkCommandBuffer cmd)
     }
 }
 
-static roma_result create_pipeline(roma_hwrt *h)
+/* The descriptor set of the scene's top level and the pipeline layout both programs share
+ * (their push blocks in one range, as large as the larger). */
+static roma_result create_layout(roma_hwrt *h)
 {
     roma_context *ctx = h->ctx;
     VkDescriptorSetLayoutBinding binding = {.binding = 0,
@@ -451,7 +472,9 @@ static roma_result create_pipeline(roma_hwrt *h)
                                                 .pBindings = &binding};
     roma_result r = roma_vk_check(ctx, vkCreateDescriptorSetLayout(ctx->device, &set_info, ctx->allocator, &h->set_layout),
                                   "vkCreateDescriptorSetLayout");
-    VkPushConstantRange push = {.stageFlags = VK_SHADER_STAGE_RAYGEN_BIT_KHR, .size = sizeof(hwrt_push)};
+    VkPushConstantRange push = {.stageFlags = VK_SHADER_STAGE_RAYGEN_BIT_KHR,
+                                .size = sizeof(hwrt_depth_push) > sizeof(hwrt_push) ? sizeof(hwrt_depth_push)
+                                                                                     : sizeof(hwrt_push)};
     VkPipelineLayoutCreateInfo layout_info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
                                               .setLayoutCount = 1,
                                               .pSetLayouts = &h->set_layout,
@@ -487,11 +510,31 @@ static roma_result create_pipeline(roma_hwrt *h)
                                   .descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR};
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
 
-    static const char *const names[3] = {"hwrt_rays.rgen", "hwrt_miss.rmiss", "hwrt_hit.rchit"};
-    static const VkShaderStageFlagBits stages[3] = {VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
-                                                     VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
+    /* One invocation per ray, in rows no wider than the device launches along x. */
+    VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &rt};
+    vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    h->max_launch_invocations = rt.maxRayDispatchInvocationCount ? rt.maxRayDispatchInvocationCount : 1u;
+    h->max_launch_width = rt.maxRayDispatchInvocationCount < 65536u ? rt.maxRayDispatchInvocationCount : 65536u;
+    if (h->max_launch_width > ctx->properties.limits.maxComputeWorkGroupCount[0])
+        h->max_launch_width = ctx->properties.limits.maxComputeWorkGroupCount[0];
+    if (h->max_launch_width == 0)
+        h->max_launch_width = 1;
+    return ROMA_SUCCESS;
+}
+
+/* A program of names[0] (ray generation), names[1] (miss) and names[2], the hit group's
+ * closest-hit shader, or its any-hit shader when any_hit is non-zero. */
+static roma_result create_program(roma_hwrt *h, const char *const names[3], int any_hit, hwrt_program *out)
+{
+    roma_context *ctx = h->ctx;
+    const VkShaderStageFlagBits stages[3] = {
+        VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
+        any_hit ? VK_SHADER_STAGE_ANY_HIT_BIT_KHR : VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
     VkShaderModule modules[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
     VkPipelineShaderStageCreateInfo stage_info[3];
+    roma_result r = ROMA_SUCCESS;
     for (int i = 0; i < 3 && r == ROMA_SUCCESS; ++i) {
         r = roma_shader_module_create(ctx, names[i], &modules[i]);
         stage_info[i] = (VkPipelineShaderStageCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
@@ -506,8 +549,8 @@ static roma_result create_pipeline(roma_hwrt *h)
             .type = i < 2 ? VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR
                           : VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR,
             .generalShader = i < 2 ? i : VK_SHADER_UNUSED_KHR,
-            .closestHitShader = i == 2 ? i : VK_SHADER_UNUSED_KHR,
-            .anyHitShader = VK_SHADER_UNUSED_KHR,
+            .closestHitShader = i == 2 && !any_hit ? i : VK_SHADER_UNUSED_KHR,
+            .anyHitShader = i == 2 && any_hit ? i : VK_SHADER_UNUSED_KHR,
             .intersectionShader = VK_SHADER_UNUSED_KHR};
     VkRayTracingPipelineCreateInfoKHR info = {.sType = VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR,
                                               .stageCount = 3,
@@ -518,7 +561,7 @@ static roma_result create_pipeline(roma_hwrt *h)
                                               .layout = h->layout};
     if (r == ROMA_SUCCESS)
         r = roma_vk_check(ctx, h->create_pipelines(ctx->device, VK_NULL_HANDLE, ctx->pipeline_cache, 1, &info,
-                                                   ctx->allocator, &h->pipeline),
+                                                   ctx->allocator, &out->pipeline),
                           "vkCreateRayTracingPipelinesKHR");
     for (int i = 0; i < 3; ++i)
         if (modules[i])
@@ -539,7 +582,7 @@ static roma_result create_pipeline(roma_hwrt *h)
     if (handle == 0 || handle > 64)
         return roma_fail(&ctx->logger, ROMA_ERROR_MISSING_FEATURE, "shaderGroupHandleSize %u unexpected",
                          rt.shaderGroupHandleSize);
-    r = roma_vk_check(ctx, h->group_handles(ctx->device, h->pipeline, 0, 3, (size_t)(3 * handle), handles),
+    r = roma_vk_check(ctx, h->group_handles(ctx->device, out->pipeline, 0, 3, (size_t)(3 * handle), handles),
                       "vkGetRayTracingShaderGroupHandlesKHR");
     if (r != ROMA_SUCCESS)
         return r;
@@ -552,10 +595,10 @@ static roma_result create_pipeline(roma_hwrt *h)
     r = roma_buffer_create(ctx, 3 * region + base,
                            VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                           ROMA_MEMORY_DEVICE, &h->sbt);
+                           ROMA_MEMORY_DEVICE, &out->sbt);
     if (r == ROMA_SUCCESS) {
-        const VkDeviceAddress start = align_up(h->sbt.address, base);
-        const size_t offset = (size_t)(start - h->sbt.address);
+        const VkDeviceAddress start = align_up(out->sbt.address, base);
+        const size_t offset = (size_t)(start - out->sbt.address);
         for (int i = 0; i < 3; ++i)
             memcpy(table + offset + i * region, handles + i * handle, (size_t)handle);
         VkCommandBuffer cmd;
@@ -565,7 +608,7 @@ static roma_result create_pipeline(roma_hwrt *h)
             memcpy(staging.mapped, table, (size_t)(3 * region + base));
             r = roma_begin_one_shot(ctx, &cmd);
             if (r == ROMA_SUCCESS) {
-                vkCmdCopyBuffer(cmd, staging.buffer, h->sbt.buffer, 1, &(VkBufferCopy){0, 0, 3 * region + base});
+                vkCmdCopyBuffer(cmd, staging.buffer, out->sbt.buffer, 1, &(VkBufferCopy){0, 0, 3 * region + base});
                 roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                         VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR,
                                         VK_ACCESS_2_SHADER_READ_BIT);
@@ -573,19 +616,32 @@ static roma_result create_pipeline(roma_hwrt *h)
             }
             roma_buffer_destroy(ctx, &staging);
         }
-        h->raygen = (VkStridedDeviceAddressRegionKHR){start, region, region};
-        h->miss = (VkStridedDeviceAddressRegionKHR){start + region, stride, stride};
-        h->hit = (VkStridedDeviceAddressRegionKHR){start + 2 * region, stride, stride};
-        h->callable = (VkStridedDeviceAddressRegionKHR){0, 0, 0};
+        out->raygen = (VkStridedDeviceAddressRegionKHR){start, region, region};
+        out->miss = (VkStridedDeviceAddressRegionKHR){start + region, stride, stride};
+        out->hit = (VkStridedDeviceAddressRegionKHR){start + 2 * region, stride, stride};
+        out->callable = (VkStridedDeviceAddressRegionKHR){0, 0, 0};
     }
     free(table);
-    /* One invocation per ray, in rows no wider than the device launches along x. */
-    h->max_launch_invocations = rt.maxRayDispatchInvocationCount ? rt.maxRayDispatchInvocationCount : 1u;
-    h->max_launch_width = rt.maxRayDispatchInvocationCount < 65536u ? rt.maxRayDispatchInvocationCount : 65536u;
-    if (h->max_launch_width > ctx->properties.limits.maxComputeWorkGroupCount[0])
-        h->max_launch_width = ctx->properties.limits.maxComputeWorkGroupCount[0];
-    if (h->max_launch_width == 0)
-        h->max_launch_width = 1;
+    return r;
+}
+
+static void destroy_program(roma_context *ctx, hwrt_program *p)
+{
+    if (p->pipeline)
+        vkDestroyPipeline(ctx->device, p->pipeline, ctx->allocator);
+    roma_buffer_destroy(ctx, &p->sbt);
+}
+
+static roma_result create_pipelines(roma_hwrt *h)
+{
+    static const char *const rays[3] = {"hwrt_rays.rgen", "hwrt_miss.rmiss", "hwrt_hit.rchit"};
+    static const char *const layers[3] = {"hwrt_depth_layers.rgen", "hwrt_depth_layers.rmiss",
+                                          "hwrt_depth_layers.rahit"};
+    roma_result r = create_layout(h);
+    if (r == ROMA_SUCCESS)
+        r = create_program(h, rays, 0, &h->rays);
+    if (r == ROMA_SUCCESS)
+        r = create_program(h, layers, 1, &h->layers);
     return r;
 }
 
@@ -620,7 +676,8 @@ roma_result roma_hwrt_create(roma_context *ctx, const roma_hwrt_device *dev, con
     h->vertex_count = view.vertex_count;
     h->triangle_count = view.triangle_count;
     const VkBufferUsageFlags input =
-        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT; /* the depth map's ray generation reads the triangles */
     static const float no_vertex[3] = {0.0f, 0.0f, 0.0f};
     static const uint32_t no_triangle[3] = {0u, 0u, 0u};
     if (r == ROMA_SUCCESS)
@@ -664,7 +721,7 @@ roma_result roma_hwrt_create(roma_context *ctx, const roma_hwrt_device *dev, con
         }
     }
     if (r == ROMA_SUCCESS)
-        r = create_pipeline(h);
+        r = create_pipelines(h);
     if (r != ROMA_SUCCESS) {
         roma_hwrt_destroy(h);
         return r;
@@ -678,8 +735,8 @@ void roma_hwrt_destroy(roma_hwrt *h)
     if (!h)
         return;
     roma_context *ctx = h->ctx;
-    if (h->pipeline)
-        vkDestroyPipeline(ctx->device, h->pipeline, ctx->allocator);
+    destroy_program(ctx, &h->rays);
+    destroy_program(ctx, &h->layers);
     if (h->layout)
         vkDestroyPipelineLayout(ctx->device, h->layout, ctx->allocator);
     if (h->pool)
@@ -690,9 +747,9 @@ void roma_hwrt_destroy(roma_hwrt *h)
         h->destroy_as(ctx->device, h->tlas, ctx->allocator);
     if (h->blas)
         h->destroy_as(ctx->device, h->blas, ctx->allocator);
-    roma_buffer *buffers[7] = {&h->positions, &h->indices, &h->instance, &h->blas_buffer,
-                               &h->tlas_buffer, &h->scratch, &h->sbt};
-    for (int i = 0; i < 7; ++i)
+    roma_buffer *buffers[6] = {&h->positions, &h->indices, &h->instance, &h->blas_buffer, &h->tlas_buffer,
+                               &h->scratch};
+    for (int i = 0; i < 6; ++i)
         roma_buffer_destroy(ctx, buffers[i]);
     free(h);
 }
@@ -702,7 +759,7 @@ void roma_hwrt_record_trace(roma_hwrt *h, VkCommandBuffer cmd, VkDeviceAddress r
 {
     if (!h || count == 0)
         return;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->rays.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->layout, 0, 1, &h->set, 0, NULL);
     /* Launches of whole rows, each within the device's invocations per launch. */
     const uint32_t width = count < h->max_launch_width ? count : h->max_launch_width;
@@ -713,7 +770,37 @@ void roma_hwrt_record_trace(roma_hwrt *h, VkCommandBuffer cmd, VkDeviceAddress r
         hwrt_push push = {.rays = rays, .hits = hits, .count = count, .closest = closest ? 1u : 0u,
                           .base = (uint32_t)base};
         vkCmdPushConstants(cmd, h->layout, VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof push, &push);
-        h->cmd_trace(cmd, &h->raygen, &h->miss, &h->hit, &h->callable, width,
+        h->cmd_trace(cmd, &h->rays.raygen, &h->rays.miss, &h->rays.hit, &h->rays.callable, width,
                      (uint32_t)(rows < rows_per_launch ? rows : rows_per_launch), 1);
     }
+}
+
+roma_result roma_hwrt_record_depth_layers(roma_hwrt *h, VkCommandBuffer cmd, const roma_camera *camera,
+                                          float near_plane, VkDeviceAddress pixels, uint32_t width, uint32_t height,
+                                          uint32_t layers, uint32_t seed)
+{
+    roma_camera_frame cam;
+    if (!h || !cmd || !camera || !pixels || layers == 0 || layers > ROMA_HWRT_MAX_DEPTH_LAYERS ||
+        !(near_plane > 0.0f) || !roma_camera_make_frame(camera, width, height, &cam))
+        return ROMA_ERROR_INVALID_ARGUMENT;
+    if (width > h->max_launch_width || (uint64_t)width * height > h->max_launch_invocations)
+        return roma_fail(&h->ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                         "roma_hwrt_record_depth_layers: %ux%u pixels are more than one launch takes", width, height);
+    /* The pixel scale of roma_ssao.glsl's projection, so both map a point to the same pixel. */
+    const float sx = 0.5f * (float)width / (cam.tan_half_fovy * cam.aspect);
+    const float sy = 0.5f * (float)height / cam.tan_half_fovy;
+    hwrt_depth_push push = {.pixels = pixels, .positions = h->positions.address, .indices = h->indices.address,
+                            .config = {width, height, layers, seed}};
+    for (int k = 0; k < 3; ++k) {
+        push.eye[k] = cam.origin[k];
+        push.forward[k] = cam.forward[k];
+        push.right[k] = cam.right[k] * sx;
+        push.up[k] = cam.up[k] * sy;
+    }
+    push.eye[3] = near_plane;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->layers.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, h->layout, 0, 1, &h->set, 0, NULL);
+    vkCmdPushConstants(cmd, h->layout, VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof push, &push);
+    h->cmd_trace(cmd, &h->layers.raygen, &h->layers.miss, &h->layers.hit, &h->layers.callable, width, height, 1);
+    return ROMA_SUCCESS;
 }

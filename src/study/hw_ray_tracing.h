@@ -15,6 +15,7 @@
 #include <stdint.h>
 #include <vulkan/vulkan.h>
 
+#include "roma/camera.h"
 #include "roma/context.h"
 #include "roma/scene.h"
 
@@ -66,5 +67,23 @@ void roma_hwrt_record_build(roma_hwrt *hwrt, VkCommandBuffer cmd);
  * stage). Rays start at max(tmin, 0): hardware rays have no negative tmin. */
 void roma_hwrt_record_trace(roma_hwrt *hwrt, VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits,
                             uint32_t count, int closest);
+
+/* The most layers roma_hwrt_record_depth_layers keeps (hwrt_depth_payload.glsl). */
+#define ROMA_HWRT_MAX_DEPTH_LAYERS 8u
+
+/* Records the ray-traced stochastic depth map of the seed paper (Brüll and Grosch, after
+ * Vardis et al.): one view ray per pixel of camera's width x height image (pixel centres, the
+ * near plane's depth on), every surface it passes offered to an any-hit shader that keeps a
+ * reservoir of `layers` of them (the nearer on a tie of slots; after 8 surfaces only nearer
+ * ones are offered); each kept surface written as a roma_gbuffer_pixel into pixels, layer
+ * after layer (width * height each; an empty slot as a background pixel), with seed drawing
+ * the reservoir. pixels needs SHADER_DEVICE_ADDRESS usage. The caller builds the structures
+ * first (roma_hwrt_record_build) and orders the writes (ray-tracing shader stage) before its
+ * reads, and earlier reads of pixels before them. ROMA_ERROR_INVALID_ARGUMENT for a bad
+ * camera, size or layers (1 .. ROMA_HWRT_MAX_DEPTH_LAYERS); ROMA_ERROR_UNSUPPORTED for more
+ * pixels than one launch takes. */
+roma_result roma_hwrt_record_depth_layers(roma_hwrt *hwrt, VkCommandBuffer cmd, const roma_camera *camera,
+                                          float near_plane, VkDeviceAddress pixels, uint32_t width, uint32_t height,
+                                          uint32_t layers, uint32_t seed);
 
 #endif /* ROMA_STUDY_HW_RAY_TRACING_H */

@@ -7,6 +7,7 @@
 #include "roma/sampling.h"
 #include "study/study_methods.h"
 #include "study/gbuffer.h"
+#include "study/hw_ray_tracing.h"
 #include "study/study_shaders.h"
 #include "util/log.h"
 
@@ -14,6 +15,7 @@ struct roma_study_depth_layers {
     roma_context *ctx;
     roma_scene_buffers geometry;
     roma_gbuffer *layers[ROMA_AO_SSAO_MAX_LAYERS];
+    roma_hwrt *traced;  /* non-NULL: the layers ray traced (the G-buffers unused) */
     roma_buffer pixels; /* the layers one after the other */
     VkBufferView view;
     uint32_t count, width, height;
@@ -33,8 +35,11 @@ void roma_study_depth_layers_destroy(roma_study_depth_layers *d)
     free(d);
 }
 
-roma_result roma_study_depth_layers_create(roma_context *ctx, const roma_scene *scene, uint32_t width, uint32_t height,
-                                           uint32_t layers, float keep, roma_study_depth_layers **out)
+_Static_assert(ROMA_HWRT_MAX_DEPTH_LAYERS == ROMA_AO_SSAO_MAX_LAYERS, "both acquisitions keep as many layers");
+
+roma_result roma_study_depth_layers_create(roma_context *ctx, const roma_scene *scene, roma_hwrt *traced,
+                                           uint32_t width, uint32_t height, uint32_t layers, float keep,
+                                           roma_study_depth_layers **out)
 {
     if (!out)
         return ROMA_ERROR_INVALID_ARGUMENT;
@@ -57,16 +62,19 @@ roma_result roma_study_depth_layers_create(roma_context *ctx, const roma_scene *
     d->width = width;
     d->height = height;
     d->keep = keep > 0.0f ? keep : ROMA_AO_SSAO_KEEP;
+    d->traced = traced;
     roma_study_shaders_use(ctx);
     d->near_plane = roma_gbuffer_near_plane(scene);
     roma_result r = roma_scene_buffers_create(ctx, scene, &d->geometry);
     /* The layers share the first one's pipelines. */
-    for (uint32_t l = 0; l < layers && r == ROMA_SUCCESS; ++l)
+    for (uint32_t l = 0; l < layers && r == ROMA_SUCCESS && !traced; ++l)
         r = l == 0 ? roma_gbuffer_create_stochastic(ctx, width, height, &d->layers[l])
                    : roma_gbuffer_create_sharing(d->layers[0], width, height, &d->layers[l]);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, pixels * sizeof(roma_gbuffer_pixel) * layers,
-                               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                                   (traced ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT
+                                           : 0),
                                ROMA_MEMORY_DEVICE, &d->pixels);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_view_create(ctx, d->pixels.buffer, VK_FORMAT_R32G32B32A32_UINT, &d->view);
@@ -83,6 +91,19 @@ roma_result roma_study_depth_layers_record(roma_study_depth_layers *d, VkCommand
 {
     if (!d || !cmd || !camera)
         return ROMA_ERROR_INVALID_ARGUMENT;
+    if (d->traced) {
+        /* The last frame's reads of the layers before this frame's writes; the structures
+         * rebuilt (a dynamic scene's frame), then one view ray a pixel. */
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0,
+                                VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, 0);
+        roma_hwrt_record_build(d->traced, cmd);
+        roma_result r = roma_hwrt_record_depth_layers(d->traced, cmd, camera, d->near_plane, d->pixels.address,
+                                                      d->width, d->height, d->count,
+                                                      roma_hash_u32(seed ^ roma_hash_u32(frame)));
+        roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_2_SHADER_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
+        return r;
+    }
     const VkDeviceSize layer = (VkDeviceSize)d->width * d->height * sizeof(roma_gbuffer_pixel);
     roma_gbuffer_inputs in = {
         .positions = d->geometry.positions.address, .normals = d->geometry.normals.address,
@@ -115,5 +136,7 @@ uint32_t roma_study_depth_layers_count(const roma_study_depth_layers *d)
 
 uint64_t roma_study_depth_layers_bytes(const roma_study_depth_layers *d)
 {
-    return d ? 2u * d->pixels.size : 0; /* the layers' own pixel buffers and their copy */
+    if (!d)
+        return 0;
+    return d->traced ? d->pixels.size : 2u * d->pixels.size; /* rasterized: the layers' own pixel buffers, and their copy */
 }

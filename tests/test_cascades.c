@@ -658,6 +658,59 @@ done:
     roma_map_destroy(map);
 }
 
+/* Without a finest edge, the coarsest level holds the whole volume wherever the focus is: at
+ * the volume's centre (the longest edge, as before), off it, or outside it (a camera looking at
+ * an object from afar: before, the coarsest cube around it was as wide as the volume and missed
+ * most of it). */
+static void check_default_extent(roma_context *ctx, const roma_scene *scene)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    roma_map *map = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = RES, .angular = ANGULAR, .cascades = LEVELS},
+                                 scene, &map),
+                 ROMA_SUCCESS);
+    if (!map)
+        return;
+    float longest = 0.0f;
+    for (int a = 0; a < 3; ++a)
+        longest = fmaxf(longest, v.bounds_max[a] - v.bounds_min[a]);
+    /* where: the focus at the volume's centre plus where * its size */
+    static const float where[3][3] = {{0.0f, 0.0f, 0.0f}, {0.3f, -0.2f, 0.1f}, {2.0f, 0.5f, 1.5f}};
+    float coarse_edge[3] = {0.0f, 0.0f, 0.0f};
+    for (int w = 0; w < 3; ++w) {
+        float focus[3], reach = 0.0f;
+        for (int a = 0; a < 3; ++a) {
+            const float size = v.bounds_max[a] - v.bounds_min[a];
+            focus[a] = 0.5f * (v.bounds_min[a] + v.bounds_max[a]) + where[w][a] * size;
+            reach = fmaxf(reach, fmaxf(focus[a] - v.bounds_min[a], v.bounds_max[a] - focus[a]));
+        }
+        const roma_map_frame_desc frame = {.frame = 1, .seed = 9, .focus = focus};
+        CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+        uint32_t levels = 0;
+        const roma_grid_params *grids;
+        const roma_map_frame *frames;
+        roma_map_get_level_params(map, &levels, &grids, &frames);
+        if (levels != LEVELS)
+            break;
+        const roma_grid_params *g = &grids[LEVELS - 1];
+        const float cell = g->origin[3];
+        int holds = 1;
+        for (int a = 0; a < 3; ++a)
+            holds &= g->origin[a] <= v.bounds_min[a] && g->origin[a] + cell * (float)g->dims[0] >= v.bounds_max[a];
+        coarse_edge[w] = cell * (float)g->dims[0];
+        printf("default extent, focus %d: coarsest cube %.3f wide (volume %.3f, reach %.3f), holds the volume: %d\n",
+               w, (double)coarse_edge[w], (double)longest, (double)reach, holds);
+        CHECK(holds);
+        /* No wider than the cube around the focus that holds the volume, with the margin and
+         * the snap to cells. */
+        CHECK(coarse_edge[w] <= 2.0f * reach * 1.25f);
+    }
+    /* The focus at the centre: the cube as wide as before the change (the longest edge). */
+    CHECK(coarse_edge[0] <= 1.25f * longest);
+    roma_map_destroy(map);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -673,6 +726,7 @@ int main(void)
         check_reuse(ctx, scene);
         check_dynamic(ctx, scene);
         check_mesh_positions(ctx, scene);
+        check_default_extent(ctx, scene);
     }
     /* Levels over part of a larger scene voxelize the chunks that touch them, and their BOM is
      * still the CPU voxelizer's of every triangle. */

@@ -2,6 +2,7 @@
 #include "study/study_shaders.h"
 
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,7 +75,9 @@ typedef struct hwrt_depth_push {
     float eye[4], forward[4], right[4], up[4];
     uint32_t config[4];
 } hwrt_depth_push;
-_Static_assert(sizeof(hwrt_depth_push) == 112, "hwrt_depth_layers.rgen's push block");
+_Static_assert(sizeof(hwrt_depth_push) == 112 && offsetof(hwrt_depth_push, eye) == 32 &&
+                   offsetof(hwrt_depth_push, config) == 96,
+               "hwrt_depth_layers.rgen's push block");
 
 static void say(char *why, size_t size, const char *fmt, ...)
 {
@@ -368,7 +371,9 @@ static VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a)
 
 /* The geometry of the bottom level (the scene's indexed triangles) or the top level (one
  * instance), and its build info. Opaque (the batch rays run no any-hit shader); the depth
- * map's rays make it non-opaque, and its reservoir counts each surface once. */
+ * map's rays make it non-opaque, and its reservoir counts each surface once (no duplicate
+ * any-hit calls: a constraint on the build the batch rays share, which a driver may pay for
+ * in build or trace time; the baseline's figures are with it). */
 static VkAccelerationStructureGeometryKHR level_geometry(const roma_hwrt *h, int top)
 {
     VkAccelerationStructureGeometryKHR g = {
@@ -775,6 +780,14 @@ void roma_hwrt_record_trace(roma_hwrt *h, VkCommandBuffer cmd, VkDeviceAddress r
     }
 }
 
+int roma_hwrt_depth_layers_fit(const roma_hwrt *h, uint32_t width, uint32_t height)
+{
+    const VkPhysicalDeviceLimits *l = h ? &h->ctx->properties.limits : NULL;
+    return h && width && height && width <= h->max_launch_width &&
+           (uint64_t)width * height <= h->max_launch_invocations &&
+           (uint64_t)height <= (uint64_t)l->maxComputeWorkGroupCount[1] * l->maxComputeWorkGroupSize[1];
+}
+
 roma_result roma_hwrt_record_depth_layers(roma_hwrt *h, VkCommandBuffer cmd, const roma_camera *camera,
                                           float near_plane, VkDeviceAddress pixels, uint32_t width, uint32_t height,
                                           uint32_t layers, uint32_t seed)
@@ -783,7 +796,7 @@ roma_result roma_hwrt_record_depth_layers(roma_hwrt *h, VkCommandBuffer cmd, con
     if (!h || !cmd || !camera || !pixels || layers == 0 || layers > ROMA_HWRT_MAX_DEPTH_LAYERS ||
         !(near_plane > 0.0f) || !roma_camera_make_frame(camera, width, height, &cam))
         return ROMA_ERROR_INVALID_ARGUMENT;
-    if (width > h->max_launch_width || (uint64_t)width * height > h->max_launch_invocations)
+    if (!roma_hwrt_depth_layers_fit(h, width, height))
         return roma_fail(&h->ctx->logger, ROMA_ERROR_UNSUPPORTED,
                          "roma_hwrt_record_depth_layers: %ux%u pixels are more than one launch takes", width, height);
     /* The pixel scale of roma_ssao.glsl's projection, so both map a point to the same pixel. */

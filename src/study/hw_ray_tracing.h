@@ -85,5 +85,8 @@ void roma_hwrt_record_trace(roma_hwrt *hwrt, VkCommandBuffer cmd, VkDeviceAddres
 roma_result roma_hwrt_record_depth_layers(roma_hwrt *hwrt, VkCommandBuffer cmd, const roma_camera *camera,
                                           float near_plane, VkDeviceAddress pixels, uint32_t width, uint32_t height,
                                           uint32_t layers, uint32_t seed);
+/* Whether one launch takes a width x height depth map (what roma_hwrt_record_depth_layers
+ * checks first). */
+int roma_hwrt_depth_layers_fit(const roma_hwrt *hwrt, uint32_t width, uint32_t height);
 
 #endif /* ROMA_STUDY_HW_RAY_TRACING_H */

@@ -65,7 +65,13 @@ roma_result roma_study_depth_layers_create(roma_context *ctx, const roma_scene *
     d->traced = traced;
     roma_study_shaders_use(ctx);
     d->near_plane = roma_gbuffer_near_plane(scene);
-    roma_result r = roma_scene_buffers_create(ctx, scene, &d->geometry);
+    roma_result r = ROMA_SUCCESS;
+    if (traced && !roma_hwrt_depth_layers_fit(traced, width, height))
+        r = roma_fail(&ctx->logger, ROMA_ERROR_UNSUPPORTED,
+                      "roma_study_depth_layers_create: %ux%u pixels are more than one ray-tracing launch takes", width,
+                      height);
+    else if (!traced) /* the rasterized layers' triangles (the traced ones are the structures') */
+        r = roma_scene_buffers_create(ctx, scene, &d->geometry);
     /* The layers share the first one's pipelines. */
     for (uint32_t l = 0; l < layers && r == ROMA_SUCCESS && !traced; ++l)
         r = l == 0 ? roma_gbuffer_create_stochastic(ctx, width, height, &d->layers[l])

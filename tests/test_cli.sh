@@ -309,6 +309,9 @@ for c in auto:5: finest:4:--finest-extent=0.5 one:1:--cascades=1; do
 done
 grep -q "note: cascades: 5 grids around the camera, the finest 0.213 wide (30 cells to the AO radius 0.05)" \
   "$dir/cascades_auto.err" || fail "roma-render does not say which cascade levels it picked"
+# The room's far wall lies beyond the coarsest of those levels: said.
+grep -q "note: cascades: the coarsest grid reaches 1.71 from the camera and the scene 2.9: geometry farther away is not traced" \
+  "$dir/cascades_auto.err" || fail "roma-render does not say that part of the scene lies beyond its levels"
 grep -q "the finest 0.5 wide (--finest-extent)" "$dir/cascades_finest.err" ||
   fail "roma-render does not say the finest level's edge came from --finest-extent"
 ! grep -q "note: cascades" "$dir/cascades_one.err" || fail "roma-render --cascades 1 still notes cascades"

@@ -1263,6 +1263,20 @@ static void say_what_happens(options *o, const roma_scene_view *sv, const float 
              "scene %.3g wide (--cascades 1 for one grid over it)", o->cascades, (double)finest, why,
              (double)finest * (float)(1u << (o->cascades - 1)), (double)longest);
     }
+    /* Levels of a given finest edge reach finest * 2^(K-2) from the camera: geometry beyond is
+     * not traced (without an edge, the library's coarsest level holds the whole scene). Said,
+     * not changed: for a short AO radius a level that reached it would be coarse for the radius
+     * and darken more than the untraced part brightens (docs/accuracy.md, cascades). */
+    const float finest_edge = o->finest_extent > 0.0f ? o->finest_extent : roma_app_finest_extent(res, o->ao_radius);
+    if (roma && o->cascades > 1 && finest_edge > 0.0f) {
+        float reach = 0.0f;
+        for (int a = 0; a < 3; ++a)
+            reach = fmaxf(reach, fmaxf(eye[a] - sv->bounds_min[a], sv->bounds_max[a] - eye[a]));
+        const float half = 0.5f * finest_edge * (float)(1u << (o->cascades - 1));
+        if (half < reach)
+            note(n, o->quiet, "cascades: the coarsest grid reaches %.3g from the camera and the scene %.3g: geometry "
+                 "farther away is not traced (nothing there occludes)", (double)half, (double)reach);
+    }
     if ((o->effects & ROMA_EFFECT_DIRECT) && !lights && !emitters)
         note(n, o->quiet, "direct: the scene has no light (no punctual light, no emissive triangle): direct.pfm is "
              "black; add one with --light");

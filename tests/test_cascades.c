@@ -69,6 +69,16 @@ static void make_rays(const roma_grid_params *grids, uint32_t seed, roma_ray *ra
     }
 }
 
+/* A map of LEVELS levels at RES, A (NULL on failure, a check failed). */
+static roma_map *cascaded_map(roma_context *ctx, const roma_scene *scene)
+{
+    roma_map *map = NULL;
+    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = RES, .angular = ANGULAR, .cascades = LEVELS},
+                                 scene, &map),
+                 ROMA_SUCCESS);
+    return map;
+}
+
 /* Returns the triangles the first build voxelized, its levels' summed (their runs:
  * src/map/level_runs.h); traces: also the traces across the levels. */
 static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int traces)
@@ -76,10 +86,7 @@ static uint64_t check_cascades(roma_context *ctx, const roma_scene *scene, int t
     uint64_t voxelized = 0;
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    roma_map *map = NULL;
-    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = RES, .angular = ANGULAR, .cascades = LEVELS},
-                                 scene, &map),
-                 ROMA_SUCCESS);
+    roma_map *map = cascaded_map(ctx, scene);
     if (!map)
         return 0;
     /* A focus near the floor and a wall, so that every level holds some of them; the finest
@@ -666,10 +673,7 @@ static void check_default_extent(roma_context *ctx, const roma_scene *scene)
 {
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
-    roma_map *map = NULL;
-    CHECK_RESULT(roma_map_create(ctx, &(roma_map_desc){.resolution = RES, .angular = ANGULAR, .cascades = LEVELS},
-                                 scene, &map),
-                 ROMA_SUCCESS);
+    roma_map *map = cascaded_map(ctx, scene);
     if (!map)
         return;
     float longest = 0.0f;

@@ -29,17 +29,18 @@ static float rnd(uint32_t *s)
     return (float)(*s >> 8) / 16777216.0f;
 }
 
-static void trace_against_embree(roma_hwrt_device *dev)
+/* The built-in room on the ray-tracing device, and Embree's copy of it. */
+typedef struct room {
+    roma_context *ctx;
+    roma_scene *scene;
+    roma_ref *ref;
+} room;
+
+static void trace_against_embree(roma_hwrt_device *dev, const room *rm)
 {
-    roma_context *ctx = NULL;
-    roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
-    roma_scene *scene = NULL;
-    roma_ref *ref = NULL;
-    CHECK_RESULT(roma_context_create(&cd, &ctx), ROMA_SUCCESS);
-    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
-    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
-    if (!ctx || !scene || !ref)
-        goto done;
+    roma_context *ctx = rm->ctx;
+    const roma_scene *scene = rm->scene;
+    const roma_ref *ref = rm->ref;
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
     static roma_ray rays[N];
@@ -115,10 +116,6 @@ static void trace_against_embree(roma_hwrt_device *dev)
     roma_buffer_destroy(ctx, &hit_buf);
     roma_buffer_destroy(ctx, &readback);
     roma_hwrt_destroy(h);
-done:
-    roma_ref_destroy(ref);
-    roma_scene_destroy(scene);
-    roma_context_destroy(ctx);
 }
 
 enum { W = 64, H = 48, LAYERS = 4 };
@@ -143,20 +140,15 @@ static uint32_t embree_surfaces(const roma_ref *ref, const float o[3], const flo
 }
 
 /* The ray-traced stochastic depth map from inside the built-in room, against Embree. */
-static void depth_layers_against_embree(roma_hwrt_device *dev)
+static void depth_layers_against_embree(roma_hwrt_device *dev, const room *rm)
 {
-    roma_context *ctx = NULL;
-    roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
-    roma_scene *scene = NULL;
-    roma_ref *ref = NULL;
-    CHECK_RESULT(roma_context_create(&cd, &ctx), ROMA_SUCCESS);
-    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &scene), ROMA_SUCCESS);
-    CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
+    roma_context *ctx = rm->ctx;
+    const roma_scene *scene = rm->scene;
+    const roma_ref *ref = rm->ref;
     roma_hwrt *h = NULL;
-    if (ctx && scene && ref)
-        CHECK_RESULT(roma_hwrt_create(ctx, dev, scene, &h), ROMA_SUCCESS);
+    CHECK_RESULT(roma_hwrt_create(ctx, dev, scene, &h), ROMA_SUCCESS);
     if (!h)
-        goto done;
+        return;
     roma_scene_view v;
     roma_scene_get_view(scene, &v);
     roma_camera cam = {.fovy_deg = 60.0f};
@@ -247,11 +239,7 @@ static void depth_layers_against_embree(roma_hwrt_device *dev)
     }
     roma_buffer_destroy(ctx, &pixels);
     roma_buffer_destroy(ctx, &readback);
-done:
     roma_hwrt_destroy(h);
-    roma_ref_destroy(ref);
-    roma_scene_destroy(scene);
-    roma_context_destroy(ctx);
 }
 
 int main(void)
@@ -285,8 +273,18 @@ int main(void)
         return roma_test_finish("test_hw_ray_tracing");
     }
     printf("hardware ray tracing on this device\n");
-    trace_against_embree(dev);
-    depth_layers_against_embree(dev);
+    room rm = {0};
+    roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
+    CHECK_RESULT(roma_context_create(&cd, &rm.ctx), ROMA_SUCCESS);
+    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &rm.scene), ROMA_SUCCESS);
+    CHECK_RESULT(roma_ref_create(rm.scene, NULL, &rm.ref), ROMA_SUCCESS);
+    if (rm.ctx && rm.scene && rm.ref) {
+        trace_against_embree(dev, &rm);
+        depth_layers_against_embree(dev, &rm);
+    }
+    roma_ref_destroy(rm.ref);
+    roma_scene_destroy(rm.scene);
+    roma_context_destroy(rm.ctx);
     CHECK(roma_hwrt_device_destroy(dev) == 0); /* no validation error in its whole life */
     return roma_test_finish("test_hw_ray_tracing");
 }

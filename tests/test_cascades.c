@@ -698,20 +698,28 @@ static void check_default_extent(roma_context *ctx, const roma_scene *scene)
         if (levels != LEVELS)
             break;
         const roma_grid_params *g = &grids[LEVELS - 1];
-        const float cell = g->origin[3];
         int holds = 1;
         for (int a = 0; a < 3; ++a)
-            holds &= g->origin[a] <= v.bounds_min[a] && g->origin[a] + cell * (float)g->dims[0] >= v.bounds_max[a];
-        coarse_edge[w] = cell * (float)g->dims[0];
+            holds &= g->origin[a] <= v.bounds_min[a] &&
+                     g->origin[a] + g->origin[3] * (float)g->dims[0] >= v.bounds_max[a];
+        coarse_edge[w] = g->origin[3] * (float)g->dims[0];
         printf("default extent, focus %d: coarsest cube %.3f wide (volume %.3f, reach %.3f), holds the volume: %d\n",
                w, (double)coarse_edge[w], (double)longest, (double)reach, holds);
         CHECK(holds);
-        /* No wider than the cube around the focus that holds the volume, with the margin and
-         * the snap to cells. */
-        CHECK(coarse_edge[w] <= 2.0f * reach * 1.25f);
+        /* No wider than the cube around the focus that holds the volume, rounded up to a
+         * quarter octave (2^0.25), with the margin. */
+        CHECK(coarse_edge[w] <= 2.0f * reach * 1.19f * 1.1f);
+        /* A focus moved by a tenth of the coarsest cell keeps the cell size: static geometry
+         * stays in its cells. */
+        const float cell = g->origin[3];
+        focus[0] += 0.1f * cell;
+        CHECK_RESULT(roma_map_build(map, &frame, NULL), ROMA_SUCCESS);
+        roma_map_get_level_params(map, &levels, &grids, &frames);
+        CHECK(grids[LEVELS - 1].origin[3] == cell &&
+              fabsf(grids[0].origin[3] * (float)(1u << (LEVELS - 1)) - cell) <= 1e-5f * cell);
     }
     /* The focus at the centre: the cube as wide as before the change (the longest edge). */
-    CHECK(coarse_edge[0] <= 1.25f * longest);
+    CHECK(coarse_edge[0] <= 1.1f * longest);
     roma_map_destroy(map);
 }
 

@@ -208,10 +208,12 @@ typedef struct roma_map_frame_desc {
      * geometry does not shimmer as the point moves. NULL: the traced volume's centre. */
     const float *focus;
     /** A map of several cascade levels: the edge of the finest level's cube (world units,
-     * before margin_cells); 0: the edge / 2^(K-1) of the smallest cube around the focus that
-     * holds the traced volume, so that the coarsest level covers the volume wherever the
-     * focus is (the volume's longest edge for a focus at its centre). Geometry outside the
-     * coarsest level is not traced. */
+     * before margin_cells); 0: the coarsest level holds the whole traced volume wherever the
+     * focus is: its edge is the volume's longest edge for a focus at the centre, and for a
+     * focus off it that of the cube around the focus that holds the volume, rounded up to a
+     * quarter octave of the longest edge (so that the cells keep their size while the focus
+     * moves between steps); the finest's is that / 2^(K-1). Geometry outside the coarsest
+     * level is not traced. */
     float finest_extent;
 } roma_map_frame_desc;
 

@@ -431,16 +431,22 @@ static void compute_frame_params(roma_map *map, const roma_map_frame_desc *frame
         roma_compute_grid(bmin, bmax, map->res, map->angular, map->margin_cells, jitter, &map->grids[0]);
     } else {
         /* Nested cubes around the focus, each twice the last's edge. Without a finest edge,
-         * the coarsest cube is the one around the focus that holds the whole volume (the
-         * volume's longest edge for a focus at its centre; more for a focus off it, as a
-         * camera outside an object or at a level's end, so that nothing is left untraced). */
-        double centre[3], reach = 0.0;
+         * the coarsest cube holds the whole volume around the focus: the volume's longest
+         * edge for a focus at its centre, more for a focus off it (a camera outside an object
+         * or at a level's end), so that nothing is left untraced. That edge moves in steps of
+         * a quarter octave, not with the focus, so that a moving camera keeps the cell size
+         * (static geometry stays in its cells, unchanged levels are kept) between steps. */
+        double centre[3], reach = 0.0, longest = 0.0;
         for (int a = 0; a < 3; ++a) {
             centre[a] = frame->focus ? (double)frame->focus[a] : 0.5 * ((double)bmin[a] + (double)bmax[a]);
             reach = fmax(reach, fmax(centre[a] - (double)bmin[a], (double)bmax[a] - centre[a]));
+            longest = fmax(longest, (double)bmax[a] - (double)bmin[a]);
         }
+        double coarsest = longest;
+        if (2.0 * reach > longest && longest > 0.0)
+            coarsest = longest * pow(2.0, ceil(4.0 * log2(2.0 * reach / longest) - 1e-9) / 4.0);
         double edge = frame->finest_extent > 0.0f ? (double)frame->finest_extent
-                                                  : 2.0 * reach / (double)(1u << (map->levels - 1));
+                                                  : coarsest / (double)(1u << (map->levels - 1));
         for (uint32_t l = 0; l < map->levels; ++l, edge *= 2.0)
             place_level(map, l, centre, edge, jitter, &map->grids[l]);
     }

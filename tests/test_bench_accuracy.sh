@@ -127,6 +127,18 @@ ok = [len(gpu[t]) for t in gpu] == [2, 1, 2] and all(0 < v[k] < 0.0075 for t in 
 ok = ok and embree[-1][1] == 0.0 and all(a[1] > b[1] for a, b in zip(embree, embree[1:]))
 sys.exit(0 if ok else 1)
 DIRECT
+# Direct light through the hardware: skipped with the device's reason, or a row a sample count
+# (1 to 64), the last on the reference's own segments (not yet measured on a GPU: within 0.005,
+# what rays that graze an edge may differ by).
+if grep -q "^Hardware ray tracing: skipped: " "$dir/direct.txt"; then
+  grep -q "^Hardware ray tracing: skipped: .*\(offers no VK_KHR_\|lacks\)" "$dir/direct.txt" ||
+    fail "the direct light's hardware rows were skipped without the device's reason"
+else
+  rows=$(sed -n '/^| hardware spp |/,/^$/p' "$dir/direct.txt" | grep -cE '^\| (1|2|4|8|16|32|64) \| [0-9]+ \|')
+  [ "$rows" -eq 7 ] || fail "expected 7 direct-light hardware rows (1 to 64 samples), found $rows"
+  sed -n '/^| hardware spp |/,/^$/p' "$dir/direct.txt" | grep -qE '^\| 64 \| [0-9]+ \| [0-9.]+ \| 0\.00[0-4][0-9] \|' ||
+    fail "the direct light's hardware row at the reference's samples is not within 0.005 of it"
+fi
 
 # Unbounded AO (no --ao-radius): screen space marches a bounded radius, so its rows are left
 # out with a note, and the run still succeeds.

@@ -658,9 +658,10 @@ static int sweep_ao(study *s, const roma_camera *cam, double *anchor_ms, double 
     return status;
 }
 
-/* Hardware ray tracing (issue 41's baseline) at the study's points, as Embree's rows: AO with
- * Embree's samples 0 .. spp - 1, spp doubling up to the study's total; many lights, every
- * segment (the reference's count, exactly). A frame is both acceleration structures rebuilt
+/* Hardware ray tracing (issue 41's baseline) at the study's points, as Embree's rows: AO and
+ * direct light (the reference's own shadow segments: every punctual light and the area-light
+ * samples) with Embree's samples 0 .. spp - 1, spp doubling up to the study's total; many
+ * lights, every segment (the reference's count, exactly). A frame is both acceleration structures rebuilt
  * and the rays traced (host-observed, median of runs); the error against the reference as
  * every row's. Where no device offers it, one line says why. */
 static int hardware_rows(study *s, uint32_t w, uint32_t h)
@@ -670,14 +671,16 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
         printf("\nHardware ray tracing: skipped: %s.\n", d->hwrt_why && *d->hwrt_why ? d->hwrt_why : "no device offers it");
         return 0;
     }
-    const int lights = d->effect == ROMA_BENCH_EFFECT_LIGHTS;
+    const int lights = d->effect == ROMA_BENCH_EFFECT_LIGHTS, direct = d->effect == ROMA_BENCH_EFFECT_DIRECT;
     const size_t n = (size_t)w * h;
-    const uint32_t total = lights ? 1u : d->spp * d->frames;
+    const uint32_t total = lights ? 1u : d->spp * d->frames, channels = effect_channels(d->effect);
+    roma_scene_view view;
+    const uint32_t scene_lights = roma_scene_get_view(s->scene, &view) == ROMA_SUCCESS ? view.light_count : 0;
     uint32_t *covered = malloc(sizeof *covered * n), count = 0;
-    float *values = malloc(sizeof *values * n);
+    float *values = malloc(sizeof *values * n * channels);
     roma_image image = {0};
     roma_hwrt *hw = NULL;
-    int status = !covered || !values || roma_image_alloc(&image, w, h, 1) != ROMA_SUCCESS ||
+    int status = !covered || !values || roma_image_alloc(&image, w, h, channels) != ROMA_SUCCESS ||
                  roma_hwrt_create(s->ctx, d->hwrt, s->scene, &hw) != ROMA_SUCCESS;
     for (size_t i = 0; i < n && !status; ++i)
         if (s->coverage.pixels[i] > 0.0f)
@@ -689,7 +692,8 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
                lights ? ", every segment to each light" : " and samples", d->runs == 1 ? "one run" : "median of runs",
                lights ? "" : "spp");
     for (uint32_t spp = 1; spp <= total && !status; spp *= 2) {
-        const uint64_t wanted = (uint64_t)count * (lights ? s->light_count : spp);
+        /* Direct light: every punctual light and spp area-light samples a point, at most. */
+        const uint64_t wanted = (uint64_t)count * (lights ? s->light_count : spp + (direct ? scene_lights : 0u));
         if (wanted > ROMA_BENCH_HWRT_MAX_RAYS) {
             printf("(the rows stop here: %llu rays, made on the host, are more than a row traces, %u)\n",
                    (unsigned long long)wanted, ROMA_BENCH_HWRT_MAX_RAYS);
@@ -702,6 +706,10 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
                                                     .light_positions = s->light_positions,
                                                     .light_count = s->light_count, .runs = d->runs};
             status = roma_bench_hwrt_lights(s->ctx, hw, s->ref, &ld, values, ms, &rays);
+        } else if (direct) {
+            const roma_bench_hwrt_direct_desc dd = {.px = s->px, .covered = covered, .count = count, .spp = spp,
+                                                    .seed = 1, .runs = d->runs};
+            status = roma_bench_hwrt_direct(s->ctx, hw, s->ref, &dd, values, ms, &rays);
         } else {
             const roma_bench_hwrt_ao_desc ad = {.px = s->px, .covered = covered, .count = count, .spp = spp,
                                                 .radius = d->radius, .seed = 1, .runs = d->runs};
@@ -709,10 +717,11 @@ static int hardware_rows(study *s, uint32_t w, uint32_t h)
         }
         if (status)
             break;
-        for (size_t i = 0; i < n; ++i)
+        for (size_t i = 0; i < n * channels; ++i)
             image.pixels[i] = effect_infos[d->effect].background;
         for (uint32_t i = 0; i < count; ++i)
-            image.pixels[covered[i]] = values[i];
+            for (uint32_t c = 0; c < channels; ++c)
+                image.pixels[(size_t)covered[i] * channels + c] = values[(size_t)i * channels + c];
         image_error(&image, &s->ref_image, &s->coverage, &mae, &bias);
         if (roma_image_flip(&s->ref_image, &image, &s->coverage, 0.0f, &flip, NULL) != ROMA_SUCCESS)
             flip = NAN;
@@ -982,7 +991,7 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
                                         anchor_mae, &s.ref_image, &s.coverage, s.times, csv, s.points,
                                         &s.point_count))
         status = 1;
-    if (s.have_ref && (d->effect == ROMA_BENCH_EFFECT_AO || lights) && hardware_rows(&s, w, h))
+    if (s.have_ref && (d->effect == ROMA_BENCH_EFFECT_AO || direct || lights) && hardware_rows(&s, w, h))
         status = 1;
     /* Embree at the reference's own sample count is the reference (error 0): on no front. */
     roma_bench_print_fronts(s.points, s.point_count);

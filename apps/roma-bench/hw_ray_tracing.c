@@ -7,6 +7,7 @@
 #include "app_common.h"
 #include "frame.h"
 #include "reference.h"
+#include "roma/sampling.h"
 #include "vulkan/upload.h"
 #include "vulkan/vk_internal.h"
 
@@ -262,6 +263,110 @@ int roma_bench_hwrt_lights(roma_context *ctx, roma_hwrt *h, const roma_ref *ref,
 {
     return open_share(ctx, h, ref, d->px, d->covered, d->count, d->light_count, light_ray, d, d->runs, share, ms,
                       ray_count);
+}
+
+/* The segments of the points collected for one trace (roma_ref_direct_segments' callback):
+ * the rays with their point and what each adds; segments nothing can block added at once. */
+typedef struct direct_batch {
+    roma_ray *rays;
+    uint32_t *owner;
+    float *add; /* 3 a ray */
+    uint8_t *area;
+    uint32_t n, cap, point;
+    int full;
+    double *punctual, *area_sum; /* 3 a point */
+} direct_batch;
+
+static void collect_segment(void *user, const roma_ref_segment *s)
+{
+    direct_batch *b = user;
+    if (!(s->tmax > 0.0f)) { /* at the light: seen */
+        double *sum = s->area ? b->area_sum : b->punctual;
+        for (int c = 0; c < 3; ++c)
+            sum[3 * (size_t)b->point + c] += (double)s->add[c];
+        return;
+    }
+    if (b->full)
+        return;
+    if (b->n == b->cap) {
+        const uint32_t cap = b->cap ? (b->cap > ROMA_BENCH_HWRT_MAX_RAYS / 2 ? ROMA_BENCH_HWRT_MAX_RAYS : 2 * b->cap)
+                                    : 4096u;
+        roma_ray *rays = b->n < cap ? realloc(b->rays, sizeof *rays * cap) : NULL;
+        if (rays)
+            b->rays = rays;
+        uint32_t *owner = rays ? realloc(b->owner, sizeof *owner * cap) : NULL;
+        if (owner)
+            b->owner = owner;
+        float *add = owner ? realloc(b->add, sizeof *add * 3 * (size_t)cap) : NULL;
+        if (add)
+            b->add = add;
+        uint8_t *area = add ? realloc(b->area, cap) : NULL;
+        if (area)
+            b->area = area;
+        if (!area) {
+            b->full = 1;
+            return;
+        }
+        b->cap = cap;
+    }
+    roma_ray *r = &b->rays[b->n];
+    memcpy(r->origin, s->origin, sizeof r->origin);
+    memcpy(r->dir, s->dir, sizeof r->dir);
+    r->tmin = 0.0f;
+    r->tmax = s->tmax;
+    b->owner[b->n] = b->point;
+    memcpy(&b->add[3 * (size_t)b->n], s->add, sizeof s->add);
+    b->area[b->n] = (uint8_t)s->area;
+    ++b->n;
+}
+
+int roma_bench_hwrt_direct(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_bench_hwrt_direct_desc *d,
+                           float *rgb, double ms[3], uint32_t *ray_count)
+{
+    const uint32_t spp = d->spp ? d->spp : 1;
+    direct_batch b = {.punctual = calloc(3 * (size_t)(d->count ? d->count : 1), sizeof(double)),
+                      .area_sum = calloc(3 * (size_t)(d->count ? d->count : 1), sizeof(double))};
+    roma_hit *hits = NULL;
+    int status = !b.punctual || !b.area_sum;
+    for (uint32_t i = 0; i < d->count && !status && !b.full; ++i) {
+        const uint32_t pixel = d->covered ? d->covered[i] : i;
+        const roma_gbuffer_pixel *p = &d->px[pixel];
+        b.point = i;
+        roma_ref_direct_segments(ref, p->position_t, p->geometric_normal, p->shading_normal, spp, d->seed, pixel,
+                                 collect_segment, &b);
+    }
+    *ray_count = b.n;
+    if (b.full) {
+        fprintf(stderr, "roma-bench: the direct light's hardware rays are more than a batch takes (%u)\n",
+                ROMA_BENCH_HWRT_MAX_RAYS);
+        status = 1;
+    }
+    hits = status ? NULL : malloc(sizeof *hits * (b.n ? b.n : 1));
+    if (!status && b.n == 0) /* nothing to trace: every segment was at its light */
+        ms[0] = ms[1] = ms[2] = 0.0;
+    else
+        status = status || !hits || roma_bench_hwrt_rays(ctx, h, b.rays, b.n, d->runs, hits, ms);
+    for (uint32_t r = 0; r < b.n && !status; ++r) {
+        if (hits[r].info & ROMA_HIT_FLAG)
+            continue;
+        double *sum = b.area[r] ? b.area_sum : b.punctual;
+        for (int c = 0; c < 3; ++c)
+            sum[3 * (size_t)b.owner[r] + c] += (double)b.add[3 * (size_t)r + c];
+    }
+    for (uint32_t i = 0; i < d->count && !status; ++i) {
+        const roma_gbuffer_pixel *p = &d->px[d->covered ? d->covered[i] : i];
+        for (int c = 0; c < 3; ++c) /* as roma_ref_direct_point: albedo / pi * irradiance */
+            rgb[3 * (size_t)i + c] = (float)(p->albedo[c] / ROMA_PI *
+                                             (b.punctual[3 * (size_t)i + c] + b.area_sum[3 * (size_t)i + c] / spp));
+    }
+    free(b.rays);
+    free(b.owner);
+    free(b.add);
+    free(b.area);
+    free(b.punctual);
+    free(b.area_sum);
+    free(hits);
+    return status;
 }
 
 int roma_bench_hwrt_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_hwrt_frame_desc *d, FILE *csv)

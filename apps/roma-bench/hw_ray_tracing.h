@@ -76,6 +76,23 @@ int roma_bench_hwrt_ao(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref
 int roma_bench_hwrt_lights(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref *ref,
                            const roma_bench_hwrt_lights_desc *desc, float *share, double ms[3], uint32_t *ray_count);
 
+/* Direct light at G-buffer points with the reference's samples. */
+typedef struct roma_bench_hwrt_direct_desc {
+    const roma_gbuffer_pixel *px;
+    const uint32_t *covered; /* the points: px[covered[i]]; NULL: px[i] */
+    uint32_t count;
+    uint32_t spp; /* area-light samples */
+    uint32_t seed, runs;
+} roma_bench_hwrt_direct_desc;
+
+/* The direct light of d's points (rgb[3 i ..] for the i-th point, RGB radiance as
+ * roma_ref_direct_point's) from the reference's own shadow segments (roma_ref_direct_segments:
+ * every punctual light, spp area-light samples), traced any hit; ms and *ray_count as
+ * roma_bench_hwrt_ao's. Returns 0 on success; 1 also where the segments would pass
+ * ROMA_BENCH_HWRT_MAX_RAYS (*ray_count then says how many were wanted at least). */
+int roma_bench_hwrt_direct(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref *ref,
+                           const roma_bench_hwrt_direct_desc *desc, float *rgb, double ms[3], uint32_t *ray_count);
+
 /* roma-bench's dynamic AO frame through the hardware: both structures rebuilt, then Embree's
  * AO rays at the covered G-buffer points (px[covered[i]]) with the same samples. */
 typedef struct roma_bench_hwrt_frame_desc {

@@ -427,14 +427,14 @@ int main(int argc, char **argv)
         fprintf(stderr, "roma-bench: cannot load %s: %s\n", scene_arg, roma_result_string(r));
         return 1;
     }
-    /* The hardware rows (the trace table, the AO frame, the AO study) need a device with the
-     * ray-tracing extensions: where one is offered, libroma runs on it as on an engine's
-     * device, so both trace the same buffers. */
+    /* The hardware rows (the trace table, the AO frame, the AO, direct-light and many-lights
+     * studies) need a device with the ray-tracing extensions: where one is offered, libroma
+     * runs on it as on an engine's device, so both trace the same buffers. */
     roma_hwrt_device *hwrt_device = NULL;
     char hwrt_why[256] = "";
     roma_context *ctx = NULL;
     roma_context_desc cdesc = {0};
-    if ((!accuracy && !cascades && !growth) || (accuracy && (effect == ROMA_BENCH_EFFECT_AO || effect == ROMA_BENCH_EFFECT_LIGHTS))) {
+    if ((!accuracy && !cascades && !growth) || (accuracy && effect != ROMA_BENCH_EFFECT_GI)) {
         const char *validation = getenv("ROMA_VALIDATION"), *device = getenv("ROMA_DEVICE");
         if (roma_hwrt_device_create(device, validation && *validation && strcmp(validation, "0") != 0,
                                     &hwrt_device, hwrt_why, sizeof hwrt_why) == ROMA_SUCCESS)

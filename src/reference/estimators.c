@@ -22,21 +22,19 @@ enum {
  * own surface (area lights) never occludes it. */
 #define SEGMENT_SHORTEN 1e-4f
 
-/* 1 when the segment origin -> target is blocked. */
-static int segment_occluded(const roma_ref *ref, const float origin[3], const float target[3])
+/* The segment from origin to target, stopped short (target: a point light or an area-light
+ * sample): its unit direction and end; tmax 0 when they coincide (nothing can block it). */
+static void segment_to(const float origin[3], const float target[3], roma_ref_segment *out)
 {
-    float v[3];
-    roma_ref_sub(target, origin, v);
-    float d = roma_ref_normalize(v);
-    if (!(d > 0.0f))
-        return 0;
-    return roma_ref_occluded(ref, origin, v, 0.0f, d * (1.0f - SEGMENT_SHORTEN));
+    roma_ref_sub(target, origin, out->dir);
+    float d = roma_ref_normalize(out->dir);
+    out->tmax = d > 0.0f ? d * (1.0f - SEGMENT_SHORTEN) : 0.0f;
 }
 
-/* Irradiance at p from one punctual light (0 when below the surface or shadowed). */
-static void punctual_irradiance(const roma_ref *ref, const roma_light *light, const float p[3],
-                                const float gn[3], const float n[3], const float origin[3],
-                                double E[3])
+/* The segment to one punctual light, with the irradiance it adds when unblocked; 0 when the
+ * light adds nothing at p (below the surface, outside its cone or range). */
+static int punctual_segment(const roma_light *light, const float p[3], const float gn[3], const float n[3],
+                            const float origin[3], roma_ref_segment *out)
 {
     float l[3];
     float scale = light->intensity;
@@ -45,12 +43,12 @@ static void punctual_irradiance(const roma_ref *ref, const roma_light *light, co
         l[1] = -light->direction[1];
         l[2] = -light->direction[2];
         if (!(roma_ref_normalize(l) > 0.0f))
-            return;
+            return 0;
     } else {
         roma_ref_sub(light->position, p, l);
         float d = roma_ref_normalize(l);
         if (!(d > 0.0f))
-            return;
+            return 0;
         scale /= d * d;
         if (light->range > 0.0f) {
             /* glTF-recommended window: max(min(1 - (d/range)^4, 1), 0) / d^2. */
@@ -61,7 +59,7 @@ static void punctual_irradiance(const roma_ref *ref, const roma_light *light, co
         if (light->type == ROMA_LIGHT_SPOT) {
             float sd[3] = {light->direction[0], light->direction[1], light->direction[2]};
             if (!(roma_ref_normalize(sd) > 0.0f))
-                return;
+                return 0;
             float outer = light->outer_cone_angle > 0.0f ? light->outer_cone_angle : ROMA_PI / 4.0f;
             float cos_outer = cosf(outer), cos_inner = cosf(light->inner_cone_angle);
             /* glTF KHR_lights_punctual smooth cone falloff. */
@@ -74,33 +72,36 @@ static void punctual_irradiance(const roma_ref *ref, const roma_light *light, co
     }
     float cos_n = roma_ref_dot(n, l);
     if (!(scale > 0.0f) || cos_n <= 0.0f || roma_ref_dot(gn, l) <= 0.0f)
-        return;
-    int blocked = light->type == ROMA_LIGHT_DIRECTIONAL
-                      ? roma_ref_occluded(ref, origin, l, 0.0f, INFINITY)
-                      : segment_occluded(ref, origin, light->position);
-    if (blocked)
-        return;
+        return 0;
+    memcpy(out->origin, origin, sizeof out->origin);
+    if (light->type == ROMA_LIGHT_DIRECTIONAL) {
+        memcpy(out->dir, l, sizeof out->dir);
+        out->tmax = INFINITY;
+    } else {
+        segment_to(origin, light->position, out);
+    }
     float factor = fminf(scale * cos_n, (float)ROMA_MAX_IRRADIANCE);
     for (int k = 0; k < 3; ++k)
-        E[k] += (double)fminf(factor * light->color[k], (float)ROMA_MAX_IRRADIANCE);
+        out->add[k] = fminf(factor * light->color[k], (float)ROMA_MAX_IRRADIANCE);
+    out->area = 0;
+    return 1;
 }
 
-/* Irradiance at p (normal n, geometric gn): all punctual lights exactly, plus
- * area_samples area-light samples using samples [sample_base, +area_samples) of
- * dimensions dim .. dim + 2. Emission of p's own surface is not included. */
-static void irradiance(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
-                       uint32_t area_samples, uint32_t seed, uint32_t pixel, uint32_t sample_base,
-                       uint32_t dim, double E[3])
+/* Every shadow segment of the irradiance at p (normal n, geometric gn): to all punctual
+ * lights, then area_samples area-light samples using samples [sample_base, +area_samples)
+ * of dimensions dim .. dim + 2; fn gets each. */
+static void for_each_segment(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                             uint32_t area_samples, uint32_t seed, uint32_t pixel, uint32_t sample_base, uint32_t dim,
+                             roma_ref_segment_fn fn, void *user)
 {
-    E[0] = E[1] = E[2] = 0.0;
     float origin[3];
     roma_ref_offset_origin(ref, p, gn, origin);
+    roma_ref_segment seg;
     for (uint32_t i = 0; i < ref->view.light_count; ++i)
-        punctual_irradiance(ref, &ref->view.lights[i], p, gn, n, origin, E);
-
-    if (ref->emitters.count == 0 || area_samples == 0)
+        if (punctual_segment(&ref->view.lights[i], p, gn, n, origin, &seg))
+            fn(user, &seg);
+    if (ref->emitters.count == 0)
         return;
-    double acc[3] = {0.0, 0.0, 0.0};
     for (uint32_t k = 0; k < area_samples; ++k) {
         uint32_t s = sample_base + k;
         const roma_emitter *e =
@@ -120,14 +121,51 @@ static void irradiance(const roma_ref *ref, const float p[3], const float gn[3],
         float cos_y = fabsf(roma_ref_dot(e->normal, w)); /* two-sided emitters */
         if (cos_x <= 0.0f || roma_ref_dot(gn, w) <= 0.0f || cos_y <= 0.0f)
             continue;
-        if (segment_occluded(ref, origin, y))
-            continue;
+        memcpy(seg.origin, origin, sizeof seg.origin);
+        segment_to(origin, y, &seg);
         float g = fminf(cos_x * cos_y / (d2 * e->pdf_area), (float)ROMA_MAX_IRRADIANCE);
         for (int c = 0; c < 3; ++c)
-            acc[c] += (double)fminf(e->emission[c] * g, (float)ROMA_MAX_IRRADIANCE);
+            seg.add[c] = fminf(e->emission[c] * g, (float)ROMA_MAX_IRRADIANCE);
+        seg.area = 1;
+        fn(user, &seg);
     }
+}
+
+void roma_ref_direct_segments(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                              uint32_t spp, uint32_t seed, uint32_t pixel, roma_ref_segment_fn fn, void *user)
+{
+    if (ref && p && gn && n && fn)
+        for_each_segment(ref, p, gn, n, spp ? spp : 1, seed, pixel, 0, DIM_DIRECT_AREA, fn, user);
+}
+
+/* Embree's answer for each segment of an irradiance: punctual lights added at once, area
+ * samples summed apart (their mean is taken at the end). */
+typedef struct traced_irradiance {
+    const roma_ref *ref;
+    double punctual[3], area[3];
+} traced_irradiance;
+
+static void trace_segment(void *user, const roma_ref_segment *s)
+{
+    traced_irradiance *t = user;
+    if (s->tmax > 0.0f && roma_ref_occluded(t->ref, s->origin, s->dir, 0.0f, s->tmax))
+        return;
+    double *sum = s->area ? t->area : t->punctual;
     for (int c = 0; c < 3; ++c)
-        E[c] += acc[c] / (double)area_samples;
+        sum[c] += (double)s->add[c];
+}
+
+/* Irradiance at p (normal n, geometric gn): all punctual lights exactly, plus
+ * area_samples area-light samples using samples [sample_base, +area_samples) of
+ * dimensions dim .. dim + 2. Emission of p's own surface is not included. */
+static void irradiance(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                       uint32_t area_samples, uint32_t seed, uint32_t pixel, uint32_t sample_base,
+                       uint32_t dim, double E[3])
+{
+    traced_irradiance t = {.ref = ref};
+    for_each_segment(ref, p, gn, n, area_samples, seed, pixel, sample_base, dim, trace_segment, &t);
+    for (int c = 0; c < 3; ++c)
+        E[c] = t.punctual[c] + (area_samples ? t.area[c] / (double)area_samples : 0.0);
 }
 
 /* Cosine-weighted direction around n for (seed, pixel, s, dim .. dim + 1). */

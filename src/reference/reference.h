@@ -100,6 +100,23 @@ void roma_ref_direct_point(const roma_ref *ref, const float p[3], const float gn
                            const float n[3], const float albedo[3], uint32_t spp, uint32_t seed,
                            uint32_t pixel, float out_rgb[3]);
 
+/* One shadow segment of roma_ref_direct_point's estimate, for tracers that trace it elsewhere:
+ * from the offset origin along the unit dir to tmax (INFINITY: a directional light; 0: the
+ * target is the origin, nothing can block it), and the irradiance it adds when nothing blocks
+ * it (area: an area-light sample, whose adds are averaged over the samples). */
+typedef struct roma_ref_segment {
+    float origin[3], dir[3], tmax;
+    float add[3];
+    int area;
+} roma_ref_segment;
+typedef void (*roma_ref_segment_fn)(void *user, const roma_ref_segment *segment);
+
+/* Calls fn for every shadow segment of roma_ref_direct_point(ref, p, gn, n, albedo, spp, seed,
+ * pixel): the punctual lights that reach p, then the area-light samples that do. The direct
+ * radiance is albedo / pi * (the unblocked punctual adds + the unblocked area adds / spp). */
+void roma_ref_direct_segments(const roma_ref *ref, const float p[3], const float gn[3], const float n[3],
+                              uint32_t spp, uint32_t seed, uint32_t pixel, roma_ref_segment_fn fn, void *user);
+
 /* One-bounce indirect radiance leaving p: cosine-sampled bounce rays, at the
  * bounce hit y the reflected direct radiance albedo_y/pi * E_y (next-event
  * estimation: all punctual lights + 1 area-light sample); the emission of y is

@@ -294,8 +294,9 @@ expect_status 2 $? "roma-render --route internal (the internal renderer is gone)
 grep -q "unknown option --route" "$dir/route_gone.err" || fail "--route is not refused as an unknown option"
 
 # Cascade levels: AO far shorter than the scene (cornell, 3 wide, radius 0.05) makes roma-render
-# pick levels around the camera and say so (the finest 30 cells to the radius, enough to cover
-# the scene: 5); --finest-extent alone picks them for that edge (4); --cascades 1 keeps one grid.
+# pick levels around the camera and say so (the finest 30 cells to the radius, the coarsest as
+# wide as the scene: 5); --finest-extent alone picks them for that edge (4); --cascades 1 keeps
+# one grid.
 for c in auto:5: finest:4:--finest-extent=0.5 one:1:--cascades=1; do
   IFS=: read -r name want arg <<<"$c"
   # shellcheck disable=SC2086

@@ -139,6 +139,65 @@ static uint32_t embree_surfaces(const roma_ref *ref, const float o[3], const flo
     return n;
 }
 
+/* The depth map's view: from inside the room, towards a corner with its blocks. */
+static roma_camera view_camera(const roma_scene *scene)
+{
+    roma_scene_view v;
+    roma_scene_get_view(scene, &v);
+    roma_camera cam = {.fovy_deg = 60.0f};
+    for (int a = 0; a < 3; ++a) {
+        const float c = 0.5f * (v.bounds_min[a] + v.bounds_max[a]), e = v.bounds_max[a] - v.bounds_min[a];
+        const float eye[3] = {0.0f, 0.1f, 0.3f}, at[3] = {-0.2f, -0.2f, -0.5f};
+        cam.eye[a] = c + eye[a] * e;
+        cam.target[a] = c + at[a] * e;
+    }
+    return cam;
+}
+
+#define NEAR_PLANE 0.01f
+
+/* The view ray of pixel (x, y), as hwrt_depth_layers.rgen makes it: unit d, and *len the
+ * length of the ray of unit depth (the near plane lies at NEAR_PLANE * len). */
+static void view_ray(const roma_camera_frame *f, uint32_t x, uint32_t y, float d[3], float *len)
+{
+    const float sx = 0.5f * (float)W / (f->tan_half_fovy * f->aspect), sy = 0.5f * (float)H / f->tan_half_fovy;
+    const float cx = (float)x + 0.5f - 0.5f * W, cy = (float)y + 0.5f - 0.5f * H;
+    float l = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        d[a] = f->forward[a] + f->right[a] * (cx / sx) - f->up[a] * (cy / sy);
+        l += d[a] * d[a];
+    }
+    l = sqrtf(l);
+    for (int a = 0; a < 3; ++a)
+        d[a] /= l;
+    *len = l;
+}
+
+/* How many surfaces Embree finds along the view's rays (every machine): the comparison on a
+ * GPU needs most pixels to pass at most LAYERS surfaces, and more than one in the mean. */
+static void view_surfaces(const roma_scene *scene, const roma_ref *ref)
+{
+    const roma_camera cam = view_camera(scene);
+    roma_camera_frame f;
+    CHECK(roma_camera_make_frame(&cam, W, H, &f));
+    uint32_t histogram[10] = {0}, total = 0, few = 0;
+    for (uint32_t y = 0; y < H; ++y)
+        for (uint32_t x = 0; x < W; ++x) {
+            float d[3], len, t[9];
+            view_ray(&f, x, y, d, &len);
+            const uint32_t n = embree_surfaces(ref, f.origin, d, NEAR_PLANE * len, t, 9);
+            ++histogram[n];
+            total += n;
+            few += n <= LAYERS;
+        }
+    printf("the depth map's view, %ux%u: Embree finds", W, H);
+    for (uint32_t n = 0; n < 10; ++n)
+        if (histogram[n])
+            printf(" %u surface%s along %u rays;", n, n == 1 ? "" : "s", histogram[n]);
+    printf(" %u in all\n", total);
+    CHECK(few > W * H / 2 && total > W * H);
+}
+
 /* The ray-traced stochastic depth map from inside the built-in room, against Embree. */
 static void depth_layers_against_embree(roma_hwrt_device *dev, const room *rm)
 {
@@ -149,16 +208,8 @@ static void depth_layers_against_embree(roma_hwrt_device *dev, const room *rm)
     CHECK_RESULT(roma_hwrt_create(ctx, dev, scene, &h), ROMA_SUCCESS);
     if (!h)
         return;
-    roma_scene_view v;
-    roma_scene_get_view(scene, &v);
-    roma_camera cam = {.fovy_deg = 60.0f};
-    for (int a = 0; a < 3; ++a) {
-        const float c = 0.5f * (v.bounds_min[a] + v.bounds_max[a]), e = v.bounds_max[a] - v.bounds_min[a];
-        const float eye[3] = {0.0f, 0.1f, 0.3f}, at[3] = {-0.2f, -0.2f, -0.5f};
-        cam.eye[a] = c + eye[a] * e;
-        cam.target[a] = c + at[a] * e;
-    }
-    const float near_plane = 0.01f;
+    const roma_camera cam = view_camera(scene);
+    const float near_plane = NEAR_PLANE;
     const size_t bytes = (size_t)W * H * LAYERS * sizeof(roma_gbuffer_pixel);
     roma_buffer pixels = {0}, readback = {0};
     CHECK_RESULT(roma_buffer_create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
@@ -186,21 +237,11 @@ static void depth_layers_against_embree(roma_hwrt_device *dev, const room *rm)
         const roma_gbuffer_pixel *px = readback.mapped;
         roma_camera_frame f;
         CHECK(roma_camera_make_frame(&cam, W, H, &f));
-        const float sx = 0.5f * (float)W / (f.tan_half_fovy * f.aspect), sy = 0.5f * (float)H / f.tan_half_fovy;
         uint32_t compared = 0, differ = 0, kept = 0, off_triangle = 0;
         for (uint32_t y = 0; y < H; ++y)
             for (uint32_t x = 0; x < W; ++x) {
-                /* The shader's view ray (hwrt_depth_layers.rgen). */
-                const float cx = (float)x + 0.5f - 0.5f * W, cy = (float)y + 0.5f - 0.5f * H;
-                float d[3], len = 0.0f;
-                for (int a = 0; a < 3; ++a) {
-                    d[a] = f.forward[a] + f.right[a] * (cx / sx) - f.up[a] * (cy / sy);
-                    len += d[a] * d[a];
-                }
-                len = sqrtf(len);
-                for (int a = 0; a < 3; ++a)
-                    d[a] /= len;
-                float t[9];
+                float d[3], len, t[9];
+                view_ray(&f, x, y, d, &len);
                 const uint32_t n = embree_surfaces(ref, f.origin, d, near_plane * len, t, 9);
                 float got[LAYERS];
                 uint32_t m = 0;
@@ -263,6 +304,14 @@ int main(void)
                  ROMA_ERROR_MISSING_FEATURE);
     CHECK(dev == NULL && strstr(why, "no device matches") != NULL);
 
+    /* The room and Embree's copy (the depth map's view checked on every machine). */
+    room rm = {0};
+    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &rm.scene), ROMA_SUCCESS);
+    if (rm.scene)
+        CHECK_RESULT(roma_ref_create(rm.scene, NULL, &rm.ref), ROMA_SUCCESS);
+    if (rm.ref)
+        view_surfaces(rm.scene, rm.ref);
+
     const roma_result r = roma_hwrt_device_create(getenv("ROMA_DEVICE"), validate, &dev, why, sizeof why);
     if (r != ROMA_SUCCESS) {
         /* No device offers the extensions: the reason names the device and what it lacks. */
@@ -270,21 +319,19 @@ int main(void)
         CHECK(r == ROMA_ERROR_MISSING_FEATURE && dev == NULL);
         CHECK(strstr(why, "offers no VK_KHR_") != NULL || strstr(why, "lacks") != NULL ||
               strstr(why, "not 1.3") != NULL);
-        return roma_test_finish("test_hw_ray_tracing");
     }
-    printf("hardware ray tracing on this device\n");
-    room rm = {0};
-    roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
-    CHECK_RESULT(roma_context_create(&cd, &rm.ctx), ROMA_SUCCESS);
-    CHECK_RESULT(roma_scene_create_builtin("cornell", NULL, &rm.scene), ROMA_SUCCESS);
-    CHECK_RESULT(roma_ref_create(rm.scene, NULL, &rm.ref), ROMA_SUCCESS);
-    if (rm.ctx && rm.scene && rm.ref) {
-        trace_against_embree(dev, &rm);
-        depth_layers_against_embree(dev, &rm);
+    if (r == ROMA_SUCCESS) {
+        printf("hardware ray tracing on this device\n");
+        roma_context_desc cd = {.external = roma_hwrt_device_external(dev)};
+        CHECK_RESULT(roma_context_create(&cd, &rm.ctx), ROMA_SUCCESS);
+        if (rm.ctx && rm.scene && rm.ref) {
+            trace_against_embree(dev, &rm);
+            depth_layers_against_embree(dev, &rm);
+        }
+        roma_context_destroy(rm.ctx);
+        CHECK(roma_hwrt_device_destroy(dev) == 0); /* no validation error in its whole life */
     }
     roma_ref_destroy(rm.ref);
     roma_scene_destroy(rm.scene);
-    roma_context_destroy(rm.ctx);
-    CHECK(roma_hwrt_device_destroy(dev) == 0); /* no validation error in its whole life */
     return roma_test_finish("test_hw_ray_tracing");
 }

@@ -4,8 +4,8 @@
  * of a lower index does; the large triangles went through the tile queue.
  *
  * Built-in scenes whose walls span the grid (cornell, blinds) at RES 128 and 256 (cornell at
- * 64 too): the large triangles go through the tile queue. In cornell, which cells the lamp
- * shares with the ceiling (the cause of RES 64's bright GI). With one invocation per triangle for every
+ * 64 too): the large triangles go through the tile queue. In cornell, the test counts the cells
+ * the lamp shares with the ceiling (the cause of RES 64's bright GI). With one invocation per triangle for every
  * triangle, large triangles lost part of their cells at RES 256 on lavapipe (the same
  * cells on every run): 106,157 of cornell's 257,695 (the upper part of its back wall and
  * more; the room's GI came out 35-36% dark) and 11,445 of blinds' 109,986; none at RES 128. */

@@ -893,9 +893,10 @@ int roma_bench_accuracy(roma_context *ctx, const roma_scene *scene, const roma_r
         cam = *d->camera;
     else
         roma_scene_default_camera(scene, (float)w / (float)h, &cam);
-    /* Every setting of every method (the resolution scale's 2, screen space's 5), then Embree's
-     * and the hardware's sample counts (doubling up to the total), the frames curves. */
-    const int max_points = d->res_count * (2 * d->angular_count + 3) + 2 + 5 + 2 * 32 + 3 * 32;
+    /* Every setting of every method (the resolution scale's 2, screen space's 7: 3 march lengths,
+     * 2 rasterized and 2 traced depth maps), then Embree's and the hardware's sample counts
+     * (doubling up to the total), the frames curves. */
+    const int max_points = d->res_count * (2 * d->angular_count + 3) + 2 + 7 + 2 * 32 + 3 * 32;
     roma_scene_view view;
     roma_scene_get_view(scene, &view);
     study s = {.ctx = ctx, .scene = scene, .ref = ref, .d = d, .csv = csv,

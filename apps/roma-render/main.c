@@ -1268,7 +1268,8 @@ static void say_what_happens(options *o, const roma_scene_view *sv, const float 
      * not changed: for a short AO radius a level that reached it would be coarse for the radius
      * and darken more than the untraced part brightens (docs/accuracy.md, cascades). */
     const float finest_edge = o->finest_extent > 0.0f ? o->finest_extent : roma_app_finest_extent(res, o->ao_radius);
-    if (roma && o->cascades > 1 && finest_edge > 0.0f) {
+    const int baseline_ao = (o->effects & ROMA_EFFECT_AO) && o->ao_method != ROMA_AO_METHOD_ROMA; /* one grid */
+    if (roma && o->cascades > 1 && finest_edge > 0.0f && !baseline_ao) {
         float reach = 0.0f;
         for (int a = 0; a < 3; ++a)
             reach = fmaxf(reach, fmaxf(eye[a] - sv->bounds_min[a], sv->bounds_max[a] - eye[a]));

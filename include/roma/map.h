@@ -212,8 +212,10 @@ typedef struct roma_map_frame_desc {
      * focus is: its edge is the volume's longest edge for a focus at the centre, and for a
      * focus off it that of the cube around the focus that holds the volume, rounded up to a
      * quarter octave of the longest edge (so that the cells keep their size while the focus
-     * moves between steps); the finest's is that / 2^(K-1). Geometry outside the coarsest
-     * level is not traced. */
+     * moves between steps; a focus that crosses a step, as any move off the exact centre
+     * does, changes every level, and one that goes back and forth across it changes them each
+     * time); the finest's is that / 2^(K-1). Geometry outside the coarsest level is not
+     * traced. */
     float finest_extent;
 } roma_map_frame_desc;
 

@@ -265,15 +265,17 @@ int roma_bench_hwrt_lights(roma_context *ctx, roma_hwrt *h, const roma_ref *ref,
                       ray_count);
 }
 
-/* The segments of the points collected for one trace (roma_ref_direct_segments' callback):
- * the rays with their point and what each adds; segments nothing can block added at once. */
+/* The segments of the points for one trace (roma_ref_direct_segments' callback), in two
+ * passes: the first counts the segments to trace (rays NULL), the second fills the rays with
+ * their point and what each adds. A segment nothing can block (at its light) is added at
+ * once, in the second pass. */
 typedef struct direct_batch {
     roma_ray *rays;
     uint32_t *owner;
     float *add; /* 3 a ray */
     uint8_t *area;
-    uint32_t n, cap, point;
-    int full;
+    uint64_t n;
+    uint32_t point;
     double *punctual, *area_sum; /* 3 a point */
 } direct_batch;
 
@@ -282,71 +284,63 @@ static void collect_segment(void *user, const roma_ref_segment *s)
     direct_batch *b = user;
     if (!(s->tmax > 0.0f)) { /* at the light: seen */
         double *sum = s->area ? b->area_sum : b->punctual;
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < 3 && b->rays; ++c)
             sum[3 * (size_t)b->point + c] += (double)s->add[c];
         return;
     }
-    if (b->full)
-        return;
-    if (b->n == b->cap) {
-        const uint32_t cap = b->cap ? (b->cap > ROMA_BENCH_HWRT_MAX_RAYS / 2 ? ROMA_BENCH_HWRT_MAX_RAYS : 2 * b->cap)
-                                    : 4096u;
-        roma_ray *rays = b->n < cap ? realloc(b->rays, sizeof *rays * cap) : NULL;
-        if (rays)
-            b->rays = rays;
-        uint32_t *owner = rays ? realloc(b->owner, sizeof *owner * cap) : NULL;
-        if (owner)
-            b->owner = owner;
-        float *add = owner ? realloc(b->add, sizeof *add * 3 * (size_t)cap) : NULL;
-        if (add)
-            b->add = add;
-        uint8_t *area = add ? realloc(b->area, cap) : NULL;
-        if (area)
-            b->area = area;
-        if (!area) {
-            b->full = 1;
-            return;
-        }
-        b->cap = cap;
+    if (b->rays) {
+        roma_ray *r = &b->rays[b->n];
+        memcpy(r->origin, s->origin, sizeof r->origin);
+        memcpy(r->dir, s->dir, sizeof r->dir);
+        r->tmin = 0.0f;
+        r->tmax = s->tmax;
+        b->owner[b->n] = b->point;
+        memcpy(&b->add[3 * (size_t)b->n], s->add, sizeof s->add);
+        b->area[b->n] = (uint8_t)s->area;
     }
-    roma_ray *r = &b->rays[b->n];
-    memcpy(r->origin, s->origin, sizeof r->origin);
-    memcpy(r->dir, s->dir, sizeof r->dir);
-    r->tmin = 0.0f;
-    r->tmax = s->tmax;
-    b->owner[b->n] = b->point;
-    memcpy(&b->add[3 * (size_t)b->n], s->add, sizeof s->add);
-    b->area[b->n] = (uint8_t)s->area;
     ++b->n;
+}
+
+static void collect_segments(const roma_ref *ref, const roma_bench_hwrt_direct_desc *d, uint32_t spp, direct_batch *b)
+{
+    b->n = 0;
+    for (uint32_t i = 0; i < d->count; ++i) {
+        const uint32_t pixel = d->covered ? d->covered[i] : i;
+        const roma_gbuffer_pixel *p = &d->px[pixel];
+        b->point = i;
+        roma_ref_direct_segments(ref, p->position_t, p->geometric_normal, p->shading_normal, spp, d->seed, pixel,
+                                 collect_segment, b);
+    }
 }
 
 int roma_bench_hwrt_direct(roma_context *ctx, roma_hwrt *h, const roma_ref *ref, const roma_bench_hwrt_direct_desc *d,
                            float *rgb, double ms[3], uint32_t *ray_count)
 {
     const uint32_t spp = d->spp ? d->spp : 1;
-    direct_batch b = {.punctual = calloc(3 * (size_t)(d->count ? d->count : 1), sizeof(double)),
-                      .area_sum = calloc(3 * (size_t)(d->count ? d->count : 1), sizeof(double))};
-    roma_hit *hits = NULL;
-    int status = !b.punctual || !b.area_sum;
-    for (uint32_t i = 0; i < d->count && !status && !b.full; ++i) {
-        const uint32_t pixel = d->covered ? d->covered[i] : i;
-        const roma_gbuffer_pixel *p = &d->px[pixel];
-        b.point = i;
-        roma_ref_direct_segments(ref, p->position_t, p->geometric_normal, p->shading_normal, spp, d->seed, pixel,
-                                 collect_segment, &b);
+    direct_batch b = {0};
+    collect_segments(ref, d, spp, &b); /* the count */
+    *ray_count = b.n > UINT32_MAX ? UINT32_MAX : (uint32_t)b.n;
+    if (b.n > ROMA_BENCH_HWRT_MAX_RAYS) {
+        fprintf(stderr, "roma-bench: %llu hardware rays of the direct light are more than a batch takes (%u)\n",
+                (unsigned long long)b.n, ROMA_BENCH_HWRT_MAX_RAYS);
+        return 1;
     }
-    *ray_count = b.n;
-    if (b.full) {
-        fprintf(stderr, "roma-bench: the direct light's hardware rays are more than a batch takes (%u)\n",
-                ROMA_BENCH_HWRT_MAX_RAYS);
-        status = 1;
-    }
-    hits = status ? NULL : malloc(sizeof *hits * (b.n ? b.n : 1));
+    const size_t rays = b.n ? (size_t)b.n : 1, points = 3 * (size_t)(d->count ? d->count : 1);
+    b.rays = malloc(sizeof *b.rays * rays);
+    b.owner = malloc(sizeof *b.owner * rays);
+    b.add = malloc(sizeof *b.add * 3 * rays);
+    b.area = malloc(rays);
+    b.punctual = calloc(points, sizeof(double));
+    b.area_sum = calloc(points, sizeof(double));
+    roma_hit *hits = malloc(sizeof *hits * rays);
+    int status = !b.rays || !b.owner || !b.add || !b.area || !b.punctual || !b.area_sum || !hits;
+    if (!status)
+        collect_segments(ref, d, spp, &b); /* the same segments, filled */
     if (!status && b.n == 0) /* nothing to trace: every segment was at its light */
         ms[0] = ms[1] = ms[2] = 0.0;
-    else
-        status = status || !hits || roma_bench_hwrt_rays(ctx, h, b.rays, b.n, d->runs, hits, ms);
-    for (uint32_t r = 0; r < b.n && !status; ++r) {
+    else if (!status)
+        status = roma_bench_hwrt_rays(ctx, h, b.rays, (uint32_t)b.n, d->runs, hits, ms);
+    for (uint64_t r = 0; r < b.n && !status; ++r) {
         if (hits[r].info & ROMA_HIT_FLAG)
             continue;
         double *sum = b.area[r] ? b.area_sum : b.punctual;

@@ -89,7 +89,7 @@ typedef struct roma_bench_hwrt_direct_desc {
  * roma_ref_direct_point's) from the reference's own shadow segments (roma_ref_direct_segments:
  * every punctual light, spp area-light samples), traced any hit; ms and *ray_count as
  * roma_bench_hwrt_ao's. Returns 0 on success; 1 also where the segments would pass
- * ROMA_BENCH_HWRT_MAX_RAYS (*ray_count then says how many were wanted at least). */
+ * ROMA_BENCH_HWRT_MAX_RAYS (*ray_count then says how many they are). */
 int roma_bench_hwrt_direct(roma_context *ctx, roma_hwrt *hwrt, const struct roma_ref *ref,
                            const roma_bench_hwrt_direct_desc *desc, float *rgb, double ms[3], uint32_t *ray_count);
 

@@ -60,6 +60,7 @@ struct roma_hwrt {
     VkPipelineLayout layout; /* both programs': the scene's structure, either push block */
     hwrt_program rays;       /* batches of roma_ray (hwrt_rays.rgen) */
     hwrt_program layers;     /* the stochastic depth map (hwrt_depth_layers.*) */
+    VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt; /* read once: launches and binding tables */
     uint32_t max_launch_width, max_launch_invocations;
 };
 
@@ -516,10 +517,12 @@ static roma_result create_layout(roma_hwrt *h)
     vkUpdateDescriptorSets(ctx->device, 1, &write, 0, NULL);
 
     /* One invocation per ray, in rows no wider than the device launches along x. */
-    VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt = {
+    h->rt = (VkPhysicalDeviceRayTracingPipelinePropertiesKHR){
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
-    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &rt};
+    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &h->rt};
     vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    h->rt.pNext = NULL;
+    const VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt = h->rt;
     h->max_launch_invocations = rt.maxRayDispatchInvocationCount ? rt.maxRayDispatchInvocationCount : 1u;
     h->max_launch_width = rt.maxRayDispatchInvocationCount < 65536u ? rt.maxRayDispatchInvocationCount : 65536u;
     if (h->max_launch_width > ctx->properties.limits.maxComputeWorkGroupCount[0])
@@ -576,10 +579,7 @@ static roma_result create_program(roma_hwrt *h, const char *const names[3], int 
 
     /* The shader binding table: ray generation, miss and hit group, each region at the
      * base alignment (the ray generation region's stride equals its size). */
-    VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
-    VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &rt};
-    vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    const VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt = h->rt; /* create_layout read it */
     const VkDeviceSize handle = rt.shaderGroupHandleSize;
     const VkDeviceSize stride = align_up(handle, rt.shaderGroupHandleAlignment);
     const VkDeviceSize region = align_up(stride, rt.shaderGroupBaseAlignment);

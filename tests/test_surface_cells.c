@@ -1,7 +1,8 @@
-/* The GI pass's surface grid (src/effects/surface_cells.h) against the exact CPU
+/* The effects' surface grid (src/effects/surface_cells.h) against the exact CPU
  * voxelizer (tests/support/voxelize_cpu.c) on the same grid: every cell a triangle
- * overlaps holds a triangle, the triangle it holds overlaps it, and (cornell) no triangle
- * of a lower index does; the large triangles went through the tile queue.
+ * overlaps holds a triangle, the triangle it holds overlaps it, its key marks the scene's
+ * area lights, and (cornell) no triangle of a lower key does (area lights after the rest); the
+ * large triangles went through the tile queue.
  *
  * Built-in scenes whose walls span the grid (cornell, blinds) at RES 128 and 256 (cornell at
  * 64 too): the large triangles go through the tile queue. In cornell, the test counts the cells
@@ -37,7 +38,7 @@ typedef struct built {
 
 static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t res, built *out)
 {
-    roma_buffer positions = {0}, indices = {0}, readback = {0}, header = {0};
+    roma_buffer positions = {0}, indices = {0}, readback = {0}, header = {0}, bits = {0};
     roma_surface_cells cells;
     memset(&cells, 0, sizeof cells);
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
@@ -45,13 +46,21 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
     roma_result r = roma_buffer_create(ctx, (VkDeviceSize)v->vertex_count * 16, usage, ROMA_MEMORY_UPLOAD, &positions);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, (VkDeviceSize)v->triangle_count * 12, usage, ROMA_MEMORY_UPLOAD, &indices);
+    if (r == ROMA_SUCCESS) /* the area lights' bits, as roma_light_data's */
+        r = roma_buffer_create(ctx, 4 * (((VkDeviceSize)v->triangle_count + 31) / 32), usage, ROMA_MEMORY_UPLOAD, &bits);
+    if (r == ROMA_SUCCESS) {
+        uint32_t *w = bits.mapped;
+        memset(w, 0, 4 * (((size_t)v->triangle_count + 31) / 32));
+        for (uint32_t e = 0; e < v->emissive_triangle_count; ++e)
+            w[v->emissive_triangles[e] / 32] |= 1u << (v->emissive_triangles[e] % 32);
+    }
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, ROMA_MEMORY_READBACK, &readback);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                ROMA_MEMORY_READBACK, &header);
     if (r == ROMA_SUCCESS)
-        r = roma_surface_cells_create(ctx, res, &cells);
+        r = roma_surface_cells_create(ctx, res, 1, &cells);
     if (r == ROMA_SUCCESS)
         r = roma_surface_cells_place(&cells, v->bounds_min, v->bounds_max);
     if (r == ROMA_SUCCESS) {
@@ -66,7 +75,8 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
     if (r == ROMA_SUCCESS)
         r = roma_begin_one_shot(ctx, &cmd);
     if (r == ROMA_SUCCESS) {
-        const roma_surface_geometry g = {positions.buffer, indices.buffer, v->triangle_count};
+        const roma_surface_geometry g = {positions.buffer, indices.buffer, v->triangle_count, bits.address,
+                                         v->triangle_count};
         r = roma_surface_cells_record(&cells, cmd, 0, &g);
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
@@ -95,6 +105,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
     }
     roma_surface_cells_destroy(&cells);
     roma_buffer_destroy(ctx, &header);
+    roma_buffer_destroy(ctx, &bits);
     roma_buffer_destroy(ctx, &readback);
     roma_buffer_destroy(ctx, &indices);
     roma_buffer_destroy(ctx, &positions);
@@ -113,7 +124,21 @@ static int overlaps(const roma_scene_view *v, const built *b, uint32_t tri, uint
     return roma_tri_box_overlap(lo, 1.0 + 2.0 * grow, corner[0], corner[1], corner[2]);
 }
 
-/* lowest: also check that no triangle of a lower index overlaps a cell (every triangle
+static int is_emitter(const roma_scene_view *v, uint32_t tri)
+{
+    for (uint32_t e = 0; e < v->emissive_triangle_count; ++e)
+        if (v->emissive_triangles[e] == tri)
+            return 1;
+    return 0;
+}
+
+/* A triangle's key in the grid: its index, area lights after the rest. */
+static uint32_t key_of(const roma_scene_view *v, uint32_t tri)
+{
+    return is_emitter(v, tri) ? tri | ROMA_SURFACE_EMITTER : tri;
+}
+
+/* lowest: also check that no triangle of a lower key overlaps a cell (every triangle
  * against every held cell: small scenes only). */
 static void check_scene(roma_context *ctx, const char *name, uint32_t res, int lowest)
 {
@@ -136,17 +161,18 @@ static void check_scene(roma_context *ctx, const char *name, uint32_t res, int l
         for (uint32_t z = 0; z < res; ++z)
             for (uint32_t y = 0; y < res; ++y)
                 for (uint32_t x = 0; x < res; ++x) {
-                    uint32_t tri = b.cells[((size_t)z * res + y) * res + x];
+                    const uint32_t key = b.cells[((size_t)z * res + y) * res + x];
+                    const uint32_t tri = key & ~ROMA_SURFACE_EMITTER;
                     int on_cpu = roma_voxel_get(cpu, res, x, y, z);
-                    if (tri == ROMA_GBUFFER_NO_TRIANGLE) {
+                    if (key == ROMA_GBUFFER_NO_TRIANGLE) {
                         missed += on_cpu;
                         continue;
                     }
                     ++held;
                     extra += !on_cpu;
-                    wrong += tri >= v.triangle_count || !overlaps(&v, &b, tri, x, y, z, 1e-3);
-                    for (uint32_t lower = 0; lowest && lower < tri && lower < v.triangle_count; ++lower)
-                        if (overlaps(&v, &b, lower, x, y, z, -1e-3)) {
+                    wrong += tri >= v.triangle_count || key != key_of(&v, tri) || !overlaps(&v, &b, tri, x, y, z, 1e-3);
+                    for (uint32_t t = 0; lowest && t < v.triangle_count; ++t)
+                        if (key_of(&v, t) < key && overlaps(&v, &b, t, x, y, z, -1e-3)) {
                             ++not_lowest;
                             break;
                         }
@@ -158,28 +184,24 @@ static void check_scene(roma_context *ctx, const char *name, uint32_t res, int l
                lowest ? "" : " (not checked)", b.queued);
         /* The cause of RES 64's bright GI in the room (docs/accuracy.md, "The surface grid at RES
          * 256"; the tools build the grid at the GI map's RES): the lamp hangs 2 cm under the
-         * ceiling, and in the cells the two share the grid holds the ceiling (the lower index),
-         * so a bounce ray that meets the lamp's underside is shaded as the hidden ceiling above
-         * it, which the lamp's top face lights at 2 cm. */
+         * ceiling, and in the cells the two share the grid holds the ceiling (area lights come
+         * after the rest), so a bounce ray that meets the lamp's underside is shaded as the
+         * hidden ceiling above it, which the lamp's top face lights at 2 cm. */
         uint64_t emitter_cells = 0, shared = 0, shared_other = 0;
         for (uint32_t z = 0; lowest && z < res; ++z)
             for (uint32_t y = 0; y < res; ++y)
                 for (uint32_t x = 0; x < res; ++x) {
-                    const uint32_t tri = b.cells[((size_t)z * res + y) * res + x];
-                    if (tri == ROMA_GBUFFER_NO_TRIANGLE)
+                    const uint32_t key = b.cells[((size_t)z * res + y) * res + x];
+                    if (key == ROMA_GBUFFER_NO_TRIANGLE)
                         continue;
-                    int emitter = 0, other = 0, holds_emitter = 0;
-                    for (uint32_t t = 0; t < v.triangle_count; ++t) {
-                        int is_emitter = 0;
-                        for (uint32_t e = 0; e < v.emissive_triangle_count; ++e)
-                            is_emitter |= v.emissive_triangles[e] == t;
-                        if (t == tri)
-                            holds_emitter = is_emitter;
+                    const int holds_emitter = (key & ROMA_SURFACE_EMITTER) != 0;
+                    int emitter = 0, other = 0;
+                    for (uint32_t t = 0; t < v.triangle_count; ++t)
                         if (overlaps(&v, &b, t, x, y, z, -1e-3)) {
-                            emitter |= is_emitter;
-                            other |= !is_emitter;
+                            const int e = is_emitter(&v, t);
+                            emitter |= e;
+                            other |= !e;
                         }
-                    }
                     emitter_cells += emitter;
                     shared += emitter && other;
                     shared_other += emitter && other && !holds_emitter;

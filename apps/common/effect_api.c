@@ -520,8 +520,14 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     const int lit = roma_effect_plan_runs(plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
                     roma_effect_plan_runs(plan, ROMA_PASS_SOFT_SHADOWS);
     const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch};
-    const roma_light_effect_desc light_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch};
-    /* The surface grid at the GI array's RES, as the internal renderer's (at least the map's RES). */
+    /* The surface grids at their array's RES (at least the map's RES). */
+    const int light_map = plan->pass_map[ROMA_PASS_SOFT_SHADOWS] >= 0 ? plan->pass_map[ROMA_PASS_SOFT_SHADOWS]
+                                                                     : plan->pass_map[ROMA_PASS_PUNCTUAL_LIGHTS];
+    const int count_map = plan->pass_map[ROMA_PASS_MANY_LIGHTS];
+    const roma_light_effect_desc light_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch,
+                                               .surface_resolution = light_map >= 0 ? plan->maps[light_map].resolution : 0};
+    const roma_light_effect_desc count_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch,
+                                               .surface_resolution = count_map >= 0 ? plan->maps[count_map].resolution : 0};
     const int gi_map = plan->pass_map[ROMA_PASS_GI];
     const roma_gi_effect_desc gi_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch,
                                          .surface_resolution = gi_map >= 0 ? plan->maps[gi_map].resolution : 0};
@@ -545,7 +551,7 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
         r = roma_gi_effect_set_scene(e->gi, scene);
     const uint32_t many = plan->many_light_count;
     if (r == ROMA_SUCCESS && roma_effect_plan_runs(plan, ROMA_PASS_MANY_LIGHTS) && many && d->many_light_positions) {
-        r = roma_study_light_effect_create(e->ctx, &light_desc, d->shadow_method, &e->count);
+        r = roma_study_light_effect_create(e->ctx, &count_desc, d->shadow_method, &e->count);
         e->many_lights = r == ROMA_SUCCESS ? calloc(many, sizeof *e->many_lights) : NULL;
         if (r == ROMA_SUCCESS && !e->many_lights)
             r = ROMA_ERROR_OUT_OF_HOST_MEMORY;

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# What the walk of a shadow segment's end at its light costs (roma_light_end_blocked,
-# roma_emitter_end_blocked: two BOM walks of up to ROMA_LIGHT_END_CELLS cells per segment).
-# roma-render's public direct-light and GI passes on the default room (its lamp, 2 cm under the
-# ceiling, and its spot) at 640x360, 16 samples, 4 frames, with this build and with a build of
-# the commit before the walk (BASE_BUILD), three alternating runs; per run the pass's time summed
-# over the frames, in ms, from the stats file.
+# What the checks of a shadow segment's end at its light cost (roma_light_end_blocked,
+# roma_emitter_end_blocked: the BOM's walks, and the surface grid's where the light shares a
+# wall's cells): roma-render's public direct-light and GI passes on the default room (its lamp,
+# 2 cm under the ceiling, and its spot) at 640x360, 16 samples, 4 frames, with this build and
+# with a build of the commit before a change (BASE_BUILD), three alternating runs; per run the
+# pass's time summed over the frames, in ms, from the stats file.
 # Usage: docs/bench/light_end_cost.sh BASE_BUILD [BUILD_DIR [ROMA_RENDER_ARGS...]]   (from the
 # repository root; e.g. `--res 256` for the walk back's reach at RES 256)
 set -euo pipefail

@@ -50,6 +50,9 @@ extern "C" {
 #define ROMA_DEFAULT_SHADOW_STEPS 8u
 #define ROMA_DEFAULT_SHADOW_SKIP_CELLS 1.0f /**< shadow rays start one trace cell past their origin */
 #define ROMA_DEFAULT_AREA_LIGHT_SAMPLES 4u  /**< area-light samples per pixel and frame */
+/** Default resolution of the surface grid that tells on which side of a wall a light in the
+ * wall's voxels lies. */
+#define ROMA_DEFAULT_LIGHT_SURFACE_RESOLUTION 128u
 
 /** What roma_light_effect writes. */
 typedef enum roma_light_output {
@@ -137,6 +140,11 @@ ROMA_API roma_result roma_light_effect_set_area_lights(roma_light_effect *effect
 typedef struct roma_light_effect_desc {
     uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
     roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
+    /** Resolution of the surface grid, 32 to 256; 0 = ROMA_DEFAULT_LIGHT_SURFACE_RESOLUTION.
+     * A point, spot or area light within a voxel of a wall lies in the wall's voxels, on
+     * either side of it as far as the map shows; the grid (RES^3 uints, rebuilt from the
+     * map's triangles whenever they move) tells which. At least the map's RES. */
+    uint32_t surface_resolution;
     roma_logger logger;        /**< 0 = the context's */
 } roma_light_effect_desc;
 
@@ -146,9 +154,9 @@ typedef struct roma_light_effect_desc {
  * @param desc      settings; NULL = the zero value (2 slots, the context's logger). Copied.
  * @param[out] out  the new effect; NULL on failure.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out,
- *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT or a pixel_dispatch that is not a
- *         roma_pixel_dispatch; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
- *         (roma_result).
+ *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT, a pixel_dispatch that is not a
+ *         roma_pixel_dispatch or a surface_resolution outside [32, 256];
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
  * Any thread. */
 ROMA_API roma_result roma_light_effect_create(roma_context *context, const roma_light_effect_desc *desc,

@@ -13,9 +13,9 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 
+#include "roma_surface_grid.glsl"
+
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaGiScene { roma_gi_scene s; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaUints { uint u[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaVec4s { vec4 v[]; };
 
 const uint ROMA_DIM_GI_BOUNCE = 5u;
 const uint ROMA_DIM_GI_AREA = 7u;
@@ -36,12 +36,7 @@ struct roma_gi_shading {
 // The triangle the surface grid holds at p, or ROMA_GBUFFER_NO_TRIANGLE.
 uint roma_gi_surface_at(roma_gi_scene S, vec3 p)
 {
-    vec3 g = (p - S.grid.xyz) / S.grid.w;
-    float res = float(S.config.x);
-    if (!(all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(res)))))
-        return ROMA_GBUFFER_NO_TRIANGLE;
-    uvec3 c = uvec3(g);
-    return RomaUints(S.cells).u[(c.z * S.config.x + c.y) * S.config.x + c.x];
+    return roma_surface_at(S.surfaces, p);
 }
 
 // The world point at map coordinates q of map frame f (roma_map_frame: map -> BOM
@@ -62,7 +57,7 @@ uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
                                   vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
     for (int i = 0; i < 6; ++i) {
         ROMA_LOOP_TICK();
-        uint tri = roma_gi_surface_at(S, centre + around[i] * S.grid.w);
+        uint tri = roma_gi_surface_at(S, centre + around[i] * S.surfaces.grid.w);
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }
@@ -89,7 +84,7 @@ uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map
 
 // Radiance leaving triangle tri, which a bounce ray (origin, dir) hit near h at distance
 // t, towards the ray's origin: its albedo / pi times the direct irradiance there (with
-// S.config.w == ROMA_GI_PUNCTUAL_RSM point and spot lights are left to the caller's RSMs).
+// S.config.z == ROMA_GI_PUNCTUAL_RSM point and spot lights are left to the caller's RSMs).
 vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, vec3 origin, vec3 dir, float t,
                           uint pixel, uint s)
 {
@@ -98,10 +93,8 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     vec3 albedo = RomaVec4s(S.albedo).v[tri].rgb;
     if (!any(greaterThan(albedo, vec3(0.0))))
         return vec3(0.0);
-    uvec3 k = uvec3(RomaUints(S.indices).u[3u * tri], RomaUints(S.indices).u[3u * tri + 1u],
-                    RomaUints(S.indices).u[3u * tri + 2u]);
-    vec3 a = RomaVec4s(S.positions).v[k.x].xyz, b = RomaVec4s(S.positions).v[k.y].xyz,
-         c = RomaVec4s(S.positions).v[k.z].xyz;
+    vec3 a, b, c;
+    uvec3 k = roma_surface_triangle(S.surfaces, tri, a, b, c);
     vec3 ng = cross(b - a, c - a);
     float area2 = length(ng);
     if (!(area2 > 0.0))
@@ -127,7 +120,7 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     vec3 y = y_hit;
     // The hit's offset and skip in the cells of the cascade level that holds it.
     float scale = roma_level_scale(y_hit);
-    if (dn < -1e-4 && abs(tp - t) <= 3.0 * S.grid.w) {
+    if (dn < -1e-4 && abs(tp - t) <= 3.0 * S.surfaces.grid.w) {
         vec3 from = y_hit + ng * (P.offset * scale), to = origin + dir * tp + ng * (P.offset * scale);
         bool near = roma_start_bom_ == uvec2(0u) ||
                     length(to - from) <= 64.0 * roma_start_grid_.origin.w * scale;
@@ -154,14 +147,14 @@ vec3 roma_gi_hit_radiance(roma_gi_scene S, roma_gi_shading P, uint tri, vec3 h, 
     uint max_steps = P.max_steps, seed = P.seed;
     vec3 o = y + ng * offset;
     vec3 E = vec3(0.0);
-    if (S.config.y > 0u && P.light_part.x == 0u) {
+    if (S.config.x > 0u && P.light_part.x == 0u) {
         vec3 u = vec3(roma_random(seed, pixel, s, ROMA_DIM_GI_AREA), roma_random(seed, pixel, s, ROMA_DIM_GI_AREA + 1u),
                       roma_random(seed, pixel, s, ROMA_DIM_GI_AREA + 2u));
-        E += roma_area_sample_irradiance(RomaEmitters(S.emitters), RomaFloats(S.cdf), S.config.y, u, y, ng, n, o,
+        E += roma_area_sample_irradiance(RomaEmitters(S.emitters), RomaFloats(S.cdf), S.config.x, u, y, ng, n, o,
                                          offset, tmin, max_steps);
     }
-    bool rsm = S.config.w == ROMA_GI_PUNCTUAL_RSM;
-    for (uint i = P.light_part.x; i < min(P.light_part.y, S.config.z); ++i) {
+    bool rsm = S.config.z == ROMA_GI_PUNCTUAL_RSM;
+    for (uint i = P.light_part.x; i < min(P.light_part.y, S.config.y); ++i) {
         ROMA_LOOP_TICK();
         roma_gpu_light light = RomaLights(P.lights).l[i];
         if (uint(light.position_type.w) == ROMA_GPU_LIGHT_DIRECTIONAL) {

@@ -52,6 +52,8 @@ void main()
     vec3 origin = surface.p + ng * (pc.ray.x * scale);
     roma_use_ray_start(pc.bom);
     roma_gi_scene S = RomaGiScene(pc.scene).s;
+    if (pc.bom != uvec2(0u)) // the blind-start baseline walks nothing at a light's end either
+        roma_use_surfaces(S.surfaces);
     uint seed = pc.config2.x;
     roma_gi_shading P = roma_gi_shading(pc.ray.x, pc.ray.z, pc.config2.y, seed, pc.lights, pc.part.zw);
     vec3 acc = vec3(0.0);

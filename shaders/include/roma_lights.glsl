@@ -11,6 +11,7 @@
 #include "roma_shared.h"
 #include "roma/trace_descriptors.glsl"
 #include "roma/ray_start.glsl"
+#include "roma_surface_grid.glsl"
 
 // Shadow rays walk their first ROMA_START_WALK skip lengths exactly (4 trace cells at the
 // default skip of one): a ray that starts next to a wall and leaves at a shallow angle to
@@ -111,6 +112,15 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
                               ROMA_HIT_FLAG) == 0u;
 }
 
+// The surface grid the light ends look in (roma_surface_crossed); a pass without one
+// (zero) decides with the BOM alone. Set by the pass (roma_use_surfaces).
+roma_surface_grid roma_surfaces_ = roma_surface_grid(uvec2(0u), uvec2(0u), uvec2(0u), uvec2(0u), vec4(0.0), uvec4(0u));
+
+void roma_use_surfaces(roma_surface_grid G)
+{
+    roma_surfaces_ = G;
+}
+
 // The end of a segment at its light: the traced part stops an offset short of the light, so
 // that it meets neither the light's own cells nor those of a wall it is mounted on; a wall
 // within that offset (a lamp a few cm above a room's ceiling) would go unseen and light the
@@ -118,31 +128,63 @@ bool roma_ray_visible(vec3 origin, vec3 v, float tmin, float tmax, uint max_step
 // shaded point; which cells are the light's own is what the voxels cannot always tell
 // (docs/accuracy.md, "Lights just outside a wall").
 
-// A point or spot light at from: on from + normalize(dir) * [0, len], the occupied cells the
-// light lies in (the wall it is mounted on) are skipped and any occupied cell after a free
-// one blocks. A wall in the same run of occupied cells as the light passes.
-bool roma_light_end_blocked(vec3 from, vec3 dir, float len)
+// A point or spot light at from, the stretch from + normalize(dir) * [0, len] (reach: the
+// segment's whole length). Where the BOM shows no occupied cell on it, the light is away from
+// every surface: free. Otherwise a surface the surface grid shows crossed over [0, 2 len]
+// (within reach, at most ROMA_LIGHT_SURFACE_CELLS of its cells) blocks: a wall in the cells
+// the light lies in, which the BOM cannot place on either side of it, also where a shallow
+// segment leaves those cells beyond len (the traced part's query does not see a wall in the
+// cells it starts in). A light on the surface itself (within 1% of a cell) is not behind it.
+// Where the grid did not look over all of [0, len] (none, or finer than the map's), the BOM
+// decides that stretch as before the grid: the occupied cells the light lies in (the wall it
+// is mounted on) are skipped and any occupied cell after a free one blocks. (Walked with the
+// grid too, the walk blocked the segments that leave a light half a cell under a turned
+// ceiling along it through the ceiling's staircase of cells, and closed no more of the
+// lights outside rooms.)
+bool roma_light_end_blocked(vec3 from, vec3 dir, float len, float reach)
 {
     vec3 d = normalize(dir);
+    float nudge = 0.01 * roma_fetch_grid(roma_level_of(from)).origin.w, covered;
+    if (!(roma_bom_walk(from, d, len, ROMA_LIGHT_END_CELLS) >= 0.0))
+        return false;
+    if (roma_surface_crossed(roma_surfaces_, from, d, nudge, min(reach, 4.0 * len), vec4(0.0),
+                             ROMA_LIGHT_SURFACE_CELLS, covered))
+        return true;
+    if (covered >= len)
+        return false;
     float t_free = roma_bom_walk_until(from, d, len, ROMA_LIGHT_END_CELLS, false);
     if (!(t_free >= 0.0))
         return false;
     // From inside the free cell (its entry lies on a cell boundary).
-    float nudge = 0.01 * roma_fetch_grid(roma_level_of(from)).origin.w;
     return roma_bom_walk(from + d * (t_free + nudge), d, len - t_free - nudge, ROMA_LIGHT_END_CELLS) >= 0.0;
 }
 
-// An area light's sample y on an emitter with unit normal n: on y + normalize(dir) * [0, len],
-// an occupied cell blocks once the walk is more than two of the plane's half-widths in cells
-// (0.5 |n|_1 cell: no cell whose centre lies farther from the emitter's plane overlaps it)
-// away from the plane, where no cell of the emitter can lie. A wall closer than that to the
-// emitter's plane (one cell when axis-aligned, up to 1.7 turned) passes.
+// An area light's sample y on an emitter with unit normal n, the stretch y + normalize(dir) *
+// [0, len]. Within two of the emitter plane's half-widths in cells of it (0.5 |n|_1 cell: no
+// cell whose centre lies farther from the plane overlaps it), where the emitter's cells and a
+// wall's are one to the BOM (a lamp within a cell of a ceiling), a surface the surface grid
+// shows crossed blocks, but for the emitter's own plane (at most ROMA_LIGHT_SURFACE_CELLS of
+// its cells); beyond, an occupied cell of the BOM blocks. Without the grid a wall that close
+// to the emitter's plane (one cell when axis-aligned, up to 1.7 turned) passes.
 bool roma_emitter_end_blocked(vec3 y, vec3 n, vec3 dir, float len)
 {
     vec3 d = normalize(dir);
     float cell = roma_fetch_grid(roma_level_of(y)).origin.w;
     float slant = abs(dot(d, n));
-    float t0 = ((abs(n.x) + abs(n.y) + abs(n.z)) * cell + 0.01 * cell) / max(slant, 1e-3);
+    float band = (abs(n.x) + abs(n.y) + abs(n.z)) * cell + 0.01 * cell, t0 = band / max(slant, 1e-3), covered;
+    // The surface grid's walk only where the grid shows a wall in the band under the sample,
+    // along the normal toward the shaded side (five points across the band): most samples'
+    // bands hold their emitter alone, and the walk cost a third of the direct light's time in
+    // the default room (docs/accuracy.md, "Lights just outside a wall").
+    vec3 toward = dot(d, n) > 0.0 ? n : -n;
+    bool wall = false;
+    for (int k = 0; k <= 4; ++k) {
+        ROMA_LOOP_TICK();
+        wall = wall || roma_surface_wall_at(roma_surfaces_, y + toward * (0.25 * float(k) * band));
+    }
+    if (wall && roma_surface_crossed(roma_surfaces_, y, d, 0.0, min(len, t0), vec4(n, dot(n, y)),
+                                     ROMA_LIGHT_SURFACE_CELLS, covered))
+        return true;
     return t0 < len && roma_bom_walk(y + d * t0, d, len - t0, ROMA_LIGHT_END_CELLS) >= 0.0;
 }
 
@@ -155,7 +197,7 @@ bool roma_punctual_visible(vec3 origin, vec3 v, bool directional, float offset, 
 {
     float len = length(v);
     return roma_ray_visible(origin, v, tmin, directional ? 1.0 / 0.0 : len - offset, max_steps, ROMA_BACK_SKIP_POINT) &&
-           (directional || !roma_light_end_blocked(origin + v, -v, min(offset, len)));
+           (directional || !roma_light_end_blocked(origin + v, -v, min(offset, len), len));
 }
 
 // Unshadowed irradiance factor of a punctual light at p (scale * cos, 0 when

@@ -43,6 +43,8 @@ void main()
     float offset = pc.ray.x * surface.scale, tmin = pc.ray.y * surface.scale;
     vec3 origin = p + ng * offset;
     roma_use_ray_start(pc.bom);
+    if (pc.surfaces != uvec2(0u))
+        roma_use_surfaces(RomaSurfaceGrid(pc.surfaces).g);
     vec3 E = vec3(0.0);
     uint seed = pc.config2.x, emitter_count = pc.config2.y, samples = pc.config2.z, frame = pc.config2.w;
     // Many lights: the first `exact` lights every frame; of the `rest`, a run of `sampled`

@@ -21,9 +21,12 @@
  * skipped farther (docs/accuracy.md, "Skipping the empty space in front of the light"). */
 #define ROMA_BACK_SKIP_POINT 48
 #define ROMA_BACK_SKIP_AREA 32
-/* Cells of each of the two walks that check a segment's end at its light
+/* Cells of each of the BOM walks that check a segment's end at its light
  * (roma_light_end_blocked): an offset of 2.6 BOM cells at a slant of about 85 degrees. */
 #define ROMA_LIGHT_END_CELLS 32
+/* Cells of the surface grid the check at a light's end looks at (roma_surface_crossed): two
+ * offsets of 2.6 BOM cells from a point light at a slant of about 45 degrees. */
+#define ROMA_LIGHT_SURFACE_CELLS 32
 
 /* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
  * and the pipeline's slot in it as specialization constants, set on every pipeline of a
@@ -367,6 +370,7 @@ ROMA_STRUCT_BEGIN(roma_light_images_push)
      * lights traced every frame, the sampled lights, the area-light samples; x > 0 adds to
      * what the dispatches before it wrote. */
     ROMA_UVEC4(part);
+    ROMA_U64(surfaces);   /* roma_surface_grid of the slot (where a wall lies in its cells); 0: none */
 ROMA_STRUCT_END(roma_light_images_push)
 
 /* The public GI effect (roma/gi_effect.h, shaders/effects/gi_images.comp). */
@@ -398,26 +402,35 @@ ROMA_STRUCT_BEGIN(roma_rsm_view)
     ROMA_UVEC4(info);     /* x: light index (roma_gpu_light), y: size in pixels (square), zw: pixel address */
 ROMA_STRUCT_END(roma_rsm_view)
 
-/* The surfaces a bounce ray can hit (src/effects/surface_cells.c,
- * shaders/effects/surface_cells.comp and surface_cells_tiles.comp): a grid over the
- * scene whose cells hold the lowest index of a triangle overlapping them
- * (ROMA_GBUFFER_NO_TRIANGLE when none), so that the GI pass finds the albedo and
- * normal of the surface a ROMA hit lies on. Written when the geometry moves (RES^3
- * uints) by the exact voxelizer's overlap test, with roma_voxelize_push and the
- * voxelizer's bindings (the cells at ROMA_VOXELIZE_BINDING_BOM) and tile queue. */
+/* The surface grid (src/effects/surface_cells.c, shaders/effects/surface_cells.comp and
+ * surface_cells_tiles.comp): a grid over the scene whose cells hold a triangle overlapping
+ * them (ROMA_GBUFFER_NO_TRIANGLE when none): the lowest index, an area light's triangles
+ * after all others (their index with ROMA_SURFACE_EMITTER set), so that the GI pass finds the
+ * albedo and normal of the surface a ROMA hit lies on, and the light passes where in an
+ * occupied cell a wall lies (roma_surface_grid.glsl). Written when the geometry moves
+ * (RES^3 uints) by the exact voxelizer's overlap test, with roma_voxelize_push (runs[0].xy:
+ * the address of the emitters' bits, bit t % 32 of uint t / 32, 0: none; runs[0].z: the
+ * triangles they cover; runs[0].w: the layers) and the voxelizer's bindings (the cells at
+ * ROMA_VOXELIZE_BINDING_BOM) and tile queue. */
+#define ROMA_SURFACE_EMITTER 0x80000000u
+ROMA_STRUCT_BEGIN(roma_surface_grid)
+    ROMA_U64(cells);      /* uint per cell, index (z * RES + y) * RES + x; 0: no grid */
+    ROMA_U64(indices);    /* uint x3 per triangle */
+    ROMA_U64(positions);  /* float4 per vertex */
+    ROMA_U64(pad_);
+    ROMA_VEC4(grid);      /* xyz: corner of cell (0,0,0); w: cell size */
+    ROMA_UVEC4(config);   /* x: RES, y: layers (2: the highest index + 1 of a triangle that is not an
+                             area light in each cell follows, 0: none) */
+ROMA_STRUCT_END(roma_surface_grid)
 
 /* What the GI pass needs at a bounce hit (one buffer per frame slot). */
 ROMA_STRUCT_BEGIN(roma_gi_scene)
-    ROMA_U64(cells);      /* uint per cell of the surface grid, index (z * RES + y) * RES + x */
-    ROMA_U64(indices);    /* uint x3 per triangle */
-    ROMA_U64(positions);  /* float4 per vertex */
+    roma_surface_grid surfaces;
     ROMA_U64(normals);    /* float4 per vertex (zero: use the face normal) */
     ROMA_U64(albedo);     /* float4 per triangle */
     ROMA_U64(emitters);   /* roma_gpu_emitter; 0 when there are no area lights */
     ROMA_U64(cdf);        /* float per emitter */
-    ROMA_U64(pad_);
-    ROMA_VEC4(grid);      /* xyz: corner of cell (0,0,0); w: cell size */
-    ROMA_UVEC4(config);   /* x: RES, y: emitter count, z: punctual light count, w: ROMA_GI_PUNCTUAL_* */
+    ROMA_UVEC4(config);   /* x: emitter count, y: punctual light count, z: ROMA_GI_PUNCTUAL_* */
     ROMA_UVEC4(config2);  /* x: triangles with an albedo (later ones reflect nothing), y: vertices with
                              normals (triangles with a later vertex use the face normal) */
 ROMA_STRUCT_END(roma_gi_scene)

@@ -1,18 +1,36 @@
-// The GI pass's surface grid (src/effects/surface_cells.h), shared by
+// The surface grid's build (src/effects/surface_cells.h), shared by
 // effects/surface_cells.comp (one invocation per triangle) and
 // effects/surface_cells_tiles.comp (one per queued tile of a large triangle): a
-// triangle's index is written with atomicMin into every cell it overlaps (the exact
-// voxelizer's test), so that a cell shared by several triangles holds the lowest index
-// whatever the order the invocations ran in. The voxelizer's BOM binding holds the
-// cells, one uint each, (z * RES + y) * RES + x.
+// triangle's key is written with atomicMin into every cell it overlaps (the exact
+// voxelizer's test), so that a cell shared by several triangles holds the lowest key
+// whatever the order the invocations ran in. The key is the index, with
+// ROMA_SURFACE_EMITTER set for an area light's triangle: a wall and a lamp in the same cells
+// leave the wall there, whichever comes first in the scene (a light's end looks for the
+// walls; its own plane it skips). The voxelizer's BOM binding holds the cells, one uint
+// each, (z * RES + y) * RES + x, and with two layers (runs[0].w) the highest index + 1 of a
+// triangle that is not an area light in each after them (both halves of a ceiling's quad
+// where a lamp shares its cells); the push's runs[0].xy the address of the emitters' bits.
 #ifndef ROMA_SURFACE_CELLS_GLSL
 #define ROMA_SURFACE_CELLS_GLSL
 
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
 #include "roma_voxelize.glsl"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaEmitterBits { uint w[]; };
+
+// Triangle tri's key (the emitters' bits: runs[0].xy, covering runs[0].z triangles).
+uint roma_surface_key(uint tri)
+{
+    bool emitter = tri < pc.runs[0].z && (RomaEmitterBits(pc.runs[0].xy).w[tri >> 5u] & (1u << (tri & 31u))) != 0u;
+    return emitter ? tri | ROMA_SURFACE_EMITTER : tri;
+}
 
 // The cells of columns [lo.x, hi.x] x [lo.y, hi.y] of the triangle's footprint.
 void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int res)
 {
+    uint key = roma_surface_key(tri);
     for (int iv = lo.y; iv <= hi.y; ++iv) {
         ROMA_LOOP_TICK();
         for (int iu = lo.x; iu <= hi.x; ++iu) {
@@ -24,7 +42,10 @@ void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int
                 if (!roma_vox_overlaps(t, c))
                     continue;
                 ivec3 w = roma_vox_from_columns(c, t.a);
-                atomicMin(bom[(uint(w.z) * uint(res) + uint(w.y)) * uint(res) + uint(w.x)], tri);
+                uint cell = (uint(w.z) * uint(res) + uint(w.y)) * uint(res) + uint(w.x);
+                atomicMin(bom[cell], key);
+                if (pc.runs[0].w == 2u && key < ROMA_SURFACE_EMITTER) // the second layer: the highest wall's + 1
+                    atomicMax(bom[uint(res * res * res) + cell], key + 1u);
             }
         }
     }

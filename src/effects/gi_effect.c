@@ -36,7 +36,6 @@ struct roma_gi_effect {
     uint32_t surface_resolution;
     gi_surfaces surfaces; /* materials.triangle_count == 0: no scene */
     roma_surface_cells grid;        /* made on the first record with a scene */
-    uint64_t grid_version;          /* the grid holds the map geometry of this version (0: none) */
     roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_upload scene[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_gi_scene per slot */
     int exact; /* the module walks bounce and shadow rays through the BOM (the study's) */
@@ -163,28 +162,7 @@ roma_result roma_gi_effect_set_scene(roma_gi_effect *e, const roma_scene *scene)
     }
     surfaces_free(ctx, &e->surfaces);
     e->surfaces = s;
-    return ROMA_SUCCESS;
-}
-
-/* Rebuilds the surface grid from the map's geometry when the grid holds another map's or
- * an older build's (versions are unique in the context; records nothing otherwise). */
-static roma_result follow_map(roma_gi_effect *e, VkCommandBuffer cmd, uint32_t slot, const roma_map *map)
-{
-    if (e->grid_version == map->geometry_version)
-        return ROMA_SUCCESS;
-    roma_result r = ROMA_SUCCESS;
-    if (!e->grid.ctx)
-        r = roma_surface_cells_create(e->base.ctx, e->surface_resolution, &e->grid);
-    if (r == ROMA_SUCCESS)
-        r = roma_surface_cells_place(&e->grid, map->volume_min, map->volume_max);
-    const roma_surface_geometry g = {map->positions.buffer, map->indices.buffer, map->total_triangles};
-    if (r == ROMA_SUCCESS)
-        r = roma_surface_cells_record(&e->grid, cmd, slot, &g);
-    if (r != ROMA_SUCCESS) {
-        e->grid_version = 0; /* whatever was placed or recorded, build it again next time */
-        return roma_fail(&e->base.logger, r, "roma_gi_effect_record: cannot build the surface grid");
-    }
-    e->grid_version = map->geometry_version;
+    e->grid.version = 0; /* the grid ranks the area lights after the walls: built again */
     return ROMA_SUCCESS;
 }
 
@@ -222,23 +200,24 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
         return r;
     const gi_surfaces *sf = &e->surfaces;
     const int have_scene = sf->materials.triangle_count > 0;
+    /* Area lights set since the last record into device memory, ahead of the grid's build
+     * that ranks them. */
+    roma_light_data_record(&sf->emitters, cmd);
     if (have_scene) {
-        r = follow_map(e, cmd, slot, map);
+        r = roma_surface_cells_follow(&e->grid, ctx, e->surface_resolution, 2, cmd, slot, map, &sf->emitters, log, name);
         if (r != ROMA_SUCCESS)
             return r;
-        const roma_surface_cells *c = &e->grid;
         /* The scene's vertex normals fit the map's vertices only where no build moved them;
          * elsewhere (animation, instances) the face normals serve. */
         const uint32_t normals = !map->positions_moved && map->vertex_count == sf->materials.vertex_count
                                      ? sf->materials.vertex_count
                                      : 0;
         roma_gi_scene gs = {
-            .cells = c->cells.address, .indices = map->indices.address, .positions = map->positions.address,
+            .surfaces = roma_surface_cells_view(&e->grid, map),
             .normals = sf->materials.normals.address, .albedo = sf->materials.albedo.address,
             .emitters = sf->emitters.emitters.device.address, .cdf = sf->emitters.cdf.device.address,
-            .grid = {c->origin[0], c->origin[1], c->origin[2], c->cell},
-            .config = {c->resolution, sf->emitters.emitter_count, packed,
-                       variant && variant->rsm_views ? ROMA_GI_PUNCTUAL_RSM : ROMA_GI_PUNCTUAL_RAYS},
+            .config = {sf->emitters.emitter_count, packed,
+                       variant && variant->rsm_views ? ROMA_GI_PUNCTUAL_RSM : ROMA_GI_PUNCTUAL_RAYS, 0},
             .config2 = {sf->materials.triangle_count, normals, 0, 0},
         };
         memcpy(roma_upload_write(&e->scene[slot], sizeof gs), &gs, sizeof gs);
@@ -248,7 +227,6 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_upload_record(&e->scene[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    roma_light_data_record(&sf->emitters, cmd); /* area lights set since the last record */
     roma_gi_images_push push = {
         .scene = have_scene ? e->scene[slot].device.address : 0, .lights = e->lights[slot].device.address,
         .bom = info.bom_address,
@@ -289,6 +267,6 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
         roma_light_data_done(&e->surfaces.emitters);
     }
     if (r != ROMA_SUCCESS)
-        e->grid_version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
+        e->grid.version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
     return r;
 }

@@ -72,9 +72,12 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, c
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     const VkDeviceSize emitter_bytes = sizeof(roma_gpu_emitter) * (VkDeviceSize)table.count;
     const VkDeviceSize cdf_bytes = sizeof(float) * (VkDeviceSize)table.count;
+    const VkDeviceSize bit_bytes = sizeof(uint32_t) * (((VkDeviceSize)v.triangle_count + 31) / 32);
     r = roma_upload_create(ctx, emitter_bytes, usage, &out->emitters);
     if (r == ROMA_SUCCESS)
         r = roma_upload_create(ctx, cdf_bytes, usage, &out->cdf);
+    if (r == ROMA_SUCCESS)
+        r = roma_upload_create(ctx, bit_bytes, usage, &out->bits);
     if (r == ROMA_SUCCESS) {
         roma_gpu_emitter *g = roma_upload_write(&out->emitters, emitter_bytes);
         memset(g, 0, (size_t)emitter_bytes);
@@ -90,7 +93,13 @@ roma_result roma_light_data_create(roma_context *ctx, const roma_scene *scene, c
             g[i].v0_pdf[3] = e->pdf_area;
         }
         memcpy(roma_upload_write(&out->cdf, cdf_bytes), table.cdf, (size_t)cdf_bytes);
+        uint32_t *bits = roma_upload_write(&out->bits, bit_bytes);
+        memset(bits, 0, (size_t)bit_bytes);
+        for (uint32_t i = 0; i < v.emissive_triangle_count; ++i)
+            if (v.emissive_triangles[i] < v.triangle_count)
+                bits[v.emissive_triangles[i] / 32] |= 1u << (v.emissive_triangles[i] % 32);
         out->emitter_count = table.count;
+        out->bit_triangles = v.triangle_count;
     } else {
         roma_light_data_destroy(ctx, out); /* the caller says what failed */
     }
@@ -103,17 +112,20 @@ void roma_light_data_record(const roma_light_data *data, VkCommandBuffer cmd)
     roma_upload_record(&data->emitters, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_upload_record(&data->cdf, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    roma_upload_record(&data->bits, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 void roma_light_data_done(roma_light_data *data)
 {
     roma_upload_done(&data->emitters);
     roma_upload_done(&data->cdf);
+    roma_upload_done(&data->bits);
 }
 
 void roma_light_data_destroy(roma_context *ctx, roma_light_data *data)
 {
     roma_upload_destroy(ctx, &data->emitters);
     roma_upload_destroy(ctx, &data->cdf);
+    roma_upload_destroy(ctx, &data->bits);
     memset(data, 0, sizeof *data);
 }

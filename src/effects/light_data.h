@@ -12,7 +12,10 @@
 
 typedef struct roma_light_data {
     roma_upload emitters, cdf; /* device-local; absent (zeroed) when the scene has no area light */
-    uint32_t emitter_count;
+    /* Which of the scene's triangles are area lights: bit t % 32 of uint t / 32, over
+     * bit_triangles triangles (the surface grid ranks them after the walls). */
+    roma_upload bits;
+    uint32_t emitter_count, bit_triangles;
 } roma_light_data;
 
 /* One light as the shaders read it (the reference's expressions, evaluated once); 0 when

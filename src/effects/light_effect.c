@@ -1,7 +1,9 @@
 /* roma_light_effect: shadowed irradiance from punctual lights and area lights on the
  * engine's G-buffer images (shaders/effects/lights_images.comp); punctual lights in an
  * upload buffer per slot, area lights (a scene's emissive triangles and their sampling CDF,
- * effects/light_data.h) set between frames. */
+ * effects/light_data.h) set between frames. The surface grid (effects/surface_cells.h),
+ * rebuilt from the map's triangles when they move, tells the shadow segments' ends on which
+ * side of a wall in its voxels a light lies. */
 #include "roma/light_effect.h"
 
 #include <math.h>
@@ -12,6 +14,7 @@
 #include "effects/lit_effect_variants.h"
 #include "effects/lit_record.h"
 #include "effects/light_data.h"
+#include "effects/surface_cells.h"
 #include "roma_shared.h"
 #include "trace/loop_costs.h"
 #include "util/log.h"
@@ -22,6 +25,9 @@ struct roma_light_effect {
     roma_image_effect base;
     roma_upload lights[ROMA_MAX_FRAMES_IN_FLIGHT];
     roma_light_data area; /* absent when its emitter_count is 0 */
+    uint32_t surface_resolution;
+    roma_surface_cells grid; /* made on the first record with a light that has an end */
+    roma_upload surfaces[ROMA_MAX_FRAMES_IN_FLIGHT]; /* roma_surface_grid per slot */
     int exact; /* the module walks every segment through the BOM (the study's; its loop costs) */
 };
 
@@ -76,6 +82,11 @@ roma_result roma_light_effect_create_variant(roma_context *ctx, const roma_light
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_light_effect_create: frames_in_flight %u outside [1, %u]", desc.frames_in_flight,
                          ROMA_MAX_FRAMES_IN_FLIGHT);
+    if (desc.surface_resolution == 0)
+        desc.surface_resolution = ROMA_DEFAULT_LIGHT_SURFACE_RESOLUTION;
+    if (desc.surface_resolution < 32 || desc.surface_resolution > 256)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_light_effect_create: surface_resolution %u outside [32, 256]", desc.surface_resolution);
     roma_light_effect *e = calloc(1, sizeof *e);
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_light_effect_create: out of host memory");
@@ -88,6 +99,7 @@ roma_result roma_light_effect_create_variant(roma_context *ctx, const roma_light
         return r;
     }
     e->exact = exact;
+    e->surface_resolution = desc.surface_resolution;
     *out = e;
     return ROMA_SUCCESS;
 }
@@ -97,8 +109,11 @@ void roma_light_effect_destroy(roma_light_effect *e)
     if (!e)
         return;
     roma_context *ctx = e->base.ctx;
-    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
+    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s) {
         roma_upload_destroy(ctx, &e->lights[s]);
+        roma_upload_destroy(ctx, &e->surfaces[s]);
+    }
+    roma_surface_cells_destroy(&e->grid);
     roma_light_data_destroy(ctx, &e->area);
     roma_image_effect_free(&e->base);
     free(e);
@@ -119,6 +134,7 @@ roma_result roma_light_effect_set_area_lights(roma_light_effect *e, const roma_s
     }
     roma_light_data_destroy(ctx, &e->area);
     e->area = area;
+    e->grid.version = 0; /* the grid ranks the area lights after the walls: built again */
     return ROMA_SUCCESS;
 }
 
@@ -153,19 +169,40 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
     r = roma_lit_record_pack(e->base.ctx, buf, lights, light_count, s.exact_light_count, &packed, &exact_packed);
     if (r != ROMA_SUCCESS)
         return r;
-    /* The slot's lights, and area lights set since the last record, into device memory. */
-    const VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    roma_upload_record(buf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    roma_light_data_record(&e->area, cmd);
     /* Counting visible lights takes the punctual lights only. */
     const uint32_t area_samples = s.output == ROMA_LIGHT_OUTPUT_VISIBLE_COUNT ? 0 : s.area_samples;
+    /* The surface grid, for the lights that have an end (not suns), unless the blind-start
+     * baseline walks nothing. */
+    int ends = e->area.emitter_count && area_samples;
+    for (uint32_t i = 0; i < light_count && !ends; ++i)
+        ends = lights[i].type != ROMA_LIGHT_DIRECTIONAL;
+    const int surfaces = ends && !(variant && variant->blind_start);
+    /* Area lights set since the last record into device memory, ahead of the grid's build
+     * that ranks them. */
+    roma_light_data_record(&e->area, cmd);
+    if (surfaces) {
+        r = roma_lit_slot_buffer(e->base.ctx, &e->surfaces[slot], sizeof(roma_surface_grid));
+        if (r == ROMA_SUCCESS)
+            r = roma_surface_cells_follow(&e->grid, e->base.ctx, e->surface_resolution, 2, cmd, slot, map, &e->area,
+                                          log, name);
+        if (r != ROMA_SUCCESS)
+            return r;
+        const roma_surface_grid view = roma_surface_cells_view(&e->grid, map);
+        memcpy(roma_upload_write(&e->surfaces[slot], sizeof view), &view, sizeof view);
+    }
+    /* The slot's lights and surface grid into device memory. */
+    const VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    roma_upload_record(buf, cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    if (surfaces)
+        roma_upload_record(&e->surfaces[slot], cmd, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     roma_light_images_push push = {.lights = buf->device.address, .bom = info.bom_address,
                                    .emitters = e->area.emitters.device.address,
                                    .cdf = e->area.cdf.device.address,
                                    .config = {im->width, im->height, packed, s.max_steps},
                                    .config2 = {s.seed, e->area.emitter_count, area_samples, s.frame},
                                    .config3 = {s.lights_per_frame, exact_packed, (uint32_t)s.output, 0},
-                                   .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0}};
+                                   .ray = {s.offset_cells * info.trace_cell, s.skip_cells * info.trace_cell, 0, 0},
+                                   .surfaces = surfaces ? e->surfaces[slot].device.address : 0};
     if (variant && variant->blind_start)
         push.bom = 0; /* every BOM walk off */
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
@@ -195,7 +232,11 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
         roma_image_effect_finish(&e->base, cmd, im->width, im->height);
     if (r == ROMA_SUCCESS) {
         roma_upload_done(buf);
+        if (surfaces)
+            roma_upload_done(&e->surfaces[slot]);
         roma_light_data_done(&e->area);
+    } else if (surfaces) {
+        e->grid.version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
     }
     return r;
 }

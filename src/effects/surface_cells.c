@@ -3,21 +3,25 @@
 #include <math.h>
 #include <string.h>
 
+#include "map/map_internal.h"
 #include "roma_shared.h"
+#include "util/log.h"
 
 /* The voxelizer's bindings: positions, indices, the cells (its BOM binding), the tile queue. */
 static const VkDescriptorType cell_types[ROMA_VOXELIZE_BINDINGS] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
 
-roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, roma_surface_cells *out)
+roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, uint32_t layers,
+                                      roma_surface_cells *out)
 {
     memset(out, 0, sizeof *out);
-    if (!ctx || resolution == 0 || resolution > 256)
+    if (!ctx || resolution == 0 || resolution > 256 || layers < 1 || layers > 2)
         return ROMA_ERROR_INVALID_ARGUMENT;
     out->ctx = ctx;
     out->resolution = resolution;
-    const VkDeviceSize bytes = (VkDeviceSize)resolution * resolution * resolution * sizeof(uint32_t);
+    out->layers = layers;
+    const VkDeviceSize bytes = (VkDeviceSize)layers * resolution * resolution * resolution * sizeof(uint32_t);
     roma_result r = roma_buffer_create(ctx, bytes,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -56,7 +60,7 @@ roma_result roma_surface_cells_place(roma_surface_cells *cells, const float boun
         centre[k] = 0.5f * (bounds_min[k] + bounds_max[k]);
     }
     if (!(extent > 0.0f) || !isfinite(extent) || !isfinite(centre[0] + centre[1] + centre[2]))
-        return roma_fail(&cells->ctx->logger, ROMA_ERROR_INVALID_SCENE, "GI surface grid: the bounds are empty");
+        return roma_fail(&cells->ctx->logger, ROMA_ERROR_INVALID_SCENE, "surface grid: the bounds are empty");
     cells->cell = extent * 1.04f / (float)cells->resolution;
     for (int k = 0; k < 3; ++k)
         cells->origin[k] = centre[k] - 0.5f * (float)cells->resolution * cells->cell;
@@ -84,7 +88,10 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
      * last build's indirect dispatch) finish before they are cleared. */
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, 0,
                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0);
-    vkCmdFillBuffer(cmd, cells->cells.buffer, 0, VK_WHOLE_SIZE, ROMA_GBUFFER_NO_TRIANGLE);
+    const VkDeviceSize layer = (VkDeviceSize)cells->resolution * cells->resolution * cells->resolution * 4;
+    vkCmdFillBuffer(cmd, cells->cells.buffer, 0, layer, ROMA_GBUFFER_NO_TRIANGLE);
+    if (cells->layers == 2)
+        vkCmdFillBuffer(cmd, cells->cells.buffer, layer, layer, 0);
     roma_tile_queue_record_reset(&cells->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
@@ -99,6 +106,10 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     push.grid.dims[0] = cells->resolution;
     push.config[0] = geometry->triangle_count;
     push.config[1] = cells->queue.capacity;
+    push.runs[0][0] = (uint32_t)geometry->emitter_bits;
+    push.runs[0][1] = (uint32_t)(geometry->emitter_bits >> 32);
+    push.runs[0][2] = geometry->emitter_bits ? geometry->emitter_triangles : 0;
+    push.runs[0][3] = cells->layers;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->triangles.layout, 0, 1, &set->set, 0, NULL);
     vkCmdPushConstants(cmd, cells->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     roma_tile_queue_record_passes(&cells->queue, cmd, cells->triangles.pipeline, cells->tiles.pipeline,
@@ -106,4 +117,37 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     return ROMA_SUCCESS;
+}
+
+roma_result roma_surface_cells_follow(roma_surface_cells *cells, roma_context *ctx, uint32_t resolution,
+                                      uint32_t layers, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                      const roma_light_data *emitters, const roma_logger *log, const char *name)
+{
+    if (cells->ctx && cells->version == map->geometry_version)
+        return ROMA_SUCCESS;
+    roma_result r = ROMA_SUCCESS;
+    if (!cells->ctx)
+        r = roma_surface_cells_create(ctx, resolution, layers, cells);
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_place(cells, map->volume_min, map->volume_max);
+    const int ranked = emitters && emitters->emitter_count;
+    const roma_surface_geometry g = {map->positions.buffer, map->indices.buffer, map->total_triangles,
+                                     ranked ? emitters->bits.device.address : 0, ranked ? emitters->bit_triangles : 0};
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_record(cells, cmd, slot, &g);
+    if (r != ROMA_SUCCESS) {
+        cells->version = 0; /* whatever was placed or recorded, build it again next time */
+        return roma_fail(log, r, "%s: cannot build the surface grid", name);
+    }
+    cells->version = map->geometry_version;
+    return ROMA_SUCCESS;
+}
+
+roma_surface_grid roma_surface_cells_view(const roma_surface_cells *cells, const roma_map *map)
+{
+    return (roma_surface_grid){
+        .cells = cells->cells.address, .indices = map->indices.address, .positions = map->positions.address,
+        .grid = {cells->origin[0], cells->origin[1], cells->origin[2], cells->cell},
+        .config = {cells->resolution, cells->layers, 0, 0},
+    };
 }

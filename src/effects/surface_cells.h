@@ -1,12 +1,15 @@
-/* The surface grid of the GI pass (roma_gi_scene in roma_shared.h): which triangle
- * lies in each cell of a grid over the geometry, so that a bounce ray's ROMA hit (a
- * cell, not a triangle) finds the albedo and normal of the surface it reached.
- * The grid is not the BOM's: it does not jitter, and it is built with the exact
- * voxelizer's overlap test whenever the geometry it covers has moved. */
+/* The surface grid (roma_surface_grid in roma_shared.h): which triangle lies in each cell
+ * of a grid over the geometry, so that a GI bounce ray's ROMA hit (a cell, not a triangle)
+ * finds the albedo and normal of the surface it reached, and a shadow segment's end at its
+ * light finds on which side of a wall in the light's cells the light lies. The grid is not
+ * the BOM's: it does not jitter, and it is built with the exact voxelizer's overlap test
+ * whenever the geometry it covers has moved. */
 #ifndef ROMA_EFFECTS_SURFACE_CELLS_H
 #define ROMA_EFFECTS_SURFACE_CELLS_H
 
 #include "roma/map.h" /* ROMA_MAX_FRAMES_IN_FLIGHT */
+#include "effects/light_data.h"
+#include "roma_shared.h"
 #include "voxelize/tile_queue.h"
 #include "vulkan/vk_internal.h"
 
@@ -19,19 +22,28 @@ typedef struct roma_surface_cells {
     /* One set per frame slot: a build in a slot rewrites that slot's set (the geometry's
      * buffers may have been replaced), which the slot rules make safe. */
     roma_descriptor_set sets[ROMA_MAX_FRAMES_IN_FLIGHT];
-    roma_buffer cells;          /* RES^3 uint */
-    uint32_t resolution;
+    roma_buffer cells;          /* layers x RES^3 uint */
+    uint32_t resolution, layers;
     float origin[3], cell;      /* of the last build: corner of cell (0,0,0), cell size */
+    uint64_t version;           /* the map geometry it holds (roma_surface_cells_follow; 0: none) */
 } roma_surface_cells;
 
-/* What a build reads: float4 positions per vertex, uint3 indices per triangle. */
+/* What a build reads: float4 positions per vertex, uint3 indices per triangle, and which of
+ * the first emitter_triangles triangles are area lights (bits as roma_light_data's; 0: none),
+ * ranked after the rest in a cell they share. */
 typedef struct roma_surface_geometry {
     VkBuffer positions, indices;
     uint32_t triangle_count;
+    VkDeviceAddress emitter_bits;
+    uint32_t emitter_triangles;
 } roma_surface_geometry;
 
-/* A RES^3 grid (RES at most 256). On failure *out is zeroed. */
-roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, roma_surface_cells *out);
+/* A RES^3 grid (RES at most 256) of one or two layers: the lowest key in each cell, and with
+ * two the highest index of a triangle that is not an area light too (plus one; 0: none), so
+ * that a cell two walls share (the halves of a quad along its diagonal, a room's edge) shows
+ * both, also where a lamp shares it. On failure *out is zeroed. */
+roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, uint32_t layers,
+                                      roma_surface_cells *out);
 /* Accepts a zeroed grid. */
 void roma_surface_cells_destroy(roma_surface_cells *cells);
 
@@ -47,5 +59,18 @@ roma_result roma_surface_cells_place(roma_surface_cells *cells, const float boun
  * to compute shaders). A failed set allocation records nothing. */
 roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer cmd, uint32_t slot,
                                       const roma_surface_geometry *geometry);
+
+/* Records a build of the grid (made at `resolution` with `layers` on first use) from the map's geometry,
+ * with the scene's area lights of `emitters` (NULL: none; their copies recorded before), when
+ * the grid holds another map's or an older build's (versions are unique in the context;
+ * records nothing otherwise). A failure is logged as `name`'s, and the grid is built again
+ * next time; so must it be when the caller drops cmd or sets other area lights (set version
+ * to 0). */
+roma_result roma_surface_cells_follow(roma_surface_cells *cells, roma_context *ctx, uint32_t resolution,
+                                      uint32_t layers, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
+                                      const roma_light_data *emitters, const roma_logger *log, const char *name);
+
+/* What the shaders read of a grid that follows map (roma_surface_cells_follow). */
+roma_surface_grid roma_surface_cells_view(const roma_surface_cells *cells, const roma_map *map);
 
 #endif /* ROMA_EFFECTS_SURFACE_CELLS_H */

@@ -95,6 +95,14 @@ roma_scene *roma_test_box_room_ceiling_light(const float rot[9], const roma_test
     }
     for (uint32_t i = 0; i < tcount; ++i)
         mat[i] = i >= room_triangles;
+    if (o->lamp_first && tcount > room_triangles) { /* the lamp's two triangles to the front */
+        uint32_t lamp[6];
+        memcpy(lamp, &idx[3 * room_triangles], sizeof lamp);
+        memmove(&idx[6], idx, 3 * sizeof(uint32_t) * room_triangles);
+        memcpy(idx, lamp, sizeof lamp);
+        for (uint32_t i = 0; i < tcount; ++i)
+            mat[i] = i < tcount - room_triangles;
+    }
     for (uint32_t v = 0; v < vcount; ++v) {
         float p[3] = {pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]};
         roma_test_rotate(rot, p, &pos[3 * v]);

@@ -27,6 +27,7 @@ typedef struct roma_test_outside_light {
     float gap;       /* metres from the ceiling's top */
     float thickness; /* 0: the ceiling is the room's single quad; > 0: a slab that thick on it */
     int inside;      /* 1: the light hangs gap under the ceiling, inside the room */
+    int lamp_first;  /* 1: the lamp's triangles come before the room's in the scene */
 } roma_test_outside_light;
 
 /* The box room turned by rot with the light o near its ceiling, the room's camera inside. */

@@ -1,0 +1,150 @@
+// The surface grid (roma_surface_grid, roma_shared.h): the triangle a cell of a grid over the
+// scene holds. The GI pass finds the surface a bounce ray's cell hit lies on; the light
+// passes find where in the cells at a light's end a wall lies, which the BOM's occupied cells
+// cannot tell (a lamp 1 cm above a ceiling and one 1 cm under it fill the same cells).
+#ifndef ROMA_SURFACE_GRID_GLSL
+#define ROMA_SURFACE_GRID_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+#include "roma_shared.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaUints { uint u[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaVec4s { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaSurfaceGrid { roma_surface_grid g; };
+
+// The triangle the grid holds at p (its key's index), or ROMA_GBUFFER_NO_TRIANGLE (outside
+// the grid too).
+uint roma_surface_at(roma_surface_grid G, vec3 p)
+{
+    vec3 g = (p - G.grid.xyz) / G.grid.w;
+    float res = float(G.config.x);
+    if (!(all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(res)))))
+        return ROMA_GBUFFER_NO_TRIANGLE;
+    uvec3 c = uvec3(g);
+    uint key = RomaUints(G.cells).u[(c.z * G.config.x + c.y) * G.config.x + c.x];
+    return key == ROMA_GBUFFER_NO_TRIANGLE ? key : key & ~ROMA_SURFACE_EMITTER;
+}
+
+// Whether the cell at p holds a triangle that is not an area light (none outside the grid).
+bool roma_surface_wall_at(roma_surface_grid G, vec3 p)
+{
+    vec3 g = (p - G.grid.xyz) / G.grid.w;
+    float res = float(G.config.x);
+    if (G.cells == uvec2(0u) || !(all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(res)))))
+        return false;
+    uvec3 c = uvec3(g);
+    uint at = (c.z * G.config.x + c.y) * G.config.x + c.x;
+    return RomaUints(G.cells).u[at] < ROMA_SURFACE_EMITTER ||
+           (G.config.y == 2u && RomaUints(G.cells).u[G.config.x * G.config.x * G.config.x + at] != 0u);
+}
+
+// The corners of triangle tri; returns its vertices' indices.
+uvec3 roma_surface_triangle(roma_surface_grid G, uint tri, out vec3 a, out vec3 b, out vec3 c)
+{
+    uvec3 k = uvec3(RomaUints(G.indices).u[3u * tri], RomaUints(G.indices).u[3u * tri + 1u],
+                    RomaUints(G.indices).u[3u * tri + 2u]);
+    a = RomaVec4s(G.positions).v[k.x].xyz;
+    b = RomaVec4s(G.positions).v[k.y].xyz;
+    c = RomaVec4s(G.positions).v[k.z].xyz;
+    return k;
+}
+
+// Whether o + d * (t0, t1] crosses triangle `key` (a cell's key: the index, maybe with
+// ROMA_SURFACE_EMITTER) inside the cell it spans over [enter, leave] (world units along d),
+// to within 1% of a cell (tol) of its edges; a triangle in the plane `own` crosses nothing.
+bool roma_surface_key_crossed(roma_surface_grid G, uint key, vec3 o, vec3 d, float t0, float t1, float enter,
+                              float leave, vec4 own)
+{
+    if (key == ROMA_GBUFFER_NO_TRIANGLE)
+        return false;
+    vec3 a, b, e;
+    roma_surface_triangle(G, key & ~ROMA_SURFACE_EMITTER, a, b, e);
+    vec3 nt = cross(b - a, e - a);
+    float len = length(nt), tol = 0.01 * G.grid.w;
+    nt /= len;
+    if (!(len > 0.0) || (abs(dot(nt, own.xyz)) > 0.999 && abs(dot(own.xyz, a) - own.w) < tol))
+        return false;
+    float t = dot(a - o, nt) / dot(d, nt); // NaN or infinite for a plane along d
+    if (!(t > t0 && t <= t1 && t >= enter - tol && t <= leave + tol))
+        return false;
+    // Inside the triangle, not on its plane beyond an edge (a level's cell can hold a wall's
+    // edge and the doorway beside it): each edge's inward distance.
+    vec3 q = o + d * t, e0 = b - a, e1 = e - b, e2 = a - e;
+    float in0 = dot(cross(nt, e0), q - a) / length(e0), in1 = dot(cross(nt, e1), q - b) / length(e1),
+          in2 = dot(cross(nt, e2), q - e) / length(e2);
+    return min(in0, min(in1, in2)) >= -tol;
+}
+
+// Whether o + d * (t0, t1] (d unit, world units) crosses a triangle a cell holds inside that
+// cell (the lowest key of each cell, and in a grid of two layers the highest wall's), over at most
+// max_cells cells of the grid from t0; `covered`: how far along d it looked (t1 when it
+// looked at the whole segment: outside the grid nothing lies; 0 without a grid). A triangle
+// within 1% of a cell of the plane `own` (xyz: unit normal, w: its dot with a point of the
+// plane; zero: none) is the light's own (its emitter) and crosses nothing; with `own`, so do
+// the cells that hold area lights only (any area light's: they are not walls, and skipping
+// them spares an area-light sample a triangle's fetch in every cell of its lamp). Where more
+// surfaces share a cell than its layers hold (three walls' corner), some are not seen; where
+// a wall and an area light share one, the wall is (ROMA_SURFACE_EMITTER).
+bool roma_surface_crossed(roma_surface_grid G, vec3 o, vec3 d, float t0, float t1, vec4 own, int max_cells,
+                          out float covered)
+{
+    covered = G.cells == uvec2(0u) ? 0.0 : t1;
+    if (G.cells == uvec2(0u) || !(t1 > t0))
+        return false;
+    float cs = G.grid.w, res = float(G.config.x);
+    vec3 g = (o - G.grid.xyz) / cs;
+    // The segment clipped to the grid's box, in cells along d; an axis d does not move along
+    // bounds nothing, or everything when o lies outside the box on it.
+    bvec3 moves = notEqual(d, vec3(0.0));
+    vec3 safe = mix(vec3(1.0), d, moves);
+    uvec3 off_box = uvec3(lessThan(g, vec3(0.0))) | uvec3(greaterThanEqual(g, vec3(res)));
+    if (any(bvec3(off_box & uvec3(not(moves)))))
+        return false;
+    vec3 ta = -g / safe, tb = (vec3(res) - g) / safe;
+    vec3 tlo = mix(vec3(-1e30), min(ta, tb), moves), thi = mix(vec3(1e30), max(ta, tb), moves);
+    float lo = max(t0 / cs, max(tlo.x, max(tlo.y, tlo.z))), hi = min(t1 / cs, min(thi.x, min(thi.y, thi.z)));
+    if (!(hi > lo))
+        return false;
+    uint n = G.config.x, layer = G.config.y == 2u ? n * n * n : 0u;
+    ivec3 c = clamp(ivec3(floor(g + d * lo)), ivec3(0), ivec3(int(n) - 1));
+    ivec3 step = ivec3(sign(d));
+    vec3 next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);
+    vec3 delta = mix(vec3(1e30), abs(1.0 / safe), moves);
+    float enter = lo;
+    bool mine_all = own != vec4(0.0);
+    for (int i = 0; i < max_cells; ++i) {
+        ROMA_LOOP_TICK();
+        float leave = min(min(next.x, next.y), min(next.z, hi));
+        uint at = (uint(c.z) * n + uint(c.y)) * n + uint(c.x);
+        uint low = RomaUints(G.cells).u[at];
+        if (mine_all && low >= ROMA_SURFACE_EMITTER) // only area lights here (they rank last): no wall
+            low = ROMA_GBUFFER_NO_TRIANGLE;
+        uint high = layer > 0u ? RomaUints(G.cells).u[layer + at] - 1u : ROMA_GBUFFER_NO_TRIANGLE; // 0: none
+        if (roma_surface_key_crossed(G, low, o, d, t0, t1, enter * cs, leave * cs, own) ||
+            (high != low && roma_surface_key_crossed(G, high, o, d, t0, t1, enter * cs, leave * cs, own)))
+            return true;
+        if (leave >= hi)
+            return false;
+        covered = leave * cs;
+        enter = leave;
+        if (next.x <= next.y && next.x <= next.z) {
+            c.x += step.x;
+            next.x += delta.x;
+        } else if (next.y <= next.z) {
+            c.y += step.y;
+            next.y += delta.y;
+        } else {
+            c.z += step.z;
+            next.z += delta.z;
+        }
+        if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(int(n))))) {
+            covered = t1;
+            return false;
+        }
+    }
+    return false;
+}
+
+#endif // ROMA_SURFACE_GRID_GLSL

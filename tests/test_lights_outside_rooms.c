@@ -237,14 +237,18 @@ int main(int argc, char **argv)
      * docs/accuracy.md). */
     const int all = argc > 1 && strcmp(argv[1], "all") == 0;
     checking = !all;
-    effects fx = {0};
-    CHECK_RESULT(roma_light_effect_create(ctx, NULL, &fx.light), ROMA_SUCCESS);
-    CHECK_RESULT(roma_gi_effect_create(ctx, NULL, &fx.gi), ROMA_SUCCESS);
     float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, turned[9];
     roma_test_rotation((const float[3]){1, 2, 3}, 0.5235988f, turned);
     static const float gaps[] = {0.5f, 1.0f, 1.5f, 2.0f, 3.0f};
     static const uint32_t resolutions[] = {64, 128, 256};
-    for (int ri = 0; ri < 3; ++ri)
+    for (int ri = 0; ri < 3; ++ri) {
+        /* The surface grids at the map's RES, as the tools make them. */
+        effects fx = {0};
+        CHECK_RESULT(roma_light_effect_create(ctx, &(roma_light_effect_desc){.surface_resolution = resolutions[ri]},
+                                              &fx.light),
+                     ROMA_SUCCESS);
+        CHECK_RESULT(roma_gi_effect_create(ctx, &(roma_gi_effect_desc){.surface_resolution = resolutions[ri]}, &fx.gi),
+                     ROMA_SUCCESS);
         for (int room = 0; room < 2; ++room)
             for (int k = ROMA_TEST_OUTSIDE_LAMP; k <= ROMA_TEST_OUTSIDE_SPOT; ++k)
                 for (int thick = 0; thick < 2; ++thick) {
@@ -263,8 +267,9 @@ int main(int argc, char **argv)
                                          first, thickness, gaps[gi], inside);
                     }
                 }
-    roma_gi_effect_destroy(fx.gi);
-    roma_light_effect_destroy(fx.light);
+        roma_gi_effect_destroy(fx.gi);
+        roma_light_effect_destroy(fx.light);
+    }
     roma_test_context_finish(ctx);
     return roma_test_finish("test_lights_outside_rooms");
 }

@@ -142,7 +142,7 @@ typedef struct roma_light_effect_desc {
     roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     /** Resolution of the surface grid, 32 to 256; 0 = ROMA_DEFAULT_LIGHT_SURFACE_RESOLUTION.
      * A point, spot or area light within a voxel of a wall lies in the wall's voxels, on
-     * either side of it as far as the map shows; the grid (RES^3 uints, rebuilt from the
+     * either side of it as far as the map shows; the grid (2 RES^3 uints, rebuilt from the
      * map's triangles whenever they move) tells which. At least the map's RES. */
     uint32_t surface_resolution;
     roma_logger logger;        /**< 0 = the context's */

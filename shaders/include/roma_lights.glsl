@@ -130,27 +130,29 @@ void roma_use_surfaces(roma_surface_grid G)
 
 // A point or spot light at from, the stretch from + normalize(dir) * [0, len] (reach: the
 // segment's whole length). Where the BOM shows no occupied cell on it, the light is away from
-// every surface: free. Otherwise a surface the surface grid shows crossed over [0, 2 len]
+// every surface: free. Otherwise a surface the surface grid shows crossed over [0, 4 len]
 // (within reach, at most ROMA_LIGHT_SURFACE_CELLS of its cells) blocks: a wall in the cells
 // the light lies in, which the BOM cannot place on either side of it, also where a shallow
 // segment leaves those cells beyond len (the traced part's query does not see a wall in the
 // cells it starts in). A light on the surface itself (within 1% of a cell) is not behind it.
-// Where the grid did not look over all of [0, len] (none, or finer than the map's), the BOM
-// decides that stretch as before the grid: the occupied cells the light lies in (the wall it
-// is mounted on) are skipped and any occupied cell after a free one blocks. (Walked with the
-// grid too, the walk blocked the segments that leave a light half a cell under a turned
-// ceiling along it through the ceiling's staircase of cells, and closed no more of the
-// lights outside rooms.)
+// Where the grid looked over all of [0, len] and its cells are no coarser than 1.5 of the
+// BOM's there, the light is free; elsewhere (no grid, a grid finer than the map's that stopped
+// short, or one coarser than the cascade level at the light, whose cells hold more surfaces
+// than its two layers) the BOM decides as before the grid: the occupied cells the light lies
+// in (the wall it is mounted on) are skipped and any occupied cell after a free one blocks.
+// (Walked with the grid too, the walk blocked the segments that leave a light half a cell
+// under a turned ceiling along it through the ceiling's staircase of cells, and closed no more
+// of the lights outside rooms.)
 bool roma_light_end_blocked(vec3 from, vec3 dir, float len, float reach)
 {
     vec3 d = normalize(dir);
-    float nudge = 0.01 * roma_fetch_grid(roma_level_of(from)).origin.w, covered;
+    float cell = roma_fetch_grid(roma_level_of(from)).origin.w, nudge = 0.01 * cell, covered;
     if (!(roma_bom_walk(from, d, len, ROMA_LIGHT_END_CELLS) >= 0.0))
         return false;
     if (roma_surface_crossed(roma_surfaces_, from, d, nudge, min(reach, 4.0 * len), vec4(0.0),
                              ROMA_LIGHT_SURFACE_CELLS, covered))
         return true;
-    if (covered >= len)
+    if (covered >= len && roma_surfaces_.grid.w <= 1.5 * cell)
         return false;
     float t_free = roma_bom_walk_until(from, d, len, ROMA_LIGHT_END_CELLS, false);
     if (!(t_free >= 0.0))

@@ -24,8 +24,8 @@
 /* Cells of each of the BOM walks that check a segment's end at its light
  * (roma_light_end_blocked): an offset of 2.6 BOM cells at a slant of about 85 degrees. */
 #define ROMA_LIGHT_END_CELLS 32
-/* Cells of the surface grid the check at a light's end looks at (roma_surface_crossed): two
- * offsets of 2.6 BOM cells from a point light at a slant of about 45 degrees. */
+/* Cells of the surface grid the check at a light's end looks at (roma_surface_crossed): four
+ * offsets of 2.6 BOM cells from a point light, along an axis, in a grid as fine as the BOM. */
 #define ROMA_LIGHT_SURFACE_CELLS 32
 
 /* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
@@ -408,7 +408,7 @@ ROMA_STRUCT_END(roma_rsm_view)
  * after all others (their index with ROMA_SURFACE_EMITTER set), so that the GI pass finds the
  * albedo and normal of the surface a ROMA hit lies on, and the light passes where in an
  * occupied cell a wall lies (roma_surface_grid.glsl). Written when the geometry moves
- * (RES^3 uints) by the exact voxelizer's overlap test, with roma_voxelize_push (runs[0].xy:
+ * (RES^3 uints a layer) by the exact voxelizer's overlap test, with roma_voxelize_push (runs[0].xy:
  * the address of the emitters' bits, bit t % 32 of uint t / 32, 0: none; runs[0].z: the
  * triangles they cover; runs[0].w: the layers) and the voxelizer's bindings (the cells at
  * ROMA_VOXELIZE_BINDING_BOM) and tile queue. */

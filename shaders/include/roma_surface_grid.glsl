@@ -125,8 +125,10 @@ bool roma_surface_crossed(roma_surface_grid G, vec3 o, vec3 d, float t0, float t
         if (roma_surface_key_crossed(G, low, o, d, t0, t1, enter * cs, leave * cs, own) ||
             (high != low && roma_surface_key_crossed(G, high, o, d, t0, t1, enter * cs, leave * cs, own)))
             return true;
-        if (leave >= hi)
+        if (leave >= hi) {
+            covered = t1; // the rest of the segment lies outside the grid, if any
             return false;
+        }
         covered = leave * cs;
         enter = leave;
         if (next.x <= next.y && next.x <= next.z) {

@@ -84,10 +84,12 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_BOM, cell_types[2], cells->cells.buffer);
     roma_descriptor_write_buffer(ctx, set, ROMA_VOXELIZE_BINDING_QUEUE, cell_types[3], cells->queue.buffer.buffer);
 
-    /* Earlier reads of the grid (the GI passes of frames before) and of the queue (the
-     * last build's indirect dispatch) finish before they are cleared. */
-    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, 0,
-                            VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0);
+    /* Earlier reads of the grid (the passes of frames before) and of the queue (the last
+     * build's indirect dispatch) finish, and the last build's writes are made available,
+     * before they are cleared. */
+    roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkDeviceSize layer = (VkDeviceSize)cells->resolution * cells->resolution * cells->resolution * 4;
     vkCmdFillBuffer(cmd, cells->cells.buffer, 0, layer, ROMA_GBUFFER_NO_TRIANGLE);
     if (cells->layers == 2)

@@ -33,12 +33,6 @@ struct roma_gi_shading {
     uvec2 light_part;
 };
 
-// The triangle the surface grid holds at p, or ROMA_GBUFFER_NO_TRIANGLE.
-uint roma_gi_surface_at(roma_gi_scene S, vec3 p)
-{
-    return roma_surface_at(S.surfaces, p);
-}
-
 // The world point at map coordinates q of map frame f (roma_map_frame: map -> BOM
 // cell coordinates -> world).
 vec3 roma_gi_map_to_world(roma_grid_params grid, roma_map_frame f, vec3 q)
@@ -50,14 +44,14 @@ vec3 roma_gi_map_to_world(roma_grid_params grid, roma_map_frame f, vec3 q)
 // The surface at p, or one surface cell around it.
 uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
 {
-    uint tri = roma_gi_surface_at(S, centre);
+    uint tri = roma_surface_at(S.surfaces, centre);
     if (tri != ROMA_GBUFFER_NO_TRIANGLE)
         return tri;
     const vec3 around[6] = vec3[](vec3(-1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0),
                                   vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
     for (int i = 0; i < 6; ++i) {
         ROMA_LOOP_TICK();
-        uint tri = roma_gi_surface_at(S, centre + around[i] * S.surfaces.grid.w);
+        uint tri = roma_surface_at(S.surfaces, centre + around[i] * S.surfaces.grid.w);
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }
@@ -75,7 +69,7 @@ uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map
     const float along[5] = float[](0.5, 0.25, 0.75, 0.0, 1.0);
     for (int i = 0; i < 5; ++i) {
         ROMA_LOOP_TICK();
-        uint tri = roma_gi_surface_at(S, roma_gi_map_to_world(grid, f, cell + vec3(0.5, 0.5, along[i])));
+        uint tri = roma_surface_at(S.surfaces, roma_gi_map_to_world(grid, f, cell + vec3(0.5, 0.5, along[i])));
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }

@@ -14,28 +14,32 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Rom
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaVec4s { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RomaSurfaceGrid { roma_surface_grid g; };
 
+// The index of the cell at p in a layer (false outside the grid, or without one).
+bool roma_surface_cell(roma_surface_grid G, vec3 p, out uint at)
+{
+    vec3 g = (p - G.grid.xyz) / G.grid.w;
+    uvec3 c = uvec3(max(g, vec3(0.0)));
+    at = (c.z * G.config.x + c.y) * G.config.x + c.x;
+    return G.cells != uvec2(0u) && all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(float(G.config.x))));
+}
+
 // The triangle the grid holds at p (its key's index), or ROMA_GBUFFER_NO_TRIANGLE (outside
 // the grid too).
 uint roma_surface_at(roma_surface_grid G, vec3 p)
 {
-    vec3 g = (p - G.grid.xyz) / G.grid.w;
-    float res = float(G.config.x);
-    if (!(all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(res)))))
+    uint at;
+    if (!roma_surface_cell(G, p, at))
         return ROMA_GBUFFER_NO_TRIANGLE;
-    uvec3 c = uvec3(g);
-    uint key = RomaUints(G.cells).u[(c.z * G.config.x + c.y) * G.config.x + c.x];
+    uint key = RomaUints(G.cells).u[at];
     return key == ROMA_GBUFFER_NO_TRIANGLE ? key : key & ~ROMA_SURFACE_EMITTER;
 }
 
 // Whether the cell at p holds a triangle that is not an area light (none outside the grid).
 bool roma_surface_wall_at(roma_surface_grid G, vec3 p)
 {
-    vec3 g = (p - G.grid.xyz) / G.grid.w;
-    float res = float(G.config.x);
-    if (G.cells == uvec2(0u) || !(all(greaterThanEqual(g, vec3(0.0))) && all(lessThan(g, vec3(res)))))
+    uint at;
+    if (!roma_surface_cell(G, p, at))
         return false;
-    uvec3 c = uvec3(g);
-    uint at = (c.z * G.config.x + c.y) * G.config.x + c.x;
     return RomaUints(G.cells).u[at] < ROMA_SURFACE_EMITTER ||
            (G.config.y == 2u && RomaUints(G.cells).u[G.config.x * G.config.x * G.config.x + at] != 0u);
 }

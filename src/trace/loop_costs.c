@@ -7,8 +7,9 @@
 
 /* One iteration of the loop that runs the item (a light, a sample), besides its calls. */
 #define LOOP_ITSELF 1u
-/* What checks a segment's end at its light (roma_light_end_blocked, roma_emitter_end_blocked):
- * up to three walks through the BOM and one through the surface grid. */
+/* What checks a segment's end at its light: a point light's up to three walks through the BOM
+ * and one through the surface grid (roma_light_end_blocked); an area light's five lookups, one
+ * walk through the grid and one through the BOM (roma_emitter_end_blocked) are fewer. */
 #define LIGHT_END (3u * ROMA_LIGHT_END_CELLS + ROMA_LIGHT_SURFACE_CELLS)
 
 static uint32_t min_u32(uint64_t a, uint64_t b) { return (uint32_t)(a < b ? a : b); }

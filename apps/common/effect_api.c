@@ -519,8 +519,10 @@ static roma_result create_objects(engine *e, const roma_scene *scene, const effe
     }
     const int lit = roma_effect_plan_runs(plan, ROMA_PASS_PUNCTUAL_LIGHTS) ||
                     roma_effect_plan_runs(plan, ROMA_PASS_SOFT_SHADOWS);
-    const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch};
     /* The surface grids at their array's RES (at least the map's RES). */
+    const int ao_map = plan->pass_map[ROMA_PASS_AO];
+    const roma_ao_effect_desc ao_desc = {.frames_in_flight = 1, .pixel_dispatch = d->pixel_dispatch,
+                                         .surface_resolution = ao_map >= 0 ? plan->maps[ao_map].resolution : 0};
     const int light_map = plan->pass_map[ROMA_PASS_SOFT_SHADOWS] >= 0 ? plan->pass_map[ROMA_PASS_SOFT_SHADOWS]
                                                                      : plan->pass_map[ROMA_PASS_PUNCTUAL_LIGHTS];
     const int count_map = plan->pass_map[ROMA_PASS_MANY_LIGHTS];
@@ -736,7 +738,7 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     frame_job job = {
         .d = d, .view = &view, .out = out,
         .ao = {.samples = spp, .radius = radius, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,
-               .seed = d->seed, .resolution_divisor = d->resolution_divisor},
+               .seed = d->seed, .resolution_divisor = d->resolution_divisor, .start = d->ao_start},
         .light = {.max_steps = d->max_steps, .offset_cells = d->offset_cells, .skip_cells = d->skip_cells,
                   .area_samples = spp, .seed = d->seed, .resolution_divisor = d->resolution_divisor},
         .gi = {.samples = spp, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,

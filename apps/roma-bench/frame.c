@@ -261,7 +261,7 @@ double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result 
 static roma_ao_settings ao_settings(const roma_bench_frame_desc *d, uint32_t spp)
 {
     return (roma_ao_settings){.samples = spp, .radius = d->radius > 0.0f && isfinite(d->radius) ? d->radius : 0.0f,
-                              .seed = SEED, .frame = 0};
+                              .seed = SEED, .frame = 0, .start = d->ao_start};
 }
 
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, FILE *csv)
@@ -291,13 +291,14 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
     roma_map_frame_desc warm = {.frame = 0, .seed = SEED, .jitter_grid = 1, .jitter_directions = 1};
     roma_map_build(map, &warm, NULL);
     roma_map_get_info(map, &mi);
-    printf("\nDynamic AO frame, %ux%u (%u pixels, %u covered), RES %u, A %u, AO radius %s; medians of %u runs.\n"
+    printf("\nDynamic AO frame, %ux%u (%u pixels, %u covered), RES %u, A %u, AO radius %s%s; medians of %u runs.\n"
            "ROMA: one submission, host-observed, the public AO effect over the covered pixels (listed once);\n"
            "Embree: wall clock, all cores, same points and samples. G-buffer: the reference's primary rays,\n"
            "uploaded once, counted by neither side.\n\n"
            "| spp | ROMA build ms | ROMA AO ms | ROMA frame ms | Embree BVH ms | Embree AO ms | Embree frame ms "
            "| ROMA speed-up | AO mean ROMA / Embree |\n|---|---|---|---|---|---|---|---|---|\n",
-           w, h, w * h, count, d->resolution, d->angular, d->radius > 0.0f ? "bounded" : "unbounded", runs);
+           w, h, w * h, count, d->resolution, d->angular, d->radius > 0.0f ? "bounded" : "unbounded",
+           d->ao_start == ROMA_AO_START_SURFACES ? ", start through the surface grid" : "", runs);
     static const uint32_t spps[2] = {1, 4};
     status = 0;
     for (int si = 0; si < 2 && status == 0; ++si) {

@@ -68,8 +68,10 @@ static const char *usage =
     "                              the voxel grid to its end (the study's baseline); the public passes\n"
     "  --ssao-layers K             screen-space ao: also against K layers of a stochastic depth map\n"
     "                              rasterized every frame (0..8, default 0: the depth buffer alone)\n"
-    "  --ray-start walk|blind      ROMA rays' skipped start: walked exactly through the voxel grid, so\n"
-    "                              that no ray passes a wall it starts next to (default), or skipped\n"
+    "  --ray-start walk|surfaces|blind  ROMA rays' skipped start: walked exactly through the voxel\n"
+    "                              grid, so that no ray passes a wall it starts next to (default); for\n"
+    "                              ao, where that walk meets an occupied cell, the surface grid's\n"
+    "                              triangles decide (surfaces: finer geometry, more time); or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
     "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
     "                              frame (a new one each frame) and upsample the rest (default 1)\n"
@@ -149,6 +151,7 @@ typedef struct options {
     int shared_list;     /* --pixel-dispatch shared */
     uint32_t resolution_divisor; /* --resolution-divisor: the public effects trace 1 pixel in d x d */
     int blind_start;     /* --ray-start blind */
+    roma_ao_start ao_start; /* --ray-start surfaces */
     roma_ao_method ao_method; /* --ao-method */
     roma_shadow_method shadow_method; /* --shadow-method */
     uint32_t ssao_layers;     /* --ssao-layers */
@@ -380,9 +383,10 @@ static int parse_args(int argc, char **argv, options *o)
         }
         else if (strcmp(a, "--ray-start") == 0) {
             o->blind_start = strcmp(v, "blind") == 0;
+            o->ao_start = strcmp(v, "surfaces") == 0 ? ROMA_AO_START_SURFACES : ROMA_AO_START_VOXELS;
             o->given |= GIVEN_RAY_START;
-            if (!o->blind_start && strcmp(v, "walk") != 0) {
-                fprintf(stderr, "roma-render: unknown ray start '%s' (valid: walk, blind)\n", v);
+            if (!o->blind_start && strcmp(v, "walk") != 0 && strcmp(v, "surfaces") != 0) {
+                fprintf(stderr, "roma-render: unknown ray start '%s' (valid: walk, surfaces, blind)\n", v);
                 return 0;
             }
         }
@@ -1049,7 +1053,7 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .progress = on_progress,
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off, .ao_method = o->ao_method,
-        .shadow_method = o->shadow_method, .blind_start = o->blind_start,
+        .shadow_method = o->shadow_method, .blind_start = o->blind_start, .ao_start = o->ao_start,
         .gi_rsm = (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays, .ssao_layers = o->ssao_layers};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))

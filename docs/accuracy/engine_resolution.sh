@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# 2CylinderEngine's unbounded AO (issue: MAE <= 0.05) against the voxels' own limit: ROMA and
+# 2CylinderEngine's unbounded AO (issue: MAE <= 0.05) against the voxels' own limit: ROMA (its
+# start walked through the BOM, and through the surface grid too: --ray-start surfaces) and
 # the exact traversal of the same voxels (--ao-method voxel-dda) at RES 128 and 256, the blind
 # start at both, and cascade levels around the camera, each against Embree at 1024 samples
 # (160 x 120; ROMA 32 samples x 32 frames), as in docs/accuracy.md. Usage, from the repository
@@ -14,7 +15,9 @@ mkdir -p "$out"
   --quiet --out "$out/ref" >/dev/null
 echo "| setting | MAE | mean ROMA | mean Embree | relative bias |"
 echo "|---|---|---|---|---|"
-for spec in "RES 128|--res 128" "RES 128, exact voxel traversal|--res 128 --ao-method voxel-dda" \
+for spec in "RES 128|--res 128" "RES 128, start through the surface grid|--res 128 --ray-start surfaces" \
+            "RES 256, start through the surface grid|--res 256 --ray-start surfaces" \
+            "RES 128, exact voxel traversal|--res 128 --ao-method voxel-dda" \
             "RES 128, blind start|--res 128 --ray-start blind" "RES 256|--res 256" \
             "RES 256, exact voxel traversal|--res 256 --ao-method voxel-dda" \
             "RES 256, blind start|--res 256 --ray-start blind" "RES 128, 3 cascade levels|--res 128 --cascades 3"; do

@@ -49,6 +49,22 @@ extern "C" {
  * surface hold the surface itself (docs/accuracy.md measures the choice). */
 #define ROMA_DEFAULT_AO_SKIP_CELLS 1.6f
 
+/** How an AO ray's skipped start is checked (roma_ao_settings.start). */
+typedef enum roma_ao_start {
+    /** Walked exactly through the map's base occupancy map: any occupied cell there blocks the
+     * ray. No ray passes a wall it starts next to; a ray that only passes by another surface
+     * within a cell (fins closer than the origin's offset, the band along the edge where two
+     * walls meet) is blocked too (darker there). */
+    ROMA_AO_START_VOXELS = 0,
+    /** The same walk, and where it meets an occupied cell, the effect's surface grid decides
+     * (which triangles lie in each of its cells, two per cell): the ray is blocked only when
+     * the straight segment from the surface point to where its ROMA query begins crosses one
+     * of them. Closer to the reference on fine geometry; the grid's build (when the geometry
+     * moves) and its triangle tests cost time (docs/accuracy.md measures both); where more
+     * than two triangles share a cell, the others are not seen there. */
+    ROMA_AO_START_SURFACES = 1,
+} roma_ao_start;
+
 /** Per-record AO settings; the zero value is the default (roma_ao_settings_resolve). */
 typedef struct roma_ao_settings {
     uint32_t samples;     /**< rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
@@ -70,6 +86,7 @@ typedef struct roma_ao_settings {
      * blur across a block, which accumulation over frames averages out (the error it costs:
      * docs/benchmark.md). 0 or 1 = every pixel traced; other values are refused. */
     uint32_t resolution_divisor;
+    roma_ao_start start; /**< how the skipped start is checked; 0 = ROMA_AO_START_VOXELS */
 } roma_ao_settings;
 
 /** The zero value's meaning, filled in (the one place defaults are resolved).
@@ -86,11 +103,19 @@ ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_a
  * (roma/context.h). */
 typedef struct roma_ao_effect roma_ao_effect;
 
+/** Default resolution of the AO effect's surface grid (ROMA_AO_START_SURFACES). */
+#define ROMA_DEFAULT_AO_SURFACE_RESOLUTION 128u
+
 /** Settings of roma_ao_effect_create; the zero value is the default. */
 typedef struct roma_ao_effect_desc {
     uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
     roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     roma_logger logger;        /**< 0 = the context's */
+    /** Resolution of the surface grid of ROMA_AO_START_SURFACES (which triangles lie in each
+     * of its cells, over the map's volume), 32 to 256; 0 = ROMA_DEFAULT_AO_SURFACE_RESOLUTION.
+     * Built on the first record with that start and again when the map's geometry changes:
+     * 2 * resolution^3 * 4 bytes of device memory. */
+    uint32_t surface_resolution;
 } roma_ao_effect_desc;
 
 /** Creates the AO effect: its sampler, pipeline (through the context's pipeline cache) and a
@@ -100,9 +125,9 @@ typedef struct roma_ao_effect_desc {
  * @param desc      settings; NULL = the zero value (2 slots, the context's logger). Copied.
  * @param[out] out  the new effect; NULL on failure.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL context or out,
- *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT or a pixel_dispatch that is not a
- *         roma_pixel_dispatch; ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code
- *         (roma_result).
+ *         frames_in_flight above ROMA_MAX_FRAMES_IN_FLIGHT, a pixel_dispatch that is not a
+ *         roma_pixel_dispatch or a surface_resolution outside [32, 256];
+ *         ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result).
  * @par Threads
  * Any thread. */
 ROMA_API roma_result roma_ao_effect_create(roma_context *context, const roma_ao_effect_desc *desc, roma_ao_effect **out);
@@ -144,7 +169,9 @@ typedef struct roma_ao_images {
  * images grow. See the file comment for the synchronisation the caller records and the slot
  * rules. Any number of samples: on a device that limits the loop iterations of one shader
  * invocation (lavapipe: 65,535) the samples are traced in as many dispatches as that takes,
- * each adding to the output after a barrier (docs/robustness.md); elsewhere in one.
+ * each adding to the output after a barrier (docs/robustness.md); elsewhere in one. With
+ * ROMA_AO_START_SURFACES the first such record (which also makes that pass's pipeline) and
+ * each after the map's geometry moved record the surface grid's build before the pass.
  *
  * @param effect    the effect.
  * @param cmd       a command buffer of the context's queue family, recording.
@@ -160,8 +187,8 @@ typedef struct roma_ao_images {
  *   position, normal or output view, settings roma_ao_settings_resolve rejects, a slot not below
  *   frames_in_flight, more than 16 records in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
- *   a Vulkan failure code (roma_result) when the descriptor set or the slot's list cannot be
- *   allocated.
+ *   a Vulkan failure code (roma_result) when the descriptor set, the slot's list or, with
+ *   ROMA_AO_START_SURFACES, the surface grid cannot be made.
  * @par Threads
  * Any thread, the effect externally synchronised; the map it reads is not changed meanwhile (other
  * calls may read it); cmd externally synchronised. Never submits or waits. */

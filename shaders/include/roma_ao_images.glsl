@@ -24,6 +24,12 @@
 // unit and above the geometric surface. Defined by the includer.
 bool roma_ao_ray_open(vec3 origin, vec3 dir, float skip, float tmax);
 
+// Called once a pixel before its rays with the surface point and its geometric normal; the
+// includer may define it (before including) to keep what its rays need of the surface.
+#ifndef ROMA_AO_BEGIN
+#define ROMA_AO_BEGIN(p, ng)
+#endif
+
 layout(set = 1, binding = 3, r32f) uniform image2D roma_ao_output; // read back by later parts
 
 layout(push_constant) uniform Push { roma_ao_push pc; };
@@ -46,7 +52,8 @@ void main()
     // Offset and skip in the trace cells of the cascade level that holds the point.
     float scale = surface.scale, skip = pc.ray.z * scale;
     precise vec3 origin = surface.p + ng * (pc.ray.x * scale);
-    roma_use_ray_start(pc.bom);
+    roma_use_ray_start(uvec2(pc.config2.w, 0u));
+    ROMA_AO_BEGIN(surface.p, ng);
     // This dispatch's part of the samples; a later part adds to what the earlier ones wrote.
     for (uint k = pc.sample_first; k < min(pc.sample_end, spp); ++k) {
         ROMA_LOOP_TICK();

@@ -27,6 +27,9 @@
 /* Cells of the surface grid the check at a light's end looks at (roma_surface_crossed): four
  * offsets of 2.6 BOM cells from a point light, along an axis, in a grid as fine as the BOM. */
 #define ROMA_LIGHT_SURFACE_CELLS 32
+/* Cells of the surface grid an AO ray's start looks at (ao_images.comp): the origin's offset
+ * and the skip, 2.6 + 2.8 BOM cells, cross at most 3 * 5.4 + 1 cells of a grid as fine. */
+#define ROMA_AO_SURFACE_CELLS 20
 
 /* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
  * and the pipeline's slot in it as specialization constants, set on every pipeline of a
@@ -255,7 +258,7 @@ ROMA_STRUCT_END(roma_image_list_push)
 /* ---- AO effect (src/effects/ao_effect.c, shaders/include/roma_ao_images.glsl) ---- */
 
 ROMA_STRUCT_BEGIN(roma_ao_push)
-    ROMA_U64(bom);        /* this frame's BOM (roma/ray_start.glsl), 0: rays skip their start blind */
+    ROMA_U64(surfaces);   /* roma_surface_grid (where a surface lies in its cells) for the rays' start; 0: none */
     /* The samples [sample_first, sample_end) of spp this dispatch traces (a device's loop
      * budget splits them, src/vulkan/loop_budget.h); the public effect adds to the image
      * what the dispatches before it wrote when sample_first > 0. */
@@ -263,7 +266,8 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_UINT sample_end;
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
     ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps, z: screen-space
-                             baseline: stochastic depth layers beside the G-buffer's */
+                             baseline: stochastic depth layers beside the G-buffer's, w: 1: the
+                             rays' start walked through the bound BOM, 0: skipped blind */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world),
                              w: distance field baseline: least step (cells) */
     /* Screen-space baseline only (roma_ssao.glsl): the camera as a projection, pixel

@@ -8,6 +8,8 @@
 
 #include "effects/ao_effect_variant.h"
 #include "effects/image_effect.h"
+#include "effects/lit_record.h"
+#include "effects/surface_cells.h"
 #include "roma_shared.h"
 #include "trace/loop_costs.h"
 #include "util/log.h"
@@ -16,6 +18,14 @@
 
 struct roma_ao_effect {
     roma_image_effect base;
+    int roma_rays; /* the module is ROMA's own (ao_images.comp) */
+    /* ROMA_AO_START_SURFACES: its own pass (ao_images_surfaces.comp), its surface grid and the
+     * grid's record per slot, made by the first record with that start. */
+    roma_image_effect surface_pass;
+    uint32_t frames_in_flight, surface_resolution;
+    roma_pixel_dispatch pixel_dispatch;
+    roma_surface_cells grid;
+    roma_upload surfaces[ROMA_MAX_FRAMES_IN_FLIGHT];
 };
 
 roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out)
@@ -26,9 +36,10 @@ roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_setting
     if (!out)
         return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_settings_resolve: out is NULL");
     if (!isfinite(s.radius) || s.radius < 0.0f || !isfinite(s.offset_cells) || s.offset_cells < 0.0f ||
-        !isfinite(s.skip_cells))
+        !isfinite(s.skip_cells) || (unsigned)s.start > ROMA_AO_START_SURFACES)
         return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_ao_settings: radius and offset_cells must be finite and not negative, skip_cells finite");
+                         "roma_ao_settings: radius and offset_cells must be finite and not negative, skip_cells "
+                         "finite, start a roma_ao_start");
     if (s.samples == 0)
         s.samples = ROMA_DEFAULT_AO_SAMPLES;
     if (s.offset_cells == 0.0f)
@@ -63,6 +74,11 @@ roma_result roma_ao_effect_create_variant(roma_context *ctx, const roma_ao_effec
     if (desc.frames_in_flight > ROMA_MAX_FRAMES_IN_FLIGHT)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_effect_create: frames_in_flight %u outside [1, %u]",
                          desc.frames_in_flight, ROMA_MAX_FRAMES_IN_FLIGHT);
+    if (desc.surface_resolution == 0)
+        desc.surface_resolution = ROMA_DEFAULT_AO_SURFACE_RESOLUTION;
+    if (desc.surface_resolution < 32 || desc.surface_resolution > 256)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_ao_effect_create: surface_resolution %u outside [32, 256]", desc.surface_resolution);
     roma_ao_effect *e = calloc(1, sizeof *e);
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_effect_create: out of host memory");
@@ -75,6 +91,10 @@ roma_result roma_ao_effect_create_variant(roma_context *ctx, const roma_ao_effec
         free(e);
         return r;
     }
+    e->surface_resolution = desc.surface_resolution;
+    e->frames_in_flight = desc.frames_in_flight;
+    e->pixel_dispatch = desc.pixel_dispatch;
+    e->roma_rays = strcmp(module, "ao_images.comp") == 0;
     *out = e;
     return ROMA_SUCCESS;
 }
@@ -83,6 +103,11 @@ void roma_ao_effect_destroy(roma_ao_effect *e)
 {
     if (!e)
         return;
+    for (uint32_t s = 0; s < ROMA_MAX_FRAMES_IN_FLIGHT; ++s)
+        roma_upload_destroy(e->base.ctx, &e->surfaces[s]);
+    roma_surface_cells_destroy(&e->grid);
+    if (e->surface_pass.ctx)
+        roma_image_effect_free(&e->surface_pass);
     roma_image_effect_free(&e->base);
     free(e);
 }
@@ -110,21 +135,46 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
     roma_result r = roma_ao_settings_resolve(settings_in, &s);
     if (r != ROMA_SUCCESS)
         return roma_fail(&e->base.logger, r, "roma_ao_effect_record: invalid settings");
+    /* The surface grid for the rays' start where asked (the study's blind start walks nothing),
+     * traced by its own pass. */
+    const int surfaces = s.start == ROMA_AO_START_SURFACES && e->roma_rays && !(variant && variant->blind_start);
+    if (surfaces && !e->surface_pass.ctx) {
+        r = roma_image_effect_init(&e->surface_pass, e->base.ctx, &e->base.logger, "roma_ao_effect_record",
+                                   "ao_images_surfaces.comp", "image_list_r32f.comp", 1.0f, 3, sizeof(roma_ao_push),
+                                   e->frames_in_flight, e->pixel_dispatch);
+        if (r != ROMA_SUCCESS) {
+            memset(&e->surface_pass, 0, sizeof e->surface_pass);
+            return r;
+        }
+    }
+    roma_image_effect *pass = surfaces ? &e->surface_pass : &e->base;
     roma_map_info info;
-    r = roma_image_effect_begin(&e->base, slot, s.frame, map, im->pixels, im->width, im->height,
-                                s.resolution_divisor, &info);
+    r = roma_image_effect_begin(pass, slot, s.frame, map, im->pixels, im->width, im->height, s.resolution_divisor,
+                                &info);
     if (r != ROMA_SUCCESS)
         return r;
-    roma_ao_push push = {.bom = info.bom_address,
+    if (surfaces) {
+        r = roma_lit_slot_buffer(e->base.ctx, &e->surfaces[slot], sizeof(roma_surface_grid));
+        if (r == ROMA_SUCCESS)
+            r = roma_surface_cells_follow(&e->grid, e->base.ctx, e->surface_resolution, 2, cmd, slot, map, NULL,
+                                          &e->base.logger, "roma_ao_effect_record");
+        if (r != ROMA_SUCCESS)
+            return r;
+        const roma_surface_grid view = roma_surface_cells_view(&e->grid, map);
+        memcpy(roma_upload_write(&e->surfaces[slot], sizeof view), &view, sizeof view);
+        roma_upload_record(&e->surfaces[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    }
+    roma_ao_push push = {.surfaces = surfaces ? e->surfaces[slot].device.address : 0,
                          .config = {im->width, im->height, s.samples, s.frame},
-                         .config2 = {s.seed, 0, 0, 0},
+                         .config2 = {s.seed, 0, 0, 1},
                          .ray = {s.offset_cells * info.trace_cell, s.radius > 0.0f ? s.radius : INFINITY,
                                  s.skip_cells * info.trace_cell, 0.0f}};
     uint32_t sample_cost = roma_loop_cost_ao_ray((roma_loop_grid){info.resolution, info.grid_cell, info.levels},
-                                                 push.ray[2], push.ray[1]);
+                                                 push.ray[2], push.ray[1], surfaces);
     if (variant) { /* the study's: its own fields of the push, its structure in the BOM's place */
         if (variant->blind_start)
-            push.bom = 0;
+            push.config2[3] = 0;
         push.config2[1] = variant->push.config2[1];
         push.config2[2] = variant->push.config2[2];
         push.ray[3] = variant->push.ray[3];
@@ -146,12 +196,16 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         push.sample_first = range[0];
         push.sample_end = range[1];
         if (part == 0)
-            r = roma_image_effect_dispatch(&e->base, cmd, slot, &info, views, im->input_layout, &push, im->width,
+            r = roma_image_effect_dispatch(pass, cmd, slot, &info, views, im->input_layout, &push, im->width,
                                            im->height);
         else
-            roma_image_effect_dispatch_more(&e->base, cmd, &push);
+            roma_image_effect_dispatch_more(pass, cmd, &push);
     }
     if (r == ROMA_SUCCESS)
-        roma_image_effect_finish(&e->base, cmd, im->width, im->height);
+        roma_image_effect_finish(pass, cmd, im->width, im->height);
+    if (r == ROMA_SUCCESS && surfaces)
+        roma_upload_done(&e->surfaces[slot]);
+    else if (surfaces)
+        e->grid.version = 0; /* a grid build recorded above goes with the dropped cmd: build it again */
     return r;
 }

@@ -643,6 +643,13 @@ int main(void)
     CHECK_RESULT(roma_ao_effect_record(ao, cmd, 5, map, &images, &settings), ROMA_ERROR_INVALID_ARGUMENT);
     roma_ao_settings bad = {.radius = -1.0f}, resolved;
     CHECK_RESULT(roma_ao_settings_resolve(&bad, &resolved), ROMA_ERROR_INVALID_ARGUMENT);
+    bad = (roma_ao_settings){.start = (roma_ao_start)(ROMA_AO_START_SURFACES + 1)};
+    CHECK_RESULT(roma_ao_settings_resolve(&bad, &resolved), ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK_RESULT(roma_ao_effect_record(ao, cmd, 0, map, &images, &bad), ROMA_ERROR_INVALID_ARGUMENT);
+    roma_ao_effect *coarse = NULL;
+    CHECK_RESULT(roma_ao_effect_create(ctx, &(roma_ao_effect_desc){.surface_resolution = 16}, &coarse),
+                 ROMA_ERROR_INVALID_ARGUMENT);
+    CHECK(coarse == NULL);
     CHECK_RESULT(roma_ao_settings_resolve(NULL, &resolved), ROMA_SUCCESS);
     CHECK(resolved.samples == ROMA_DEFAULT_AO_SAMPLES && resolved.skip_cells == ROMA_DEFAULT_AO_SKIP_CELLS &&
           resolved.offset_cells == ROMA_DEFAULT_OFFSET_CELLS);

@@ -20,9 +20,8 @@ vec3 roma_ao_query_start(vec3 origin, vec3 dir, float skip)
     roma_map_frame f = roma_fetch_frame(grid.level.z + d.k);
     vec3 m = roma_to_map(grid, f, origin);
     vec3 c = vec3(floor(m.xy) + 0.5, d.folded ? m.z - skip * f.cell.w : m.z + skip * f.cell.w);
-    mat3 rows = transpose(mat3(f.to_map_0.xyz, f.to_map_1.xyz, f.to_map_2.xyz));
-    vec3 r = inverse(rows) * (c - vec3(f.to_map_0.w, f.to_map_1.w, f.to_map_2.w));
-    return grid.origin.xyz + r / grid.inv_cell.y;
+    vec3 b = f.map_to_bom_0.xyz * c.x + f.map_to_bom_1.xyz * c.y + f.map_to_bom_2.xyz * c.z + f.map_to_bom_3.xyz;
+    return grid.origin.xyz + b * grid.origin.w;
 }
 
 // The skipped start of a ray: open when the BOM shows no occupied cell on

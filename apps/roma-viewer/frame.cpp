@@ -161,6 +161,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         as.radius = effective_ao_radius(v);
         as.offset_cells = s.offset;
         as.skip_cells = s.ao_skip;
+        as.start = s.ao_surfaces ? ROMA_AO_START_SURFACES : ROMA_AO_START_VOXELS;
         as.seed = 1;
         as.frame = v.frame;
         if (roma_ao_effect_record(v.ao, cmd, slot, v.map, &images, &as) != ROMA_SUCCESS)

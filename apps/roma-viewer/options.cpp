@@ -40,6 +40,9 @@ const char *kUsage =
     "  --max-steps N        texels an un-snapped shadow ray walks (default 8, the paper's)\n"
     "  --ao-skip C --offset C   AO rays' skip and every ray's origin offset, in trace cells\n"
     "                       (default: the library's, 1.6 and 1.5)\n"
+    "  --ao-start walk|surfaces  AO rays' skipped start walked through the voxel grid (default),\n"
+    "                       and where it meets an occupied cell, through the surface grid's\n"
+    "                       triangles (finer geometry, slower)\n"
     "  --exposure E         (default 1.2)\n"    "  --sky S              sky radiance the composed view scales by AO (default: 0.2 where the\n"
     "                       scene has lights, 1 where it has none, so that it opens readable)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
@@ -142,6 +145,9 @@ int parse_args(int argc, char **argv, options &o)
             ok = parse_u32(v, 1, 256, o.settings.ao_samples);
         } else if (a == "--resolution-divisor") {
             ok = parse_u32(v, 1, 4, o.settings.resolution_divisor) && o.settings.resolution_divisor != 3;
+        } else if (a == "--ao-start") {
+            ok = !std::strcmp(v, "walk") || !std::strcmp(v, "surfaces");
+            o.settings.ao_surfaces = !std::strcmp(v, "surfaces");
         } else if (a == "--ao-skip" || a == "--offset") {
             ok = parse_float(v, 0.01f, 16.0f, a == "--offset" ? o.settings.offset : o.settings.ao_skip);
         } else if (a == "--map") {

@@ -31,6 +31,7 @@ struct viewer_settings {
     uint32_t many_lights = 0;        // synthetic point lights added to the direct light (0: none)
     uint32_t lights_per_frame = 8;   // of them, traced per pixel and frame (the scene's own: all)
     float ao_skip = 0.0f, shadow_skip = 0.0f, offset = 0.0f; // 0 = the library's defaults
+    bool ao_surfaces = false;        // AO rays' start checked through the surface grid too
     // picture
     view_mode view = VIEW_COMPOSED;
     float exposure = 1.2f;           // the built-in room's lights read well at 1.2

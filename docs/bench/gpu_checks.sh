@@ -6,9 +6,10 @@
 # on aggressor (one grid against cascade levels, 640 x 480) and on the room (AO: every method, the
 # hardware's rows and the ray-traced stochastic depth map among them; direct light with the
 # hardware's rows), and the issue-41 passes through
-# roma-render (AO at 1920 x 1080 on dragon_res2, many lights on the room) with GPU timestamps.
+# roma-render (AO at 1920 x 1080 on dragon_res2, also with the rays' start through the surface
+# grid, many lights on the room) with GPU timestamps.
 # Each step has its own timeout and a failing step does not stop the others; the timeouts add up
-# to 470 s, under the 8 minutes a lent GPU leaves for the checks.
+# to 480 s, within the 8 minutes a lent GPU leaves for the checks.
 #
 # The GPU machine may have no compiler: the binaries are built here and carried.
 #   bash docs/bench/gpu_checks.sh bundle [BUILD_DIR]   # here: out/gpu-bundle (stripped tools and
@@ -70,6 +71,9 @@ run)
     --csv "$out/room_direct_accuracy.csv"
   step dragon_ao_1080p 30 "$bundle/roma-render" --scene scenes/dragon_res2.glb --tracer roma --effects ao \
     --size 1920x1080 --spp 1 --frames 8 --out "$out/tmp/dragon_ao" --stats "$out/dragon_ao_1080p.json"
+  step dragon_ao_1080p_surfaces 10 "$bundle/roma-render" --scene scenes/dragon_res2.glb --tracer roma --effects ao \
+    --size 1920x1080 --spp 1 --frames 8 --ray-start surfaces --out "$out/tmp/dragon_ao_surfaces" \
+    --stats "$out/dragon_ao_1080p_surfaces.json"
   step room_lights 30 "$bundle/roma-render" --scene builtin:cornell --tracer roma --effects lights \
     --size 1280x720 --frames 4 --out "$out/tmp/room_lights" --stats "$out/room_lights.json"
   # The failing tests' logs beside the summary (the rest of tmp is left out of what comes back).

@@ -57,11 +57,15 @@ typedef enum roma_ao_start {
      * walls meet) is blocked too (darker there). */
     ROMA_AO_START_VOXELS = 0,
     /** The same walk, and where it meets an occupied cell, the effect's surface grid decides
-     * (which triangles lie in each of its cells, two per cell): the ray is blocked only when
-     * the straight segment from the surface point to where its ROMA query begins crosses one
-     * of them. Closer to the reference on fine geometry; the grid's build (when the geometry
-     * moves) and its triangle tests cost time (docs/accuracy.md measures both); where more
-     * than two triangles share a cell, the others are not seen there. */
+     * (which triangles lie in each of its cells, two per cell, over the map's volume): the ray
+     * is blocked only when the straight segment from the surface point to where its ROMA query
+     * begins crosses one of them. Closer to the reference on fine geometry; the check costs
+     * time, and so does the grid's build, on the first record and again when the geometry
+     * moves or another map is recorded (docs/accuracy.md measures both). Where more than two
+     * triangles share a cell, the others are not seen there, and a few rays pass where walls
+     * meet. The walk alone decides where the grid's cells are coarser than 1.5 of the map's
+     * at the point (cascade levels finer than the grid, a surface_resolution below the map's
+     * RES). One record per frame slot with this start. */
     ROMA_AO_START_SURFACES = 1,
 } roma_ao_start;
 
@@ -94,7 +98,8 @@ typedef struct roma_ao_settings {
  * @param in        the settings; NULL = the zero value (all defaults).
  * @param[out] out  the resolved settings; zeroed on failure. May equal in.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out, NaN or infinite values,
- *         a negative radius or offset_cells.
+ *         a negative radius or offset_cells, a resolution_divisor other than 0, 1, 2 or 4, a
+ *         start that is not a roma_ao_start.
  * @par Threads
  * Any thread (pure). */
 ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
@@ -103,18 +108,15 @@ ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_a
  * (roma/context.h). */
 typedef struct roma_ao_effect roma_ao_effect;
 
-/** Default resolution of the AO effect's surface grid (ROMA_AO_START_SURFACES). */
-#define ROMA_DEFAULT_AO_SURFACE_RESOLUTION 128u
-
 /** Settings of roma_ao_effect_create; the zero value is the default. */
 typedef struct roma_ao_effect_desc {
     uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
     roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     roma_logger logger;        /**< 0 = the context's */
     /** Resolution of the surface grid of ROMA_AO_START_SURFACES (which triangles lie in each
-     * of its cells, over the map's volume), 32 to 256; 0 = ROMA_DEFAULT_AO_SURFACE_RESOLUTION.
-     * Built on the first record with that start and again when the map's geometry changes:
-     * 2 * resolution^3 * 4 bytes of device memory. */
+     * of its cells, over the map's volume), 32 to 256; 0 = the RES of the map the first record
+     * with that start traces (32 at least). Made by that record: 2 * resolution^3 * 4 bytes of
+     * device memory. */
     uint32_t surface_resolution;
 } roma_ao_effect_desc;
 
@@ -171,7 +173,8 @@ typedef struct roma_ao_images {
  * invocation (lavapipe: 65,535) the samples are traced in as many dispatches as that takes,
  * each adding to the output after a barrier (docs/robustness.md); elsewhere in one. With
  * ROMA_AO_START_SURFACES the first such record (which also makes that pass's pipeline) and
- * each after the map's geometry moved record the surface grid's build before the pass.
+ * each after the map's geometry moved, or with another map, record the surface grid's build before
+ * the pass.
  *
  * @param effect    the effect.
  * @param cmd       a command buffer of the context's queue family, recording.
@@ -187,8 +190,11 @@ typedef struct roma_ao_images {
  *   position, normal or output view, settings roma_ao_settings_resolve rejects, a slot not below
  *   frames_in_flight, more than 16 records in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
- *   a Vulkan failure code (roma_result) when the descriptor set, the slot's list or, with
- *   ROMA_AO_START_SURFACES, the surface grid cannot be made.
+ *   with ROMA_AO_START_SURFACES, a second record in the slot's frame;
+ *   ROMA_ERROR_INVALID_SCENE: with ROMA_AO_START_SURFACES, a map whose volume is empty;
+ *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) when the descriptor
+ *   set, the slot's list or, with ROMA_AO_START_SURFACES, that pass's pipeline or the surface
+ *   grid cannot be made.
  * @par Threads
  * Any thread, the effect externally synchronised; the map it reads is not changed meanwhile (other
  * calls may read it); cmd externally synchronised. Never submits or waits. */

@@ -31,10 +31,11 @@ vec3 roma_ao_query_start(vec3 origin, vec3 dir, float skip)
 // meet, in the other wall's cells). With the surface grid (pc.surfaces; its cells no coarser
 // than 1.5 of the BOM's at the point) the start is open when the straight segment from the
 // surface point to where the query begins crosses none of the grid's triangles (the surface's
-// own plane apart): the query's column then begins on the point's side of every surface the
-// grid holds (checked along the ray alone, tried, rays along a wall were let through where
-// their column began beyond it). A ray no longer than the skip is checked along itself.
-// Without the grid the BOM decides.
+// own plane apart; over at most pc.ray.w of its cells, beyond which the ray counts as
+// blocked): the query's column then begins on the point's side of every surface the grid holds
+// (checked along the ray alone, tried, rays along a wall were let through where their column
+// began beyond it). A ray no longer than the skip is checked along itself. Where the grid is
+// coarser (a cascade level finer than it, a grid coarser than the map), the BOM decides.
 bool roma_ao_start_open(vec3 origin, vec3 dir, float skip, float tmax)
 {
     if (!roma_ray_start_blocked(origin, dir, min(skip, tmax)))
@@ -49,7 +50,7 @@ bool roma_ao_start_open(vec3 origin, vec3 dir, float skip, float tmax)
     if (skip < tmax)
         to = roma_ao_query_start(origin, dir, skip) - p;
     float len = length(to), covered;
-    return !roma_surface_crossed(G, p, to / len, 0.01 * G.grid.w, len, vec4(ng, dot(ng, p)), ROMA_AO_SURFACE_CELLS,
+    return !roma_surface_crossed(G, p, to / len, 0.01 * G.grid.w, len, vec4(ng, dot(ng, p)), int(pc.ray.w),
                                  covered) &&
            covered >= len;
 }

@@ -27,9 +27,10 @@
 /* Cells of the surface grid the check at a light's end looks at (roma_surface_crossed): four
  * offsets of 2.6 BOM cells from a point light, along an axis, in a grid as fine as the BOM. */
 #define ROMA_LIGHT_SURFACE_CELLS 32
-/* Cells of the surface grid an AO ray's start looks at (ao_images.comp): the origin's offset
- * and the skip, 2.6 + 2.8 BOM cells, cross at most 3 * 5.4 + 1 cells of a grid as fine. */
-#define ROMA_AO_SURFACE_CELLS 20
+/* The most cells of the surface grid an AO ray's start looks at (ao_images_surfaces.comp; the
+ * effect gives each record's count, from its offset and skip, in roma_ao_push.ray.w): with the
+ * defaults 3 * 7 + 1 in a grid as fine as the BOM. */
+#define ROMA_AO_SURFACE_CELLS 64
 
 /* The loop guard (roma_loop_guard.glsl, src/vulkan/loop_guard.h): the guard buffer's address
  * and the pipeline's slot in it as specialization constants, set on every pipeline of a
@@ -269,7 +270,8 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
                              baseline: stochastic depth layers beside the G-buffer's, w: 1: the
                              rays' start walked through the bound BOM, 0: skipped blind */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world),
-                             w: distance field baseline: least step (cells) */
+                             w: distance field baseline: least step (cells); ao_images_surfaces.comp:
+                             the most surface grid cells a ray's check walks */
     /* Screen-space baseline only (roma_ssao.glsl): the camera as a projection, pixel
      * (x, y) = (width / 2 + dot(v, right) / z, height / 2 - dot(v, up) / z) for
      * v = point - eye, z = dot(v, forward). */

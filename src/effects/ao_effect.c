@@ -74,9 +74,7 @@ roma_result roma_ao_effect_create_variant(roma_context *ctx, const roma_ao_effec
     if (desc.frames_in_flight > ROMA_MAX_FRAMES_IN_FLIGHT)
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_effect_create: frames_in_flight %u outside [1, %u]",
                          desc.frames_in_flight, ROMA_MAX_FRAMES_IN_FLIGHT);
-    if (desc.surface_resolution == 0)
-        desc.surface_resolution = ROMA_DEFAULT_AO_SURFACE_RESOLUTION;
-    if (desc.surface_resolution < 32 || desc.surface_resolution > 256)
+    if (desc.surface_resolution != 0 && (desc.surface_resolution < 32 || desc.surface_resolution > 256))
         return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_effect_create: surface_resolution %u outside [32, 256]", desc.surface_resolution);
     roma_ao_effect *e = calloc(1, sizeof *e);
@@ -153,13 +151,28 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
                                 &info);
     if (r != ROMA_SUCCESS)
         return r;
+    /* The grid's record lives in one buffer per slot, and the grid follows one map: a second
+     * record in the slot's frame would change what the first one's dispatch reads. */
+    if (surfaces && roma_image_effect_same_frame(pass, slot))
+        return roma_fail(&e->base.logger, ROMA_ERROR_INVALID_ARGUMENT,
+                         "roma_ao_effect_record: one record per frame slot with ROMA_AO_START_SURFACES (slot %u was "
+                         "recorded this frame)", slot);
+    uint32_t surface_cells = 0; /* the most grid cells a ray's check walks */
     if (surfaces) {
+        /* The grid at the map's RES unless the desc gave one (made by the first such record). */
+        const uint32_t res = e->surface_resolution ? e->surface_resolution
+                             : info.resolution < 32 ? 32 : info.resolution > 256 ? 256 : info.resolution;
         r = roma_lit_slot_buffer(e->base.ctx, &e->surfaces[slot], sizeof(roma_surface_grid));
         if (r == ROMA_SUCCESS)
-            r = roma_surface_cells_follow(&e->grid, e->base.ctx, e->surface_resolution, 2, cmd, slot, map, NULL,
-                                          &e->base.logger, "roma_ao_effect_record");
+            r = roma_surface_cells_follow(&e->grid, e->base.ctx, res, 2, cmd, slot, map, NULL, &e->base.logger,
+                                          "roma_ao_effect_record");
         if (r != ROMA_SUCCESS)
             return r;
+        /* From the surface point to the query's start: the offset, the skip and half a texel's
+         * diagonal to the column's centre; a segment crosses at most 3 cells per cell of length, and one. */
+        const float reach = (s.offset_cells + s.skip_cells + 1.0f) * info.trace_cell / e->grid.cell;
+        surface_cells = reach < (float)(ROMA_AO_SURFACE_CELLS / 3) ? 3u * (uint32_t)ceilf(reach) + 1u
+                                                                    : ROMA_AO_SURFACE_CELLS;
         const roma_surface_grid view = roma_surface_cells_view(&e->grid, map);
         memcpy(roma_upload_write(&e->surfaces[slot], sizeof view), &view, sizeof view);
         roma_upload_record(&e->surfaces[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -171,7 +184,7 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
                          .ray = {s.offset_cells * info.trace_cell, s.radius > 0.0f ? s.radius : INFINITY,
                                  s.skip_cells * info.trace_cell, 0.0f}};
     uint32_t sample_cost = roma_loop_cost_ao_ray((roma_loop_grid){info.resolution, info.grid_cell, info.levels},
-                                                 push.ray[2], push.ray[1], surfaces);
+                                                 push.ray[2], push.ray[1], surface_cells);
     if (variant) { /* the study's: its own fields of the push, its structure in the BOM's place */
         if (variant->blind_start)
             push.config2[3] = 0;
@@ -187,6 +200,8 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         if (variant->sample_cost)
             sample_cost = variant->sample_cost;
     }
+    if (surfaces)
+        push.ray[3] = (float)surface_cells;
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* The samples in parts within the device's loop budget (one part where it has none). */

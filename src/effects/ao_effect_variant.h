@@ -14,7 +14,7 @@ roma_result roma_ao_effect_create_variant(roma_context *ctx, const roma_ao_effec
 
 typedef struct roma_ao_variant {
     VkBufferView bound;     /* bound in the BOM's place (R32_UINT texels or the module's own); 0: the map's BOM */
-    int blind_start;        /* 1: the rays' start is skipped unseen (push.bom 0) */
+    int blind_start;        /* 1: the rays' start is skipped unseen (push.config2.w 0) */
     uint32_t sample_cost;   /* loop iterations of one sample (trace/loop_costs.h); 0: ROMA's ray */
     /* Only config2.y and .z, ray.w, eye, forward, right and up are read: the baselines' fields. */
     roma_ao_push push;

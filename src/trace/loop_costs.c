@@ -72,11 +72,12 @@ uint32_t roma_loop_cost_punctual_light(const roma_shadow_cost *s)
     return min_u32((uint64_t)LOOP_ITSELF + roma_loop_cost_shadow_ray(&point) + LIGHT_END, UINT32_MAX);
 }
 
-uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius, int surfaces)
+uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius, uint32_t surface_cells)
 {
     const float start = skip < radius ? skip : radius;
-    return LOOP_ITSELF + roma_loop_cost_walk(g, start, 64) + (surfaces ? ROMA_AO_SURFACE_CELLS : 0u) +
-           roma_loop_cost_snapped(g);
+    /* The surface grid's check: its walk and the two cascade levels it looks up. */
+    const uint32_t surfaces = surface_cells ? surface_cells + 2u * (g.levels > 1 ? g.levels - 1 : 0u) : 0u;
+    return LOOP_ITSELF + roma_loop_cost_walk(g, start, 64) + surfaces + roma_loop_cost_snapped(g);
 }
 
 uint32_t roma_loop_cost_gi_bounce(roma_loop_grid g, float skip, int exact)

@@ -3,7 +3,8 @@
  * overlaps holds a triangle, the triangle it holds overlaps it, its key marks the scene's
  * area lights, and (cornell) no triangle of a lower key does (area lights after the rest); the
  * second layer holds the highest triangle that is not an area light (cornell: checked against
- * every triangle); the large triangles went through the tile queue.
+ * every triangle), the third the lowest area light (the GI effect's grid); the large triangles
+ * went through the tile queue.
  *
  * Built-in scenes whose walls span the grid (cornell, blinds) at RES 128 and 256 (cornell at
  * 64 too): the large triangles go through the tile queue. In cornell, the test counts the cells
@@ -43,7 +44,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
     roma_surface_cells cells;
     memset(&cells, 0, sizeof cells);
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-    const VkDeviceSize bytes = 2 * (VkDeviceSize)res * res * res * 4; /* two layers */
+    const VkDeviceSize bytes = 3 * (VkDeviceSize)res * res * res * 4; /* three layers */
     roma_result r = roma_buffer_create(ctx, (VkDeviceSize)v->vertex_count * 16, usage, ROMA_MEMORY_UPLOAD, &positions);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, (VkDeviceSize)v->triangle_count * 12, usage, ROMA_MEMORY_UPLOAD, &indices);
@@ -61,7 +62,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
         r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                ROMA_MEMORY_READBACK, &header);
     if (r == ROMA_SUCCESS)
-        r = roma_surface_cells_create(ctx, res, 2, &cells);
+        r = roma_surface_cells_create(ctx, res, 3, &cells);
     if (r == ROMA_SUCCESS)
         r = roma_surface_cells_place(&cells, v->bounds_min, v->bounds_max);
     if (r == ROMA_SUCCESS) {
@@ -81,8 +82,11 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
         r = roma_surface_cells_record(&cells, cmd, 0, &g);
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-        VkBufferCopy copy = {0, 0, bytes}, queue_copy = {0, 0, sizeof(roma_voxelize_queue)};
+        /* the first two layers, then the third from its own buffer */
+        VkBufferCopy copy = {0, 0, 2 * bytes / 3}, third = {0, 2 * bytes / 3, bytes / 3},
+                     queue_copy = {0, 0, sizeof(roma_voxelize_queue)};
         vkCmdCopyBuffer(cmd, cells.cells.buffer, readback.buffer, 1, &copy);
+        vkCmdCopyBuffer(cmd, cells.emitter_cells.buffer, readback.buffer, 1, &third);
         vkCmdCopyBuffer(cmd, cells.queue.buffer.buffer, header.buffer, 1, &queue_copy);
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
@@ -203,7 +207,7 @@ static void check_scene(roma_context *ctx, const char *name, uint32_t res, int l
          * ceiling, and in the cells the two share the grid holds the ceiling (area lights come
          * after the rest), so a bounce ray that meets the lamp's underside is shaded as the
          * hidden ceiling above it, which the lamp's top face lights at 2 cm. */
-        uint64_t emitter_cells = 0, shared = 0, shared_other = 0;
+        uint64_t emitter_cells = 0, shared = 0, shared_other = 0, third_wrong = 0, third_held = 0;
         for (uint32_t z = 0; lowest && z < res; ++z)
             for (uint32_t y = 0; y < res; ++y)
                 for (uint32_t x = 0; x < res; ++x) {
@@ -221,11 +225,27 @@ static void check_scene(roma_context *ctx, const char *name, uint32_t res, int l
                     emitter_cells += emitter;
                     shared += emitter && other;
                     shared_other += emitter && other && !holds_emitter;
+                    /* The third layer: the lowest area light that overlaps the cell (its key),
+                     * or none; what the GI's bounce hits find where a lamp shares a ceiling's cells. */
+                    uint32_t lowest_emitter = ROMA_GBUFFER_NO_TRIANGLE;
+                    for (uint32_t t = 0; t < v.triangle_count && lowest_emitter == ROMA_GBUFFER_NO_TRIANGLE; ++t)
+                        if (is_emitter(&v, t) && overlaps(&v, &b, t, x, y, z, -1e-3))
+                            lowest_emitter = key_of(&v, t);
+                    const uint32_t third = b.cells[2 * layer + ((size_t)z * res + y) * res + x];
+                    third_held += third != ROMA_GBUFFER_NO_TRIANGLE;
+                    /* a float-tolerance cell at a lamp's edge may hold one the strict test leaves out */
+                    third_wrong += third != lowest_emitter &&
+                                   !(third != ROMA_GBUFFER_NO_TRIANGLE && (third & ROMA_SURFACE_EMITTER) &&
+                                     overlaps(&v, &b, third & ~ROMA_SURFACE_EMITTER, x, y, z, 1e-3) &&
+                                     (lowest_emitter == ROMA_GBUFFER_NO_TRIANGLE || third < lowest_emitter));
                 }
         if (lowest) {
             printf("%-8s RES %3u: %llu cells an emitter overlaps, %llu of them another surface too, of which %llu "
-                   "hold the other\n", name, res, (unsigned long long)emitter_cells, (unsigned long long)shared,
-                   (unsigned long long)shared_other);
+                   "hold the other; the third layer holds an emitter in %llu, wrong %llu\n", name, res,
+                   (unsigned long long)emitter_cells, (unsigned long long)shared, (unsigned long long)shared_other,
+                   (unsigned long long)third_held, (unsigned long long)third_wrong);
+            CHECK(third_wrong == 0);
+            CHECK(third_held >= emitter_cells); /* every cell the lamp overlaps (and maybe an edge cell more) */
             /* Measured: at 64 all 182 of the lamp's cells are the ceiling's too and hold it; from
              * 128 on the lamp has cells of its own (676 and 2,550, none shared). */
             CHECK(emitter_cells > 0);

@@ -109,7 +109,9 @@ typedef struct roma_gi_effect_desc {
     uint32_t frames_in_flight;   /**< [1, 8]; 0 = 2 */
     roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     /** Surface grid resolution, 32 to 256; 0 = ROMA_DEFAULT_GI_SURFACE_RESOLUTION. At least
-     * the map's RES: a hit looks one grid cell around itself. */
+     * the map's RES: a hit looks one grid cell around itself. The grid takes
+     * 3 * resolution^3 * 4 bytes of device memory (its third layer: the area lights, which a
+     * hit finds where they share cells with another surface). */
     uint32_t surface_resolution;
     roma_logger logger;          /**< 0 = the context's */
 } roma_gi_effect_desc;

@@ -41,9 +41,10 @@ vec3 roma_gi_map_to_world(roma_grid_params grid, roma_map_frame f, vec3 q)
     return grid.origin.xyz + b * grid.origin.w;
 }
 
-// The surface at p, or one surface cell around it.
-uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
+// The surface at p, or one surface cell around it; found: where.
+uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre, out vec3 found)
 {
+    found = centre;
     uint tri = roma_surface_at(S.surfaces, centre);
     if (tri != ROMA_GBUFFER_NO_TRIANGLE)
         return tri;
@@ -51,7 +52,8 @@ uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
                                   vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0));
     for (int i = 0; i < 6; ++i) {
         ROMA_LOOP_TICK();
-        uint tri = roma_surface_at(S.surfaces, centre + around[i] * S.surfaces.grid.w);
+        found = centre + around[i] * S.surfaces.grid.w;
+        uint tri = roma_surface_at(S.surfaces, found);
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }
@@ -62,14 +64,17 @@ uint roma_gi_find_surface_around(roma_gi_scene S, vec3 centre)
 // texel column the ray was moved to, and its bit is set because a point on its axis
 // falls in an occupied BOM cell. Look along that axis in the surface grid (the caller
 // then looks one surface cell around its middle, `centre`). cell: map coordinates of the
-// cell's lower corner.
-uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3 cell, out vec3 centre)
+// cell's lower corner; found: where the surface was.
+uint roma_gi_find_surface_along(roma_gi_scene S, roma_grid_params grid, roma_map_frame f, vec3 cell, out vec3 centre,
+                                out vec3 found)
 {
     centre = roma_gi_map_to_world(grid, f, cell + vec3(0.5));
+    found = centre;
     const float along[5] = float[](0.5, 0.25, 0.75, 0.0, 1.0);
     for (int i = 0; i < 5; ++i) {
         ROMA_LOOP_TICK();
-        uint tri = roma_surface_at(S.surfaces, roma_gi_map_to_world(grid, f, cell + vec3(0.5, 0.5, along[i])));
+        found = roma_gi_map_to_world(grid, f, cell + vec3(0.5, 0.5, along[i]));
+        uint tri = roma_surface_at(S.surfaces, found);
         if (tri != ROMA_GBUFFER_NO_TRIANGLE)
             return tri;
     }
@@ -189,7 +194,7 @@ vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, vec3 origin, vec3 dir, f
     if (!hit)
         return vec3(0.0);
     uint tri = ROMA_GBUFFER_NO_TRIANGLE;
-    vec3 centre; // where the surface is looked for around
+    vec3 centre, found; // where the surface is looked for around, and where it was found
     float t;
     if (walked) {
         // A surface on the skipped start is the hit, half a BOM cell past where the ray enters it.
@@ -208,13 +213,15 @@ vec3 roma_gi_bounce(roma_gi_scene S, roma_gi_shading P, vec3 origin, vec3 dir, f
             // The hit cell: t = (c - m.z) * cz, or (m.z - c - 1) * cz when folded (roma_trace_snapped).
             vec3 m = roma_to_map(grid, f, origin);
             float c = round(folded ? m.z - h.t / f.dir.w - 1.0 : m.z + h.t / f.dir.w);
-            tri = roma_gi_find_surface_along(S, grid, f, vec3(floor(m.xy), c), centre);
+            tri = roma_gi_find_surface_along(S, grid, f, vec3(floor(m.xy), c), centre, found);
         }
     }
     if (!surfaces)
         return vec3(0.0);
     if (tri == ROMA_GBUFFER_NO_TRIANGLE)
-        tri = roma_gi_find_surface_around(S, centre);
+        tri = roma_gi_find_surface_around(S, centre, found);
+    // A lamp hung under a ceiling in the same cells: the one of the two the ray meets first.
+    tri = roma_surface_nearer_emitter(S.surfaces, tri, found, origin, normalize(dir));
     return roma_gi_hit_radiance(S, P, tri, centre, origin, dir, t, pixel, s);
 }
 

@@ -423,10 +423,11 @@ ROMA_STRUCT_BEGIN(roma_surface_grid)
     ROMA_U64(cells);      /* uint per cell, index (z * RES + y) * RES + x; 0: no grid */
     ROMA_U64(indices);    /* uint x3 per triangle */
     ROMA_U64(positions);  /* float4 per vertex */
-    ROMA_U64(pad_);
+    ROMA_U64(emitter_cells); /* with three layers, the third: uint per cell, the lowest area light's
+                                key (ROMA_GBUFFER_NO_TRIANGLE: none); 0: none */
     ROMA_VEC4(grid);      /* xyz: corner of cell (0,0,0); w: cell size */
-    ROMA_UVEC4(config);   /* x: RES, y: layers (2: the highest index + 1 of a triangle that is not an
-                             area light in each cell follows, 0: none) */
+    ROMA_UVEC4(config);   /* x: RES, y: layers (2 or 3: the highest index + 1 of a triangle that is
+                             not an area light in each cell follows, 0: none; 3: emitter_cells too) */
 ROMA_STRUCT_END(roma_surface_grid)
 
 /* What the GI pass needs at a bounce hit (one buffer per frame slot). */

@@ -41,7 +41,7 @@ bool roma_surface_wall_at(roma_surface_grid G, vec3 p)
     if (!roma_surface_cell(G, p, at))
         return false;
     return RomaUints(G.cells).u[at] < ROMA_SURFACE_EMITTER ||
-           (G.config.y == 2u && RomaUints(G.cells).u[G.config.x * G.config.x * G.config.x + at] != 0u);
+           (G.config.y >= 2u && RomaUints(G.cells).u[G.config.x * G.config.x * G.config.x + at] != 0u);
 }
 
 // The corners of triangle tri; returns its vertices' indices.
@@ -53,6 +53,29 @@ uvec3 roma_surface_triangle(roma_surface_grid G, uint tri, out vec3 a, out vec3 
     b = RomaVec4s(G.positions).v[k.y].xyz;
     c = RomaVec4s(G.positions).v[k.z].xyz;
     return k;
+}
+
+// With a third layer (the lowest area light's key of each cell): the area light in the cell at p
+// when the ray o + d * t (t > 0) meets its plane before the plane of tri, a surface found
+// there (a lamp hung under a ceiling in the same cells, which the first layer ranks after the
+// ceiling); otherwise tri.
+uint roma_surface_nearer_emitter(roma_surface_grid G, uint tri, vec3 p, vec3 o, vec3 d)
+{
+    uint at;
+    if (G.emitter_cells == uvec2(0u) || tri == ROMA_GBUFFER_NO_TRIANGLE || !roma_surface_cell(G, p, at))
+        return tri;
+    uint key = RomaUints(G.emitter_cells).u[at];
+    uint emitter = key & ~ROMA_SURFACE_EMITTER;
+    if (key == ROMA_GBUFFER_NO_TRIANGLE || emitter == tri)
+        return tri;
+    vec3 a, b, c;
+    roma_surface_triangle(G, tri, a, b, c);
+    vec3 n = cross(b - a, c - a);
+    float t_wall = dot(a - o, n) / dot(d, n);
+    roma_surface_triangle(G, emitter, a, b, c);
+    n = cross(b - a, c - a);
+    float t_light = dot(a - o, n) / dot(d, n);
+    return t_light > 0.0 && !(t_wall > 0.0 && t_wall <= t_light) ? emitter : tri;
 }
 
 // Whether o + d * (t0, t1] crosses triangle `key` (a cell's key: the index, maybe with
@@ -111,7 +134,7 @@ bool roma_surface_crossed(roma_surface_grid G, vec3 o, vec3 d, float t0, float t
     float lo = max(t0 / cs, max(tlo.x, max(tlo.y, tlo.z))), hi = min(t1 / cs, min(thi.x, min(thi.y, thi.z)));
     if (!(hi > lo))
         return false;
-    uint n = G.config.x, layer = G.config.y == 2u ? n * n * n : 0u;
+    uint n = G.config.x, layer = G.config.y >= 2u ? n * n * n : 0u;
     ivec3 c = clamp(ivec3(floor(g + d * lo)), ivec3(0), ivec3(int(n) - 1));
     ivec3 step = ivec3(sign(d));
     vec3 next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);

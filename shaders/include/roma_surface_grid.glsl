@@ -55,6 +55,15 @@ uvec3 roma_surface_triangle(roma_surface_grid G, uint tri, out vec3 a, out vec3 
     return k;
 }
 
+// Where o + d * t meets the plane of triangle tri: t (NaN or infinite for a plane along d).
+float roma_surface_plane_hit(roma_surface_grid G, uint tri, vec3 o, vec3 d)
+{
+    vec3 a, b, c;
+    roma_surface_triangle(G, tri, a, b, c);
+    vec3 n = cross(b - a, c - a);
+    return dot(a - o, n) / dot(d, n);
+}
+
 // With a third layer (the lowest area light's key of each cell): the area light in the cell at p
 // when the ray o + d * t (t > 0) meets its plane before the plane of tri, a surface found
 // there (a lamp hung under a ceiling in the same cells, which the first layer ranks after the
@@ -68,13 +77,7 @@ uint roma_surface_nearer_emitter(roma_surface_grid G, uint tri, vec3 p, vec3 o, 
     uint emitter = key & ~ROMA_SURFACE_EMITTER;
     if (key == ROMA_GBUFFER_NO_TRIANGLE || emitter == tri)
         return tri;
-    vec3 a, b, c;
-    roma_surface_triangle(G, tri, a, b, c);
-    vec3 n = cross(b - a, c - a);
-    float t_wall = dot(a - o, n) / dot(d, n);
-    roma_surface_triangle(G, emitter, a, b, c);
-    n = cross(b - a, c - a);
-    float t_light = dot(a - o, n) / dot(d, n);
+    float t_wall = roma_surface_plane_hit(G, tri, o, d), t_light = roma_surface_plane_hit(G, emitter, o, d);
     return t_light > 0.0 && !(t_wall > 0.0 && t_wall <= t_light) ? emitter : tri;
 }
 

@@ -8,7 +8,6 @@
 
 #include "effects/ao_effect_variant.h"
 #include "effects/image_effect.h"
-#include "effects/lit_record.h"
 #include "effects/surface_cells.h"
 #include "roma_shared.h"
 #include "trace/loop_costs.h"
@@ -54,6 +53,15 @@ roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_setting
     return ROMA_SUCCESS;
 }
 
+/* One AO pass on the images (module: its shader): inputs position, normal, geometric normal;
+ * output the AO image. */
+static roma_result ao_pass_init(roma_image_effect *pass, roma_context *ctx, const roma_logger *log, const char *module,
+                                uint32_t frames_in_flight, roma_pixel_dispatch dispatch)
+{
+    return roma_image_effect_init(pass, ctx, log, "roma_ao_effect_record", module, "image_list_r32f.comp", 1.0f, 3,
+                                  sizeof(roma_ao_push), frames_in_flight, dispatch);
+}
+
 roma_result roma_ao_effect_create(roma_context *ctx, const roma_ao_effect_desc *desc_in, roma_ao_effect **out)
 {
     return roma_ao_effect_create_variant(ctx, desc_in, "ao_images.comp", out);
@@ -80,11 +88,7 @@ roma_result roma_ao_effect_create_variant(roma_context *ctx, const roma_ao_effec
     roma_ao_effect *e = calloc(1, sizeof *e);
     if (!e)
         return roma_fail(log, ROMA_ERROR_OUT_OF_HOST_MEMORY, "roma_ao_effect_create: out of host memory");
-    /* inputs: position, normal, geometric normal; output: the AO image */
-    roma_result r = roma_image_effect_init(&e->base, ctx, log, "roma_ao_effect_record", module,
-                                           "image_list_r32f.comp", 1.0f, 3,
-                                           sizeof(roma_ao_push), desc.frames_in_flight,
-                                           desc.pixel_dispatch);
+    roma_result r = ao_pass_init(&e->base, ctx, log, module, desc.frames_in_flight, desc.pixel_dispatch);
     if (r != ROMA_SUCCESS) {
         free(e);
         return r;
@@ -137,9 +141,8 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
      * traced by its own pass. */
     const int surfaces = s.start == ROMA_AO_START_SURFACES && e->roma_rays && !(variant && variant->blind_start);
     if (surfaces && !e->surface_pass.ctx) {
-        r = roma_image_effect_init(&e->surface_pass, e->base.ctx, &e->base.logger, "roma_ao_effect_record",
-                                   "ao_images_surfaces.comp", "image_list_r32f.comp", 1.0f, 3, sizeof(roma_ao_push),
-                                   e->frames_in_flight, e->pixel_dispatch);
+        r = ao_pass_init(&e->surface_pass, e->base.ctx, &e->base.logger, "ao_images_surfaces.comp",
+                         e->frames_in_flight, e->pixel_dispatch);
         if (r != ROMA_SUCCESS) {
             memset(&e->surface_pass, 0, sizeof e->surface_pass);
             return r;
@@ -162,10 +165,8 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         /* The grid at the map's RES unless the desc gave one (made by the first such record). */
         const uint32_t res = e->surface_resolution ? e->surface_resolution
                              : info.resolution < 32 ? 32 : info.resolution > 256 ? 256 : info.resolution;
-        r = roma_lit_slot_buffer(e->base.ctx, &e->surfaces[slot], sizeof(roma_surface_grid));
-        if (r == ROMA_SUCCESS)
-            r = roma_surface_cells_follow(&e->grid, e->base.ctx, res, 2, cmd, slot, map, NULL, &e->base.logger,
-                                          "roma_ao_effect_record");
+        r = roma_surface_cells_follow_record(&e->grid, &e->surfaces[slot], e->base.ctx, res, 2, cmd, slot, map, NULL,
+                                             &e->base.logger, "roma_ao_effect_record");
         if (r != ROMA_SUCCESS)
             return r;
         /* From the surface point to the query's start: the offset, the skip and half a texel's
@@ -173,8 +174,6 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         const float reach = (s.offset_cells + s.skip_cells + 1.0f) * info.trace_cell / e->grid.cell;
         surface_cells = reach < (float)(ROMA_AO_SURFACE_CELLS / 3) ? 3u * (uint32_t)ceilf(reach) + 1u
                                                                     : ROMA_AO_SURFACE_CELLS;
-        const roma_surface_grid view = roma_surface_cells_view(&e->grid, map);
-        memcpy(roma_upload_write(&e->surfaces[slot], sizeof view), &view, sizeof view);
         roma_upload_record(&e->surfaces[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     }

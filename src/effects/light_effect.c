@@ -181,14 +181,10 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
      * that ranks them. */
     roma_light_data_record(&e->area, cmd);
     if (surfaces) {
-        r = roma_lit_slot_buffer(e->base.ctx, &e->surfaces[slot], sizeof(roma_surface_grid));
-        if (r == ROMA_SUCCESS)
-            r = roma_surface_cells_follow(&e->grid, e->base.ctx, e->surface_resolution, 2, cmd, slot, map, &e->area,
-                                          log, name);
+        r = roma_surface_cells_follow_record(&e->grid, &e->surfaces[slot], e->base.ctx, e->surface_resolution, 2, cmd,
+                                             slot, map, &e->area, log, name);
         if (r != ROMA_SUCCESS)
             return r;
-        const roma_surface_grid view = roma_surface_cells_view(&e->grid, map);
-        memcpy(roma_upload_write(&e->surfaces[slot], sizeof view), &view, sizeof view);
     }
     /* The slot's lights and surface grid into device memory. */
     const VkPipelineStageFlags2 readers = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "effects/lit_record.h"
 #include "map/map_internal.h"
 #include "roma_shared.h"
 #include "util/log.h"
@@ -164,4 +165,19 @@ roma_surface_grid roma_surface_cells_view(const roma_surface_cells *cells, const
         .grid = {cells->origin[0], cells->origin[1], cells->origin[2], cells->cell},
         .config = {cells->resolution, cells->layers, 0, 0},
     };
+}
+
+roma_result roma_surface_cells_follow_record(roma_surface_cells *cells, roma_upload *record, roma_context *ctx,
+                                             uint32_t resolution, uint32_t layers, VkCommandBuffer cmd, uint32_t slot,
+                                             const roma_map *map, const roma_light_data *emitters,
+                                             const roma_logger *log, const char *name)
+{
+    roma_result r = roma_lit_slot_buffer(ctx, record, sizeof(roma_surface_grid));
+    if (r == ROMA_SUCCESS)
+        r = roma_surface_cells_follow(cells, ctx, resolution, layers, cmd, slot, map, emitters, log, name);
+    if (r != ROMA_SUCCESS)
+        return r;
+    const roma_surface_grid view = roma_surface_cells_view(cells, map);
+    memcpy(roma_upload_write(record, sizeof view), &view, sizeof view);
+    return ROMA_SUCCESS;
 }

@@ -77,4 +77,12 @@ roma_result roma_surface_cells_follow(roma_surface_cells *cells, roma_context *c
 /* What the shaders read of a grid that follows map (roma_surface_cells_follow). */
 roma_surface_grid roma_surface_cells_view(const roma_surface_cells *cells, const roma_map *map);
 
+/* roma_surface_cells_follow, then the grid's record (roma_surface_cells_view) written into the
+ * slot's upload `record` (made on first use), for the caller's roma_upload_record: what an
+ * effect whose passes read the grid by its record's address does each record. */
+roma_result roma_surface_cells_follow_record(roma_surface_cells *cells, roma_upload *record, roma_context *ctx,
+                                             uint32_t resolution, uint32_t layers, VkCommandBuffer cmd, uint32_t slot,
+                                             const roma_map *map, const roma_light_data *emitters,
+                                             const roma_logger *log, const char *name);
+
 #endif /* ROMA_EFFECTS_SURFACE_CELLS_H */

@@ -21,6 +21,10 @@
  * a wall cannot see out between the fins either (the blind skip's agreement there came
  * from rays passing through fins), and on cornell by 0.0003 (a band one cell wide
  * along every edge where walls meet: docs/accuracy.md).
+ * Then each scene and the dragon with ROMA_AO_TRACE_SURFACES (the rays themselves through the
+ * surface grid, the map over runs of cells with more triangles than the grid keeps): every one
+ * within the target, and its mean AO checked too (the issue: within 2% on the room and the
+ * dragon; measured -0.08% and -0.69%; 2CylinderEngine's fins, in cells of many triangles, -3.8%).
  * Bounds: the measured value (printed) plus 0.005. */
 #include <math.h>
 #include <stdio.h>
@@ -46,6 +50,8 @@ typedef struct case_desc {
     roma_ao_start start;     /* how the public pass checks the start */
     double max_mae;          /* measured + 0.005 */
     int meets_target;        /* MAE <= 0.05, the issue's target */
+    roma_ao_trace trace;     /* how the public pass traces the rest */
+    double max_bias;         /* |mean ROMA / mean Embree - 1| bound (measured + 0.005); 0: not checked */
 } case_desc;
 
 static void run_case(roma_context *ctx, const case_desc *c)
@@ -69,7 +75,8 @@ static void run_case(roma_context *ctx, const case_desc *c)
     memset(&img, 0, sizeof img);
     const effect_api_desc d = {.camera = cam, .width = W, .height = H, .options = {.effects = ROMA_EFFECT_AO},
                                .spp = SPP, .frames = FRAMES, .seed = SEED, .ao_radius = c->radius,
-                               .blind_start = c->blind, .ao_start = c->start};
+                               .blind_start = c->blind, .ao_start = c->start,
+                               .ao_trace = c->trace};
     CHECK_RESULT(roma_ref_create(scene, NULL, &ref), ROMA_SUCCESS);
     if (px && ref)
         CHECK_RESULT(roma_test_public_render(ctx, scene, ref, &d, &img, px), ROMA_SUCCESS);
@@ -90,10 +97,17 @@ static void run_case(roma_context *ctx, const case_desc *c)
         }
         CHECK(covered >= 100);
         double mae = covered ? sum_abs / covered : 1.0;
-        printf("%-16s %-5s %4u pixels, %u samples: AO MAE %.5f (mean %.4f vs %.4f), bound %.4f%s\n", c->name,
-               c->blind ? "blind" : c->start == ROMA_AO_START_SURFACES ? "surf" : "walk", covered, SPP * FRAMES, mae, covered ? sum_roma / covered : 0.0,
-               covered ? sum_ref / covered : 0.0, c->max_mae, mae <= 0.05 ? "" : " (target 0.05 missed)");
+        const double bias = sum_ref > 0.0 ? sum_roma / sum_ref - 1.0 : 1.0;
+        printf("%-16s %-5s %4u pixels, %u samples: AO MAE %.5f (mean %.4f vs %.4f, %+.2f%%), bound %.4f%s\n", c->name,
+               c->blind                                ? "blind"
+               : c->trace == ROMA_AO_TRACE_SURFACES   ? "rays"
+               : c->start == ROMA_AO_START_SURFACES   ? "surf"
+                                                       : "walk",
+               covered, SPP * FRAMES, mae, covered ? sum_roma / covered : 0.0, covered ? sum_ref / covered : 0.0,
+               100.0 * bias, c->max_mae, mae <= 0.05 ? "" : " (target 0.05 missed)");
         CHECK(mae <= c->max_mae);
+        if (c->max_bias > 0.0)
+            CHECK(fabs(bias) <= c->max_bias);
         if (c->meets_target)
             CHECK(mae <= 0.05); /* the issue's target */
     }
@@ -109,15 +123,27 @@ int main(void)
     if (!ctx)
         return roma_test_finish("test_ao_converged");
     const case_desc cases[] = {
-        {"cornell", NULL, 0.5f, 0, 0, 0.0554, 0},                 /* measured 0.05039 */
-        {"bunny", "bunny.glb", 0.0f, 0, 0, 0.0228, 1},            /* measured 0.01778 */
-        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 0, 0, 0.0935, 0}, /* measured 0.08850 */
-        {"cornell", NULL, 0.5f, 0, ROMA_AO_START_SURFACES, 0.0512, 1},                 /* measured 0.04617 */
-        {"bunny", "bunny.glb", 0.0f, 0, ROMA_AO_START_SURFACES, 0.0225, 1},            /* measured 0.01745 */
-        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 0, ROMA_AO_START_SURFACES, 0.0584, 0}, /* measured 0.05341 */
-        {"cornell", NULL, 0.5f, 1, 0, 0.0551, 0},                 /* measured 0.05002 */
-        {"bunny", "bunny.glb", 0.0f, 1, 0, 0.0225, 1},            /* measured 0.01745 */
-        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 1, 0, 0.0536, 1}, /* measured 0.04857 */
+        {"cornell", NULL, 0.5f, 0, 0, 0.0554, 0, ROMA_AO_TRACE_MAPS, 0.0}, /* measured 0.05039 */
+        {"bunny", "bunny.glb", 0.0f, 0, 0, 0.0228, 1, ROMA_AO_TRACE_MAPS, 0.0}, /* measured 0.01778 */
+        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 0, 0, 0.0935, 0, ROMA_AO_TRACE_MAPS,
+         0.0}, /* measured 0.08850 */
+        {"cornell", NULL, 0.5f, 0, ROMA_AO_START_SURFACES, 0.0512, 1, ROMA_AO_TRACE_MAPS,
+         0.0}, /* measured 0.04617 */
+        {"bunny", "bunny.glb", 0.0f, 0, ROMA_AO_START_SURFACES, 0.0225, 1, ROMA_AO_TRACE_MAPS,
+         0.0}, /* measured 0.01745 */
+        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 0, ROMA_AO_START_SURFACES, 0.0584, 0, ROMA_AO_TRACE_MAPS,
+         0.0}, /* measured 0.05341 */
+        {"cornell", NULL, 0.5f, 1, 0, 0.0551, 0, ROMA_AO_TRACE_MAPS, 0.0}, /* measured 0.05002 */
+        {"bunny", "bunny.glb", 0.0f, 1, 0, 0.0225, 1, ROMA_AO_TRACE_MAPS, 0.0}, /* measured 0.01745 */
+        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 1, 0, 0.0536, 1, ROMA_AO_TRACE_MAPS,
+         0.0}, /* measured 0.04857 */
+        /* ROMA_AO_TRACE_SURFACES, its mean too (the issue: within 2% on the room and the dragon);
+         * measured MAE and relative bias */
+        {"cornell", NULL, 0.5f, 0, 0, 0.0057, 1, ROMA_AO_TRACE_SURFACES, 0.0059},                /* 0.00063, -0.08% */
+        {"bunny", "bunny.glb", 0.0f, 0, 0, 0.0114, 1, ROMA_AO_TRACE_SURFACES, 0.0070},           /* 0.00640, +0.20% */
+        {"dragon", "dragon_res2.glb", 0.0f, 0, 0, 0.0281, 1, ROMA_AO_TRACE_SURFACES, 0.0119},    /* 0.02306, -0.69% */
+        {"2CylinderEngine", "2CylinderEngine.glb", 0.0f, 0, 0, 0.0453, 1, ROMA_AO_TRACE_SURFACES,
+         0.0433},                                                                                  /* 0.04028, -3.83% */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i)
         run_case(ctx, &cases[i]);

@@ -62,7 +62,8 @@
  * before the public passes took the study's routes). All through the public passes
  * (support/public_render.h). */
 #define MAX_LEAKING_SHARE 0.002   /* pixels above 0.05: measured 0 */
-#define MAX_AO 0.045              /* measured at most 0.039 (the walk; with the surface grid too) */
+#define MAX_AO 0.045              /* measured at most 0.039 (the walk; with the surface grid's start too) */
+#define MAX_RAYS_AO 0.01          /* ROMA_AO_TRACE_SURFACES: measured at most 0.008 */
 #define MIN_BLIND_LEAKING_SHARE 0.005
 #define MAX_NEAR_WALL_DIRECT 1e-6 /* measured 0 */
 #define MAX_DF_LEAKING_SHARE 0.006 /* measured at most 0.0046 (cornell) */
@@ -83,7 +84,7 @@ typedef struct room {
  * traversal of the BOM (the walk of the rays' start on: it reads the BOM; GI's bounce rays too,
  * and its point light by a shadow ray instead of the RSM, so that every ray is walked), 6 GI's
  * point light by a ROMA shadow ray instead of the RSM, 7 the same through a GI array of A 8,
- * 8 AO with ROMA_AO_START_SURFACES. */
+ * 8 AO with ROMA_AO_START_SURFACES, 9 AO with ROMA_AO_TRACE_SURFACES. */
 static roma_result render(roma_context *ctx, const roma_scene *scene, uint32_t effects, int blind,
                           roma_gbuffer_pixel *px, effect_api_result *img)
 {
@@ -100,6 +101,7 @@ static roma_result render(roma_context *ctx, const roma_scene *scene, uint32_t e
                                .gi_rsm = blind < 5,
                                .options.gi_angular = blind == 7 ? 8u : 0u,
                                .ao_start = blind == 8 ? ROMA_AO_START_SURFACES : ROMA_AO_START_VOXELS,
+                               .ao_trace = blind == 9 ? ROMA_AO_TRACE_SURFACES : ROMA_AO_TRACE_MAPS,
                                .ao_method = blind == 2   ? ROMA_AO_METHOD_VOXEL_DDA
                                              : blind == 3 ? ROMA_AO_METHOD_DISTANCE_FIELD
                                              : blind == 4 ? ROMA_AO_METHOD_NAADF
@@ -135,8 +137,14 @@ static void ao_leaks(roma_context *ctx, const char *name, const roma_scene *scen
         *share = covered ? (double)bright / covered : 1.0;
     }
     printf("%-12s %-9s unbounded AO: %.4f of the pixels above 0.05, largest %.3f\n", name,
-           blind == 8 ? "surfaces" : blind == 4 ? "naadf" : blind == 3 ? "dist-field" : blind == 2 ? "voxel-dda" : blind ? "blind" : "walk", *share,
-           *max);
+           blind == 9   ? "surf-rays"
+           : blind == 8 ? "surfaces"
+           : blind == 4 ? "naadf"
+           : blind == 3 ? "dist-field"
+           : blind == 2 ? "voxel-dda"
+           : blind      ? "blind"
+                        : "walk",
+           *share, *max);
     effect_api_result_free(&img);
     free(px);
 }
@@ -153,10 +161,11 @@ static void test_ao(roma_context *ctx)
     for (size_t i = 0; i < sizeof rooms / sizeof rooms[0]; ++i) {
         if (!rooms[i].scene)
             continue;
-        double share, blind_share, dda_share, df_share, naadf_share, surf_share;
-        float max, blind_max, dda_max, df_max, naadf_max, surf_max;
+        double share, blind_share, dda_share, df_share, naadf_share, surf_share, rays_share;
+        float max, blind_max, dda_max, df_max, naadf_max, surf_max, rays_max;
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 0, &share, &max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 8, &surf_share, &surf_max);
+        ao_leaks(ctx, rooms[i].name, rooms[i].scene, 9, &rays_share, &rays_max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 1, &blind_share, &blind_max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 2, &dda_share, &dda_max);
         ao_leaks(ctx, rooms[i].name, rooms[i].scene, 3, &df_share, &df_max);
@@ -165,6 +174,8 @@ static void test_ao(roma_context *ctx)
         CHECK(max <= MAX_AO);
         CHECK(surf_share <= MAX_LEAKING_SHARE);
         CHECK(surf_max <= MAX_AO);
+        CHECK(rays_share <= MAX_LEAKING_SHARE);
+        CHECK(rays_max <= MAX_RAYS_AO);
         CHECK(blind_share >= MIN_BLIND_LEAKING_SHARE); /* the figures see leaks when there are some */
         /* Exact traversal of the voxels: a closed voxel room lets nothing out, exactly as Embree. */
         CHECK(dda_max == 0.0f);

@@ -3,8 +3,9 @@
  * overlaps holds a triangle, the triangle it holds overlaps it, its key marks the scene's
  * area lights, and (cornell) no triangle of a lower key does (area lights after the rest); the
  * second layer holds the highest triangle that is not an area light (cornell: checked against
- * every triangle), the third the lowest area light (the GI effect's grid); the large triangles
- * went through the tile queue.
+ * every triangle), the third the lowest area light (the GI effect's grid) or how many triangles
+ * overlap the cell (the AO effect's; cornell, between the counts of a strict and a loose test);
+ * the large triangles went through the tile queue.
  *
  * Built-in scenes whose walls span the grid (cornell, blinds) at RES 128 and 256 (cornell at
  * 64 too): the large triangles go through the tile queue. In cornell, the test counts the cells
@@ -33,12 +34,12 @@
 #define MAX_EXTRA 2u
 
 typedef struct built {
-    uint32_t *cells;    /* RES^3, (z * RES + y) * RES + x; then the second layer */
+    uint32_t *cells;    /* RES^3, (z * RES + y) * RES + x; then the second layer, then the third */
     float origin[3], cell;
     uint32_t queued, capacity; /* tiles the build queued, and the queue's room */
 } built;
 
-static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t res, built *out)
+static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t res, uint32_t layers, built *out)
 {
     roma_buffer positions = {0}, indices = {0}, readback = {0}, header = {0}, bits = {0};
     roma_surface_cells cells;
@@ -62,7 +63,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
         r = roma_buffer_create(ctx, sizeof(roma_voxelize_queue), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                ROMA_MEMORY_READBACK, &header);
     if (r == ROMA_SUCCESS)
-        r = roma_surface_cells_create(ctx, res, 3, &cells);
+        r = roma_surface_cells_create(ctx, res, layers, &cells);
     if (r == ROMA_SUCCESS)
         r = roma_surface_cells_place(&cells, v->bounds_min, v->bounds_max);
     if (r == ROMA_SUCCESS) {
@@ -86,7 +87,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
         VkBufferCopy copy = {0, 0, 2 * bytes / 3}, third = {0, 2 * bytes / 3, bytes / 3},
                      queue_copy = {0, 0, sizeof(roma_voxelize_queue)};
         vkCmdCopyBuffer(cmd, cells.cells.buffer, readback.buffer, 1, &copy);
-        vkCmdCopyBuffer(cmd, cells.emitter_cells.buffer, readback.buffer, 1, &third);
+        vkCmdCopyBuffer(cmd, cells.third_cells.buffer, readback.buffer, 1, &third);
         vkCmdCopyBuffer(cmd, cells.queue.buffer.buffer, header.buffer, 1, &queue_copy);
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
@@ -143,19 +144,29 @@ static uint32_t key_of(const roma_scene_view *v, uint32_t tri)
     return is_emitter(v, tri) ? tri | ROMA_SURFACE_EMITTER : tri;
 }
 
+/* A built-in scene and its view; NULL (the failure checked) when either cannot be had. */
+static roma_scene *builtin_scene(const char *name, roma_scene_view *v)
+{
+    roma_scene *scene = NULL;
+    CHECK_RESULT(roma_scene_create_builtin(name, NULL, &scene), ROMA_SUCCESS);
+    if (scene && roma_scene_get_view(scene, v) != ROMA_SUCCESS) {
+        CHECK(0);
+        roma_scene_destroy(scene);
+        scene = NULL;
+    }
+    return scene;
+}
+
 /* lowest: also check that no triangle of a lower key overlaps a cell (every triangle
  * against every held cell: small scenes only). */
 static void check_scene(roma_context *ctx, const char *name, uint32_t res, int lowest)
 {
-    roma_scene *scene = NULL;
-    CHECK_RESULT(roma_scene_create_builtin(name, NULL, &scene), ROMA_SUCCESS);
     roma_scene_view v;
-    if (!scene || roma_scene_get_view(scene, &v) != ROMA_SUCCESS) {
-        roma_scene_destroy(scene);
+    roma_scene *scene = builtin_scene(name, &v);
+    if (!scene)
         return;
-    }
     built b = {0};
-    CHECK_RESULT(build(ctx, &v, res, &b), ROMA_SUCCESS);
+    CHECK_RESULT(build(ctx, &v, res, ROMA_SURFACE_LAYERS_EMITTERS, &b), ROMA_SUCCESS);
     uint32_t *cpu = calloc((size_t)res * res * res / 32, 4);
     CHECK(cpu != NULL);
     if (b.cells && cpu) {
@@ -265,6 +276,44 @@ static void check_scene(roma_context *ctx, const char *name, uint32_t res, int l
     roma_scene_destroy(scene);
 }
 
+/* The AO effect's grid (ROMA_SURFACE_LAYERS_COUNTS): the third layer counts the triangles that
+ * overlap each cell, between the strict and the loose test's counts (the GPU's float test
+ * against the CPU's double one); where the first layer holds none, none. */
+static void check_counts(roma_context *ctx, const char *name, uint32_t res)
+{
+    roma_scene_view v;
+    roma_scene *scene = builtin_scene(name, &v);
+    if (!scene)
+        return;
+    built b = {0};
+    CHECK_RESULT(build(ctx, &v, res, ROMA_SURFACE_LAYERS_COUNTS, &b), ROMA_SUCCESS);
+    uint64_t held = 0, wrong = 0, crowded = 0;
+    const size_t layer = (size_t)res * res * res;
+    for (size_t at = 0; b.cells && at < layer; ++at) {
+        const uint32_t key = b.cells[at], count = b.cells[2 * layer + at];
+        if (key == ROMA_GBUFFER_NO_TRIANGLE) {
+            wrong += count != 0;
+            continue;
+        }
+        ++held;
+        const uint32_t x = (uint32_t)(at % res), y = (uint32_t)(at / res % res), z = (uint32_t)(at / res / res);
+        uint32_t strict = 0, loose = 0;
+        for (uint32_t t = 0; t < v.triangle_count; ++t) {
+            strict += (uint32_t)overlaps(&v, &b, t, x, y, z, -1e-3);
+            loose += (uint32_t)overlaps(&v, &b, t, x, y, z, 1e-3);
+        }
+        wrong += count < strict || count > loose;
+        crowded += count > 2;
+    }
+    printf("%-8s RES %3u: counts in %llu held cells, wrong %llu, more than two triangles in %llu\n", name, res,
+           (unsigned long long)held, (unsigned long long)wrong, (unsigned long long)crowded);
+    CHECK(held > 0);
+    CHECK(wrong == 0);
+    CHECK(crowded > 0); /* the room's corners: three walls' triangles */
+    free(b.cells);
+    roma_scene_destroy(scene);
+}
+
 int main(void)
 {
     roma_context *ctx = roma_test_context();
@@ -274,6 +323,8 @@ int main(void)
     for (int s = 0; s < 2; ++s)
         for (uint32_t res = s == 0 ? 64 : 128; res <= 256; res *= 2)
             check_scene(ctx, scenes[s], res, s == 0);
+    check_counts(ctx, "cornell", 64);
+    check_counts(ctx, "cornell", 128);
     roma_test_context_finish(ctx);
     return roma_test_finish("test_surface_cells");
 }

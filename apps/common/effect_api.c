@@ -738,7 +738,8 @@ roma_result effect_api_render(roma_context *ctx, const roma_scene *scene, const 
     frame_job job = {
         .d = d, .view = &view, .out = out,
         .ao = {.samples = spp, .radius = radius, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,
-               .seed = d->seed, .resolution_divisor = d->resolution_divisor, .start = d->ao_start},
+               .seed = d->seed, .resolution_divisor = d->resolution_divisor, .start = d->ao_start,
+               .trace = d->ao_trace},
         .light = {.max_steps = d->max_steps, .offset_cells = d->offset_cells, .skip_cells = d->skip_cells,
                   .area_samples = spp, .seed = d->seed, .resolution_divisor = d->resolution_divisor},
         .gi = {.samples = spp, .offset_cells = d->offset_cells, .skip_cells = d->ao_skip_cells,

@@ -49,12 +49,13 @@ typedef struct effect_api_desc {
     int jitter_off; /* every frame's grid placement and directions the first frame's */
     /* The study's methods (study/study_methods.h): what AO rays trace (0 ROMA) and the
      * screen-space march's steps (0: the default); what shadow, bounce and visibility rays
-     * trace (0 ROMA); blind_start: ROMA's rays skip their start unseen; ao_start: how ROMA's
-     * AO rays' start is checked (the public setting). */
+     * trace (0 ROMA); blind_start: ROMA's rays skip their start unseen; ao_start, ao_trace: how
+     * ROMA's AO rays' start is checked and the rest traced (the public settings). */
     roma_ao_method ao_method;
     roma_shadow_method shadow_method;
     int blind_start;
     roma_ao_start ao_start;
+    roma_ao_trace ao_trace;
     uint32_t ssao_steps;
     /* Screen-space AO: the layers of a stochastic depth map rasterized every frame beside the
      * G-buffer (0: none; study/study_depth_layers.h), each keeping a fragment with probability

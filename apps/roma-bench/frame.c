@@ -261,7 +261,7 @@ double roma_bench_submit_ms(roma_context *ctx, VkCommandBuffer cmd, roma_result 
 static roma_ao_settings ao_settings(const roma_bench_frame_desc *d, uint32_t spp)
 {
     return (roma_ao_settings){.samples = spp, .radius = d->radius > 0.0f && isfinite(d->radius) ? d->radius : 0.0f,
-                              .seed = SEED, .frame = 0, .start = d->ao_start};
+                              .seed = SEED, .frame = 0, .start = d->ao_start, .trace = d->ao_trace};
 }
 
 int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_bench_frame_desc *d, FILE *csv)
@@ -298,7 +298,10 @@ int roma_bench_frame(roma_context *ctx, const roma_scene *scene, const roma_benc
            "| spp | ROMA build ms | ROMA AO ms | ROMA frame ms | Embree BVH ms | Embree AO ms | Embree frame ms "
            "| ROMA speed-up | AO mean ROMA / Embree |\n|---|---|---|---|---|---|---|---|---|\n",
            w, h, w * h, count, d->resolution, d->angular, d->radius > 0.0f ? "bounded" : "unbounded",
-           d->ao_start == ROMA_AO_START_SURFACES ? ", start through the surface grid" : "", runs);
+           d->ao_trace == ROMA_AO_TRACE_SURFACES   ? ", rays through the surface grid"
+           : d->ao_start == ROMA_AO_START_SURFACES ? ", start through the surface grid"
+                                                   : "",
+           runs);
     static const uint32_t spps[2] = {1, 4};
     status = 0;
     for (int si = 0; si < 2 && status == 0; ++si) {

@@ -16,6 +16,7 @@ typedef struct roma_bench_frame_desc {
     uint32_t runs;
     float radius;              /* AO rays; <= 0: unbounded */
     roma_ao_start ao_start;    /* how the AO rays' start is checked (0: the default) */
+    roma_ao_trace ao_trace;    /* how the rest of them is traced (0: the default) */
     /* The ray-tracing device the context runs on (NULL: the hardware rows are skipped and
      * hwrt_why says why), for the same frame through hardware ray tracing. */
     const struct roma_hwrt_device *hwrt;

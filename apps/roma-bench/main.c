@@ -26,6 +26,7 @@
 static const char *usage =
     "usage: roma-bench [--scene FILE|builtin:NAME] [--rays N] [--runs N] [--res LIST] [--angular LIST]\n"
     "                  [--csv FILE] [--small] [--size WxH] [--ao-radius R] [--ray-start walk|surfaces]\n"
+    "                  [--ao-trace maps|surfaces]\n"
     "                  [--accuracy [--effect ao|direct|gi|lights] [--plot FILE.png] [--cache FILE]\n"
     "                   [--cascades auto|K [--camera ex,ey,ez,tx,ty,tz[,fovy]]] [--no-baselines]]\n"
     "                  [--growth LIST [--plot FILE.png]]\n"
@@ -38,7 +39,8 @@ static const char *usage =
     "  default camera at --size (default 1920x1080), ROMA (build + AO over the covered pixels,\n"
     "  RES 128, A 4) against Embree (BVH rebuild + AO at the same points and samples), 1 and\n"
     "  4 spp; --ray-start surfaces: its AO rays' start checked through the surface grid too\n"
-    "  (ROMA_AO_START_SURFACES). --small: a quick smoke run.\n"
+    "  (ROMA_AO_START_SURFACES); --ao-trace surfaces: the rays themselves walked through it\n"
+    "  (ROMA_AO_TRACE_SURFACES). --small: a quick smoke run.\n"
     "  --accuracy: instead, what accuracy costs in time: AO rendered by ROMA for every RES x A\n"
     "  and by the baselines for every RES (exact voxel traversal, distance field sphere tracing,\n"
     "  NAADF traversal)\n"
@@ -310,6 +312,7 @@ int main(int argc, char **argv)
     roma_bench_effect effect = ROMA_BENCH_EFFECT_AO;
     float ao_radius = 0.0f;
     roma_ao_start ao_start = ROMA_AO_START_VOXELS;
+    roma_ao_trace ao_trace = ROMA_AO_TRACE_MAPS;
     uint32_t frame_w = 1920, frame_h = 1080;
     int size_set = 0;
     for (int i = 1; i < argc; ++i) {
@@ -344,6 +347,12 @@ int main(int argc, char **argv)
                 return 2;
             }
             ao_start = strcmp(v, "surfaces") == 0 ? ROMA_AO_START_SURFACES : ROMA_AO_START_VOXELS, ++i;
+        } else if (v && strcmp(a, "--ao-trace") == 0) {
+            if (strcmp(v, "maps") != 0 && strcmp(v, "surfaces") != 0) {
+                fprintf(stderr, "roma-bench: --ao-trace %s: expected maps or surfaces\n", v);
+                return 2;
+            }
+            ao_trace = strcmp(v, "surfaces") == 0 ? ROMA_AO_TRACE_SURFACES : ROMA_AO_TRACE_MAPS, ++i;
         } else if (v && strcmp(a, "--size") == 0) {
             if (sscanf(v, "%ux%u", &frame_w, &frame_h) != 2 || frame_w == 0 || frame_h == 0 || frame_w > 16384 ||
                 frame_h > 16384) {
@@ -717,8 +726,8 @@ int main(int argc, char **argv)
     roma_buffer_destroy(ctx, &hit_buf);
     {
         roma_bench_frame_desc fd = {.width = frame_w, .height = frame_h, .resolution = 128, .angular = 4,
-                                    .runs = runs, .radius = ao_radius, .ao_start = ao_start, .hwrt = hwrt_device,
-                                    .hwrt_why = hwrt_why};
+                                    .runs = runs, .radius = ao_radius, .ao_start = ao_start, .ao_trace = ao_trace,
+                                    .hwrt = hwrt_device, .hwrt_why = hwrt_why};
         if (roma_bench_frame(ctx, scene, &fd, csv) != 0)
             status = 1;
     }

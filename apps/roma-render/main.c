@@ -73,6 +73,10 @@ static const char *usage =
     "                              ao, where that walk meets an occupied cell, the surface grid's\n"
     "                              triangles decide (surfaces: finer geometry, more time); or skipped\n"
     "                              unseen (the rule before, which leaks light at corners)\n"
+    "  --ao-trace maps|surfaces    ROMA ao rays past their start: one snapped query through the\n"
+    "                              rotated maps (default), or the ray itself walked through the\n"
+    "                              surface grid, the maps deciding where a cell holds more triangles\n"
+    "                              than the grid keeps (closer to the reference, more time)\n"
     "  --resolution-divisor 1|2|4  the public effects trace one pixel of each 2x2 or 4x4 block a\n"
     "                              frame (a new one each frame) and upsample the rest (default 1)\n"
     "  --pixel-dispatch auto|list|every|shared  the public passes over a list of the covered pixels\n"
@@ -152,6 +156,7 @@ typedef struct options {
     uint32_t resolution_divisor; /* --resolution-divisor: the public effects trace 1 pixel in d x d */
     int blind_start;     /* --ray-start blind */
     roma_ao_start ao_start; /* --ray-start surfaces */
+    roma_ao_trace ao_trace; /* --ao-trace surfaces */
     roma_ao_method ao_method; /* --ao-method */
     roma_shadow_method shadow_method; /* --shadow-method */
     uint32_t ssao_layers;     /* --ssao-layers */
@@ -175,14 +180,14 @@ enum {
     GIVEN_GI_PUNCTUAL = 1u << 11, GIVEN_EFFECTS = 1u << 12, GIVEN_RAY_START = 1u << 13, GIVEN_AO_METHOD = 1u << 14,
     GIVEN_PRESET = 1u << 15, GIVEN_BUDGET = 1u << 16, GIVEN_PIXEL_DISPATCH = 1u << 18,
     GIVEN_CASCADES = 1u << 19, GIVEN_FINEST_EXTENT = 1u << 20, GIVEN_RESOLUTION_DIVISOR = 1u << 21,
-    GIVEN_SHADOW_METHOD = 1u << 22
+    GIVEN_SHADOW_METHOD = 1u << 22, GIVEN_AO_TRACE = 1u << 23
 };
 
 /* How ROMA's images are made (effect_api.h). */
 
 static const char *const option_names[] = {
     "--scene", "--camera", "--size", "--effects", "--tracer", "--res", "--angular", "--shadow-angular",
-    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-method", "--shadow-method", "--skip",
+    "--max-steps", "--cascades", "--finest-extent", "--jitter", "--gi-punctual", "--pixel-dispatch", "--resolution-divisor", "--ray-start", "--ao-trace", "--ao-method", "--shadow-method", "--skip",
     "--ao-skip", "--offset",
     "--lights-per-frame", "--spp", "--frames", "--ao-radius",
     "--lights", "--light", "--seed", "--threads", "--out", "--format", "--stats", "--exposure", "--tonemap",
@@ -390,6 +395,14 @@ static int parse_args(int argc, char **argv, options *o)
                 return 0;
             }
         }
+        else if (strcmp(a, "--ao-trace") == 0) {
+            if (strcmp(v, "maps") != 0 && strcmp(v, "surfaces") != 0) {
+                fprintf(stderr, "roma-render: unknown ao trace '%s' (valid: maps, surfaces)\n", v);
+                return 0;
+            }
+            o->ao_trace = strcmp(v, "surfaces") == 0 ? ROMA_AO_TRACE_SURFACES : ROMA_AO_TRACE_MAPS;
+            o->given |= GIVEN_AO_TRACE;
+        }
         else if (strcmp(a, "--pixel-dispatch") == 0) {
             int k = strcmp(v, "auto") == 0    ? 0
                     : strcmp(v, "list") == 0  ? 1
@@ -543,6 +556,11 @@ static int parse_args(int argc, char **argv, options *o)
     if (o->shadow_method == ROMA_SHADOW_METHOD_VOXEL_DDA && o->blind_start) {
         fprintf(stderr, "roma-render: --shadow-method voxel-dda walks the voxel grid that --ray-start blind leaves "
                 "unread\n");
+        return 0;
+    }
+    if (o->ao_trace == ROMA_AO_TRACE_SURFACES && (o->blind_start || o->ao_method != ROMA_AO_METHOD_ROMA)) {
+        fprintf(stderr, "roma-render: --ao-trace surfaces is ROMA's public AO pass: not with --ray-start blind or "
+                "another --ao-method\n");
         return 0;
     }
     if (o->ssao_layers && o->ao_method != ROMA_AO_METHOD_SCREEN_SPACE) {
@@ -994,10 +1012,10 @@ static int apply_budget(options *o, roma_context *ctx, const roma_scene *scene, 
      * passes (a cache from before they calibrated holds the internal renderer's). */
     snprintf(key, sizeof key,
              "api|%s|%s|%ux%u|effects %u|spp %u|radius %g|lights %u/%u|shadow A %u|steps %u|divisor %u|list %d/%d|"
-             "levels %u|jitter %d",
+             "levels %u|jitter %d|ao start %d trace %d",
              info.device_name, o->scene, o->width, o->height, o->effects, o->spp, (double)o->ao_radius, o->lights,
              o->lights_per_frame, o->shadow_angular, o->max_steps, o->resolution_divisor, desc->shared_list,
-             (int)desc->pixel_dispatch, desc->cascades, !o->jitter_off);
+             (int)desc->pixel_dispatch, desc->cascades, !o->jitter_off, (int)desc->ao_start, (int)desc->ao_trace);
     for (char *c = key; *c; ++c)
         if (*c == '\t' || *c == '\n' || *c == '\r')
             *c = ' ';
@@ -1054,6 +1072,7 @@ static int render_api(options *o, roma_context *ctx, const roma_scene *scene, co
         .progress_user_data = &frames_progress, .cascades = o->cascades, .finest_extent = o->finest_extent,
         .jitter_off = o->jitter_off, .ao_method = o->ao_method,
         .shadow_method = o->shadow_method, .blind_start = o->blind_start, .ao_start = o->ao_start,
+        .ao_trace = o->ao_trace,
         .gi_rsm = (o->given & GIVEN_GI_PUNCTUAL) && !o->gi_rays, .ssao_layers = o->ssao_layers};
     if (o->given & GIVEN_BUDGET) {
         if (!apply_budget(o, ctx, scene, ref, &d, budget))
@@ -1292,6 +1311,7 @@ static void say_what_happens(options *o, const roma_scene_view *sv, const float 
         {GIVEN_SHADOW_ANGULAR, "--shadow-angular"}, {GIVEN_MAX_STEPS, "--max-steps"}, {GIVEN_SKIP, "--skip"},
         {GIVEN_AO_SKIP, "--ao-skip"}, {GIVEN_OFFSET, "--offset"}, {GIVEN_LIGHTS_PER_FRAME, "--lights-per-frame"},
         {GIVEN_GI_PUNCTUAL, "--gi-punctual"}, {GIVEN_RAY_START, "--ray-start"}, {GIVEN_AO_METHOD, "--ao-method"},
+        {GIVEN_AO_TRACE, "--ao-trace"},
         {GIVEN_SHADOW_METHOD, "--shadow-method"},
         {GIVEN_PRESET, "--preset"}, {GIVEN_BUDGET, "--budget-ms"},
         {GIVEN_CASCADES, "--cascades"}, {GIVEN_FINEST_EXTENT, "--finest-extent"},

@@ -162,6 +162,7 @@ bool record_frame(viewer &v, uint32_t slot, VkCommandBuffer cmd)
         as.offset_cells = s.offset;
         as.skip_cells = s.ao_skip;
         as.start = s.ao_surfaces ? ROMA_AO_START_SURFACES : ROMA_AO_START_VOXELS;
+        as.trace = s.ao_surface_rays ? ROMA_AO_TRACE_SURFACES : ROMA_AO_TRACE_MAPS;
         as.seed = 1;
         as.frame = v.frame;
         if (roma_ao_effect_record(v.ao, cmd, slot, v.map, &images, &as) != ROMA_SUCCESS)

@@ -43,6 +43,9 @@ const char *kUsage =
     "  --ao-start walk|surfaces  AO rays' skipped start walked through the voxel grid (default),\n"
     "                       and where it meets an occupied cell, through the surface grid's\n"
     "                       triangles (finer geometry, slower)\n"
+    "  --ao-trace maps|surfaces  AO rays past their start: one snapped query (default), or\n"
+    "                       walked through the surface grid's triangles (close to the\n"
+    "                       reference, slower)\n"
     "  --exposure E         (default 1.2)\n"    "  --sky S              sky radiance the composed view scales by AO (default: 0.2 where the\n"
     "                       scene has lights, 1 where it has none, so that it opens readable)\n"
     "  --time T --clip N    animation time and clip; --play starts playing\n"
@@ -148,6 +151,9 @@ int parse_args(int argc, char **argv, options &o)
         } else if (a == "--ao-start") {
             ok = !std::strcmp(v, "walk") || !std::strcmp(v, "surfaces");
             o.settings.ao_surfaces = !std::strcmp(v, "surfaces");
+        } else if (a == "--ao-trace") {
+            ok = !std::strcmp(v, "maps") || !std::strcmp(v, "surfaces");
+            o.settings.ao_surface_rays = !std::strcmp(v, "surfaces");
         } else if (a == "--ao-skip" || a == "--offset") {
             ok = parse_float(v, 0.01f, 16.0f, a == "--offset" ? o.settings.offset : o.settings.ao_skip);
         } else if (a == "--map") {

@@ -32,6 +32,7 @@ struct viewer_settings {
     uint32_t lights_per_frame = 8;   // of them, traced per pixel and frame (the scene's own: all)
     float ao_skip = 0.0f, shadow_skip = 0.0f, offset = 0.0f; // 0 = the library's defaults
     bool ao_surfaces = false;        // AO rays' start checked through the surface grid too
+    bool ao_surface_rays = false;    // AO rays walked through the surface grid (ROMA_AO_TRACE_SURFACES)
     // picture
     view_mode view = VIEW_COMPOSED;
     float exposure = 1.2f;           // the built-in room's lights read well at 1.2

@@ -90,6 +90,8 @@ void ui_draw(viewer_settings &s, const viewer_timings &t, const viewer_info &inf
         out.reset_accumulation |= ImGui::SliderFloat("AO skip (cells, 0 = default)", &s.ao_skip, 0.0f, 4.0f);
         out.reset_accumulation |= ImGui::Checkbox("AO start through the surface grid (fine geometry, slower)",
                                                   &s.ao_surfaces);
+        out.reset_accumulation |= ImGui::Checkbox("AO rays through the surface grid (close to the reference, slower)",
+                                                  &s.ao_surface_rays);
         out.reset_accumulation |= ImGui::SliderFloat("shadow skip (cells, 0 = default)", &s.shadow_skip, 0.0f, 4.0f);
         out.reset_accumulation |= ImGui::SliderFloat("origin offset (cells, 0 = default)", &s.offset, 0.0f, 4.0f);
     }

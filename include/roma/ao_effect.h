@@ -69,6 +69,29 @@ typedef enum roma_ao_start {
     ROMA_AO_START_SURFACES = 1,
 } roma_ao_start;
 
+/** How an AO ray is traced past its skipped start (roma_ao_settings.trace). */
+typedef enum roma_ao_trace {
+    /** One snapped ROMA query: constant time, along its stratum's candidate direction through
+     * the rotated map. The voxels widen every surface by up to a cell, so AO comes out a few
+     * percent darker than the reference (docs/accuracy.md). */
+    ROMA_AO_TRACE_MAPS = 0,
+    /** The ray itself walked through the effect's surface grid (which triangles lie in each
+     * cell, over the map's volume): in a cell whose triangles the grid holds all of (two or
+     * fewer), the ray is blocked only by crossing one of them; over each run of cells that hold
+     * more, ROMA's rotated map decides (an un-snapped query along the ray over the run). The
+     * walk begins at the surface point, so it covers the skipped start too, whatever `start`
+     * says (where such a run begins within the skip, the check of ROMA_AO_START_SURFACES
+     * decides there). Within 1% of the reference's mean AO on the room, the dragon and the
+     * bunny, where the snapped query is 2-7% darker (less close where the grid's cells hold more
+     * triangles: 2CylinderEngine's fins), at the cost of a walk over the ray's cells (time grows
+     * with the radius; unbounded rays walk to the grid's edge): docs/accuracy.md measures both.
+     * Where the grid's cells are coarser than 1.5 of the map's at the point (cascade levels
+     * finer than the grid, a surface_resolution below the map's RES), the start's check and the
+     * snapped query decide instead. One record per frame slot with this or
+     * ROMA_AO_START_SURFACES. */
+    ROMA_AO_TRACE_SURFACES = 1,
+} roma_ao_trace;
+
 /** Per-record AO settings; the zero value is the default (roma_ao_settings_resolve). */
 typedef struct roma_ao_settings {
     uint32_t samples;     /**< rays per pixel and frame; 0 = ROMA_DEFAULT_AO_SAMPLES */
@@ -91,6 +114,7 @@ typedef struct roma_ao_settings {
      * docs/benchmark.md). 0 or 1 = every pixel traced; other values are refused. */
     uint32_t resolution_divisor;
     roma_ao_start start; /**< how the skipped start is checked; 0 = ROMA_AO_START_VOXELS */
+    roma_ao_trace trace; /**< how the ray past its start is traced; 0 = ROMA_AO_TRACE_MAPS */
 } roma_ao_settings;
 
 /** The zero value's meaning, filled in (the one place defaults are resolved).
@@ -99,7 +123,7 @@ typedef struct roma_ao_settings {
  * @param[out] out  the resolved settings; zeroed on failure. May equal in.
  * @return ROMA_SUCCESS; ROMA_ERROR_INVALID_ARGUMENT for a NULL out, NaN or infinite values,
  *         a negative radius or offset_cells, a resolution_divisor other than 0, 1, 2 or 4, a
- *         start that is not a roma_ao_start.
+ *         start that is not a roma_ao_start, a trace that is not a roma_ao_trace.
  * @par Threads
  * Any thread (pure). */
 ROMA_API roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_settings *out);
@@ -113,10 +137,10 @@ typedef struct roma_ao_effect_desc {
     uint32_t frames_in_flight; /**< [1, 8]; 0 = 2 */
     roma_pixel_dispatch pixel_dispatch; /**< 0 = ROMA_PIXEL_DISPATCH_AUTO */
     roma_logger logger;        /**< 0 = the context's */
-    /** Resolution of the surface grid of ROMA_AO_START_SURFACES (which triangles lie in each
-     * of its cells, over the map's volume), 32 to 256; 0 = the RES of the map the first record
-     * with that start traces (32 at least). Made by that record: 2 * resolution^3 * 4 bytes of
-     * device memory. */
+    /** Resolution of the surface grid of ROMA_AO_START_SURFACES and ROMA_AO_TRACE_SURFACES
+     * (which triangles lie in each of its cells, two, and how many, over the map's volume), 32
+     * to 256; 0 = the RES of the map the first record with either traces (32 at least). Made by
+     * that record: 3 * resolution^3 * 4 bytes of device memory. */
     uint32_t surface_resolution;
 } roma_ao_effect_desc;
 
@@ -172,9 +196,9 @@ typedef struct roma_ao_images {
  * rules. Any number of samples: on a device that limits the loop iterations of one shader
  * invocation (lavapipe: 65,535) the samples are traced in as many dispatches as that takes,
  * each adding to the output after a barrier (docs/robustness.md); elsewhere in one. With
- * ROMA_AO_START_SURFACES the first such record (which also makes that pass's pipeline) and
- * each after the map's geometry moved, or with another map, record the surface grid's build before
- * the pass.
+ * ROMA_AO_START_SURFACES or ROMA_AO_TRACE_SURFACES the first such record (which also makes that
+ * pass's pipeline) and each after the map's geometry moved, or with another map, record the
+ * surface grid's build before the pass.
  *
  * @param effect    the effect.
  * @param cmd       a command buffer of the context's queue family, recording.
@@ -190,11 +214,12 @@ typedef struct roma_ao_images {
  *   position, normal or output view, settings roma_ao_settings_resolve rejects, a slot not below
  *   frames_in_flight, more than 16 records in one slot and frame;
  *   ROMA_ERROR_NOT_READY: no build of the map recorded yet;
- *   with ROMA_AO_START_SURFACES, a second record in the slot's frame;
- *   ROMA_ERROR_INVALID_SCENE: with ROMA_AO_START_SURFACES, a map whose volume is empty;
+ *   with ROMA_AO_START_SURFACES or ROMA_AO_TRACE_SURFACES, a second such record in the slot's
+ *   frame;
+ *   ROMA_ERROR_INVALID_SCENE: with either, a map whose volume is empty;
  *   ROMA_ERROR_OUT_OF_HOST_MEMORY, or a Vulkan failure code (roma_result) when the descriptor
- *   set, the slot's list or, with ROMA_AO_START_SURFACES, that pass's pipeline or the surface
- *   grid cannot be made.
+ *   set, the slot's list or, with either, that pass's pipeline or the surface grid cannot be
+ *   made.
  * @par Threads
  * Any thread, the effect externally synchronised; the map it reads is not changed meanwhile (other
  * calls may read it); cmd externally synchronised. Never submits or waits. */

@@ -266,7 +266,8 @@ ROMA_STRUCT_BEGIN(roma_ao_push)
     ROMA_UINT sample_first;
     ROMA_UINT sample_end;
     ROMA_UVEC4(config);   /* x: width, y: height, z: spp, w: frame */
-    ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps, z: screen-space
+    ROMA_UVEC4(config2);  /* x: seed, y: distance field baseline: most steps (ao_images_surface_rays.comp:
+                             the most surface grid cells a ray's walk takes), z: screen-space
                              baseline: stochastic depth layers beside the G-buffer's, w: 1: the
                              rays' start walked through the bound BOM, 0: skipped blind */
     ROMA_VEC4(ray);       /* x: origin offset (world), y: tmax (+INF: unbounded), z: tmin (world),
@@ -414,20 +415,30 @@ ROMA_STRUCT_END(roma_rsm_view)
  * after all others (their index with ROMA_SURFACE_EMITTER set), so that the GI pass finds the
  * albedo and normal of the surface a ROMA hit lies on, and the light passes where in an
  * occupied cell a wall lies (roma_surface_grid.glsl). Written when the geometry moves
- * (RES^3 uints a layer) by the exact voxelizer's overlap test, with roma_voxelize_push (runs[0].xy:
- * the address of the emitters' bits, bit t % 32 of uint t / 32, 0: none; runs[0].z: the
- * triangles they cover; runs[0].w: the layers) and the voxelizer's bindings (the cells at
- * ROMA_VOXELIZE_BINDING_BOM) and tile queue. */
+ * (RES^3 uints a layer) by the exact voxelizer's overlap test, with roma_voxelize_push
+ * (runs[0].xy: the address of the emitters' bits, bit t % 32 of uint t / 32, 0: none;
+ * runs[0].z: the triangles they cover; runs[0].w: ROMA_SURFACE_LAYERS_*; runs[1].xy:
+ * third_cells) and the voxelizer's bindings (the cells at ROMA_VOXELIZE_BINDING_BOM) and tile
+ * queue. */
 #define ROMA_SURFACE_EMITTER 0x80000000u
+/* What a grid's cells hold (roma_surface_grid.config.y): the lowest key; and the highest index
+ * + 1 of a triangle that is not an area light (0: none) in a second layer; and in a third, a
+ * buffer of its own (third_cells), the lowest area light's key (ROMA_GBUFFER_NO_TRIANGLE: none;
+ * the GI effect's) or how many triangles overlap the cell (the AO effect's whole rays; built
+ * without area lights, so that a count of two or less means the two layers hold them all). */
+#define ROMA_SURFACE_LAYERS_LOWEST 1u
+#define ROMA_SURFACE_LAYERS_TWO 2u
+#define ROMA_SURFACE_LAYERS_EMITTERS 3u
+#define ROMA_SURFACE_LAYERS_COUNTS 4u
 ROMA_STRUCT_BEGIN(roma_surface_grid)
     ROMA_U64(cells);      /* uint per cell, index (z * RES + y) * RES + x; 0: no grid */
     ROMA_U64(indices);    /* uint x3 per triangle */
     ROMA_U64(positions);  /* float4 per vertex */
-    ROMA_U64(emitter_cells); /* with three layers, the third: uint per cell, the lowest area light's
-                                key (ROMA_GBUFFER_NO_TRIANGLE: none); 0: none */
+    ROMA_U64(third_cells); /* the third layer (ROMA_SURFACE_LAYERS_EMITTERS or _COUNTS): uint per
+                              cell; 0: none */
     ROMA_VEC4(grid);      /* xyz: corner of cell (0,0,0); w: cell size */
-    ROMA_UVEC4(config);   /* x: RES, y: layers (2 or 3: the highest index + 1 of a triangle that is
-                             not an area light in each cell follows, 0: none; 3: emitter_cells too) */
+    ROMA_UVEC4(config);   /* x: RES, y: ROMA_SURFACE_LAYERS_* (from TWO on the second layer follows
+                             the first in cells) */
 ROMA_STRUCT_END(roma_surface_grid)
 
 /* What the GI pass needs at a bounce hit (one buffer per frame slot). */

@@ -7,11 +7,13 @@
 // ROMA_SURFACE_EMITTER set for an area light's triangle: a wall and a lamp in the same cells
 // leave the wall there, whichever comes first in the scene (a light's end looks for the
 // walls; its own plane it skips). The voxelizer's BOM binding holds the cells, one uint
-// each, (z * RES + y) * RES + x, and with two layers (runs[0].w) the highest index + 1 of a
-// triangle that is not an area light in each after them (both halves of a ceiling's quad
-// where a lamp shares its cells), with three the lowest area light's key in each in a buffer of
-// its own at runs[1].xy (a lamp whose cells a ceiling shares, which the first layer ranks after
-// the ceiling); the push's runs[0].xy the address of the emitters' bits.
+// each, (z * RES + y) * RES + x, and from two layers on (runs[0].w: ROMA_SURFACE_LAYERS_*) the
+// highest index + 1 of a triangle that is not an area light in each after them (both halves of
+// a ceiling's quad where a lamp shares its cells); a third layer, in a buffer of its own at
+// runs[1].xy, holds the lowest area light's key in each (EMITTERS: a lamp whose cells a ceiling
+// shares, which the first layer ranks after the ceiling) or counts the triangles that overlap
+// each (COUNTS: where the two layers hold all of them); the push's runs[0].xy the address of
+// the emitters' bits.
 #ifndef ROMA_SURFACE_CELLS_GLSL
 #define ROMA_SURFACE_CELLS_GLSL
 
@@ -21,7 +23,7 @@
 #include "roma_voxelize.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RomaEmitterBits { uint w[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaEmitterCells { uint u[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer RomaThirdCells { uint u[]; };
 
 // Triangle tri's key (the emitters' bits: runs[0].xy, covering runs[0].z triangles).
 uint roma_surface_key(uint tri)
@@ -47,10 +49,12 @@ void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int
                 ivec3 w = roma_vox_from_columns(c, t.a);
                 uint cell = (uint(w.z) * uint(res) + uint(w.y)) * uint(res) + uint(w.x);
                 atomicMin(bom[cell], key);
-                if (pc.runs[0].w >= 2u && key < ROMA_SURFACE_EMITTER) // the second layer: the highest wall's + 1
+                if (pc.runs[0].w >= ROMA_SURFACE_LAYERS_TWO && key < ROMA_SURFACE_EMITTER) // the highest wall's + 1
                     atomicMax(bom[uint(res * res * res) + cell], key + 1u);
-                if (pc.runs[1].xy != uvec2(0u) && key >= ROMA_SURFACE_EMITTER) // the third: the lowest area light's key
-                    atomicMin(RomaEmitterCells(pc.runs[1].xy).u[cell], key);
+                if (pc.runs[0].w == ROMA_SURFACE_LAYERS_EMITTERS && key >= ROMA_SURFACE_EMITTER) // the lowest lamp's
+                    atomicMin(RomaThirdCells(pc.runs[1].xy).u[cell], key);
+                else if (pc.runs[0].w == ROMA_SURFACE_LAYERS_COUNTS)
+                    atomicAdd(RomaThirdCells(pc.runs[1].xy).u[cell], 1u);
             }
         }
     }

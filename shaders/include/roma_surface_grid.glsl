@@ -71,9 +71,9 @@ float roma_surface_plane_hit(roma_surface_grid G, uint tri, vec3 o, vec3 d)
 uint roma_surface_nearer_emitter(roma_surface_grid G, uint tri, vec3 p, vec3 o, vec3 d)
 {
     uint at;
-    if (G.emitter_cells == uvec2(0u) || tri == ROMA_GBUFFER_NO_TRIANGLE || !roma_surface_cell(G, p, at))
+    if (G.config.y != ROMA_SURFACE_LAYERS_EMITTERS || tri == ROMA_GBUFFER_NO_TRIANGLE || !roma_surface_cell(G, p, at))
         return tri;
-    uint key = RomaUints(G.emitter_cells).u[at];
+    uint key = RomaUints(G.third_cells).u[at];
     uint emitter = key & ~ROMA_SURFACE_EMITTER;
     if (key == ROMA_GBUFFER_NO_TRIANGLE || emitter == tri)
         return tri;

@@ -18,9 +18,11 @@
 struct roma_ao_effect {
     roma_image_effect base;
     int roma_rays; /* the module is ROMA's own (ao_images.comp) */
-    /* ROMA_AO_START_SURFACES: its own pass (ao_images_surfaces.comp), its surface grid and the
-     * grid's record per slot, made by the first record with that start. */
-    roma_image_effect surface_pass;
+    /* ROMA_AO_START_SURFACES and ROMA_AO_TRACE_SURFACES: a pass each (ao_images_surfaces.comp,
+     * ao_images_surface_rays.comp), made by the first record that asks for it, and the surface
+     * grid they share (with the count layer the second needs) and its record per slot, made by
+     * the first of them. */
+    roma_image_effect surface_pass, surface_rays_pass;
     uint32_t frames_in_flight, surface_resolution;
     roma_pixel_dispatch pixel_dispatch;
     roma_surface_cells grid;
@@ -35,10 +37,11 @@ roma_result roma_ao_settings_resolve(const roma_ao_settings *in, roma_ao_setting
     if (!out)
         return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT, "roma_ao_settings_resolve: out is NULL");
     if (!isfinite(s.radius) || s.radius < 0.0f || !isfinite(s.offset_cells) || s.offset_cells < 0.0f ||
-        !isfinite(s.skip_cells) || (unsigned)s.start > ROMA_AO_START_SURFACES)
+        !isfinite(s.skip_cells) || (unsigned)s.start > ROMA_AO_START_SURFACES ||
+        (unsigned)s.trace > ROMA_AO_TRACE_SURFACES)
         return roma_fail(NULL, ROMA_ERROR_INVALID_ARGUMENT,
                          "roma_ao_settings: radius and offset_cells must be finite and not negative, skip_cells "
-                         "finite, start a roma_ao_start");
+                         "finite, start a roma_ao_start, trace a roma_ao_trace");
     if (s.samples == 0)
         s.samples = ROMA_DEFAULT_AO_SAMPLES;
     if (s.offset_cells == 0.0f)
@@ -110,6 +113,8 @@ void roma_ao_effect_destroy(roma_ao_effect *e)
     roma_surface_cells_destroy(&e->grid);
     if (e->surface_pass.ctx)
         roma_image_effect_free(&e->surface_pass);
+    if (e->surface_rays_pass.ctx)
+        roma_image_effect_free(&e->surface_rays_pass);
     roma_image_effect_free(&e->base);
     free(e);
 }
@@ -137,18 +142,21 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
     roma_result r = roma_ao_settings_resolve(settings_in, &s);
     if (r != ROMA_SUCCESS)
         return roma_fail(&e->base.logger, r, "roma_ao_effect_record: invalid settings");
-    /* The surface grid for the rays' start where asked (the study's blind start walks nothing),
-     * traced by its own pass. */
-    const int surfaces = s.start == ROMA_AO_START_SURFACES && e->roma_rays && !(variant && variant->blind_start);
-    if (surfaces && !e->surface_pass.ctx) {
-        r = ao_pass_init(&e->surface_pass, e->base.ctx, &e->base.logger, "ao_images_surfaces.comp",
-                         e->frames_in_flight, e->pixel_dispatch);
+    /* The surface grid for the rays' start, or for the whole rays, where asked (the study's blind
+     * start walks nothing), traced by a pass of its own. */
+    const int grid_usable = e->roma_rays && !(variant && variant->blind_start);
+    const int rays = grid_usable && s.trace == ROMA_AO_TRACE_SURFACES;
+    const int surfaces = grid_usable && (rays || s.start == ROMA_AO_START_SURFACES);
+    roma_image_effect *pass = rays ? &e->surface_rays_pass : surfaces ? &e->surface_pass : &e->base;
+    if (surfaces && !pass->ctx) {
+        r = ao_pass_init(pass, e->base.ctx, &e->base.logger,
+                         rays ? "ao_images_surface_rays.comp" : "ao_images_surfaces.comp", e->frames_in_flight,
+                         e->pixel_dispatch);
         if (r != ROMA_SUCCESS) {
-            memset(&e->surface_pass, 0, sizeof e->surface_pass);
+            memset(pass, 0, sizeof *pass);
             return r;
         }
     }
-    roma_image_effect *pass = surfaces ? &e->surface_pass : &e->base;
     roma_map_info info;
     r = roma_image_effect_begin(pass, slot, s.frame, map, im->pixels, im->width, im->height, s.resolution_divisor,
                                 &info);
@@ -156,17 +164,20 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         return r;
     /* The grid's record lives in one buffer per slot, and the grid follows one map: a second
      * record in the slot's frame would change what the first one's dispatch reads. */
-    if (surfaces && roma_image_effect_same_frame(pass, slot))
+    if (surfaces && ((e->surface_pass.ctx && roma_slot_sets_same_frame(&e->surface_pass.sets, slot, s.frame)) ||
+                     (e->surface_rays_pass.ctx &&
+                      roma_slot_sets_same_frame(&e->surface_rays_pass.sets, slot, s.frame))))
         return roma_fail(&e->base.logger, ROMA_ERROR_INVALID_ARGUMENT,
-                         "roma_ao_effect_record: one record per frame slot with ROMA_AO_START_SURFACES (slot %u was "
-                         "recorded this frame)", slot);
-    uint32_t surface_cells = 0; /* the most grid cells a ray's check walks */
+                         "roma_ao_effect_record: one record per frame slot with ROMA_AO_START_SURFACES or "
+                         "ROMA_AO_TRACE_SURFACES (slot %u was recorded this frame)", slot);
+    uint32_t surface_cells = 0, ray_cells = 0; /* the most grid cells a ray's start and whole walk take */
     if (surfaces) {
         /* The grid at the map's RES unless the desc gave one (made by the first such record). */
         const uint32_t res = e->surface_resolution ? e->surface_resolution
                              : info.resolution < 32 ? 32 : info.resolution > 256 ? 256 : info.resolution;
-        r = roma_surface_cells_follow_record(&e->grid, &e->surfaces[slot], e->base.ctx, res, 2, cmd, slot, map, NULL,
-                                             &e->base.logger, "roma_ao_effect_record");
+        r = roma_surface_cells_follow_record(&e->grid, &e->surfaces[slot], e->base.ctx, res,
+                                             ROMA_SURFACE_LAYERS_COUNTS, cmd, slot, map, NULL, &e->base.logger,
+                                             "roma_ao_effect_record");
         if (r != ROMA_SUCCESS)
             return r;
         /* From the surface point to the query's start: the offset, the skip and half a texel's
@@ -174,16 +185,20 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         const float reach = (s.offset_cells + s.skip_cells + 1.0f) * info.trace_cell / e->grid.cell;
         surface_cells = reach < (float)(ROMA_AO_SURFACE_CELLS / 3) ? 3u * (uint32_t)ceilf(reach) + 1u
                                                                     : ROMA_AO_SURFACE_CELLS;
+        /* The whole ray's walk: its length's cells, to the grid's edge when unbounded. */
+        if (rays)
+            ray_cells = roma_loop_cost_walk((roma_loop_grid){e->grid.resolution, e->grid.cell, 1},
+                                            s.radius > 0.0f ? s.radius : INFINITY, UINT32_MAX);
         roma_upload_record(&e->surfaces[slot], cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     }
     roma_ao_push push = {.surfaces = surfaces ? e->surfaces[slot].device.address : 0,
                          .config = {im->width, im->height, s.samples, s.frame},
-                         .config2 = {s.seed, 0, 0, 1},
+                         .config2 = {s.seed, ray_cells, 0, 1},
                          .ray = {s.offset_cells * info.trace_cell, s.radius > 0.0f ? s.radius : INFINITY,
                                  s.skip_cells * info.trace_cell, 0.0f}};
     uint32_t sample_cost = roma_loop_cost_ao_ray((roma_loop_grid){info.resolution, info.grid_cell, info.levels},
-                                                 push.ray[2], push.ray[1], surface_cells);
+                                                 push.ray[2], push.ray[1], surface_cells, ray_cells);
     if (variant) { /* the study's: its own fields of the push, its structure in the BOM's place */
         if (variant->blind_start)
             push.config2[3] = 0;
@@ -199,8 +214,10 @@ roma_result roma_ao_effect_record_variant(roma_ao_effect *e, VkCommandBuffer cmd
         if (variant->sample_cost)
             sample_cost = variant->sample_cost;
     }
-    if (surfaces)
+    if (surfaces) /* the surface grid's fields, whatever a variant set */
         push.ray[3] = (float)surface_cells;
+    if (rays)
+        push.config2[1] = ray_cells;
     const VkImageView views[4] = {im->position, im->normal, im->geometric_normal ? im->geometric_normal : im->normal,
                                   im->output};
     /* The samples in parts within the device's loop budget (one part where it has none). */

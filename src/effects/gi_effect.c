@@ -205,7 +205,8 @@ roma_result roma_gi_effect_record_variant(roma_gi_effect *e, VkCommandBuffer cmd
     roma_light_data_record(&sf->emitters, cmd);
     if (have_scene) {
         /* Three layers: the bounce hits find a lamp that shares its cells with a ceiling. */
-        r = roma_surface_cells_follow(&e->grid, ctx, e->surface_resolution, 3, cmd, slot, map, &sf->emitters, log, name);
+        r = roma_surface_cells_follow(&e->grid, ctx, e->surface_resolution, ROMA_SURFACE_LAYERS_EMITTERS, cmd, slot,
+                                      map, &sf->emitters, log, name);
         if (r != ROMA_SUCCESS)
             return r;
         /* The scene's vertex normals fit the map's vertices only where no build moved them;

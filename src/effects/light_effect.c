@@ -181,8 +181,8 @@ roma_result roma_light_effect_record_variant(roma_light_effect *e, VkCommandBuff
      * that ranks them. */
     roma_light_data_record(&e->area, cmd);
     if (surfaces) {
-        r = roma_surface_cells_follow_record(&e->grid, &e->surfaces[slot], e->base.ctx, e->surface_resolution, 2, cmd,
-                                             slot, map, &e->area, log, name);
+        r = roma_surface_cells_follow_record(&e->grid, &e->surfaces[slot], e->base.ctx, e->surface_resolution,
+                                             ROMA_SURFACE_LAYERS_TWO, cmd, slot, map, &e->area, log, name);
         if (r != ROMA_SUCCESS)
             return r;
     }

@@ -17,22 +17,23 @@ roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, ui
                                       roma_surface_cells *out)
 {
     memset(out, 0, sizeof *out);
-    if (!ctx || resolution == 0 || resolution > 256 || layers < 1 || layers > 3)
+    if (!ctx || resolution == 0 || resolution > 256 || layers < ROMA_SURFACE_LAYERS_LOWEST ||
+        layers > ROMA_SURFACE_LAYERS_COUNTS)
         return ROMA_ERROR_INVALID_ARGUMENT;
     out->ctx = ctx;
     out->resolution = resolution;
     out->layers = layers;
     const VkDeviceSize layer = (VkDeviceSize)resolution * resolution * resolution * sizeof(uint32_t);
-    const VkDeviceSize bytes = (layers > 2 ? 2 : layers) * layer;
+    const VkDeviceSize bytes = (layers >= ROMA_SURFACE_LAYERS_TWO ? 2 : 1) * layer;
     roma_result r = roma_buffer_create(ctx, bytes,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                        ROMA_MEMORY_DEVICE, &out->cells); /* (a source for the tests' read-back) */
-    if (r == ROMA_SUCCESS && layers == 3)
+    if (r == ROMA_SUCCESS && layers > ROMA_SURFACE_LAYERS_TWO)
         r = roma_buffer_create(ctx, layer,
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               ROMA_MEMORY_DEVICE, &out->emitter_cells);
+                               ROMA_MEMORY_DEVICE, &out->third_cells);
     if (r == ROMA_SUCCESS)
         r = roma_tile_queue_create(ctx, resolution, &out->queue);
     if (r == ROMA_SUCCESS)
@@ -55,7 +56,7 @@ void roma_surface_cells_destroy(roma_surface_cells *cells)
         roma_compute_pipeline_destroy(cells->ctx, &cells->triangles);
         roma_tile_queue_destroy(cells->ctx, &cells->queue);
         roma_buffer_destroy(cells->ctx, &cells->cells);
-        roma_buffer_destroy(cells->ctx, &cells->emitter_cells);
+        roma_buffer_destroy(cells->ctx, &cells->third_cells);
     }
     memset(cells, 0, sizeof *cells);
 }
@@ -100,10 +101,11 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
                             VK_ACCESS_2_TRANSFER_WRITE_BIT);
     const VkDeviceSize layer = (VkDeviceSize)cells->resolution * cells->resolution * cells->resolution * 4;
     vkCmdFillBuffer(cmd, cells->cells.buffer, 0, layer, ROMA_GBUFFER_NO_TRIANGLE);
-    if (cells->layers >= 2)
+    if (cells->layers >= ROMA_SURFACE_LAYERS_TWO)
         vkCmdFillBuffer(cmd, cells->cells.buffer, layer, layer, 0);
-    if (cells->layers == 3)
-        vkCmdFillBuffer(cmd, cells->emitter_cells.buffer, 0, layer, ROMA_GBUFFER_NO_TRIANGLE);
+    if (cells->layers > ROMA_SURFACE_LAYERS_TWO)
+        vkCmdFillBuffer(cmd, cells->third_cells.buffer, 0, layer,
+                        cells->layers == ROMA_SURFACE_LAYERS_COUNTS ? 0u : ROMA_GBUFFER_NO_TRIANGLE);
     roma_tile_queue_record_reset(&cells->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
@@ -122,8 +124,8 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     push.runs[0][1] = (uint32_t)(geometry->emitter_bits >> 32);
     push.runs[0][2] = geometry->emitter_bits ? geometry->emitter_triangles : 0;
     push.runs[0][3] = cells->layers;
-    push.runs[1][0] = (uint32_t)cells->emitter_cells.address; /* 0: no third layer */
-    push.runs[1][1] = (uint32_t)(cells->emitter_cells.address >> 32);
+    push.runs[1][0] = (uint32_t)cells->third_cells.address; /* 0: no third layer */
+    push.runs[1][1] = (uint32_t)(cells->third_cells.address >> 32);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cells->triangles.layout, 0, 1, &set->set, 0, NULL);
     vkCmdPushConstants(cmd, cells->triangles.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     roma_tile_queue_record_passes(&cells->queue, cmd, cells->triangles.pipeline, cells->tiles.pipeline,
@@ -137,6 +139,10 @@ roma_result roma_surface_cells_follow(roma_surface_cells *cells, roma_context *c
                                       uint32_t layers, VkCommandBuffer cmd, uint32_t slot, const roma_map *map,
                                       const roma_light_data *emitters, const roma_logger *log, const char *name)
 {
+    /* A count of two or less says the two layers hold a cell's every triangle only where no
+     * area light is ranked after the walls (the second layer's). */
+    if (layers == ROMA_SURFACE_LAYERS_COUNTS && emitters && emitters->emitter_count)
+        return roma_fail(log, ROMA_ERROR_INVALID_ARGUMENT, "%s: a surface grid of counts ranks no area lights", name);
     if (cells->ctx && cells->version == map->geometry_version)
         return ROMA_SUCCESS;
     roma_result r = ROMA_SUCCESS;
@@ -161,7 +167,7 @@ roma_surface_grid roma_surface_cells_view(const roma_surface_cells *cells, const
 {
     return (roma_surface_grid){
         .cells = cells->cells.address, .indices = map->indices.address, .positions = map->positions.address,
-        .emitter_cells = cells->emitter_cells.address,
+        .third_cells = cells->third_cells.address,
         .grid = {cells->origin[0], cells->origin[1], cells->origin[2], cells->cell},
         .config = {cells->resolution, cells->layers, 0, 0},
     };

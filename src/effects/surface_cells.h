@@ -22,10 +22,10 @@ typedef struct roma_surface_cells {
     /* One set per frame slot: a build in a slot rewrites that slot's set (the geometry's
      * buffers may have been replaced), which the slot rules make safe. */
     roma_descriptor_set sets[ROMA_MAX_FRAMES_IN_FLIGHT];
-    roma_buffer cells;          /* min(layers, 2) x RES^3 uint */
-    roma_buffer emitter_cells;  /* the third layer, RES^3 uint, a buffer of its own (within the
+    roma_buffer cells;          /* one or two layers of RES^3 uint */
+    roma_buffer third_cells;    /* the third layer, RES^3 uint, a buffer of its own (within the
                                    binding's range at RES 256); written through its address */
-    uint32_t resolution, layers;
+    uint32_t resolution, layers; /* ROMA_SURFACE_LAYERS_* */
     float origin[3], cell;      /* of the last build: corner of cell (0,0,0), cell size */
     uint64_t version;           /* the map geometry it holds (roma_surface_cells_follow; 0: none) */
 } roma_surface_cells;
@@ -40,12 +40,14 @@ typedef struct roma_surface_geometry {
     uint32_t emitter_triangles;
 } roma_surface_geometry;
 
-/* A RES^3 grid (RES at most 256) of one to three layers: the lowest key in each cell, and with
- * two the highest index of a triangle that is not an area light too (plus one; 0: none), so
- * that a cell two walls share (the halves of a quad along its diagonal, a room's edge) shows
- * both, also where a lamp shares it; with three the lowest area light's key too
- * (ROMA_GBUFFER_NO_TRIANGLE: none), so that a GI bounce hit finds a lamp whose cells a
- * ceiling shares (the GI effect's grid). On failure *out is zeroed. */
+/* A RES^3 grid (RES at most 256) with `layers` (ROMA_SURFACE_LAYERS_*): the lowest key in each
+ * cell, and from TWO on the highest index of a triangle that is not an area light too (plus
+ * one; 0: none), so that a cell two walls share (the halves of a quad along its diagonal, a
+ * room's edge) shows both, also where a lamp shares it; with EMITTERS the lowest area light's
+ * key too (ROMA_GBUFFER_NO_TRIANGLE: none), so that a GI bounce hit finds a lamp whose cells a
+ * ceiling shares (the GI effect's grid); with COUNTS how many triangles overlap each cell, so
+ * that an AO ray knows where the two layers hold all of a cell's triangles (the AO effect's).
+ * On failure *out is zeroed. */
 roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, uint32_t layers,
                                       roma_surface_cells *out);
 /* Accepts a zeroed grid. */

@@ -45,8 +45,11 @@ uint32_t roma_loop_cost_area_sample(const roma_shadow_cost *s, uint32_t emitters
  * at its end), a directional one included, plus the loop over the lights. */
 uint32_t roma_loop_cost_punctual_light(const roma_shadow_cost *s);
 /* One AO ray: its start walked over min(skip, radius) (with surface_cells > 0, then through at
- * most that many cells of the surface grid: ao_images_surfaces.comp), then one snapped query. */
-uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius, uint32_t surface_cells);
+ * most that many cells of the surface grid: ao_images_surfaces.comp), then one snapped query;
+ * with ray_cells > 0, the ray's walk through at most that many cells of the grid and the
+ * un-snapped queries over its runs of crowded cells (ao_images_surface_rays.comp). */
+uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius, uint32_t surface_cells,
+                               uint32_t ray_cells);
 /* One GI bounce (roma_gi_bounce) up to its hit's lighting: the start walk over `skip` (exact:
  * the whole ray), the snapped query, the surface search and the walk that checks the hit's
  * point (at most 64 cells long). Its lighting adds one area-light sample when there are

@@ -34,7 +34,8 @@
 #define MAX_EXTRA 2u
 
 typedef struct built {
-    uint32_t *cells;    /* RES^3, (z * RES + y) * RES + x; then the second layer, then the third */
+    uint32_t *cells;    /* RES^3, (z * RES + y) * RES + x; then the second layer, then the third
+                           (with COUNTS, then the blocks' flags) */
     float origin[3], cell;
     uint32_t queued, capacity; /* tiles the build queued, and the queue's room */
 } built;
@@ -45,7 +46,9 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
     roma_surface_cells cells;
     memset(&cells, 0, sizeof cells);
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-    const VkDeviceSize bytes = 3 * (VkDeviceSize)res * res * res * 4; /* three layers */
+    const VkDeviceSize side = (res + ROMA_SURFACE_BLOCK - 1) / ROMA_SURFACE_BLOCK,
+                       layer = (VkDeviceSize)res * res * res * 4, blocks = side * side * side * 4;
+    const VkDeviceSize bytes = 3 * layer + (layers == ROMA_SURFACE_LAYERS_COUNTS ? blocks : 0);
     roma_result r = roma_buffer_create(ctx, (VkDeviceSize)v->vertex_count * 16, usage, ROMA_MEMORY_UPLOAD, &positions);
     if (r == ROMA_SUCCESS)
         r = roma_buffer_create(ctx, (VkDeviceSize)v->triangle_count * 12, usage, ROMA_MEMORY_UPLOAD, &indices);
@@ -84,7 +87,7 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
         roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         /* the first two layers, then the third from its own buffer */
-        VkBufferCopy copy = {0, 0, 2 * bytes / 3}, third = {0, 2 * bytes / 3, bytes / 3},
+        VkBufferCopy copy = {0, 0, 2 * layer}, third = {0, 2 * layer, bytes - 2 * layer},
                      queue_copy = {0, 0, sizeof(roma_voxelize_queue)};
         vkCmdCopyBuffer(cmd, cells.cells.buffer, readback.buffer, 1, &copy);
         vkCmdCopyBuffer(cmd, cells.third_cells.buffer, readback.buffer, 1, &third);
@@ -287,8 +290,21 @@ static void check_counts(roma_context *ctx, const char *name, uint32_t res)
         return;
     built b = {0};
     CHECK_RESULT(build(ctx, &v, res, ROMA_SURFACE_LAYERS_COUNTS, &b), ROMA_SUCCESS);
-    uint64_t held = 0, wrong = 0, crowded = 0;
-    const size_t layer = (size_t)res * res * res;
+    uint64_t held = 0, wrong = 0, crowded = 0, blocks_held = 0, blocks_wrong = 0;
+    const size_t layer = (size_t)res * res * res, side = (res + ROMA_SURFACE_BLOCK - 1) / ROMA_SURFACE_BLOCK;
+    /* The blocks' flags: set where one of the block's cells holds a triangle, and only there. */
+    for (size_t block = 0; b.cells && block < side * side * side; ++block) {
+        const size_t x0 = block % side * ROMA_SURFACE_BLOCK, y0 = block / side % side * ROMA_SURFACE_BLOCK,
+                     z0 = block / side / side * ROMA_SURFACE_BLOCK;
+        int any = 0;
+        for (size_t z = z0; z < z0 + ROMA_SURFACE_BLOCK && z < res; ++z)
+            for (size_t y = y0; y < y0 + ROMA_SURFACE_BLOCK && y < res; ++y)
+                for (size_t x = x0; x < x0 + ROMA_SURFACE_BLOCK && x < res; ++x)
+                    any |= b.cells[(z * res + y) * res + x] != ROMA_GBUFFER_NO_TRIANGLE;
+        const uint32_t flag = b.cells[3 * layer + block];
+        blocks_held += flag != 0;
+        blocks_wrong += (flag != 0) != any;
+    }
     for (size_t at = 0; b.cells && at < layer; ++at) {
         const uint32_t key = b.cells[at], count = b.cells[2 * layer + at];
         if (key == ROMA_GBUFFER_NO_TRIANGLE) {
@@ -305,10 +321,15 @@ static void check_counts(roma_context *ctx, const char *name, uint32_t res)
         wrong += count < strict || count > loose;
         crowded += count > 2;
     }
-    printf("%-8s RES %3u: counts in %llu held cells, wrong %llu, more than two triangles in %llu\n", name, res,
-           (unsigned long long)held, (unsigned long long)wrong, (unsigned long long)crowded);
+    printf("%-8s RES %3u: counts in %llu held cells, wrong %llu, more than two triangles in %llu; %llu of %llu "
+           "blocks of %u^3 cells flagged, wrong %llu\n",
+           name, res, (unsigned long long)held, (unsigned long long)wrong, (unsigned long long)crowded,
+           (unsigned long long)blocks_held, (unsigned long long)(side * side * side), ROMA_SURFACE_BLOCK,
+           (unsigned long long)blocks_wrong);
     CHECK(held > 0);
     CHECK(wrong == 0);
+    CHECK(blocks_held > 0 && blocks_held < side * side * side); /* the room's walls, not its air */
+    CHECK(blocks_wrong == 0);
     CHECK(crowded > 0); /* the room's corners: three walls' triangles */
     free(b.cells);
     roma_scene_destroy(scene);

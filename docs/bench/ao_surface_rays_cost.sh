@@ -5,7 +5,7 @@
 # default snapped query after the walk of the start (maps), the surface grid's start
 # (--ray-start surfaces) and the rays walked through the grid (--ao-trace surfaces),
 # alternating, two rounds (the machine's noise is 5-25%). Usage, from the repository root after
-# a build: bash docs/bench/ao_surface_rays_cost.sh [BUILD_DIR]. About 8 minutes on 2 cores with
+# a build: bash docs/bench/ao_surface_rays_cost.sh [BUILD_DIR]. About 6 minutes on 2 cores with
 # lavapipe.
 set -euo pipefail
 build=${1:-build}

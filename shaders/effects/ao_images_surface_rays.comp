@@ -30,12 +30,13 @@ bool roma_ao_run_blocked(vec3 origin, vec3 dir, float a, float b, float skip, fl
 }
 
 // The walk of o + d * [t0, t1] (d unit, world units) through the surface grid, over at most
-// max_cells of its cells (beyond: blocked); outside the grid nothing lies. A triangle a cell
-// holds crossed inside it blocks (the plane `own` apart: the surface the ray leaves). Over each
-// run of cells whose count shows more triangles than their two layers hold, the map decides: an
-// un-snapped query from the offset origin along the ray over the run (held within [skip, t1],
-// grown by pad); early_run: whether a run began before the skip (where the caller's check of
-// the start decides).
+// max_cells of its cells (an empty block of ROMA_SURFACE_BLOCK^3 cells is crossed in one step,
+// and at most one more leaves it: 2 max_cells steps; beyond them, blocked); outside the grid
+// nothing lies. A triangle a cell holds crossed inside it blocks (the plane `own` apart: the
+// surface the ray leaves). Over each run of cells whose count shows more triangles than their
+// two layers hold, the map decides: an un-snapped query from the offset origin along the ray
+// over the run (held within [skip, t1], grown by pad); early_run: whether a run began before
+// the skip (where the caller's check of the start decides).
 bool roma_ao_surface_walk_open(roma_surface_grid G, vec3 o, vec3 d, float t0, float t1, vec4 own, int max_cells,
                                vec3 origin, float skip, float pad, out bool early_run)
 {
@@ -52,14 +53,39 @@ bool roma_ao_surface_walk_open(roma_surface_grid G, vec3 o, vec3 d, float t0, fl
     float lo = max(t0 / cs, max(tlo.x, max(tlo.y, tlo.z))), hi = min(t1 / cs, min(thi.x, min(thi.y, thi.z)));
     if (!(hi > lo))
         return true;
-    uint n = G.config.x, layer = n * n * n;
+    uint n = G.config.x, layer = n * n * n, side = (n + ROMA_SURFACE_BLOCK - 1u) / ROMA_SURFACE_BLOCK;
+    const int B = int(ROMA_SURFACE_BLOCK);
     ivec3 c = clamp(ivec3(floor(g + d * lo)), ivec3(0), ivec3(int(n) - 1));
     ivec3 step = ivec3(sign(d));
     vec3 next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);
     vec3 delta = mix(vec3(1e30), abs(1.0 / safe), moves);
     float enter = lo, run = -1.0; // run: where the current run of crowded cells began (cells), or < 0
-    for (int i = 0; i < max_cells; ++i) {
+    for (int i = 0; i < 2 * max_cells; ++i) {
         ROMA_LOOP_TICK();
+        ivec3 b = c / B;
+        if (RomaUints(G.third_cells).u[layer + (uint(b.z) * side + uint(b.y)) * side + uint(b.x)] == 0u) {
+            // An empty block (most of an unbounded ray's): a crowded run ends where it begins, and
+            // the walk goes on from the cell past the face the ray leaves it by (on the other
+            // axes the cell it is in, held within the block against rounding).
+            if (run >= 0.0) {
+                if (roma_ao_run_blocked(origin, d, run * cs, enter * cs, skip, t1, pad))
+                    return false;
+                run = -1.0;
+            }
+            ivec3 first = b * B;
+            vec3 exits = mix(vec3(1e30), (vec3(first) + vec3(greaterThan(d, vec3(0.0))) * float(B) - g) / safe, moves);
+            float out_t = min(min(exits.x, exits.y), exits.z);
+            if (out_t >= hi)
+                return true;
+            enter = max(enter, out_t);
+            ivec3 inside = clamp(ivec3(floor(g + d * enter)), first, first + ivec3(B - 1));
+            ivec3 past = first + mix(ivec3(-1), ivec3(B), greaterThan(d, vec3(0.0)));
+            c = mix(inside, past, lessThanEqual(exits, vec3(out_t)));
+            if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(int(n)))))
+                return true;
+            next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);
+            continue;
+        }
         float leave = min(min(next.x, next.y), min(next.z, hi));
         uint at = (uint(c.z) * n + uint(c.y)) * n + uint(c.x);
         // An empty cell (most of a ray's) costs one load: its count is 0 (test_surface_cells).

@@ -12,8 +12,8 @@
 // a ceiling's quad where a lamp shares its cells); a third layer, in a buffer of its own at
 // runs[1].xy, holds the lowest area light's key in each (EMITTERS: a lamp whose cells a ceiling
 // shares, which the first layer ranks after the ceiling) or counts the triangles that overlap
-// each (COUNTS: where the two layers hold all of them); the push's runs[0].xy the address of
-// the emitters' bits.
+// each (COUNTS: where the two layers hold all of them; then a flag per block of cells,
+// ROMA_SURFACE_BLOCK); the push's runs[0].xy the address of the emitters' bits.
 #ifndef ROMA_SURFACE_CELLS_GLSL
 #define ROMA_SURFACE_CELLS_GLSL
 
@@ -53,8 +53,12 @@ void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int
                     atomicMax(bom[uint(res * res * res) + cell], key + 1u);
                 if (pc.runs[0].w == ROMA_SURFACE_LAYERS_EMITTERS && key >= ROMA_SURFACE_EMITTER) // the lowest lamp's
                     atomicMin(RomaThirdCells(pc.runs[1].xy).u[cell], key);
-                else if (pc.runs[0].w == ROMA_SURFACE_LAYERS_COUNTS)
-                    atomicAdd(RomaThirdCells(pc.runs[1].xy).u[cell], 1u);
+                else if (pc.runs[0].w == ROMA_SURFACE_LAYERS_COUNTS &&
+                         atomicAdd(RomaThirdCells(pc.runs[1].xy).u[cell], 1u) == 0u) { // the cell's block holds one
+                    uint side = (uint(res) + ROMA_SURFACE_BLOCK - 1u) / ROMA_SURFACE_BLOCK;
+                    uvec3 b = uvec3(w) / ROMA_SURFACE_BLOCK;
+                    atomicOr(RomaThirdCells(pc.runs[1].xy).u[uint(res * res * res) + (b.z * side + b.y) * side + b.x], 1u);
+                }
             }
         }
     }

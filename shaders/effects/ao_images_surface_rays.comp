@@ -41,54 +41,43 @@ bool roma_ao_surface_walk_open(roma_surface_grid G, vec3 o, vec3 d, float t0, fl
                                vec3 origin, float skip, float pad, out bool early_run)
 {
     early_run = false;
-    float cs = G.grid.w, res = float(G.config.x);
-    vec3 g = (o - G.grid.xyz) / cs;
-    bvec3 moves = notEqual(d, vec3(0.0));
-    vec3 safe = mix(vec3(1.0), d, moves);
-    uvec3 off_box = uvec3(lessThan(g, vec3(0.0))) | uvec3(greaterThanEqual(g, vec3(res)));
-    if (any(bvec3(off_box & uvec3(not(moves)))))
-        return true; // the line misses the grid's box
-    vec3 ta = -g / safe, tb = (vec3(res) - g) / safe;
-    vec3 tlo = mix(vec3(-1e30), min(ta, tb), moves), thi = mix(vec3(1e30), max(ta, tb), moves);
-    float lo = max(t0 / cs, max(tlo.x, max(tlo.y, tlo.z))), hi = min(t1 / cs, min(thi.x, min(thi.y, thi.z)));
-    if (!(hi > lo))
-        return true;
+    roma_surface_walk w;
+    if (!roma_surface_walk_begin(G, o, d, t0, t1, w))
+        return true; // the segment misses the grid's box
+    float cs = G.grid.w;
     uint n = G.config.x, layer = n * n * n, side = (n + ROMA_SURFACE_BLOCK - 1u) / ROMA_SURFACE_BLOCK;
     const int B = int(ROMA_SURFACE_BLOCK);
-    ivec3 c = clamp(ivec3(floor(g + d * lo)), ivec3(0), ivec3(int(n) - 1));
-    ivec3 step = ivec3(sign(d));
-    vec3 next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);
-    vec3 delta = mix(vec3(1e30), abs(1.0 / safe), moves);
-    float enter = lo, run = -1.0; // run: where the current run of crowded cells began (cells), or < 0
+    float run = -1.0; // where the current run of crowded cells began (cells), or < 0
     for (int i = 0; i < 2 * max_cells; ++i) {
         ROMA_LOOP_TICK();
-        ivec3 b = c / B;
+        ivec3 b = w.c / B;
         if (RomaUints(G.third_cells).u[layer + (uint(b.z) * side + uint(b.y)) * side + uint(b.x)] == 0u) {
             // An empty block (most of an unbounded ray's): a crowded run ends where it begins, and
             // the walk goes on from the cell past the face the ray leaves it by (on the other
             // axes the cell it is in, held within the block against rounding).
             if (run >= 0.0) {
-                if (roma_ao_run_blocked(origin, d, run * cs, enter * cs, skip, t1, pad))
+                if (roma_ao_run_blocked(origin, d, run * cs, w.enter * cs, skip, t1, pad))
                     return false;
                 run = -1.0;
             }
             ivec3 first = b * B;
-            vec3 exits = mix(vec3(1e30), (vec3(first) + vec3(greaterThan(d, vec3(0.0))) * float(B) - g) / safe, moves);
+            vec3 exits = mix(vec3(1e30), (vec3(first) + vec3(greaterThan(d, vec3(0.0))) * float(B) - w.g) / w.safe,
+                             w.moves);
             float out_t = min(min(exits.x, exits.y), exits.z);
-            if (out_t >= hi)
+            if (out_t >= w.hi)
                 return true;
-            enter = max(enter, out_t);
-            ivec3 inside = clamp(ivec3(floor(g + d * enter)), first, first + ivec3(B - 1));
+            float enter = max(w.enter, out_t);
+            ivec3 inside = clamp(ivec3(floor(w.g + d * enter)), first, first + ivec3(B - 1));
             ivec3 past = first + mix(ivec3(-1), ivec3(B), greaterThan(d, vec3(0.0)));
-            c = mix(inside, past, lessThanEqual(exits, vec3(out_t)));
+            ivec3 c = mix(inside, past, lessThanEqual(exits, vec3(out_t)));
             if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(int(n)))))
                 return true;
-            next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);
+            roma_surface_walk_jump(w, c, enter);
             continue;
         }
-        float leave = min(min(next.x, next.y), min(next.z, hi));
-        uint at = (uint(c.z) * n + uint(c.y)) * n + uint(c.x);
-        // An empty cell (most of a ray's) costs one load: its count is 0 (test_surface_cells).
+        float enter = w.enter, leave = roma_surface_walk_leave(w);
+        uint at = (uint(w.c.z) * n + uint(w.c.y)) * n + uint(w.c.x);
+        // An empty cell costs one load more: its count is 0 (test_surface_cells).
         uint low = RomaUints(G.cells).u[at];
         bool crowded = false;
         if (low != ROMA_GBUFFER_NO_TRIANGLE) {
@@ -108,22 +97,7 @@ bool roma_ao_surface_walk_open(roma_surface_grid G, vec3 o, vec3 d, float t0, fl
                 return false;
             run = -1.0;
         }
-        bool done = leave >= hi;
-        if (!done) {
-            enter = leave;
-            if (next.x <= next.y && next.x <= next.z) {
-                c.x += step.x;
-                next.x += delta.x;
-            } else if (next.y <= next.z) {
-                c.y += step.y;
-                next.y += delta.y;
-            } else {
-                c.z += step.z;
-                next.z += delta.z;
-            }
-            done = any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(int(n))));
-        }
-        if (done) // the end of the segment or of the grid
+        if (!roma_surface_walk_step(w, n)) // the end of the segment or of the grid
             return !(run >= 0.0 && roma_ao_run_blocked(origin, d, run * cs, leave * cs, skip, t1, pad));
     }
     return false;

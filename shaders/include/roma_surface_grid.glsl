@@ -107,6 +107,74 @@ bool roma_surface_key_crossed(roma_surface_grid G, uint key, vec3 o, vec3 d, flo
     return min(in0, min(in1, in2)) >= -tol;
 }
 
+// A 3D DDA over the grid's cells along o + d * [t0, t1] (d unit, world units), in cells: c the
+// cell it is in, entered at `enter`, left at roma_surface_walk_leave; hi where the segment
+// leaves the grid's box.
+struct roma_surface_walk {
+    vec3 g, safe, next, delta;
+    bvec3 moves;
+    ivec3 c, step;
+    float enter, hi;
+};
+
+// The walk's first cell; false where the segment misses the grid's box (an axis d does not
+// move along bounds nothing, or everything when o lies outside the box on it).
+bool roma_surface_walk_begin(roma_surface_grid G, vec3 o, vec3 d, float t0, float t1, out roma_surface_walk w)
+{
+    float cs = G.grid.w, res = float(G.config.x);
+    w.g = (o - G.grid.xyz) / cs;
+    w.moves = notEqual(d, vec3(0.0));
+    w.safe = mix(vec3(1.0), d, w.moves);
+    uvec3 off_box = uvec3(lessThan(w.g, vec3(0.0))) | uvec3(greaterThanEqual(w.g, vec3(res)));
+    if (any(bvec3(off_box & uvec3(not(w.moves)))))
+        return false;
+    vec3 ta = -w.g / w.safe, tb = (vec3(res) - w.g) / w.safe;
+    vec3 tlo = mix(vec3(-1e30), min(ta, tb), w.moves), thi = mix(vec3(1e30), max(ta, tb), w.moves);
+    w.enter = max(t0 / cs, max(tlo.x, max(tlo.y, tlo.z)));
+    w.hi = min(t1 / cs, min(thi.x, min(thi.y, thi.z)));
+    if (!(w.hi > w.enter))
+        return false;
+    w.step = ivec3(sign(d));
+    w.delta = mix(vec3(1e30), abs(1.0 / w.safe), w.moves);
+    w.c = clamp(ivec3(floor(w.g + d * w.enter)), ivec3(0), ivec3(int(G.config.x) - 1));
+    w.next = mix(vec3(1e30), (vec3(w.c) + vec3(greaterThan(d, vec3(0.0))) - w.g) / w.safe, w.moves);
+    return true;
+}
+
+// Where the walk leaves its cell (or the segment ends), in cells along d.
+float roma_surface_walk_leave(roma_surface_walk w)
+{
+    return min(min(w.next.x, w.next.y), min(w.next.z, w.hi));
+}
+
+// The walk on in cell c (a jump: the next faces recomputed), entered at `enter`.
+void roma_surface_walk_jump(inout roma_surface_walk w, ivec3 c, float enter)
+{
+    w.c = c;
+    w.enter = enter;
+    w.next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(w.safe, vec3(0.0))) - w.g) / w.safe, w.moves);
+}
+
+// The next cell along d; false when the segment ends in this one or the walk leaves the grid.
+bool roma_surface_walk_step(inout roma_surface_walk w, uint n)
+{
+    float leave = roma_surface_walk_leave(w);
+    if (leave >= w.hi)
+        return false;
+    w.enter = leave;
+    if (w.next.x <= w.next.y && w.next.x <= w.next.z) {
+        w.c.x += w.step.x;
+        w.next.x += w.delta.x;
+    } else if (w.next.y <= w.next.z) {
+        w.c.y += w.step.y;
+        w.next.y += w.delta.y;
+    } else {
+        w.c.z += w.step.z;
+        w.next.z += w.delta.z;
+    }
+    return all(greaterThanEqual(w.c, ivec3(0))) && all(lessThan(w.c, ivec3(int(n))));
+}
+
 // Whether o + d * (t0, t1] (d unit, world units) crosses a triangle a cell holds inside that
 // cell (the lowest key of each cell, and in a grid of two layers the highest wall's), over at most
 // max_cells cells of the grid from t0; `covered`: how far along d it looked (t1 when it
@@ -121,33 +189,16 @@ bool roma_surface_crossed(roma_surface_grid G, vec3 o, vec3 d, float t0, float t
                           out float covered)
 {
     covered = G.cells == uvec2(0u) ? 0.0 : t1;
-    if (G.cells == uvec2(0u) || !(t1 > t0))
+    roma_surface_walk w;
+    if (G.cells == uvec2(0u) || !(t1 > t0) || !roma_surface_walk_begin(G, o, d, t0, t1, w))
         return false;
-    float cs = G.grid.w, res = float(G.config.x);
-    vec3 g = (o - G.grid.xyz) / cs;
-    // The segment clipped to the grid's box, in cells along d; an axis d does not move along
-    // bounds nothing, or everything when o lies outside the box on it.
-    bvec3 moves = notEqual(d, vec3(0.0));
-    vec3 safe = mix(vec3(1.0), d, moves);
-    uvec3 off_box = uvec3(lessThan(g, vec3(0.0))) | uvec3(greaterThanEqual(g, vec3(res)));
-    if (any(bvec3(off_box & uvec3(not(moves)))))
-        return false;
-    vec3 ta = -g / safe, tb = (vec3(res) - g) / safe;
-    vec3 tlo = mix(vec3(-1e30), min(ta, tb), moves), thi = mix(vec3(1e30), max(ta, tb), moves);
-    float lo = max(t0 / cs, max(tlo.x, max(tlo.y, tlo.z))), hi = min(t1 / cs, min(thi.x, min(thi.y, thi.z)));
-    if (!(hi > lo))
-        return false;
+    float cs = G.grid.w;
     uint n = G.config.x, layer = G.config.y >= 2u ? n * n * n : 0u;
-    ivec3 c = clamp(ivec3(floor(g + d * lo)), ivec3(0), ivec3(int(n) - 1));
-    ivec3 step = ivec3(sign(d));
-    vec3 next = mix(vec3(1e30), (vec3(c) + vec3(greaterThan(d, vec3(0.0))) - g) / safe, moves);
-    vec3 delta = mix(vec3(1e30), abs(1.0 / safe), moves);
-    float enter = lo;
     bool mine_all = own != vec4(0.0);
     for (int i = 0; i < max_cells; ++i) {
         ROMA_LOOP_TICK();
-        float leave = min(min(next.x, next.y), min(next.z, hi));
-        uint at = (uint(c.z) * n + uint(c.y)) * n + uint(c.x);
+        float enter = w.enter, leave = roma_surface_walk_leave(w);
+        uint at = (uint(w.c.z) * n + uint(w.c.y)) * n + uint(w.c.x);
         uint low = RomaUints(G.cells).u[at];
         if (mine_all && low >= ROMA_SURFACE_EMITTER) // only area lights here (they rank last): no wall
             low = ROMA_GBUFFER_NO_TRIANGLE;
@@ -155,24 +206,9 @@ bool roma_surface_crossed(roma_surface_grid G, vec3 o, vec3 d, float t0, float t
         if (roma_surface_key_crossed(G, low, o, d, t0, t1, enter * cs, leave * cs, own) ||
             (high != low && roma_surface_key_crossed(G, high, o, d, t0, t1, enter * cs, leave * cs, own)))
             return true;
-        if (leave >= hi) {
-            covered = t1; // the rest of the segment lies outside the grid, if any
-            return false;
-        }
         covered = leave * cs;
-        enter = leave;
-        if (next.x <= next.y && next.x <= next.z) {
-            c.x += step.x;
-            next.x += delta.x;
-        } else if (next.y <= next.z) {
-            c.y += step.y;
-            next.y += delta.y;
-        } else {
-            c.z += step.z;
-            next.z += delta.z;
-        }
-        if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(int(n))))) {
-            covered = t1;
+        if (!roma_surface_walk_step(w, n)) {
+            covered = t1; // the rest of the segment lies outside the grid, if any
             return false;
         }
     }

@@ -219,7 +219,9 @@ sys.exit(0 if ok else 1)
 LEVELS
 for bad in "--accuracy --effect direct --ao-radius 0.05 --cascades auto" "--accuracy --cascades auto" \
            "--cascades auto --ao-radius 0.05" "--no-baselines --ao-radius 0.05" \
-           "--accuracy --camera 0,1,1.9,0,0.8,-1,180" "--accuracy --camera 0,1,1.9,0,1,1.9"; do
+           "--accuracy --camera 0,1,1.9,0,0.8,-1,180" "--accuracy --camera 0,1,1.9,0,1,1.9" \
+           "--accuracy --ao-trace surfaces" "--accuracy --ray-start surfaces" \
+           "--cascades 2 --ao-radius 0.05 --ao-trace surfaces" "--growth builtin:cornell --ao-trace surfaces"; do
   # shellcheck disable=SC2086
   "${bench_run[@]}" --small $bad >/dev/null 2>&1
   [ $? -eq 2 ] || fail "$bad: should exit 2"

@@ -411,6 +411,13 @@ int main(int argc, char **argv)
                         "--accuracy; one of --accuracy, --growth and --cascades\n");
         return 2;
     }
+    /* The AO rays' start and trace settings are those of the frame table alone: refused with the
+     * modes that would run without them rather than ignored. */
+    if ((ao_start != ROMA_AO_START_VOXELS || ao_trace != ROMA_AO_TRACE_MAPS) && (accuracy || growth || cascades)) {
+        fprintf(stderr, "roma-bench: --ray-start and --ao-trace are for the AO frame table, not --accuracy, "
+                        "--growth or --cascades\n");
+        return 2;
+    }
     if (no_baselines && (!accuracy || effect != ROMA_BENCH_EFFECT_AO)) {
         fprintf(stderr, "roma-bench: --no-baselines is for --accuracy of AO\n");
         return 2;

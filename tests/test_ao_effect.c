@@ -33,7 +33,9 @@
  * (docs/accuracy.md): measured mean |difference| 40.6%, bias +2.6%, as an H100 measures it
  * (which gives +3.1% and -0.6% at seeds 12 and 13). 1,024 samples in one record: before the
  * passes split their loops within lavapipe's loop budget (src/vulkan/loop_budget.h), 256
- * samples measured +3.0% here and +6.2% on the H100, and 512 or more came out 40-70% dark. */
+ * samples measured +3.0% here and +6.2% on the H100, and 512 or more came out 40-70% dark:
+ * lavapipe's figure was cut short (with the split, 256 samples measure +6.2% here too;
+ * docs/accuracy.md, docs/accuracy/gi_loop_budget.sh). */
 #define GI_MAX_ERROR 0.41
 #define GI_MAX_BIAS 0.035
 /* The same with the spot alone (cornell_spot, its light concentrated in one patch: more

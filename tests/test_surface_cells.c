@@ -35,7 +35,7 @@
 
 typedef struct built {
     uint32_t *cells;    /* RES^3, (z * RES + y) * RES + x; then the second layer, then the third
-                           (with COUNTS, then the blocks' flags) */
+                           (with COUNTS, then the blocks' and super-blocks' flags) */
     float origin[3], cell;
     uint32_t queued, capacity; /* tiles the build queued, and the queue's room */
 } built;
@@ -47,7 +47,9 @@ static roma_result build(roma_context *ctx, const roma_scene_view *v, uint32_t r
     memset(&cells, 0, sizeof cells);
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     const VkDeviceSize side = (res + ROMA_SURFACE_BLOCK - 1) / ROMA_SURFACE_BLOCK,
-                       layer = (VkDeviceSize)res * res * res * 4, blocks = side * side * side * 4;
+                       super_side = (res + ROMA_SURFACE_SUPER - 1) / ROMA_SURFACE_SUPER,
+                       layer = (VkDeviceSize)res * res * res * 4,
+                       blocks = (side * side * side + super_side * super_side * super_side) * 4;
     const VkDeviceSize bytes = 3 * layer + (layers == ROMA_SURFACE_LAYERS_COUNTS ? blocks : 0);
     roma_result r = roma_buffer_create(ctx, (VkDeviceSize)v->vertex_count * 16, usage, ROMA_MEMORY_UPLOAD, &positions);
     if (r == ROMA_SUCCESS)
@@ -290,20 +292,24 @@ static void check_counts(roma_context *ctx, const char *name, uint32_t res)
         return;
     built b = {0};
     CHECK_RESULT(build(ctx, &v, res, ROMA_SURFACE_LAYERS_COUNTS, &b), ROMA_SUCCESS);
-    uint64_t held = 0, wrong = 0, crowded = 0, blocks_held = 0, blocks_wrong = 0;
-    const size_t layer = (size_t)res * res * res, side = (res + ROMA_SURFACE_BLOCK - 1) / ROMA_SURFACE_BLOCK;
-    /* The blocks' flags: set where one of the block's cells holds a triangle, and only there. */
-    for (size_t block = 0; b.cells && block < side * side * side; ++block) {
-        const size_t x0 = block % side * ROMA_SURFACE_BLOCK, y0 = block / side % side * ROMA_SURFACE_BLOCK,
-                     z0 = block / side / side * ROMA_SURFACE_BLOCK;
-        int any = 0;
-        for (size_t z = z0; z < z0 + ROMA_SURFACE_BLOCK && z < res; ++z)
-            for (size_t y = y0; y < y0 + ROMA_SURFACE_BLOCK && y < res; ++y)
-                for (size_t x = x0; x < x0 + ROMA_SURFACE_BLOCK && x < res; ++x)
-                    any |= b.cells[(z * res + y) * res + x] != ROMA_GBUFFER_NO_TRIANGLE;
-        const uint32_t flag = b.cells[3 * layer + block];
-        blocks_held += flag != 0;
-        blocks_wrong += (flag != 0) != any;
+    uint64_t held = 0, wrong = 0, crowded = 0, blocks_held[2] = {0, 0}, blocks_wrong[2] = {0, 0};
+    const size_t layer = (size_t)res * res * res, sizes[2] = {ROMA_SURFACE_BLOCK, ROMA_SURFACE_SUPER};
+    size_t sides[2], flags = 3 * layer; /* the blocks' flags after the counts, the super-blocks' after those */
+    /* The (super-)blocks' flags: set where one of the block's cells holds a triangle, and only there. */
+    for (int level = 0; level < 2; ++level) {
+        const size_t B = sizes[level], side = sides[level] = (res + B - 1) / B;
+        for (size_t block = 0; b.cells && block < side * side * side; ++block) {
+            const size_t x0 = block % side * B, y0 = block / side % side * B, z0 = block / side / side * B;
+            int any = 0;
+            for (size_t z = z0; z < z0 + B && z < res; ++z)
+                for (size_t y = y0; y < y0 + B && y < res; ++y)
+                    for (size_t x = x0; x < x0 + B && x < res; ++x)
+                        any |= b.cells[(z * res + y) * res + x] != ROMA_GBUFFER_NO_TRIANGLE;
+            const uint32_t flag = b.cells[flags + block];
+            blocks_held[level] += flag != 0;
+            blocks_wrong[level] += (flag != 0) != any;
+        }
+        flags += side * side * side;
     }
     for (size_t at = 0; b.cells && at < layer; ++at) {
         const uint32_t key = b.cells[at], count = b.cells[2 * layer + at];
@@ -322,14 +328,17 @@ static void check_counts(roma_context *ctx, const char *name, uint32_t res)
         crowded += count > 2;
     }
     printf("%-8s RES %3u: counts in %llu held cells, wrong %llu, more than two triangles in %llu; %llu of %llu "
-           "blocks of %u^3 cells flagged, wrong %llu\n",
+           "blocks of %u^3 cells flagged, wrong %llu; %llu of %llu of %u^3, wrong %llu\n",
            name, res, (unsigned long long)held, (unsigned long long)wrong, (unsigned long long)crowded,
-           (unsigned long long)blocks_held, (unsigned long long)(side * side * side), ROMA_SURFACE_BLOCK,
-           (unsigned long long)blocks_wrong);
+           (unsigned long long)blocks_held[0], (unsigned long long)(sides[0] * sides[0] * sides[0]), ROMA_SURFACE_BLOCK,
+           (unsigned long long)blocks_wrong[0], (unsigned long long)blocks_held[1],
+           (unsigned long long)(sides[1] * sides[1] * sides[1]), ROMA_SURFACE_SUPER, (unsigned long long)blocks_wrong[1]);
     CHECK(held > 0);
     CHECK(wrong == 0);
-    CHECK(blocks_held > 0 && blocks_held < side * side * side); /* the room's walls, not its air */
-    CHECK(blocks_wrong == 0);
+    for (int level = 0; level < 2; ++level) {
+        CHECK(blocks_held[level] > 0 && blocks_held[level] < sides[level] * sides[level] * sides[level]); /* walls, not air */
+        CHECK(blocks_wrong[level] == 0);
+    }
     CHECK(crowded > 0); /* the room's corners: three walls' triangles */
     free(b.cells);
     roma_scene_destroy(scene);

@@ -140,7 +140,8 @@ typedef struct roma_ao_effect_desc {
     /** Resolution of the surface grid of ROMA_AO_START_SURFACES and ROMA_AO_TRACE_SURFACES
      * (which triangles lie in each of its cells, two, and how many, over the map's volume), 32
      * to 256; 0 = the RES of the map the first record with either traces (32 at least). Made by
-     * that record: (3 * resolution^3 + ceil(resolution / 4)^3) * 4 bytes of device memory. */
+     * that record: (3 * resolution^3 + ceil(resolution / 4)^3 + ceil(resolution / 16)^3) * 4 bytes
+     * of device memory. */
     uint32_t surface_resolution;
 } roma_ao_effect_desc;
 

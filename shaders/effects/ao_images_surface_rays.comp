@@ -29,14 +29,34 @@ bool roma_ao_run_blocked(vec3 origin, vec3 dir, float a, float b, float skip, fl
     return (roma_trace_unsnapped(origin, dir, a, b, false, steps).info & ROMA_HIT_FLAG) != 0u;
 }
 
+// Crosses the empty cube of B^3 cells whose first cell is `first` in one step: the walk goes on
+// from the cell past the face the ray leaves it by (on the other axes the cell it is in, held
+// within the cube against rounding). False where the segment or the grid ends inside it.
+bool roma_ao_cross_empty(inout roma_surface_walk w, vec3 d, ivec3 first, int B, int n)
+{
+    vec3 exits = mix(vec3(1e30), (vec3(first) + vec3(greaterThan(d, vec3(0.0))) * float(B) - w.g) / w.safe, w.moves);
+    float out_t = min(min(exits.x, exits.y), exits.z);
+    if (out_t >= w.hi)
+        return false;
+    float enter = max(w.enter, out_t);
+    ivec3 inside = clamp(ivec3(floor(w.g + d * enter)), first, first + ivec3(B - 1));
+    ivec3 past = first + mix(ivec3(-1), ivec3(B), greaterThan(d, vec3(0.0)));
+    ivec3 c = mix(inside, past, lessThanEqual(exits, vec3(out_t)));
+    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(n))))
+        return false;
+    roma_surface_walk_jump(w, c, enter);
+    return true;
+}
+
 // The walk of o + d * [t0, t1] (d unit, world units) through the surface grid, over at most
-// max_cells of its cells (an empty block of ROMA_SURFACE_BLOCK^3 cells is crossed in one step,
-// and at most one more leaves it: 2 max_cells steps; beyond them, blocked); outside the grid
-// nothing lies. A triangle a cell holds crossed inside it blocks (the plane `own` apart: the
-// surface the ray leaves). Over each run of cells whose count shows more triangles than their
-// two layers hold, the map decides: an un-snapped query from the offset origin along the ray
-// over the run (held within [skip, t1], grown by pad); early_run: whether a run began before
-// the skip (where the caller's check of the start decides).
+// max_cells of its cells (an empty super-block of ROMA_SURFACE_SUPER^3 cells or block of
+// ROMA_SURFACE_BLOCK^3 is crossed in one step, each to a cell farther along the ray: 2
+// max_cells steps; beyond them, blocked); outside the grid nothing lies. A triangle a cell
+// holds crossed inside it blocks (the plane `own` apart: the surface the ray leaves). Over each
+// run of cells whose count shows more triangles than their two layers hold, the map decides:
+// an un-snapped query from the offset origin along the ray over the run (held within [skip,
+// t1], grown by pad); early_run: whether a run began before the skip (where the caller's check
+// of the start decides).
 bool roma_ao_surface_walk_open(roma_surface_grid G, vec3 o, vec3 d, float t0, float t1, vec4 own, int max_cells,
                                vec3 origin, float skip, float pad, out bool early_run)
 {
@@ -46,33 +66,26 @@ bool roma_ao_surface_walk_open(roma_surface_grid G, vec3 o, vec3 d, float t0, fl
         return true; // the segment misses the grid's box
     float cs = G.grid.w;
     uint n = G.config.x, layer = n * n * n, side = (n + ROMA_SURFACE_BLOCK - 1u) / ROMA_SURFACE_BLOCK;
-    const int B = int(ROMA_SURFACE_BLOCK);
+    uint supers = layer + side * side * side, super_side = (n + ROMA_SURFACE_SUPER - 1u) / ROMA_SURFACE_SUPER;
+    const int B = int(ROMA_SURFACE_BLOCK), S = int(ROMA_SURFACE_SUPER);
     float run = -1.0; // where the current run of crowded cells began (cells), or < 0
     for (int i = 0; i < 2 * max_cells; ++i) {
         ROMA_LOOP_TICK();
         ivec3 b = w.c / B;
         if (RomaUints(G.third_cells).u[layer + (uint(b.z) * side + uint(b.y)) * side + uint(b.x)] == 0u) {
-            // An empty block (most of an unbounded ray's): a crowded run ends where it begins, and
-            // the walk goes on from the cell past the face the ray leaves it by (on the other
-            // axes the cell it is in, held within the block against rounding).
+            // Empty space (most of an unbounded ray's): a crowded run ends where it begins; the
+            // step crosses the block, or its super-block where that is empty too (the block's
+            // flag first: a cell in a flagged block costs no more load than before).
             if (run >= 0.0) {
                 if (roma_ao_run_blocked(origin, d, run * cs, w.enter * cs, skip, t1, pad))
                     return false;
                 run = -1.0;
             }
-            ivec3 first = b * B;
-            vec3 exits = mix(vec3(1e30), (vec3(first) + vec3(greaterThan(d, vec3(0.0))) * float(B) - w.g) / w.safe,
-                             w.moves);
-            float out_t = min(min(exits.x, exits.y), exits.z);
-            if (out_t >= w.hi)
+            ivec3 s = w.c / S;
+            bool empty_super =
+                RomaUints(G.third_cells).u[supers + (uint(s.z) * super_side + uint(s.y)) * super_side + uint(s.x)] == 0u;
+            if (!roma_ao_cross_empty(w, d, empty_super ? s * S : b * B, empty_super ? S : B, int(n)))
                 return true;
-            float enter = max(w.enter, out_t);
-            ivec3 inside = clamp(ivec3(floor(w.g + d * enter)), first, first + ivec3(B - 1));
-            ivec3 past = first + mix(ivec3(-1), ivec3(B), greaterThan(d, vec3(0.0)));
-            ivec3 c = mix(inside, past, lessThanEqual(exits, vec3(out_t)));
-            if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(int(n)))))
-                return true;
-            roma_surface_walk_jump(w, c, enter);
             continue;
         }
         float enter = w.enter, leave = roma_surface_walk_leave(w);

@@ -432,8 +432,11 @@ ROMA_STRUCT_END(roma_rsm_view)
 #define ROMA_SURFACE_LAYERS_COUNTS 4u
 /* With COUNTS, third_cells holds after the RES^3 counts one uint per block of
  * ROMA_SURFACE_BLOCK^3 cells ((RES + 3) / 4 a side, (z * B + y) * B + x): non-zero where a cell
- * of the block holds a triangle, so that a ray's walk crosses an empty block in one step. */
+ * of the block holds a triangle, so that a ray's walk crosses an empty block in one step; and
+ * after those, the same per block of ROMA_SURFACE_SUPER^3 cells ((RES + 15) / 16 a side), so
+ * that it crosses the empty space away from the surfaces 16 cells a step. */
 #define ROMA_SURFACE_BLOCK 4u
+#define ROMA_SURFACE_SUPER 16u
 ROMA_STRUCT_BEGIN(roma_surface_grid)
     ROMA_U64(cells);      /* uint per cell, index (z * RES + y) * RES + x; 0: no grid */
     ROMA_U64(indices);    /* uint x3 per triangle */

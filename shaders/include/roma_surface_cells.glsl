@@ -57,7 +57,14 @@ void roma_surface_columns(roma_vox_triangle t, uint tri, ivec2 lo, ivec2 hi, int
                          atomicAdd(RomaThirdCells(pc.runs[1].xy).u[cell], 1u) == 0u) { // the cell's block holds one
                     uint side = (uint(res) + ROMA_SURFACE_BLOCK - 1u) / ROMA_SURFACE_BLOCK;
                     uvec3 b = uvec3(w) / ROMA_SURFACE_BLOCK;
-                    atomicOr(RomaThirdCells(pc.runs[1].xy).u[uint(res * res * res) + (b.z * side + b.y) * side + b.x], 1u);
+                    uint blocks = uint(res * res * res);
+                    if (atomicOr(RomaThirdCells(pc.runs[1].xy).u[blocks + (b.z * side + b.y) * side + b.x], 1u) == 0u) {
+                        // and the first of the block's to flag it flags its super-block
+                        uint supers = blocks + side * side * side;
+                        uint super_side = (uint(res) + ROMA_SURFACE_SUPER - 1u) / ROMA_SURFACE_SUPER;
+                        uvec3 s = uvec3(w) / ROMA_SURFACE_SUPER;
+                        atomicOr(RomaThirdCells(pc.runs[1].xy).u[supers + (s.z * super_side + s.y) * super_side + s.x], 1u);
+                    }
                 }
             }
         }

@@ -30,8 +30,10 @@ roma_result roma_surface_cells_create(roma_context *ctx, uint32_t resolution, ui
                                            VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                        ROMA_MEMORY_DEVICE, &out->cells); /* (a source for the tests' read-back) */
     const VkDeviceSize blocks_side = (resolution + ROMA_SURFACE_BLOCK - 1) / ROMA_SURFACE_BLOCK;
+    const VkDeviceSize supers_side = (resolution + ROMA_SURFACE_SUPER - 1) / ROMA_SURFACE_SUPER;
     const VkDeviceSize third = layer + (layers == ROMA_SURFACE_LAYERS_COUNTS
-                                            ? blocks_side * blocks_side * blocks_side * sizeof(uint32_t)
+                                            ? (blocks_side * blocks_side * blocks_side +
+                                               supers_side * supers_side * supers_side) * sizeof(uint32_t)
                                             : 0);
     if (r == ROMA_SUCCESS && layers > ROMA_SURFACE_LAYERS_TWO)
         r = roma_buffer_create(ctx, third,
@@ -108,7 +110,7 @@ roma_result roma_surface_cells_record(roma_surface_cells *cells, VkCommandBuffer
     if (cells->layers >= ROMA_SURFACE_LAYERS_TWO)
         vkCmdFillBuffer(cmd, cells->cells.buffer, layer, layer, 0);
     if (cells->layers > ROMA_SURFACE_LAYERS_TWO)
-        vkCmdFillBuffer(cmd, cells->third_cells.buffer, 0, VK_WHOLE_SIZE, /* and COUNTS' blocks */
+        vkCmdFillBuffer(cmd, cells->third_cells.buffer, 0, VK_WHOLE_SIZE, /* and COUNTS' (super-)blocks */
                         cells->layers == ROMA_SURFACE_LAYERS_COUNTS ? 0u : ROMA_GBUFFER_NO_TRIANGLE);
     roma_tile_queue_record_reset(&cells->queue, cmd);
     roma_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -25,7 +25,8 @@ typedef struct roma_surface_cells {
     roma_buffer cells;          /* one or two layers of RES^3 uint */
     roma_buffer third_cells;    /* the third layer, RES^3 uint, a buffer of its own (within the
                                    binding's range at RES 256); written through its address;
-                                   with COUNTS, the blocks' flags after it (ROMA_SURFACE_BLOCK) */
+                                   with COUNTS, the blocks' flags after it, then the
+                                   super-blocks' (ROMA_SURFACE_BLOCK, _SUPER) */
     uint32_t resolution, layers; /* ROMA_SURFACE_LAYERS_* */
     float origin[3], cell;      /* of the last build: corner of cell (0,0,0), cell size */
     uint64_t version;           /* the map geometry it holds (roma_surface_cells_follow; 0: none) */

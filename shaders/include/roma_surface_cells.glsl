@@ -13,7 +13,8 @@
 // runs[1].xy, holds the lowest area light's key in each (EMITTERS: a lamp whose cells a ceiling
 // shares, which the first layer ranks after the ceiling) or counts the triangles that overlap
 // each (COUNTS: where the two layers hold all of them; then a flag per block of cells,
-// ROMA_SURFACE_BLOCK); the push's runs[0].xy the address of the emitters' bits.
+// ROMA_SURFACE_BLOCK, and per super-block, ROMA_SURFACE_SUPER); the push's runs[0].xy the
+// address of the emitters' bits.
 #ifndef ROMA_SURFACE_CELLS_GLSL
 #define ROMA_SURFACE_CELLS_GLSL
 

@@ -77,10 +77,11 @@ uint32_t roma_loop_cost_ao_ray(roma_loop_grid g, float skip, float radius, uint3
     const float start = skip < radius ? skip : radius;
     /* The surface grid's check: its walk and the two cascade levels it looks up. */
     const uint64_t surfaces = surface_cells ? surface_cells + 2u * (g.levels > 1 ? g.levels - 1 : 0u) : 0u;
-    /* The ray's walk through the grid (two steps a cell at most: an empty block's and the one
-     * that leaves it) and the un-snapped queries over its runs of crowded cells: at most one run
-     * in two cells, each query up to two texels per trace cell of its run grown by a cell on
-     * both sides (grid cells up to 1.5 trace cells), and four. */
+    /* The ray's walk through the grid (each step, a cell's or an empty (super-)block's, to a
+     * cell farther along the ray; two a cell stated, against the jumps' rounding) and the
+     * un-snapped queries over its runs of crowded cells: at most one run in two cells, each
+     * query up to two texels per trace cell of its run grown by a cell on both sides (grid
+     * cells up to 1.5 trace cells), and four. */
     const uint64_t runs = ray_cells / 2u + 1u, steps = 3ull * ray_cells + 8u * runs;
     const uint64_t ray = ray_cells ? 2ull * ray_cells + (uint64_t)across_levels(g, steps * (g.res / 32u + 1u)) +
                                          runs * (g.levels > 1 ? 5u * g.levels : 0u)
